@@ -1,0 +1,72 @@
+#include "app/front_end.h"
+
+#include "core/error.h"
+
+namespace isoquad {
+
+FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progress& progress) {
+  FrontEndResult result;
+  DomainSummary& s = result.summary;
+  s.input_path = options.read.path;
+
+  progress.report("read", 0.0);
+  SourceData source = read_polygons(options.read);
+  s.layer_name = source.layer_name;
+  s.source_crs_name = source.crs.name;
+  s.num_features = source.num_features;
+  s.num_source_polygons = source.polygons.size();
+  s.num_rings_closed = source.num_rings_closed;
+  s.num_rings_dropped = source.num_rings_dropped;
+  s.num_points_removed = source.num_points_removed;
+  s.warnings = source.warnings;
+
+  progress.report("select", 0.3);
+  SelectParams sp;
+  sp.kind = options.kind;
+  sp.repair = options.read.repair;
+  sp.source_name = options.read.path;
+  SelectResult selected = select_domain(source, sp);
+  s.num_repaired = selected.num_repaired;
+
+  progress.report("project", 0.6);
+  ProjectResult projected = project_domain(selected.polygons, source.crs, options.project);
+  result.domain = std::move(projected.domain);
+  s.meshing_crs_name = result.domain.crs_name;
+  s.automatic_crs = projected.local.has_value();
+  s.local = projected.local;
+  s.meshing_crs_proj = crs_proj_string(CrsInfo{result.domain.crs_wkt, result.domain.crs_name});
+
+  progress.report("clean", 0.7);
+  const double h = options.target_size_m;
+  CleanParams cp;
+  cp.largest = options.largest;
+  cp.min_island_area_m2 = options.min_island_area_m2.value_or(h > 0 ? h * h : 0.0);
+  cp.min_hole_area_m2 = cp.min_island_area_m2;
+  if (cp.min_island_area_m2 < 0)
+    throw Error(ErrorClass::usage, "clean", "--min-island-area must not be negative");
+  s.min_island_area_m2 = cp.min_island_area_m2;
+  s.dropped = clean_domain(result.domain, cp);
+
+  progress.report("simplify", 0.8);
+  SimplifyParams simp;
+  simp.tolerance_m = options.simplify_m.value_or(h > 0 ? 0.25 * h : 0.0);
+  if (simp.tolerance_m < 0) throw Error(ErrorClass::usage, "simplify", "--simplify must not be negative");
+  s.simplify_m = simp.tolerance_m;
+  const SimplifyResult sr = simplify_domain(result.domain, simp);
+  s.num_vertices_before = sr.num_vertices_before;
+  s.num_vertices_after = sr.num_vertices_after;
+
+  s.num_components = result.domain.polygons.size();
+  s.num_holes = num_holes(result.domain);
+  s.num_rings = s.num_components + s.num_holes;
+  s.area_m2 = area(result.domain);
+  s.perimeter_m = perimeter(result.domain);
+  if (s.local && s.local->max_distance_km > 2000.0)
+    s.warnings.push_back("the domain spans " + std::to_string(int(s.local->max_distance_km)) +
+                         " km from its centre: the automatic projection distorts lengths by "
+                         "more than 1%; consider --dst-crs");
+  progress.report("done", 1.0);
+  return result;
+}
+
+}  // namespace isoquad

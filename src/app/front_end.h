@@ -1,0 +1,67 @@
+// The GIS front end shared by every subcommand: read -> select -> project -> clean ->
+// simplify, from a vector file to a planar domain in metres.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+#include "core/progress.h"
+#include "domain/clean_domain.h"
+#include "domain/project_domain.h"
+#include "domain/select_domain.h"
+#include "domain/simplify_domain.h"
+#include "gis/read_polygons.h"
+
+namespace isoquad {
+
+struct FrontEndOptions {
+  ReadParams read;
+  DomainKind kind = DomainKind::land;
+  bool largest = false;
+  ProjectParams project;
+  // The smallest target element size in metres when known (0: unknown). It sets the
+  // defaults of the two options below.
+  double target_size_m = 0.0;
+  std::optional<double> simplify_m;          // default: target_size_m / 4, or off
+  std::optional<double> min_island_area_m2;  // default: target_size_m^2, or 0
+};
+
+// What the front end did, for the summary and the report.
+struct DomainSummary {
+  std::string input_path;
+  std::string layer_name;
+  std::string source_crs_name;
+  std::string meshing_crs_name;
+  std::string meshing_crs_proj;  // PROJ string of the meshing CRS
+  bool automatic_crs = false;
+  std::optional<LocalProjection> local;
+  std::size_t num_features = 0;
+  std::size_t num_source_polygons = 0;
+  std::size_t num_repaired = 0;
+  std::size_t num_rings_closed = 0;
+  std::size_t num_rings_dropped = 0;
+  std::size_t num_points_removed = 0;
+  std::size_t num_components = 0;
+  std::size_t num_rings = 0;
+  std::size_t num_holes = 0;
+  std::size_t num_vertices_before = 0;  // before simplification
+  std::size_t num_vertices_after = 0;
+  double area_m2 = 0.0;
+  double perimeter_m = 0.0;
+  double simplify_m = 0.0;
+  double min_island_area_m2 = 0.0;
+  CleanResult dropped;
+  std::vector<std::string> warnings;
+};
+
+struct FrontEndResult {
+  Domain domain;
+  DomainSummary summary;
+};
+
+FrontEndResult build_planar_domain(const FrontEndOptions& options,
+                                   const Progress& progress = Progress());
+
+}  // namespace isoquad

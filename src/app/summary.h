@@ -1,0 +1,13 @@
+// Human-readable and JSON forms of the front end's summary.
+#pragma once
+
+#include <string>
+
+#include "app/front_end.h"
+
+namespace isoquad {
+
+std::string format_domain_summary(const DomainSummary& s);
+std::string domain_summary_json(const DomainSummary& s);
+
+}  // namespace isoquad

@@ -1,0 +1,125 @@
+#include "core/geometry.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace isoquad {
+
+double signed_area(const Ring& ring) {
+  const std::size_t n = ring.size();
+  if (n < 3) return 0.0;
+  // Shoelace relative to the first point, which keeps precision for large coordinates.
+  const Point2 o = ring[0];
+  double twice = 0.0;
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    const double ax = ring[i].x - o.x, ay = ring[i].y - o.y;
+    const double bx = ring[i + 1].x - o.x, by = ring[i + 1].y - o.y;
+    twice += ax * by - ay * bx;
+  }
+  return 0.5 * twice;
+}
+
+double perimeter(const Ring& ring) {
+  double len = 0.0;
+  const std::size_t n = ring.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point2& a = ring[i];
+    const Point2& b = ring[(i + 1) % n];
+    len += std::hypot(b.x - a.x, b.y - a.y);
+  }
+  return len;
+}
+
+double area(const Polygon& polygon) {
+  double a = std::abs(signed_area(polygon.outer));
+  for (const Ring& h : polygon.holes) a -= std::abs(signed_area(h));
+  return a;
+}
+
+double area(const Domain& domain) {
+  double a = 0.0;
+  for (const Polygon& p : domain.polygons) a += area(p);
+  return a;
+}
+
+double perimeter(const Polygon& polygon) {
+  double len = perimeter(polygon.outer);
+  for (const Ring& h : polygon.holes) len += perimeter(h);
+  return len;
+}
+
+double perimeter(const Domain& domain) {
+  double len = 0.0;
+  for (const Polygon& p : domain.polygons) len += perimeter(p);
+  return len;
+}
+
+std::size_t num_vertices(const Polygon& polygon) {
+  std::size_t n = polygon.outer.size();
+  for (const Ring& h : polygon.holes) n += h.size();
+  return n;
+}
+
+std::size_t num_vertices(const Domain& domain) {
+  std::size_t n = 0;
+  for (const Polygon& p : domain.polygons) n += num_vertices(p);
+  return n;
+}
+
+std::size_t num_holes(const Domain& domain) {
+  std::size_t n = 0;
+  for (const Polygon& p : domain.polygons) n += p.holes.size();
+  return n;
+}
+
+void orient_polygon(Polygon& polygon) {
+  if (signed_area(polygon.outer) < 0) std::reverse(polygon.outer.begin(), polygon.outer.end());
+  for (Ring& h : polygon.holes)
+    if (signed_area(h) > 0) std::reverse(h.begin(), h.end());
+}
+
+std::size_t remove_duplicates_and_spikes(Ring& ring) {
+  const std::size_t before = ring.size();
+  bool changed = true;
+  while (changed && !ring.empty()) {
+    changed = false;
+    Ring out;
+    out.reserve(ring.size());
+    for (const Point2& p : ring)
+      if (out.empty() || out.back() != p) out.push_back(p);
+    while (out.size() > 1 && out.back() == out.front()) out.pop_back();
+    // A spike: the ring goes a -> b -> a. Removing b and one copy of a keeps the area.
+    const std::size_t n = out.size();
+    if (n >= 3) {
+      std::vector<bool> drop(n, false);
+      for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t prev = (i + n - 1) % n, next = (i + 1) % n;
+        if (!drop[prev] && out[prev] == out[next]) {
+          drop[i] = true;
+          drop[next] = true;
+          changed = true;
+          break;  // one at a time keeps indices simple; spikes are rare
+        }
+      }
+      if (changed) {
+        Ring kept;
+        for (std::size_t i = 0; i < n; ++i)
+          if (!drop[i]) kept.push_back(out[i]);
+        out.swap(kept);
+      }
+    }
+    ring.swap(out);
+  }
+  return before - ring.size();
+}
+
+void sort_by_area(std::vector<Polygon>& polygons) {
+  std::stable_sort(polygons.begin(), polygons.end(), [](const Polygon& a, const Polygon& b) {
+    const double aa = area(a), ab = area(b);
+    if (aa != ab) return aa > ab;
+    if (a.outer[0].x != b.outer[0].x) return a.outer[0].x < b.outer[0].x;
+    return a.outer[0].y < b.outer[0].y;
+  });
+}
+
+}  // namespace isoquad

@@ -1,0 +1,58 @@
+// Plain planar geometry shared by every stage: points, rings, polygons, domains.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace isoquad {
+
+struct Point2 {
+  double x = 0.0;
+  double y = 0.0;
+};
+
+inline bool operator==(const Point2& a, const Point2& b) { return a.x == b.x && a.y == b.y; }
+inline bool operator!=(const Point2& a, const Point2& b) { return !(a == b); }
+
+// A ring is stored open: the last point is NOT a copy of the first.
+using Ring = std::vector<Point2>;
+
+// Outer ring counter-clockwise, holes clockwise (after orient_polygon()).
+struct Polygon {
+  Ring outer;
+  std::vector<Ring> holes;
+};
+
+// A planar domain: one or more disjoint polygons (components), all in one CRS.
+struct Domain {
+  std::vector<Polygon> polygons;
+  std::string crs_wkt;   // WKT2 of the CRS the coordinates are in
+  std::string crs_name;  // a human-readable name of that CRS
+};
+
+// Signed area of a ring (positive when counter-clockwise), shoelace formula.
+double signed_area(const Ring& ring);
+// Length of the closed ring.
+double perimeter(const Ring& ring);
+// Area of the polygon: outer area minus the holes' areas (unsigned).
+double area(const Polygon& polygon);
+double area(const Domain& domain);
+double perimeter(const Polygon& polygon);
+double perimeter(const Domain& domain);
+std::size_t num_vertices(const Polygon& polygon);
+std::size_t num_vertices(const Domain& domain);
+std::size_t num_holes(const Domain& domain);
+
+// Makes the outer ring counter-clockwise and the holes clockwise.
+void orient_polygon(Polygon& polygon);
+
+// Removes consecutive duplicate points (including a closing copy of the first point)
+// and spikes (a vertex where the ring turns back on itself: prev == next). Returns the
+// number of points removed.
+std::size_t remove_duplicates_and_spikes(Ring& ring);
+
+// Sorts components by decreasing area, ties broken by the first vertex, so that the
+// order is deterministic and the largest comes first.
+void sort_by_area(std::vector<Polygon>& polygons);
+
+}  // namespace isoquad

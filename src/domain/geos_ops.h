@@ -1,0 +1,63 @@
+// Planar boolean operations and validity checks, done by GEOS (through its C API).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+
+namespace isoquad {
+
+struct GeosState;
+
+// A polygonal geometry owned by a GeosContext. Move-only.
+class GeosGeometry {
+ public:
+  GeosGeometry() = default;
+  GeosGeometry(GeosState* state, void* geom) : state_(state), geom_(geom) {}
+  GeosGeometry(GeosGeometry&& o) noexcept;
+  GeosGeometry& operator=(GeosGeometry&& o) noexcept;
+  ~GeosGeometry();
+  void* get() const { return geom_; }
+  void* release();
+
+ private:
+  GeosState* state_ = nullptr;
+  void* geom_ = nullptr;
+};
+
+// The validity problem of a geometry, when there is one.
+struct GeosValidity {
+  bool valid = true;
+  std::string reason;  // e.g. "Self-intersection"
+  Point2 location;
+};
+
+// One GEOS context (reentrant API); not shared between threads.
+class GeosContext {
+ public:
+  GeosContext();
+  ~GeosContext();
+  GeosContext(const GeosContext&) = delete;
+  GeosContext& operator=(const GeosContext&) = delete;
+
+  // Rings as given (open); orientation does not matter to GEOS.
+  GeosGeometry polygon(const std::vector<Ring>& rings);
+  GeosGeometry multipolygon(std::vector<GeosGeometry> parts);
+  GeosValidity validity(const GeosGeometry& g);
+  // GEOS's MakeValid (structure method), keeping only the polygonal part.
+  GeosGeometry make_valid(const GeosGeometry& g);
+  GeosGeometry unary_union(const GeosGeometry& g);
+  GeosGeometry intersection(const GeosGeometry& a, const GeosGeometry& b);
+  GeosGeometry difference(const GeosGeometry& a, const GeosGeometry& b);
+  // The polygons of a (multi)polygon or collection, each with its rings, open.
+  std::vector<Polygon> polygons(const GeosGeometry& g);
+  double area(const GeosGeometry& g);
+
+ private:
+  GeosGeometry check(void* g, const char* what);
+  std::unique_ptr<GeosState> state_;
+};
+
+}  // namespace isoquad

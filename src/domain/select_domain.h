@@ -1,0 +1,30 @@
+// From the polygons read to one planar domain: validity (repair or report), union,
+// land or water selection within the bbox.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+#include "gis/read_polygons.h"
+
+namespace isoquad {
+
+enum class DomainKind { land, water };
+
+struct SelectParams {
+  DomainKind kind = DomainKind::land;
+  bool repair = false;   // fix invalid polygons with GEOS MakeValid instead of failing
+  std::string source_name;  // the input file, for messages
+};
+
+struct SelectResult {
+  std::vector<Polygon> polygons;  // source CRS, oriented, sorted by decreasing area
+  std::size_t num_repaired = 0;   // input polygons fixed by MakeValid
+};
+
+// Throws Error(input) for an invalid polygon (without repair) or an empty domain,
+// Error(usage) for a water domain without a bbox.
+SelectResult select_domain(const SourceData& source, const SelectParams& params);
+
+}  // namespace isoquad

@@ -1,0 +1,74 @@
+#include "gis/atomic_output.h"
+
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+
+#include "core/error.h"
+
+namespace isoquad {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+fs::path parent_dir(const std::string& path) {
+  fs::path dir = fs::path(path).parent_path();
+  return dir.empty() ? fs::path(".") : dir;
+}
+
+void remove_with_side_files(const std::string& path) {
+  for (const char* suffix : {"", "-journal", "-wal", "-shm"}) std::remove((path + suffix).c_str());
+}
+
+}  // namespace
+
+void check_output_path(const std::string& path, bool overwrite) {
+  if (path.empty()) throw Error(ErrorClass::usage, "write", "empty output path");
+  std::error_code ec;
+  if (fs::exists(path, ec) && !overwrite)
+    throw Error(ErrorClass::output, "write",
+                quote(path) + " already exists; pass --overwrite to replace it");
+  if (fs::is_directory(path, ec))
+    throw Error(ErrorClass::output, "write", quote(path) + " is a directory");
+  const fs::path dir = parent_dir(path);
+  if (!fs::is_directory(dir, ec))
+    throw Error(ErrorClass::output, "write",
+                quote(path) + ": directory " + quote(dir.string()) + " does not exist");
+  if (access(dir.c_str(), W_OK) != 0)
+    throw Error(ErrorClass::output, "write",
+                quote(path) + ": directory " + quote(dir.string()) + " is not writable");
+}
+
+AtomicOutput::AtomicOutput(std::string final_path, bool overwrite)
+    : final_path_(std::move(final_path)), overwrite_(overwrite) {
+  check_output_path(final_path_, overwrite_);
+  const fs::path p(final_path_);
+  const fs::path name = "." + p.stem().string() + ".tmp-" + std::to_string(getpid()) +
+                        p.extension().string();
+  temp_path_ = (parent_dir(final_path_) / name).string();
+  remove_with_side_files(temp_path_);
+}
+
+AtomicOutput::~AtomicOutput() {
+  if (!committed_) remove_with_side_files(temp_path_);
+}
+
+void AtomicOutput::commit() {
+  std::error_code ec;
+  if (!overwrite_ && fs::exists(final_path_, ec))
+    throw Error(ErrorClass::output, "write",
+                quote(final_path_) + " appeared while writing; pass --overwrite to replace it");
+  if (std::rename(temp_path_.c_str(), final_path_.c_str()) != 0)
+    throw Error(ErrorClass::output, "write",
+                "cannot move the finished output to " + quote(final_path_) + ": " +
+                    std::strerror(errno));
+  committed_ = true;
+}
+
+}  // namespace isoquad

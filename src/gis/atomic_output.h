@@ -1,0 +1,32 @@
+// Outputs are written to a temporary file next to the destination and renamed into
+// place only when complete, so a failure never leaves a partial output behind.
+#pragma once
+
+#include <string>
+
+namespace isoquad {
+
+// Fails early (Error(output)) when `path` exists and `overwrite` is false, or when its
+// directory does not exist or is not writable. Call before any long work.
+void check_output_path(const std::string& path, bool overwrite);
+
+class AtomicOutput {
+ public:
+  AtomicOutput(std::string final_path, bool overwrite);
+  ~AtomicOutput();  // removes the temporary file unless committed
+  AtomicOutput(const AtomicOutput&) = delete;
+  AtomicOutput& operator=(const AtomicOutput&) = delete;
+
+  // Where the writer writes; it keeps the destination's extension.
+  const std::string& temp_path() const { return temp_path_; }
+  // Moves the finished temporary file into place. Throws Error(output).
+  void commit();
+
+ private:
+  std::string final_path_;
+  std::string temp_path_;
+  bool overwrite_ = false;
+  bool committed_ = false;
+};
+
+}  // namespace isoquad

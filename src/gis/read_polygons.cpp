@@ -1,0 +1,309 @@
+#include "gis/read_polygons.h"
+
+#include <gdal.h>
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <cmath>
+#include <memory>
+#include <sstream>
+#include <sys/stat.h>
+
+#include "core/error.h"
+#include "gis/gdal_env.h"
+
+namespace isoquad {
+
+namespace {
+
+struct DatasetCloser {
+  void operator()(GDALDataset* ds) const { GDALClose(ds); }
+};
+
+std::string quote(const std::string& s) { return "'" + s + "'"; }
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
+
+bool is_polygonal(OGRwkbGeometryType t) {
+  const OGRwkbGeometryType f = wkbFlatten(t);
+  return f == wkbPolygon || f == wkbMultiPolygon || f == wkbCurvePolygon ||
+         f == wkbMultiSurface || f == wkbPolyhedralSurface || f == wkbTIN;
+}
+
+class Reader {
+ public:
+  explicit Reader(const ReadParams& p) : p_(p) {}
+
+  SourceData run() {
+    open();
+    choose_layer();
+    set_crs();
+    apply_bbox();
+    apply_where();
+    read_features();
+    check_coordinate_range();
+    return std::move(out_);
+  }
+
+ private:
+  [[noreturn]] void fail(ErrorClass cls, const std::string& what) const {
+    throw Error(cls, "read", quote(p_.path) + ": " + what);
+  }
+
+  void open() {
+    ensure_gdal_registered();
+    struct stat st {};
+    // /vsi paths (zip, curl...) are GDAL's business; plain paths we check ourselves.
+    if (p_.path.rfind("/vsi", 0) != 0) {
+      if (stat(p_.path.c_str(), &st) != 0) fail(ErrorClass::input, "no such file or directory");
+      if (S_ISREG(st.st_mode) && st.st_size == 0) fail(ErrorClass::input, "file is empty");
+    }
+    GdalErrorCapture capture;
+    ds_.reset(static_cast<GDALDataset*>(
+        GDALOpenEx(p_.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+    if (!ds_) {
+      std::string why = capture.last_message();
+      fail(ErrorClass::input, "cannot read as a vector data set" +
+                                  (why.empty() ? std::string(" (unknown or corrupt format)")
+                                               : " (" + why + ")"));
+    }
+    if (ds_->GetLayerCount() == 0) fail(ErrorClass::input, "contains no vector layer");
+  }
+
+  void choose_layer() {
+    if (!p_.layer.empty()) {
+      layer_ = ds_->GetLayerByName(p_.layer.c_str());
+      if (!layer_) {
+        std::string names;
+        for (int i = 0; i < ds_->GetLayerCount(); ++i)
+          names += (i ? ", " : "") + std::string(ds_->GetLayer(i)->GetName());
+        fail(ErrorClass::usage, "no layer " + quote(p_.layer) + " (layers: " + names + ")");
+      }
+    } else if (ds_->GetLayerCount() == 1) {
+      layer_ = ds_->GetLayer(0);
+    } else {
+      for (int i = 0; i < ds_->GetLayerCount() && !layer_; ++i)
+        if (is_polygonal(ds_->GetLayer(i)->GetGeomType())) layer_ = ds_->GetLayer(i);
+      if (!layer_) layer_ = ds_->GetLayer(0);
+    }
+    out_.layer_name = layer_->GetName();
+  }
+
+  void set_crs() {
+    if (!p_.src_crs.empty()) {
+      out_.crs = parse_crs(p_.src_crs, "--src-crs");
+    } else {
+      const OGRSpatialReference* srs = layer_->GetSpatialRef();
+      if (!srs)
+        fail(ErrorClass::crs, "layer " + quote(out_.layer_name) +
+                                  " has no CRS; give the CRS of the coordinates with --src-crs");
+      out_.crs = crs_from_srs(*srs);
+    }
+  }
+
+  void apply_bbox() {
+    if (!p_.bbox) return;
+    const auto& b = *p_.bbox;
+    for (double v : b)
+      if (!std::isfinite(v)) fail(ErrorClass::usage, "--bbox has a value that is not finite");
+    if (!(b[0] < b[2] && b[1] < b[3]))
+      fail(ErrorClass::usage, "--bbox must be XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX");
+    Ring ring = densified_box(b, 64);
+    if (!p_.bbox_crs.empty()) {
+      CrsInfo bcrs = parse_crs(p_.bbox_crs, "--bbox-crs");
+      CrsTransform t(bcrs, out_.crs);
+      if (t.transform(ring) >= 0)
+        fail(ErrorClass::crs, "--bbox cannot be transformed from " + quote(bcrs.name) + " to " +
+                                  quote(out_.crs.name));
+    }
+    double xmin = 1e300, ymin = 1e300, xmax = -1e300, ymax = -1e300;
+    for (const Point2& q : ring)
+      xmin = std::min(xmin, q.x), xmax = std::max(xmax, q.x), ymin = std::min(ymin, q.y),
+      ymax = std::max(ymax, q.y);
+    OGREnvelope ext;
+    if (layer_->GetExtent(&ext, TRUE) == OGRERR_NONE) {
+      if (xmax < ext.MinX || xmin > ext.MaxX || ymax < ext.MinY || ymin > ext.MaxY)
+        fail(ErrorClass::input, "--bbox " + fmt(b[0]) + "," + fmt(b[1]) + "," + fmt(b[2]) + "," +
+                                    fmt(b[3]) + " misses the data of layer " +
+                                    quote(out_.layer_name) + " (extent " + fmt(ext.MinX) + "," +
+                                    fmt(ext.MinY) + "," + fmt(ext.MaxX) + "," + fmt(ext.MaxY) +
+                                    " in " + out_.crs.name + ")");
+    }
+    layer_->SetSpatialFilterRect(xmin, ymin, xmax, ymax);
+    out_.bbox_ring = std::move(ring);
+  }
+
+  void apply_where() {
+    if (p_.where.empty()) return;
+    GdalErrorCapture capture;
+    if (layer_->SetAttributeFilter(p_.where.c_str()) != OGRERR_NONE)
+      fail(ErrorClass::usage, "--where " + quote(p_.where) + " is not a valid filter on layer " +
+                                  quote(out_.layer_name) + ": " + capture.last_message());
+  }
+
+  void read_features() {
+    layer_->ResetReading();
+    std::size_t num_other = 0;
+    GdalErrorCapture capture;
+    for (auto& feature : *layer_) {
+      ++out_.num_features;
+      const OGRGeometry* g = feature->GetGeometryRef();
+      if (!g || g->IsEmpty() || !is_polygonal(g->getGeometryType())) {
+        ++out_.num_features_skipped;
+        if (g && !g->IsEmpty()) ++num_other;
+        continue;
+      }
+      std::unique_ptr<OGRGeometry> linear(g->getLinearGeometry());
+      part_count_ = 0;
+      add_geometry(feature->GetFID(), *linear);
+    }
+    if (!capture.last_message().empty() && out_.num_features == 0)
+      fail(ErrorClass::input, "reading layer " + quote(out_.layer_name) + " failed: " +
+                                  capture.last_message());
+    std::string selection;
+    if (!p_.where.empty()) selection += " --where " + quote(p_.where);
+    if (p_.bbox) selection += " --bbox";
+    if (out_.num_features == 0) {
+      if (selection.empty()) fail(ErrorClass::input, "layer " + quote(out_.layer_name) + " is empty");
+      fail(ErrorClass::input, "the selection (" + selection.substr(1) +
+                                  ") matched no feature in layer " + quote(out_.layer_name));
+    }
+    if (out_.polygons.empty())
+      fail(ErrorClass::input, "layer " + quote(out_.layer_name) + " has no polygons (" +
+                                  std::to_string(out_.num_features) + " feature(s) read, " +
+                                  std::to_string(num_other) +
+                                  " with point or line geometry" + (selection.empty() ? "" : ", after" + selection) + ")");
+  }
+
+  void add_geometry(long long fid, const OGRGeometry& g) {
+    const OGRwkbGeometryType t = wkbFlatten(g.getGeometryType());
+    if (t == wkbPolygon) {
+      add_polygon(fid, static_cast<int>(part_count_++), *g.toPolygon());
+    } else if (t == wkbMultiPolygon || t == wkbPolyhedralSurface || t == wkbTIN ||
+               t == wkbGeometryCollection) {
+      const auto* coll = dynamic_cast<const OGRGeometryCollection*>(&g);
+      if (coll) {
+        for (const OGRGeometry* part : *coll) add_geometry(fid, *part);
+      } else if (t == wkbPolyhedralSurface || t == wkbTIN) {
+        std::unique_ptr<OGRGeometry> mp(OGRGeometryFactory::forceToMultiPolygon(g.clone()));
+        add_geometry(fid, *mp);
+      }
+    }
+  }
+
+  void add_polygon(long long fid, int part, const OGRPolygon& poly) {
+    SourcePolygon sp;
+    sp.fid = fid;
+    sp.part = part;
+    int ring_index = 0;
+    for (const OGRLinearRing* r : poly) {
+      const std::string where = "feature " + std::to_string(fid) +
+                                (part ? " part " + std::to_string(part) : std::string()) +
+                                " ring " + std::to_string(ring_index);
+      Ring ring;
+      ring.reserve(r->getNumPoints());
+      for (int i = 0; i < r->getNumPoints(); ++i) {
+        const double x = r->getX(i), y = r->getY(i);
+        if (!std::isfinite(x) || !std::isfinite(y))
+          fail(ErrorClass::input, where + " vertex " + std::to_string(i) +
+                                      ": coordinate is not finite (" + fmt(x) + ", " + fmt(y) + ")");
+        ring.push_back({x, y});
+      }
+      const bool closed = ring.size() >= 2 && ring.front() == ring.back();
+      if (!closed && !ring.empty()) {
+        if (!p_.repair)
+          fail(ErrorClass::input,
+               where + " is not closed: first point (" + fmt(ring.front().x) + ", " +
+                   fmt(ring.front().y) + ") differs from last point (" + fmt(ring.back().x) +
+                   ", " + fmt(ring.back().y) + "); use --repair to close it");
+        ++out_.num_rings_closed;
+      }
+      if (closed) ring.pop_back();
+      out_.num_points_removed += remove_duplicates_and_spikes(ring);
+      if (ring.size() < 3 || signed_area(ring) == 0.0) {
+        if (!p_.repair)
+          fail(ErrorClass::input, where + " is degenerate (fewer than 3 distinct points or zero "
+                                          "area); use --repair to drop it");
+        ++out_.num_rings_dropped;
+        if (ring_index == 0) return;  // without its outer ring the polygon is gone
+      } else {
+        sp.rings.push_back(std::move(ring));
+      }
+      ++ring_index;
+    }
+    if (!sp.rings.empty()) out_.polygons.push_back(std::move(sp));
+  }
+
+  void check_coordinate_range() {
+    // Geographic coordinates: longitude and latitude must be possible.
+    if (out_.crs.geographic) {
+      for (const SourcePolygon& sp : out_.polygons)
+        for (const Ring& r : sp.rings)
+          for (const Point2& q : r)
+            if (std::abs(q.y) > 90.0 || q.x < -360.0 || q.x > 360.0)
+              fail(ErrorClass::crs, "feature " + std::to_string(sp.fid) + ": coordinate (" +
+                                        fmt(q.x) + ", " + fmt(q.y) +
+                                        ") is outside the valid range of " + quote(out_.crs.name) +
+                                        " (longitude -360..360, latitude -90..90); are the "
+                                        "coordinates in another CRS? Use --src-crs");
+      return;
+    }
+    // Projected: every point must map back to longitude and latitude, and the data must
+    // lie near the CRS's area of use.
+    CrsInfo geog = geographic_base(out_.crs);
+    CrsTransform to_geog(out_.crs, geog);
+    double aou[4];
+    const bool has_aou = crs_area_of_use(out_.crs, aou);
+    for (const SourcePolygon& sp : out_.polygons)
+      for (const Ring& r : sp.rings) {
+        Ring copy = r;
+        const long bad = to_geog.transform(copy);
+        if (bad >= 0)
+          fail(ErrorClass::crs, "feature " + std::to_string(sp.fid) + ": coordinate (" +
+                                    fmt(r[bad].x) + ", " + fmt(r[bad].y) +
+                                    ") is outside the valid range of " + quote(out_.crs.name));
+        if (!has_aou) continue;
+        const double margin = 10.0;  // degrees: data near a CRS's area is common and fine
+        for (std::size_t i = 0; i < copy.size(); ++i) {
+          const Point2& q = copy[i];
+          if (q.x < aou[0] - margin || q.x > aou[2] + margin || q.y < aou[1] - margin ||
+              q.y > aou[3] + margin)
+            fail(ErrorClass::crs, "feature " + std::to_string(sp.fid) + ": coordinate (" +
+                                      fmt(r[i].x) + ", " + fmt(r[i].y) + ") lies at lon " +
+                                      fmt(q.x) + ", lat " + fmt(q.y) +
+                                      ", far outside the area of use of " + quote(out_.crs.name) +
+                                      "; are the coordinates in another CRS? Use --src-crs");
+        }
+      }
+  }
+
+  const ReadParams& p_;
+  std::unique_ptr<GDALDataset, DatasetCloser> ds_;
+  OGRLayer* layer_ = nullptr;
+  std::size_t part_count_ = 0;
+  SourceData out_;
+};
+
+}  // namespace
+
+Ring densified_box(const std::array<double, 4>& b, int per_side) {
+  Ring ring;
+  const Point2 corners[4] = {{b[0], b[1]}, {b[2], b[1]}, {b[2], b[3]}, {b[0], b[3]}};
+  for (int s = 0; s < 4; ++s) {
+    const Point2 a = corners[s], c = corners[(s + 1) % 4];
+    for (int i = 0; i < per_side; ++i) {
+      const double t = static_cast<double>(i) / per_side;
+      ring.push_back({a.x + t * (c.x - a.x), a.y + t * (c.y - a.y)});
+    }
+  }
+  return ring;
+}
+
+SourceData read_polygons(const ReadParams& params) { return Reader(params).run(); }
+
+}  // namespace isoquad

@@ -1,0 +1,56 @@
+// Reading polygons from any OGR vector source (shapefile, GeoJSON, TopoJSON,
+// GeoPackage...) with layer, attribute and bbox selection, and the checks a user needs
+// to hear about: which file, which feature, what is wrong.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+#include "gis/crs.h"
+
+namespace isoquad {
+
+struct ReadParams {
+  std::string path;
+  std::string layer;                        // empty: the only layer, or the first with polygons
+  std::string where;                        // OGR SQL attribute filter (--where)
+  std::optional<std::array<double, 4>> bbox;  // xmin, ymin, xmax, ymax (--bbox)
+  std::string bbox_crs;                     // CRS of the bbox; empty: the source CRS
+  std::string src_crs;                      // assigns the source CRS (overrides the file's)
+  bool repair = false;                      // accept unclosed and degenerate rings, fixing them
+};
+
+// One polygon of one feature, in the source CRS. rings[0] is the outer ring, the rest
+// holes, all stored open. Orientation is not yet normalised.
+struct SourcePolygon {
+  long long fid = -1;
+  int part = 0;  // index within a multipolygon
+  std::vector<Ring> rings;
+};
+
+struct SourceData {
+  std::vector<SourcePolygon> polygons;
+  CrsInfo crs;
+  std::string layer_name;
+  std::size_t num_features = 0;          // features read after selection
+  std::size_t num_features_skipped = 0;  // features without a polygon geometry
+  std::optional<Ring> bbox_ring;         // the bbox as a closed ring in the source CRS
+  std::size_t num_points_removed = 0;    // duplicate points and spikes
+  std::size_t num_rings_closed = 0;      // unclosed rings accepted with repair
+  std::size_t num_rings_dropped = 0;     // degenerate rings dropped with repair
+  std::vector<std::string> warnings;
+};
+
+// Reads the polygons of the selected layer and features. Throws Error(input) for a
+// missing, unreadable or empty source, Error(crs) for a missing or unusable CRS or
+// coordinates outside its valid range, Error(usage) for a bad --where or --bbox.
+SourceData read_polygons(const ReadParams& params);
+
+// The bbox rectangle as a ring with `per_side` points per side, so that it bends
+// correctly when projected.
+Ring densified_box(const std::array<double, 4>& bbox, int per_side);
+
+}  // namespace isoquad
