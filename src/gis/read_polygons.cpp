@@ -35,6 +35,19 @@ bool is_polygonal(OGRwkbGeometryType t) {
          f == wkbMultiSurface || f == wkbPolyhedralSurface || f == wkbTIN;
 }
 
+// Fewer than 3 distinct points, or every point on one line: no area at all. (A ring
+// whose signed area merely sums to zero, like a symmetric bow-tie, is a
+// self-intersection, which the domain stage reports.)
+bool is_degenerate(const Ring& ring) {
+  if (ring.size() < 3) return true;
+  const Point2 a = ring[0], b = ring[1];
+  for (std::size_t i = 2; i < ring.size(); ++i) {
+    const Point2 c = ring[i];
+    if ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x) != 0.0) return false;
+  }
+  return true;
+}
+
 class Reader {
  public:
   explicit Reader(const ReadParams& p) : p_(p) {}
@@ -225,10 +238,10 @@ class Reader {
       }
       if (closed) ring.pop_back();
       out_.num_points_removed += remove_duplicates_and_spikes(ring);
-      if (ring.size() < 3 || signed_area(ring) == 0.0) {
+      if (is_degenerate(ring)) {
         if (!p_.repair)
-          fail(ErrorClass::input, where + " is degenerate (fewer than 3 distinct points or zero "
-                                          "area); use --repair to drop it");
+          fail(ErrorClass::input, where + " is degenerate (fewer than 3 distinct points, or all "
+                                          "on one line); use --repair to drop it");
         ++out_.num_rings_dropped;
         if (ring_index == 0) return;  // without its outer ring the polygon is gone
       } else {

@@ -1,5 +1,6 @@
 #include "gis/write_domain.h"
 
+#include <cpl_conv.h>
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
@@ -34,6 +35,9 @@ void write_domain_gpkg(const Domain& domain, const WriteDomainParams& params) {
                     (c.last_message().empty() ? "" : ": " + c.last_message()));
   };
   {
+    // Same input, same bytes: GeoPackage stores a "last change" time, which we pin
+    // unless the user sets OGR_CURRENT_DATE.
+    CPLConfigOptionSetter fixed_date("OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z", true);
     GdalErrorCapture capture;
     GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
     if (!driver) fail("GDAL has no GeoPackage driver", capture);

@@ -4,7 +4,7 @@
 #
 # Usage:
 #   (cd /tmp && npm pack world-atlas && mkdir -p wa && tar xzf world-atlas-*.tgz -C wa)
-#   scripts/make_samples.sh /tmp/wa/package
+#   tools/make_samples.sh /tmp/wa/package
 #
 # Needs: GDAL >= 3.3 command-line tools (ogr2ogr reads TopoJSON), Debian's
 # python3-gdal under /usr/bin/python3 (GEOS-enabled, for MakeValid/clipping),

@@ -1,0 +1,158 @@
+// The isoquad binary as a user meets it: exit codes, one-line messages naming the file
+// and the problem, and no output file after any failure.
+#include <gtest/gtest.h>
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <algorithm>
+
+#include "gis/gdal_env.h"
+#include "support/fixtures.h"
+
+using namespace isoquad::test;
+
+namespace {
+
+struct BadCase {
+  std::string name;
+  std::string input;              // path of the bad input
+  std::vector<std::string> extra;  // further arguments
+  int exit_code;
+  std::string problem;  // words the message must contain
+};
+
+void expect_clean_failure(const BadCase& c, const TempDir& dir) {
+  const std::string out = dir.file("out.gpkg");
+  std::vector<std::string> args{"domain", c.input, "-o", out};
+  args.insert(args.end(), c.extra.begin(), c.extra.end());
+  const auto before = dir.entries();
+  const CliResult r = run_cli(args, dir);
+  EXPECT_EQ(r.exit_code, c.exit_code) << c.name << ": " << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << c.name << ": " << r.err;
+  EXPECT_EQ(r.err.rfind("isoquad: ", 0), 0u) << c.name << ": " << r.err;
+  EXPECT_NE(r.err.find(c.input), std::string::npos) << c.name << ": " << r.err;
+  EXPECT_NE(r.err.find(c.problem), std::string::npos) << c.name << ": " << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out)) << c.name;
+  EXPECT_EQ(dir.entries(), before) << c.name << ": files left behind";
+}
+
+}  // namespace
+
+TEST(Cli, BadInputsFailCleanly) {
+  TempDir dir;
+  const std::vector<BadCase> cases = {
+      {"missing file", dir.file("missing.shp"), {}, 3, "no such file"},
+      {"corrupt file", corrupt_shapefile(dir), {}, 3, "cannot read"},
+      {"empty file", empty_file(dir), {}, 3, "empty"},
+      {"no polygons", points_geojson(dir), {}, 3, "has no polygons"},
+      {"empty selection", good_geojson(dir), {"--where", "name = 'atlantis'"}, 3,
+       "matched no feature"},
+      {"no CRS", no_crs_csv(dir), {}, 4, "has no CRS"},
+      {"self-intersection", bowtie_geojson(dir), {}, 3, "Self-intersection"},
+      {"unclosed ring", unclosed_geojson(dir), {}, 3, "not closed"},
+      {"NaN", non_finite_geojson(dir), {}, 3, "not finite"},
+      {"infinity", non_finite_geojson(dir, true), {}, 3, "not finite"},
+      {"latitude 120", out_of_range_geojson(dir), {}, 4, "outside the valid range"},
+      {"wrong CRS", wrong_crs_geojson(dir), {}, 4, "area of use"},
+      {"bbox misses", good_geojson(dir), {"--bbox", "100,10,101,11"}, 3, "misses the data"},
+      {"water covered", good_geojson(dir), {"--domain", "water", "--bbox", "-2.9,47.1,-2.1,47.9"},
+       3, "empty"},
+  };
+  for (const BadCase& c : cases) expect_clean_failure(c, dir);
+}
+
+TEST(Cli, ExistingOutputIsNeverReplacedWithoutOverwrite) {
+  TempDir dir;
+  const std::string input = good_geojson(dir);
+  const std::string out = dir.file("out.gpkg");
+  write_file(out, "precious");
+  CliResult r = run_cli({"domain", input, "-o", out}, dir);
+  EXPECT_EQ(r.exit_code, 6) << r.err;
+  EXPECT_NE(r.err.find(out), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("already exists"), std::string::npos) << r.err;
+  EXPECT_EQ(read_file(out), "precious");
+  r = run_cli({"domain", input, "-o", out, "--overwrite", "-q"}, dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_file(out), "precious");
+  EXPECT_EQ(r.out, "");
+}
+
+TEST(Cli, UsageErrorsExitWithTwo) {
+  TempDir dir;
+  const std::string input = good_geojson(dir);
+  const std::string out = dir.file("out.gpkg");
+  for (const auto& args : std::vector<std::vector<std::string>>{
+           {"domain", input, "-o", out, "--no-such-option"},
+           {"domain", input, "-o", out, "--bbox", "1,2,3"},
+           {"domain", input, "-o", out, "--bbox", "1,2,x,4"},
+           {"domain", input, "-o", out, "--domain", "sea"},
+           {"domain", input, "-o", out, "--simplify", "-5"},
+           {"domain", input, "-o", dir.file("out.shp")},
+           {"domain", input},
+           {}}) {
+    const CliResult r = run_cli(args, dir);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("isoquad: "), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+}
+
+TEST(Cli, HelpListsExitCodes) {
+  TempDir dir;
+  CliResult r = run_cli({"--help"}, dir);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_NE(r.out.find("Exit codes"), std::string::npos);
+  r = run_cli({"domain", "--help"}, dir);
+  EXPECT_EQ(r.exit_code, 0);
+  for (const char* opt : {"--bbox", "--where", "--layer", "--dst-crs", "--src-crs", "--simplify",
+                          "--min-island-area", "--repair", "--overwrite", "--quiet", "--largest"})
+    EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
+}
+
+TEST(Cli, DomainWritesAGeoPackageInTheMeshingCrs) {
+  TempDir dir;
+  const std::string out = dir.file("france.gpkg");
+  const CliResult r =
+      run_cli({"domain", sample("france.shp"), "-o", out, "--simplify", "1000"}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("vertices:     3094 before simplification"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("automatic"), std::string::npos) << r.out;
+  isoquad::ensure_gdal_registered();
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(out.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  OGRLayer* layer = ds->GetLayerByName("domain");
+  ASSERT_NE(layer, nullptr);
+  EXPECT_EQ(layer->GetFeatureCount(), 1);
+  ASSERT_NE(layer->GetSpatialRef(), nullptr);
+  EXPECT_TRUE(layer->GetSpatialRef()->IsProjected());
+  auto f = std::unique_ptr<OGRFeature>(layer->GetNextFeature());
+  const OGRPolygon* poly = f->GetGeometryRef()->toPolygon();
+  EXPECT_EQ(poly->getNumInteriorRings(), 1);
+  EXPECT_NEAR(poly->get_Area() / 538e9, 1.0, 0.01);
+  EXPECT_NEAR(f->GetFieldAsDouble("area_m2"), poly->get_Area(), 1e-6 * poly->get_Area());
+  GDALClose(ds);
+}
+
+TEST(Cli, WaterDomainAndRepairFromTheCommandLine) {
+  TempDir dir;
+  CliResult r = run_cli({"domain", sample("brittany_land.geojson"), "-o", dir.file("sea.gpkg"),
+                         "--domain", "water", "--bbox", "-5.3,46.8,-1.95,49.35", "--size", "2000"},
+                        dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("1 component(s), 5 ring(s), 4 hole(s)"), std::string::npos) << r.out;
+  r = run_cli({"domain", bowtie_geojson(dir), "-o", dir.file("fixed.gpkg"), "--repair"}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("1 invalid polygon(s) fixed"), std::string::npos) << r.out;
+}
+
+TEST(Cli, SameInputGivesByteIdenticalOutput) {
+  TempDir dir;
+  for (const char* name : {"a.gpkg", "b.gpkg"}) {
+    const CliResult r =
+        run_cli({"domain", sample("france.shp"), "-o", dir.file(name), "--simplify", "500"}, dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  EXPECT_EQ(read_file(dir.file("a.gpkg")), read_file(dir.file("b.gpkg")));
+}

@@ -1,0 +1,100 @@
+// Helpers shared by the tests: temporary directories, fixture files, running the CLI.
+#pragma once
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace isoquad::test {
+
+inline std::string source_dir() { return ISOQUAD_SOURCE_DIR; }
+inline std::string sample(const std::string& name) {
+  return source_dir() + "/shapefiles/" + name;
+}
+
+// A fresh directory removed (with its contents) when the object dies.
+class TempDir {
+ public:
+  TempDir() {
+    std::string tmpl =
+        (std::filesystem::temp_directory_path() / "isoquad-test-XXXXXX").string();
+    path_ = mkdtemp(tmpl.data()) ? tmpl : "";
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  const std::string& path() const { return path_; }
+  std::string file(const std::string& name) const { return path_ + "/" + name; }
+  std::vector<std::string> entries() const {
+    std::vector<std::string> out;
+    for (const auto& e : std::filesystem::directory_iterator(path_))
+      out.push_back(e.path().filename().string());
+    return out;
+  }
+
+ private:
+  std::string path_;
+};
+
+inline void write_file(const std::string& path, const std::string& text) {
+  std::ofstream f(path, std::ios::binary);
+  f << text;
+}
+
+inline std::string read_file(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  std::stringstream ss;
+  ss << f.rdbuf();
+  return ss.str();
+}
+
+// A GeoJSON FeatureCollection with one Polygon feature per ring list given as raw JSON
+// coordinate text, e.g. "[[[0,0],[1,0],[1,1],[0,0]]]".
+inline std::string geojson_polygons(const std::vector<std::string>& coordinates,
+                                    const std::string& crs_member = "") {
+  std::string s = "{\"type\":\"FeatureCollection\"," + crs_member + "\"features\":[";
+  for (std::size_t i = 0; i < coordinates.size(); ++i) {
+    if (i) s += ",";
+    s += "{\"type\":\"Feature\",\"properties\":{\"id\":" + std::to_string(i) +
+         ",\"name\":\"f" + std::to_string(i) + "\"},\"geometry\":{\"type\":\"Polygon\","
+         "\"coordinates\":" + coordinates[i] + "}}";
+  }
+  return s + "]}";
+}
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+inline std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// Runs the built isoquad binary with `args` (each quoted), capturing both streams.
+inline CliResult run_cli(const std::vector<std::string>& args, const TempDir& dir) {
+  std::string cmd = shell_quote(ISOQUAD_CLI);
+  for (const std::string& a : args) cmd += " " + shell_quote(a);
+  const std::string out = dir.path() + "/.stdout", err = dir.path() + "/.stderr";
+  cmd += " >" + shell_quote(out) + " 2>" + shell_quote(err) + " </dev/null";
+  const int status = std::system(cmd.c_str());
+  CliResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = read_file(out);
+  r.err = read_file(err);
+  std::filesystem::remove(out);
+  std::filesystem::remove(err);
+  return r;
+}
+
+}  // namespace isoquad::test

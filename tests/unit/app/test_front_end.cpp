@@ -1,0 +1,161 @@
+// Property tests of the whole front end on the real Natural Earth samples.
+#include "app/front_end.h"
+
+#include <gtest/gtest.h>
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include "core/error.h"
+#include "gis/crs.h"
+#include "gis/gdal_env.h"
+#include "support/geodesic.h"
+#include "support/ring_checks.h"
+#include "support/test_support.h"
+
+using namespace isoquad;
+using namespace isoquad::test;
+
+namespace {
+
+FrontEndOptions france(double simplify_m) {
+  FrontEndOptions o;
+  o.read.path = sample("france.shp");
+  o.simplify_m = simplify_m;
+  return o;
+}
+
+// The water domain of the brittany_land sample, as the README runs it.
+FrontEndOptions brittany_water() {
+  FrontEndOptions o;
+  o.read.path = sample("brittany_land.shp");
+  o.read.bbox = std::array<double, 4>{-5.3, 46.8, -1.95, 49.35};
+  o.kind = DomainKind::water;
+  o.simplify_m = 0.0;
+  return o;
+}
+
+}  // namespace
+
+TEST(FrontEnd, FranceAreaMatchesTheEllipsoid) {
+  const FrontEndResult r = build_planar_domain(france(0.0));
+  EXPECT_TRUE(r.summary.automatic_crs);
+  EXPECT_EQ(r.summary.num_components, 1u);
+  EXPECT_EQ(r.summary.num_holes, 1u);
+  // Reference: the same rings on the WGS 84 ellipsoid.
+  SourceData src = read_polygons(france(0.0).read);
+  Polygon lonlat;
+  lonlat.outer = src.polygons[0].rings[0];
+  lonlat.holes.assign(src.polygons[0].rings.begin() + 1, src.polygons[0].rings.end());
+  const double reference = geodesic_area_m2(lonlat);
+  EXPECT_NEAR(reference / 1e6, 538714.0, 50.0);
+  EXPECT_NEAR(r.summary.area_m2 / reference, 1.0, 0.005);
+}
+
+TEST(FrontEnd, FranceInLambert93) {
+  FrontEndOptions o = france(0.0);
+  o.project.dst_crs = "EPSG:2154";
+  const FrontEndResult r = build_planar_domain(o);
+  EXPECT_FALSE(r.summary.automatic_crs);
+  EXPECT_NE(r.summary.meshing_crs_name.find("Lambert-93"), std::string::npos);
+  // Lambert-93 is conformal with a scale error below 0.1% over France.
+  EXPECT_NEAR(r.summary.area_m2 / 1e6, 538392.0, 538392.0 * 0.002);
+}
+
+TEST(FrontEnd, SimplificationKeepsHolesAndNeverCrossesAndShrinksMonotonically) {
+  std::size_t previous = SIZE_MAX;
+  for (double tol : {0.0, 100.0, 1000.0, 5000.0, 20000.0}) {
+    const FrontEndResult r = build_planar_domain(france(tol));
+    EXPECT_EQ(r.summary.num_holes, 1u) << tol;
+    EXPECT_EQ(find_crossing(r.domain), "") << tol;
+    EXPECT_LT(r.summary.num_vertices_after, previous) << tol;
+    previous = r.summary.num_vertices_after;
+    // Simplification moves the boundary by at most the tolerance: the area changes by
+    // at most about perimeter x tolerance.
+    EXPECT_NEAR(r.summary.area_m2 / 538356e6, 1.0, 0.01 + r.summary.perimeter_m * tol / 5.38e11);
+  }
+}
+
+TEST(FrontEnd, BrittanyWaterIsOnePolygonWithIslandHoles) {
+  const FrontEndResult r = build_planar_domain(brittany_water());
+  ASSERT_EQ(r.summary.num_components, 1u);
+  EXPECT_EQ(r.summary.num_holes, 4u);  // Ouessant, Belle-Ile, Noirmoutier, Jersey
+  EXPECT_EQ(find_crossing(r.domain), "");
+
+  // Reference: the same difference by GDAL/GEOS through OGR's own geometry API,
+  // projected to the same CRS.
+  ensure_gdal_registered();
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(sample("brittany_land.shp").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  OGRMultiPolygon land;
+  for (auto& f : *ds->GetLayer(0)) land.addGeometry(f->GetGeometryRef());
+  std::unique_ptr<OGRGeometry> land_union(land.UnionCascaded());
+  OGRLinearRing box_ring;
+  for (const Point2& p : densified_box({-5.3, 46.8, -1.95, 49.35}, 64)) box_ring.addPoint(p.x, p.y);
+  box_ring.closeRings();
+  OGRPolygon box;
+  box.addRing(&box_ring);
+  std::unique_ptr<OGRGeometry> sea(box.Difference(land_union.get()));
+  OGRSpatialReference wgs, local;
+  wgs.importFromEPSG(4326);
+  wgs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  local.importFromWkt(r.domain.crs_wkt.c_str());
+  local.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  sea->assignSpatialReference(&wgs);
+  ASSERT_EQ(sea->transformTo(&local), OGRERR_NONE);
+  const double reference = sea->toSurface()->get_Area();
+  GDALClose(ds);
+  EXPECT_NEAR(r.summary.area_m2 / reference, 1.0, 0.01);
+  EXPECT_NEAR(r.summary.area_m2 / 1e6, 47160.0, 100.0);
+}
+
+TEST(FrontEnd, MinIslandAreaDropsSmallIslandsAndLargestKeepsOne) {
+  FrontEndOptions o = brittany_water();
+  o.min_island_area_m2 = 70e6;  // 70 km2: keeps Belle-Ile (85 km2) and Jersey (118 km2)
+  FrontEndResult r = build_planar_domain(o);
+  EXPECT_EQ(r.summary.num_holes, 2u);
+  EXPECT_EQ(r.summary.dropped.num_holes_dropped, 2u);
+
+  FrontEndOptions land;
+  land.read.path = sample("brittany_land.shp");
+  r = build_planar_domain(land);
+  EXPECT_GT(r.summary.num_components, 3u);
+  land.largest = true;
+  const FrontEndResult largest = build_planar_domain(land);
+  EXPECT_EQ(largest.summary.num_components, 1u);
+  EXPECT_DOUBLE_EQ(largest.summary.area_m2, area(r.domain.polygons[0]));
+}
+
+TEST(FrontEnd, SizeSetsTheCleaningDefaults) {
+  FrontEndOptions o = france(0.0);
+  o.simplify_m.reset();
+  o.target_size_m = 4000.0;
+  const FrontEndResult r = build_planar_domain(o);
+  EXPECT_DOUBLE_EQ(r.summary.simplify_m, 1000.0);
+  EXPECT_DOUBLE_EQ(r.summary.min_island_area_m2, 16e6);
+  // The Llivia enclave (12 km2) is under 16 km2.
+  EXPECT_EQ(r.summary.num_holes, 0u);
+  EXPECT_EQ(r.summary.dropped.num_holes_dropped, 1u);
+}
+
+TEST(FrontEnd, SameInputGivesIdenticalDomains) {
+  const FrontEndResult a = build_planar_domain(france(1000.0));
+  const FrontEndResult b = build_planar_domain(france(1000.0));
+  ASSERT_EQ(num_vertices(a.domain), num_vertices(b.domain));
+  EXPECT_EQ(a.domain.crs_wkt, b.domain.crs_wkt);
+  for (std::size_t i = 0; i < a.domain.polygons[0].outer.size(); ++i)
+    ASSERT_EQ(a.domain.polygons[0].outer[i], b.domain.polygons[0].outer[i]);
+}
+
+TEST(FrontEnd, GeographicDstCrsIsRejected) {
+  FrontEndOptions o = france(0.0);
+  o.project.dst_crs = "EPSG:4326";
+  try {
+    build_planar_domain(o);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::crs);
+    EXPECT_NE(std::string(e.what()).find("not a projected CRS"), std::string::npos);
+  }
+}

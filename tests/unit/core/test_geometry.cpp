@@ -1,0 +1,50 @@
+#include "core/geometry.h"
+
+#include <gtest/gtest.h>
+
+using namespace isoquad;
+
+TEST(Geometry, SignedAreaAndPerimeterOfUnitSquare) {
+  Ring ccw{{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  EXPECT_DOUBLE_EQ(signed_area(ccw), 1.0);
+  EXPECT_DOUBLE_EQ(perimeter(ccw), 4.0);
+  Ring cw(ccw.rbegin(), ccw.rend());
+  EXPECT_DOUBLE_EQ(signed_area(cw), -1.0);
+}
+
+TEST(Geometry, AreaIsPreciseFarFromTheOrigin) {
+  const double o = 6.6e6;  // Lambert-93 northings are this large
+  Ring r{{o, o}, {o + 1, o}, {o + 1, o + 1}, {o, o + 1}};
+  EXPECT_NEAR(signed_area(r), 1.0, 1e-9);
+}
+
+TEST(Geometry, OrientPolygonMakesOuterCcwAndHolesCw) {
+  Polygon p;
+  p.outer = {{0, 0}, {0, 4}, {4, 4}, {4, 0}};  // clockwise
+  p.holes = {{{1, 1}, {2, 1}, {2, 2}, {1, 2}}};  // counter-clockwise
+  orient_polygon(p);
+  EXPECT_GT(signed_area(p.outer), 0);
+  EXPECT_LT(signed_area(p.holes[0]), 0);
+  EXPECT_DOUBLE_EQ(area(p), 15.0);
+}
+
+TEST(Geometry, RemovesDuplicatesClosingPointAndSpikes) {
+  Ring r{{0, 0}, {1, 0}, {1, 0}, {2, 0}, {2, 2}, {3, 3}, {2, 2}, {0, 2}, {0, 0}};
+  const std::size_t removed = remove_duplicates_and_spikes(r);
+  // The duplicate (1,0), the closing copy, and the spike 2,2 -> 3,3 -> 2,2.
+  EXPECT_EQ(removed, 4u);
+  ASSERT_EQ(r.size(), 5u);
+  EXPECT_DOUBLE_EQ(signed_area(r), 4.0);
+  for (std::size_t i = 0; i < r.size(); ++i) EXPECT_NE(r[i], r[(i + 1) % r.size()]);
+}
+
+TEST(Geometry, SortByAreaPutsLargestFirst) {
+  std::vector<Polygon> ps(3);
+  ps[0].outer = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+  ps[1].outer = {{0, 0}, {3, 0}, {3, 3}, {0, 3}};
+  ps[2].outer = {{0, 0}, {2, 0}, {2, 2}, {0, 2}};
+  sort_by_area(ps);
+  EXPECT_DOUBLE_EQ(area(ps[0]), 9.0);
+  EXPECT_DOUBLE_EQ(area(ps[1]), 4.0);
+  EXPECT_DOUBLE_EQ(area(ps[2]), 1.0);
+}

@@ -1,0 +1,64 @@
+#include "gis/atomic_output.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "support/test_support.h"
+
+using namespace isoquad;
+using namespace isoquad::test;
+
+TEST(AtomicOutput, CommitMovesTheFileIntoPlace) {
+  TempDir dir;
+  const std::string path = dir.file("out.gpkg");
+  {
+    AtomicOutput out(path, false);
+    EXPECT_NE(out.temp_path(), path);
+    EXPECT_EQ(std::filesystem::path(out.temp_path()).extension(), ".gpkg");
+    write_file(out.temp_path(), "data");
+    out.commit();
+  }
+  EXPECT_EQ(read_file(path), "data");
+  EXPECT_EQ(dir.entries().size(), 1u);
+}
+
+TEST(AtomicOutput, AFailureLeavesNothingBehind) {
+  TempDir dir;
+  const std::string path = dir.file("out.gpkg");
+  try {
+    AtomicOutput out(path, false);
+    write_file(out.temp_path(), "half");
+    write_file(out.temp_path() + "-journal", "journal");
+    throw std::runtime_error("writer failed");
+  } catch (const std::runtime_error&) {
+  }
+  EXPECT_TRUE(dir.entries().empty());
+}
+
+TEST(AtomicOutput, ExistingOutputNeedsOverwrite) {
+  TempDir dir;
+  const std::string path = dir.file("out.gpkg");
+  write_file(path, "old");
+  try {
+    AtomicOutput out(path, false);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::output);
+    EXPECT_NE(std::string(e.what()).find("already exists"), std::string::npos);
+  }
+  AtomicOutput out(path, true);
+  write_file(out.temp_path(), "new");
+  out.commit();
+  EXPECT_EQ(read_file(path), "new");
+}
+
+TEST(AtomicOutput, MissingDirectoryIsAnOutputError) {
+  TempDir dir;
+  try {
+    check_output_path(dir.file("no/such/dir/out.gpkg"), false);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::output);
+    EXPECT_NE(std::string(e.what()).find("does not exist"), std::string::npos);
+  }
+}

@@ -1,0 +1,80 @@
+#include "gis/crs.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "support/geodesic.h"
+
+using namespace isoquad;
+
+TEST(Crs, ParsesEpsgWktProjStringsAndProjJson) {
+  const CrsInfo l93 = parse_crs("EPSG:2154", "--dst-crs");
+  EXPECT_TRUE(l93.projected);
+  EXPECT_NE(l93.name.find("Lambert-93"), std::string::npos);
+  EXPECT_TRUE(parse_crs(l93.wkt, "wkt").projected);
+  const CrsInfo utm = parse_crs("+proj=utm +zone=30 +datum=WGS84 +units=m", "proj");
+  EXPECT_TRUE(utm.projected);
+  const CrsInfo wgs = parse_crs(
+      R"({"type":"GeographicCRS","name":"WGS 84","datum":{"type":"GeodeticReferenceFrame",)"
+      R"("name":"World Geodetic System 1984","ellipsoid":{"name":"WGS 84",)"
+      R"("semi_major_axis":6378137,"inverse_flattening":298.257223563}},)"
+      R"("coordinate_system":{"subtype":"ellipsoidal","axis":[{"name":"Latitude",)"
+      R"("abbreviation":"lat","direction":"north","unit":"degree"},{"name":"Longitude",)"
+      R"("abbreviation":"lon","direction":"east","unit":"degree"}]}})",
+      "projjson");
+  EXPECT_TRUE(wgs.geographic);
+}
+
+TEST(Crs, UnknownCrsIsACrsErrorNamingTheOption) {
+  try {
+    parse_crs("EPSG:99999999", "--dst-crs");
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::crs);
+    EXPECT_NE(std::string(e.what()).find("--dst-crs"), std::string::npos);
+    EXPECT_NE(std::string(e.what()).find("EPSG:99999999"), std::string::npos);
+  }
+}
+
+TEST(Crs, TransformUsesLonLatOrderAndReportsFailures) {
+  const CrsInfo wgs = parse_crs("EPSG:4326", "src");
+  const CrsInfo l93 = parse_crs("EPSG:2154", "dst");
+  CrsTransform t(wgs, l93);
+  Point2 p{3.0, 46.5};  // the projection origin of Lambert-93
+  ASSERT_TRUE(t.transform(p));
+  EXPECT_NEAR(p.x, 700000.0, 1e-3);
+  EXPECT_NEAR(p.y, 6600000.0, 1e-3);
+  // Lambert conformal conic cannot map the opposite pole.
+  std::vector<Point2> bad{{3.0, 46.5}, {3.0, -90.0}};
+  EXPECT_EQ(t.transform(bad), 1);
+}
+
+// The automatic projection must keep areas close to the ellipsoid's: it is conformal,
+// with the scale balanced between centre and edge.
+TEST(Crs, LocalProjectionPreservesAreaOfADomainTheSizeOfFrance) {
+  const CrsInfo wgs = parse_crs("EPSG:4326", "src");
+  Ring lonlat;
+  for (int i = 0; i < 40; ++i) lonlat.push_back({-4.0 + 12.0 * i / 40, 42.5});
+  for (int i = 0; i < 40; ++i) lonlat.push_back({8.0, 42.5 + 8.5 * i / 40});
+  for (int i = 0; i < 40; ++i) lonlat.push_back({8.0 - 12.0 * i / 40, 51.0});
+  for (int i = 0; i < 40; ++i) lonlat.push_back({-4.0, 51.0 - 8.5 * i / 40});
+  const LocalProjection lp = choose_local_projection(wgs, lonlat);
+  EXPECT_TRUE(lp.crs.projected);
+  EXPECT_NEAR(lp.lon0_deg, 2.0, 1e-9);
+  EXPECT_NEAR(lp.lat0_deg, 46.75, 1e-9);
+  EXPECT_LT(lp.scale_factor, 1.0);
+  EXPECT_GT(lp.max_distance_km, 600.0);
+  Ring projected = lonlat;
+  // The straight lon/lat edges are densified above, so the planar area is meaningful.
+  ASSERT_EQ(CrsTransform(wgs, lp.crs).transform(projected), -1);
+  const double reference = test::geodesic_area_m2(lonlat);
+  EXPECT_NEAR(std::abs(signed_area(projected)) / reference, 1.0, 0.005);
+}
+
+TEST(Crs, LocalProjectionHandlesTheAntimeridian) {
+  const CrsInfo wgs = parse_crs("EPSG:4326", "src");
+  Ring fiji{{177.0, -19.0}, {179.5, -19.0}, {-179.5, -16.0}, {177.0, -16.0}};
+  const LocalProjection lp = choose_local_projection(wgs, fiji);
+  EXPECT_NEAR(lp.lon0_deg, 178.75, 1e-9);
+  EXPECT_LT(lp.max_distance_km, 300.0);
+}

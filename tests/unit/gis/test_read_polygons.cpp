@@ -1,0 +1,134 @@
+#include "gis/read_polygons.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "support/fixtures.h"
+
+using namespace isoquad;
+using namespace isoquad::test;
+
+namespace {
+
+// Runs the reader and returns the error it throws; fails the test when it does not.
+Error read_error(const ReadParams& p) {
+  try {
+    read_polygons(p);
+  } catch (const Error& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no error for " << p.path;
+  return Error(ErrorClass::internal, "", "");
+}
+
+void expect_error(const ReadParams& p, ErrorClass cls, const std::string& words) {
+  const Error e = read_error(p);
+  EXPECT_EQ(e.error_class(), cls) << e.what();
+  EXPECT_NE(std::string(e.what()).find(words), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find(p.path), std::string::npos) << e.what();
+}
+
+ReadParams params(const std::string& path) {
+  ReadParams p;
+  p.path = path;
+  return p;
+}
+
+}  // namespace
+
+TEST(ReadPolygons, ReadsTheFranceSample) {
+  const SourceData d = read_polygons(params(sample("france.shp")));
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_EQ(d.polygons[0].rings.size(), 2u);  // mainland and the Llivia enclave
+  EXPECT_TRUE(d.crs.geographic);
+  EXPECT_EQ(d.layer_name, "france");
+  std::size_t n = 0;
+  for (const Ring& r : d.polygons[0].rings) n += r.size();
+  EXPECT_GT(n, 3000u);
+  // Rings are stored open.
+  EXPECT_NE(d.polygons[0].rings[0].front(), d.polygons[0].rings[0].back());
+}
+
+TEST(ReadPolygons, WhereAndBboxSelectFeatures) {
+  TempDir dir;
+  ReadParams p = params(good_geojson(dir));
+  p.where = "name = 'f1'";
+  SourceData d = read_polygons(p);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_DOUBLE_EQ(d.polygons[0].rings[0][0].x, -1.0);
+
+  p = params(good_geojson(dir));
+  p.bbox = std::array<double, 4>{-3.5, 46.5, -2.5, 48.5};
+  d = read_polygons(p);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_DOUBLE_EQ(d.polygons[0].rings[0][0].x, -3.0);
+  ASSERT_TRUE(d.bbox_ring.has_value());
+}
+
+TEST(ReadPolygons, BboxInAnotherCrs) {
+  TempDir dir;
+  ReadParams p = params(good_geojson(dir));
+  // Around (-0.5, 47.5) in Lambert-93 metres: only the eastern square.
+  p.bbox = std::array<double, 4>{380000, 6700000, 420000, 6740000};
+  p.bbox_crs = "EPSG:2154";
+  const SourceData d = read_polygons(p);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_DOUBLE_EQ(d.polygons[0].rings[0][0].x, -1.0);
+}
+
+TEST(ReadPolygons, BadInputsAreReportedWithFileAndProblem) {
+  TempDir dir;
+  expect_error(params(dir.file("missing.shp")), ErrorClass::input, "no such file");
+  expect_error(params(corrupt_shapefile(dir)), ErrorClass::input, "cannot read");
+  expect_error(params(empty_file(dir)), ErrorClass::input, "empty");
+  expect_error(params(points_geojson(dir)), ErrorClass::input, "has no polygons");
+  expect_error(params(no_crs_csv(dir)), ErrorClass::crs, "--src-crs");
+  expect_error(params(unclosed_geojson(dir)), ErrorClass::input, "not closed");
+  expect_error(params(non_finite_geojson(dir)), ErrorClass::input, "not finite");
+  expect_error(params(non_finite_geojson(dir, true)), ErrorClass::input, "not finite");
+  expect_error(params(out_of_range_geojson(dir)), ErrorClass::crs, "outside the valid range");
+  expect_error(params(wrong_crs_geojson(dir)), ErrorClass::crs, "area of use");
+
+  ReadParams p = params(good_geojson(dir));
+  p.where = "name = 'nothing'";
+  expect_error(p, ErrorClass::input, "matched no feature");
+  p.where = "no_such_field = 1";
+  expect_error(p, ErrorClass::usage, "--where");
+  p = params(good_geojson(dir));
+  p.bbox = std::array<double, 4>{100, 10, 101, 11};
+  expect_error(p, ErrorClass::input, "misses the data");
+  p.bbox = std::array<double, 4>{1, 10, 0, 11};
+  expect_error(p, ErrorClass::usage, "XMIN < XMAX");
+  p = params(good_geojson(dir));
+  p.layer = "nope";
+  expect_error(p, ErrorClass::usage, "no layer 'nope'");
+}
+
+TEST(ReadPolygons, RepairClosesUnclosedRings) {
+  TempDir dir;
+  ReadParams p = params(unclosed_geojson(dir));
+  p.repair = true;
+  const SourceData d = read_polygons(p);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_EQ(d.polygons[0].rings[0].size(), 4u);
+  EXPECT_EQ(d.num_rings_closed, 1u);
+}
+
+TEST(ReadPolygons, SrcCrsGivesACrsToDataWithout) {
+  TempDir dir;
+  ReadParams p = params(no_crs_csv(dir));
+  p.src_crs = "EPSG:2154";
+  const SourceData d = read_polygons(p);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_TRUE(d.crs.projected);
+}
+
+TEST(ReadPolygons, DensifiedBoxHasItsCornersInOrder) {
+  const Ring r = densified_box({0, 0, 4, 2}, 4);
+  ASSERT_EQ(r.size(), 16u);
+  EXPECT_EQ(r[0], (Point2{0, 0}));
+  EXPECT_EQ(r[4], (Point2{4, 0}));
+  EXPECT_EQ(r[8], (Point2{4, 2}));
+  EXPECT_EQ(r[12], (Point2{0, 2}));
+  EXPECT_DOUBLE_EQ(signed_area(r), 8.0);
+}

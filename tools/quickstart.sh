@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# One command for a new user on Debian 12: install the dependencies, build isoquad
+# (Release) and run it on the bundled sample, writing a GeoPackage into out/.
+set -euo pipefail
+ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+cd "$ROOT"
+bash tools/install-deps.sh
+bash tools/build.sh
+mkdir -p out
+SAMPLE=${1:-shapefiles/france.shp}
+OUT=out/$(basename "${SAMPLE%.*}")_domain.gpkg
+build/isoquad domain "$SAMPLE" -o "$OUT" --size 11000 --overwrite
+echo "wrote $OUT (open it in QGIS)"
