@@ -5,20 +5,25 @@
 #include <CLI/CLI.hpp>
 #include <array>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <memory>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <string>
 
+#include "app/fields_job.h"
 #include "app/front_end.h"
 #include "app/summary.h"
 #include "core/error.h"
 #include "gis/atomic_output.h"
 #include "gis/write_domain.h"
+#include "io/write_fields.h"
+#include "plot/plot_fields.h"
 
 namespace {
 
@@ -76,8 +81,8 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
                 "instead of failing")
       ->group("Cleaning");
   cmd->add_option("--size", a.fe.target_size_m,
-                  "Target element size in metres; sets the defaults of --simplify (size/4) and "
-                  "--min-island-area (size^2)")
+                  "Element size in metres: a constant size for meshing; sets the defaults of "
+                  "--simplify (size/4) and --min-island-area (size^2)")
       ->check(CLI::PositiveNumber)
       ->group("Cleaning");
   cmd->add_option("--simplify", a.simplify_m,
@@ -124,6 +129,95 @@ ProgressCallback make_progress(bool quiet) {
     std::fflush(stderr);
     return true;
   };
+}
+
+// Options of the background mesh and the fields (`fields` and `mesh`).
+struct FieldArgs {
+  SizingParams sizing;
+  bool size_auto = false;
+  std::string cross = "boundary";
+  double cross_angle_deg = std::numeric_limits<double>::quiet_NaN();
+  std::string cross_raster;
+  double background_factor = 0.1;
+  std::string plot_path;
+};
+
+void add_field_options(CLI::App* cmd, FieldArgs& f) {
+  const char* g = "Sizing (metres; sources combine by minimum)";
+  cmd->add_flag("--size-auto", f.size_auto,
+                "Automatic size from the boundary's local feature size (the default when no "
+                "other source is given; with another source, both combine)")
+      ->group(g);
+  cmd->add_option("--size-expr", f.sizing.expression,
+                  "Size as an expression in x and y (metres, meshing CRS), e.g. "
+                  "\"0.01*(2+sin(6*x*pi-pi/2))\"")
+      ->group(g);
+  cmd->add_option("--size-raster", f.sizing.raster_path, "GDAL raster of sizes in metres, any CRS")
+      ->group(g);
+  cmd->add_option("--bathymetry", f.sizing.bathymetry_path,
+                  "GDAL raster of depths in metres, positive down (ocean-model sizing)")
+      ->group(g);
+  cmd->add_option("--wavelength-period", f.sizing.wavelength_period_s,
+                  "Wave period T in seconds: h <= T sqrt(g d) / N")
+      ->check(CLI::PositiveNumber)
+      ->group(g);
+  cmd->add_option("--cells-per-wavelength", f.sizing.cells_per_wavelength, "N of the wavelength rule")
+      ->check(CLI::PositiveNumber)
+      ->group(g);
+  cmd->add_option("--slope-factor", f.sizing.slope_factor,
+                  "R: h <= 2 pi d / (R |grad d|), resolving bathymetric slopes")
+      ->check(CLI::PositiveNumber)
+      ->group(g);
+  cmd->add_option("--cells-across", f.sizing.cells_across,
+                  "Elements across a narrow channel (automatic sizing; default 2)")
+      ->check(CLI::PositiveNumber)
+      ->group(g);
+  cmd->add_option("--hmin", f.sizing.hmin_m, "Smallest size (automatic default: hmax / 10)")
+      ->check(CLI::PositiveNumber)
+      ->group(g);
+  cmd->add_option("--hmax", f.sizing.hmax_m,
+                  "Largest size (automatic default: sqrt(domain area / 2000))")
+      ->check(CLI::PositiveNumber)
+      ->group(g);
+  cmd->add_option("--gradation", f.sizing.gradation,
+                  "K: sizes change by at most K metres per metre (default 1; smaller is smoother)")
+      ->check(CLI::PositiveNumber)
+      ->group(g);
+  const char* c = "Cross field";
+  cmd->add_option("--cross", f.cross,
+                  "boundary (default): smoothest cross field tangent to the boundary")
+      ->check(CLI::IsMember({"boundary"}))
+      ->group(c);
+  cmd->add_option("--cross-angle", f.cross_angle_deg, "Constant cross angle in degrees")->group(c);
+  cmd->add_option("--cross-raster", f.cross_raster,
+                  "GDAL raster of cross angles in degrees (counter-clockwise from the x axis)")
+      ->group(c);
+  cmd->add_option("--background-factor", f.background_factor,
+                  "Background triangles are at most this fraction of the tile size 2h (default 0.1)")
+      ->check(CLI::Range(0.001, 1.0))
+      ->group("Background mesh");
+  cmd->add_option("--plot", f.plot_path, "Also draw a PNG")->group("Output");
+}
+
+FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {
+  FieldsOptions o;
+  o.front = a.fe;
+  o.sizing = f.sizing;
+  if (a.fe.target_size_m > 0) o.sizing.constant_m = a.fe.target_size_m;
+  const bool explicit_source = o.sizing.constant_m || !o.sizing.expression.empty() ||
+                               !o.sizing.raster_path.empty() || !o.sizing.bathymetry_path.empty();
+  o.sizing.automatic = f.size_auto || !explicit_source;
+  if (!std::isnan(f.cross_angle_deg) && !f.cross_raster.empty())
+    throw Error(ErrorClass::usage, "options", "give --cross-angle or --cross-raster, not both");
+  if (!std::isnan(f.cross_angle_deg)) {
+    o.cross.source = CrossSource::constant;
+    o.cross.angle_deg = f.cross_angle_deg;
+  } else if (!f.cross_raster.empty()) {
+    o.cross.source = CrossSource::raster;
+    o.cross.raster_path = f.cross_raster;
+  }
+  o.background_factor = f.background_factor;
+  return o;
 }
 
 void finish_front_end_args(CommonArgs& a) {
@@ -174,6 +268,36 @@ int run_domain(CommonArgs& a) {
   return 0;
 }
 
+int run_fields(CommonArgs& a, FieldArgs& f) {
+  finish_front_end_args(a);
+  check_output_path(a.output, a.overwrite);
+  if (!f.plot_path.empty()) check_output_path(f.plot_path, a.overwrite);
+  if (!a.report_path.empty()) check_output_path(a.report_path, a.overwrite);
+  const std::string ext = std::filesystem::path(a.output).extension().string();
+  if (ext != ".vtu" && ext != ".gpkg")
+    throw Error(ErrorClass::usage, "options", "'" + a.output + "': the fields are written as .vtu or .gpkg");
+  const FieldsOptions options = fields_options(a, f);
+  const auto t0 = std::chrono::steady_clock::now();
+  FieldsResult r = build_fields(options, Progress(make_progress(a.quiet)));
+  write_fields(r.mesh, r.size, r.cross, r.front.domain.crs_wkt, a.output, a.overwrite);
+  if (!f.plot_path.empty()) {
+    PlotFieldsParams pp;
+    pp.path = f.plot_path;
+    pp.overwrite = a.overwrite;
+    plot_fields(r.mesh, r.size, r.cross, r.singularities, pp);
+  }
+  if (!a.report_path.empty())
+    write_text_atomically(a.report_path, domain_summary_json(r.front.summary), a.overwrite);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!a.quiet) {
+    std::cout << format_domain_summary(r.front.summary) << format_fields_summary(r);
+    std::cout << "output:       " << a.output << (f.plot_path.empty() ? "" : ", " + f.plot_path) << "\n";
+    std::printf("time:         %.3f s\n", seconds);
+    for (const std::string& w : r.front.summary.warnings) std::cerr << "isoquad: warning: " << w << "\n";
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -192,6 +316,16 @@ int main(int argc, char** argv) {
   add_front_end_options(domain_cmd, domain_args);
   domain_cmd->footer(kExitCodes);
 
+  CommonArgs fields_args;
+  FieldArgs field_args;
+  CLI::App* fields_cmd = app.add_subcommand(
+      "fields",
+      "Build the background mesh with the sizing field and the cross field, and write them "
+      "(.vtu for ParaView, .gpkg for QGIS) with point data size (m) and cross_angle (deg).");
+  add_front_end_options(fields_cmd, fields_args);
+  add_field_options(fields_cmd, field_args);
+  fields_cmd->footer(kExitCodes);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -207,6 +341,7 @@ int main(int argc, char** argv) {
 
   try {
     if (domain_cmd->parsed()) return run_domain(domain_args);
+    if (fields_cmd->parsed()) return run_fields(fields_args, field_args);
   } catch (const Error& e) {
     std::cerr << "isoquad: " << e.what() << "\n";
     return exit_code(e.error_class());

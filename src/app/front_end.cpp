@@ -37,7 +37,9 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   s.meshing_crs_proj = crs_proj_string(CrsInfo{result.domain.crs_wkt, result.domain.crs_name});
 
   progress.report("clean", 0.7);
-  const double h = options.target_size_m;
+  double h = options.target_size_m;
+  if (h <= 0 && options.target_size_for_area) h = options.target_size_for_area(area(result.domain));
+  s.target_size_m = h;
   CleanParams cp;
   cp.largest = options.largest;
   cp.min_island_area_m2 = options.min_island_area_m2.value_or(h > 0 ? h * h : 0.0);

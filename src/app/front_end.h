@@ -2,6 +2,7 @@
 // simplify, from a vector file to a planar domain in metres.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -24,6 +25,9 @@ struct FrontEndOptions {
   // The smallest target element size in metres when known (0: unknown). It sets the
   // defaults of the two options below.
   double target_size_m = 0.0;
+  // When target_size_m is 0: derives it from the projected domain's area (the
+  // automatic sizing's default scale), or leaves it unknown when empty.
+  std::function<double(double area_m2)> target_size_for_area;
   std::optional<double> simplify_m;          // default: target_size_m / 4, or off
   std::optional<double> min_island_area_m2;  // default: target_size_m^2, or 0
 };
@@ -50,6 +54,7 @@ struct DomainSummary {
   std::size_t num_vertices_after = 0;
   double area_m2 = 0.0;
   double perimeter_m = 0.0;
+  double target_size_m = 0.0;  // 0: unknown
   double simplify_m = 0.0;
   double min_island_area_m2 = 0.0;
   CleanResult dropped;

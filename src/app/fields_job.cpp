@@ -1,0 +1,134 @@
+#include "app/fields_job.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+
+#include "core/error.h"
+#include "gis/raster_field.h"
+
+namespace isoquad {
+
+namespace {
+
+class Timer {
+ public:
+  explicit Timer(std::vector<StageTime>& out) : out_(out), t0_(std::chrono::steady_clock::now()) {}
+  void lap(const std::string& stage) {
+    const auto now = std::chrono::steady_clock::now();
+    out_.push_back({stage, std::chrono::duration<double>(now - t0_).count()});
+    t0_ = now;
+  }
+
+ private:
+  std::vector<StageTime>& out_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
+// The default scale of the automatic sizing (see SizingOracle): hmax gives about 2000
+// quads over the domain, hmin is a tenth of it.
+double default_hmin_for_area(const SizingParams& s, double area_m2) {
+  if (s.hmin_m > 0) return s.hmin_m;
+  if (s.constant_m) return *s.constant_m;
+  const double hmax = s.hmax_m > 0 ? s.hmax_m : std::sqrt(area_m2 / 2000.0);
+  return hmax / 10.0;
+}
+
+}  // namespace
+
+void build_fields_on_domain(const Domain& domain, const FieldsOptions& options,
+                            FieldsResult& r, const Progress& progress) {
+  if (!(options.background_factor > 0 && options.background_factor <= 1))
+    throw Error(ErrorClass::usage, "background", "--background-factor must be in (0, 1]");
+  Timer timer(r.times);
+  progress.report("sizing", 0.0);
+  SizingOracle oracle(domain, options.sizing);
+  r.sizing = oracle.summary();
+  timer.lap("sizing sources");
+
+  progress.report("background", 0.2);
+  BackgroundMeshParams bp;
+  const double factor = 2.0 * options.background_factor;  // tiles are 2h wide
+  bp.max_edge_m = [&oracle, factor](const Point2& p) { return factor * oracle(p); };
+  r.mesh = build_background_mesh(domain, bp);
+  timer.lap("background mesh");
+
+  progress.report("sizing", 0.6);
+  r.size = sample_sizing_field(r.mesh, oracle, options.sizing.gradation);
+  timer.lap("sizing field");
+
+  progress.report("cross", 0.8);
+  switch (options.cross.source) {
+    case CrossSource::boundary: r.cross = boundary_aligned_cross_field(r.mesh); break;
+    case CrossSource::constant: r.cross = constant_cross_field(r.mesh, options.cross.angle_deg); break;
+    case CrossSource::raster: {
+      const CrsInfo crs{domain.crs_wkt, domain.crs_name, false, true, 1.0};
+      RasterField raster(options.cross.raster_path, "--cross-raster", crs);
+      // Where the raster has no data, the boundary-aligned field fills in.
+      r.cross = boundary_aligned_cross_field(r.mesh);
+      for (std::size_t v = 0; v < r.mesh.points.size(); ++v) {
+        const double deg = raster.sample(r.mesh.points[v]);
+        if (std::isnan(deg)) continue;
+        // Degrees counter-clockwise from the meshing CRS's x axis, modulo 90.
+        r.cross.angle_rad[v] = std::fmod(std::fmod(deg, 90.0) + 90.0, 90.0) * M_PI / 180.0;
+      }
+      break;
+    }
+  }
+  r.singularities = cross_field_singularities(r.mesh, r.cross);
+  timer.lap("cross field");
+  progress.report("fields", 1.0);
+}
+
+FieldsResult build_fields(const FieldsOptions& options, const Progress& progress) {
+  FieldsResult r;
+  FrontEndOptions front = options.front;
+  const SizingParams sizing = options.sizing;
+  if (front.target_size_m <= 0)
+    front.target_size_for_area = [sizing](double a) { return default_hmin_for_area(sizing, a); };
+  const auto t0 = std::chrono::steady_clock::now();
+  r.front = build_planar_domain(front, progress.slice(0.0, 0.2));
+  r.times.push_back({"front end", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});
+  build_fields_on_domain(r.front.domain, options, r, progress.slice(0.2, 1.0));
+  return r;
+}
+
+std::string format_fields_summary(const FieldsResult& r) {
+  std::ostringstream os;
+  char buf[256];
+  os << "sizing:       ";
+  for (std::size_t i = 0; i < r.sizing.sources.size(); ++i) os << (i ? " + " : "") << r.sizing.sources[i];
+  std::snprintf(buf, sizeof buf, "; hmin %.6g m, hmax %.6g m, gradation %.3g\n", r.sizing.hmin_m,
+                r.sizing.hmax_m, r.sizing.gradation);
+  os << buf;
+  if (!r.size.size_m.empty()) {
+    const auto [lo, hi] = std::minmax_element(r.size.size_m.begin(), r.size.size_m.end());
+    std::snprintf(buf, sizeof buf, "size field:   %.6g .. %.6g m on %zu background vertices\n", *lo,
+                  *hi, r.size.size_m.size());
+    os << buf;
+  }
+  std::snprintf(buf, sizeof buf, "background:   %zu vertices, %zu triangles, %zu boundary chains\n",
+                r.mesh.points.size(), r.mesh.triangles.size(), r.mesh.chains.size());
+  os << buf;
+  int plus = 0, minus = 0, total = 0;
+  for (const Singularity& s : r.singularities) {
+    (s.index_quarters > 0 ? plus : minus) += 1;
+    total += s.index_quarters;
+  }
+  std::snprintf(buf, sizeof buf,
+                "cross field:  %zu singularities (%d of index +1/4, %d of index -1/4 or less; "
+                "total index %d/4)\n",
+                r.singularities.size(), plus, minus, total);
+  os << buf;
+  os << "times:       ";
+  for (const StageTime& t : r.times) {
+    std::snprintf(buf, sizeof buf, " %s %.3f s;", t.stage.c_str(), t.seconds);
+    os << buf;
+  }
+  os << "\n";
+  return os.str();
+}
+
+}  // namespace isoquad

@@ -1,0 +1,56 @@
+// Background mesh, sizing field and cross field (paper, sections 2 and 2.2): the part
+// of the pipeline shared by `isoquad fields` and `isoquad mesh`.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/front_end.h"
+#include "fields/cross_field.h"
+#include "fields/sizing_field.h"
+#include "mesh/background_mesh.h"
+
+namespace isoquad {
+
+enum class CrossSource { boundary, constant, raster };
+
+struct CrossParams {
+  CrossSource source = CrossSource::boundary;
+  double angle_deg = 0.0;    // --cross-angle
+  std::string raster_path;   // --cross-raster: angles in degrees
+};
+
+struct FieldsOptions {
+  FrontEndOptions front;
+  SizingParams sizing;
+  CrossParams cross;
+  // Background triangles are no longer than this fraction of the tile size 2h(x).
+  double background_factor = 0.1;
+};
+
+struct StageTime {
+  std::string stage;
+  double seconds = 0.0;
+};
+
+struct FieldsResult {
+  FrontEndResult front;
+  SizingSummary sizing;
+  BackgroundMesh mesh;
+  SizingField size;
+  CrossField cross;
+  std::vector<Singularity> singularities;
+  std::vector<StageTime> times;
+};
+
+// Front end, then the background mesh refined to the sizing, the sizing field on its
+// vertices (graded), and the cross field.
+FieldsResult build_fields(const FieldsOptions& options, const Progress& progress = Progress());
+
+// Background mesh and fields for a domain already built (tests and benchmarks).
+void build_fields_on_domain(const Domain& domain, const FieldsOptions& options,
+                            FieldsResult& result, const Progress& progress = Progress());
+
+std::string format_fields_summary(const FieldsResult& r);
+
+}  // namespace isoquad

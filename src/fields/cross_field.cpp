@@ -1,0 +1,191 @@
+#include "fields/cross_field.h"
+
+#include <Eigen/Sparse>
+#include <Eigen/SparseCholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "core/error.h"
+
+namespace isoquad {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kQuarterTurn = kPi / 2.0;
+const char* const kStage = "cross field";
+
+// Reduces an angle to the representative of its cross in [0, pi/2).
+double reduce_cross_angle(double angle_rad) {
+  double a = std::fmod(angle_rad, kQuarterTurn);
+  if (a < 0.0) a += kQuarterTurn;
+  if (a >= kQuarterTurn) a = 0.0;  // fmod rounding can land exactly on pi/2
+  return a;
+}
+
+// theta = arg(u) / 4, as a cross representative.
+double cross_angle_of(double c, double s) { return reduce_cross_angle(std::atan2(s, c) / 4.0); }
+
+double cotangent(const Point2& apex, const Point2& a, const Point2& b) {
+  const double ux = a.x - apex.x, uy = a.y - apex.y, vx = b.x - apex.x, vy = b.y - apex.y;
+  return (ux * vx + uy * vy) / std::abs(ux * vy - uy * vx);
+}
+
+}  // namespace
+
+double cross_rotation_rad(double from_rad, double to_rad) {
+  double d = std::fmod(to_rad - from_rad + kPi / 4.0, kQuarterTurn);
+  if (d < 0.0) d += kQuarterTurn;
+  return d - kPi / 4.0;
+}
+
+CrossField constant_cross_field(const BackgroundMesh& mesh, double angle_deg) {
+  CrossField field;
+  field.angle_rad.assign(mesh.points.size(), reduce_cross_angle(angle_deg * kPi / 180.0));
+  return field;
+}
+
+CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh) {
+  const int num_vertices = static_cast<int>(mesh.points.size());
+
+  // Boundary data: sum of exp(4 i phi) over the two boundary edges of each chain vertex.
+  // Averaging in 4-phi space keeps a 90-degree corner's cross aligned with both edges.
+  std::vector<double> bc(num_vertices, 0.0), bs(num_vertices, 0.0);
+  std::vector<char> is_boundary(num_vertices, 0);
+  for (const BoundaryChain& chain : mesh.chains) {
+    const std::size_t n = chain.vertices.size();
+    for (std::size_t k = 0; k < n; ++k) {
+      const int a = chain.vertices[k], b = chain.vertices[(k + 1) % n];
+      const double phi = std::atan2(mesh.points[b].y - mesh.points[a].y,
+                                    mesh.points[b].x - mesh.points[a].x);
+      for (int v : {a, b}) {
+        bc[v] += std::cos(4.0 * phi);
+        bs[v] += std::sin(4.0 * phi);
+        is_boundary[v] = 1;
+      }
+    }
+  }
+  // A vertex is fixed when its two edges agree on a cross; at a 45-degree (mod 90)
+  // corner the sum vanishes and any cross is as good, so the vertex is left free.
+  std::vector<char> is_fixed(num_vertices, 0);
+  std::vector<double> uc(num_vertices, 0.0), us(num_vertices, 0.0);
+  for (int v = 0; v < num_vertices; ++v) {
+    const double norm = std::hypot(bc[v], bs[v]);
+    if (!is_boundary[v] || norm < 1e-6) continue;
+    is_fixed[v] = 1;
+    uc[v] = bc[v] / norm;
+    us[v] = bs[v] / norm;
+  }
+
+  // Unknown numbering for free vertices.
+  std::vector<int> unknown(num_vertices, -1);
+  int num_unknowns = 0;
+  for (int v = 0; v < num_vertices; ++v)
+    if (!is_fixed[v]) unknown[v] = num_unknowns++;
+
+  if (num_unknowns > 0) {
+    // Cotan Laplacian, assembled per triangle: each edge gets cot(opposite angle) / 2
+    // from each incident triangle. Interior edges of a Delaunay mesh have a
+    // non-negative sum, but constrained (boundary-side) edges can be opposite an obtuse
+    // angle; clamping to a small positive weight keeps the matrix an M-matrix, so the
+    // solution obeys a maximum principle (no overshoot, |u| <= 1) and stays SPD.
+    const int num_triangles = static_cast<int>(mesh.triangles.size());
+    std::vector<std::vector<std::pair<int, double>>> adjacency(num_vertices);
+    for (int f = 0; f < num_triangles; ++f) {
+      const auto& t = mesh.triangles[f];
+      for (int i = 0; i < 3; ++i) {
+        const int a = t[(i + 1) % 3], b = t[(i + 2) % 3];
+        const double w =
+            0.5 * cotangent(mesh.points[t[i]], mesh.points[a], mesh.points[b]);
+        // Accumulate on the lower id so each undirected edge has one entry.
+        adjacency[std::min(a, b)].emplace_back(std::max(a, b), w);
+      }
+    }
+    constexpr double kMinWeight = 1e-3;
+    std::vector<Eigen::Triplet<double>> triplets;
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(num_unknowns, 2);
+    std::vector<double> diagonal(num_unknowns, 0.0);
+    for (int a = 0; a < num_vertices; ++a) {
+      auto& edges = adjacency[a];
+      std::sort(edges.begin(), edges.end(),
+                [](const auto& x, const auto& y) { return x.first < y.first; });
+      for (std::size_t k = 0; k < edges.size();) {
+        const int b = edges[k].first;
+        double w = 0.0;
+        for (; k < edges.size() && edges[k].first == b; ++k) w += edges[k].second;
+        w = std::max(w, kMinWeight);
+        const int ia = unknown[a], ib = unknown[b];
+        if (ia >= 0) diagonal[ia] += w;
+        if (ib >= 0) diagonal[ib] += w;
+        if (ia >= 0 && ib >= 0) {
+          triplets.emplace_back(ia, ib, -w);
+          triplets.emplace_back(ib, ia, -w);
+        } else if (ia >= 0) {
+          rhs(ia, 0) += w * uc[b];
+          rhs(ia, 1) += w * us[b];
+        } else if (ib >= 0) {
+          rhs(ib, 0) += w * uc[a];
+          rhs(ib, 1) += w * us[a];
+        }
+      }
+    }
+    for (int i = 0; i < num_unknowns; ++i) triplets.emplace_back(i, i, diagonal[i]);
+    Eigen::SparseMatrix<double> laplacian(num_unknowns, num_unknowns);
+    laplacian.setFromTriplets(triplets.begin(), triplets.end());
+
+    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplacian);
+    if (solver.info() != Eigen::Success)
+      throw Error(ErrorClass::meshing, kStage,
+                  "the Laplacian could not be factorised (a mesh component without boundary?)");
+    const Eigen::MatrixXd u = solver.solve(rhs);
+    if (solver.info() != Eigen::Success)
+      throw Error(ErrorClass::meshing, kStage, "the cross field solve failed");
+    for (int v = 0; v < num_vertices; ++v) {
+      if (unknown[v] < 0) continue;
+      uc[v] = u(unknown[v], 0);
+      us[v] = u(unknown[v], 1);
+    }
+  }
+
+  CrossField field;
+  field.angle_rad.resize(num_vertices);
+  for (int v = 0; v < num_vertices; ++v) field.angle_rad[v] = cross_angle_of(uc[v], us[v]);
+  return field;
+}
+
+std::vector<Singularity> cross_field_singularities(const BackgroundMesh& mesh,
+                                                   const CrossField& field) {
+  if (field.angle_rad.size() != mesh.points.size())
+    throw Error(ErrorClass::internal, kStage, "the cross field does not match the mesh");
+  std::vector<Singularity> singularities;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
+    const auto& t = mesh.triangles[f];
+    double turn = 0.0;
+    for (int i = 0; i < 3; ++i)
+      turn += cross_rotation_rad(field.angle_rad[t[i]], field.angle_rad[t[(i + 1) % 3]]);
+    // The sum is a multiple of pi/2 up to rounding.
+    const int quarters = static_cast<int>(std::lround(turn / kQuarterTurn));
+    if (quarters == 0) continue;
+    const Point2 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
+    singularities.push_back(
+        {static_cast<int>(f), quarters, {(a.x + b.x + c.x) / 3.0, (a.y + b.y + c.y) / 3.0}});
+  }
+  return singularities;
+}
+
+double cross_angle_at(const BackgroundMesh& mesh, const CrossField& field, int triangle,
+                      const std::array<double, 3>& bary) {
+  const auto& t = mesh.triangles.at(triangle);
+  double c = 0.0, s = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double a4 = 4.0 * field.angle_rad[t[i]];
+    c += bary[i] * std::cos(a4);
+    s += bary[i] * std::sin(a4);
+  }
+  return cross_angle_of(c, s);
+}
+
+}  // namespace isoquad

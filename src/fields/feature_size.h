@@ -1,0 +1,53 @@
+// Automatic sizing from the local feature size of the domain boundary (paper, section
+// 3: "the largest K-Lipschitz function constrained to match the local feature size").
+//
+// The true local feature size (distance to the medial axis) is zero at every polyline
+// vertex, so it cannot be used on a map coastline as is. We use the lambda-medial axis
+// instead: the Voronoi vertices of dense boundary samples whose nearest samples span a
+// circle of radius at least lambda. Features narrower than 2 lambda (a kink of the
+// polyline, a creek below the resolution) are ignored; a channel of width w >= 2 lambda
+// has its centreline at w/2 from each bank. Sizes are sampled ON the boundary and
+// extended inside as h(x) = min_i(h_i + K |x - p_i|), exactly, with an Apollonius graph.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/geometry.h"
+
+namespace isoquad {
+
+struct FeatureSizeParams {
+  double lambda_m = 0.0;          // medial-axis filter radius (> 0)
+  double sample_spacing_m = 0.0;  // boundary resampling; 0: lambda / 2
+  double cells_across = 2.0;      // at least this many elements across a channel
+  double gradation = 1.0;         // K, the Lipschitz constant of the extension
+  double max_size_m = 0.0;        // sizes at samples are capped here (hmax, finite)
+};
+
+class BoundaryFeatureSize {
+ public:
+  BoundaryFeatureSize(const Domain& domain, const FeatureSizeParams& params);
+  ~BoundaryFeatureSize();
+  BoundaryFeatureSize(const BoundaryFeatureSize&) = delete;
+  BoundaryFeatureSize& operator=(const BoundaryFeatureSize&) = delete;
+
+  // h(x) = min_i(h_i + K |x - p_i|), metres. Not thread-safe (keeps a search hint).
+  double operator()(const Point2& x) const;
+
+  const std::vector<Point2>& samples() const { return samples_; }
+  // #S local feature size at each sample (metres; +inf when no medial point is kept).
+  const std::vector<double>& sample_lfs_m() const { return lfs_; }
+  // #S size at each sample: lfs times a factor that puts cells_across elements across a
+  // channel once the sizes are extended with slope K (see the .cpp), capped at max_size_m.
+  const std::vector<double>& sample_size_m() const { return size_; }
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::vector<Point2> samples_;
+  std::vector<double> lfs_;
+  std::vector<double> size_;
+};
+
+}  // namespace isoquad

@@ -1,0 +1,214 @@
+#include "fields/sizing_field.h"
+
+#include <muParser.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <queue>
+#include <sstream>
+
+#include "core/error.h"
+#include "fields/feature_size.h"
+#include "gis/raster_field.h"
+#include "mesh/background_mesh.h"
+
+namespace isoquad {
+
+namespace {
+
+constexpr double kGravity = 9.81;  // m/s2
+
+std::string fmt_point(const Point2& p) {
+  std::ostringstream os;
+  os.precision(10);
+  os << "(" << p.x << ", " << p.y << ")";
+  return os.str();
+}
+
+}  // namespace
+
+struct SizingOracle::Expression {
+  mu::Parser parser;
+  double x = 0.0, y = 0.0;
+  std::string text;
+};
+
+SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : params_(params) {
+  auto usage = [](const std::string& what) { throw Error(ErrorClass::usage, "sizing", what); };
+  if (params.gradation <= 0) usage("--gradation must be positive");
+  if (params.cells_across <= 0) usage("--cells-across must be positive");
+  if (params.hmin_m < 0 || params.hmax_m < 0) usage("--hmin and --hmax must not be negative");
+  if (params.hmin_m > 0 && params.hmax_m > 0 && params.hmin_m > params.hmax_m)
+    usage("--hmin must not exceed --hmax");
+  if (params.constant_m && *params.constant_m <= 0) usage("--size must be positive");
+  const CrsInfo crs{domain.crs_wkt, domain.crs_name, false, true, 1.0};
+
+  const bool explicit_source = params.constant_m || !params.expression.empty() ||
+                               !params.raster_path.empty() || !params.bathymetry_path.empty();
+  const bool automatic = params.automatic || !explicit_source;
+  hmax_ = params.hmax_m > 0 ? params.hmax_m : std::numeric_limits<double>::infinity();
+  hmin_ = params.hmin_m;
+  if (automatic) {
+    // Without a bound the automatic field has no scale: default to the size that would
+    // give about 2000 quads over the domain, and hmin a tenth of hmax.
+    if (!std::isfinite(hmax_)) hmax_ = std::sqrt(area(domain) / 2000.0);
+    if (hmin_ <= 0) hmin_ = hmax_ / 10.0;
+  }
+  summary_.hmin_m = hmin_;
+  summary_.hmax_m = hmax_;
+  summary_.gradation = params.gradation;
+  gradation_ = params.gradation;
+  gradient_step_m_ = std::max(1e-3, hmin_ > 0 ? 0.5 * hmin_ : 1.0);
+
+  if (params.constant_m) summary_.sources.push_back("constant " + std::to_string(*params.constant_m) + " m");
+  if (!params.expression.empty()) {
+    expression_ = std::make_unique<Expression>();
+    Expression& e = *expression_;
+    e.text = params.expression;
+    try {
+      e.parser.DefineVar("x", &e.x);
+      e.parser.DefineVar("y", &e.y);
+      e.parser.DefineConst("pi", M_PI);
+      e.parser.DefineConst("e", M_E);
+      e.parser.SetExpr(params.expression);
+      e.parser.Eval();  // parses now, so that a bad expression fails before any work
+    } catch (const mu::Parser::exception_type& ex) {
+      throw Error(ErrorClass::usage, "sizing",
+                  "--size-expr '" + params.expression + "': " + ex.GetMsg() +
+                      " (variables: x, y in metres; constants: pi, e)");
+    }
+    summary_.sources.push_back("expression " + params.expression);
+  }
+  if (!params.raster_path.empty()) {
+    raster_ = std::make_unique<RasterField>(params.raster_path, "--size-raster", crs);
+    summary_.sources.push_back("raster " + params.raster_path);
+  }
+  if (!params.bathymetry_path.empty()) {
+    if (params.wavelength_period_s <= 0 && params.slope_factor <= 0)
+      usage("--bathymetry needs --wavelength-period with --cells-per-wavelength, or --slope-factor");
+    if (params.wavelength_period_s > 0 && params.cells_per_wavelength <= 0)
+      usage("--wavelength-period needs --cells-per-wavelength");
+    bathymetry_ = std::make_unique<RasterField>(params.bathymetry_path, "--bathymetry", crs);
+    summary_.sources.push_back("bathymetry " + params.bathymetry_path);
+  }
+  if (automatic) {
+    FeatureSizeParams fp;
+    fp.cells_across = params.cells_across;
+    fp.gradation = params.gradation;
+    fp.max_size_m = hmax_;
+    // Channels narrower than cells_across * hmin cannot be resolved anyway: ignore the
+    // medial axis below that scale.
+    fp.lambda_m = 0.5 * params.cells_across * hmin_;
+    automatic_ = std::make_unique<BoundaryFeatureSize>(domain, fp);
+    summary_.num_boundary_samples = automatic_->samples().size();
+    summary_.sources.insert(summary_.sources.begin(), "automatic (local feature size)");
+  }
+}
+
+SizingOracle::~SizingOracle() = default;
+
+double SizingOracle::operator()(const Point2& p) const {
+  double h = std::numeric_limits<double>::infinity();
+  if (params_.constant_m) h = std::min(h, *params_.constant_m);
+  if (automatic_) h = std::min(h, (*automatic_)(p));
+  if (expression_) {
+    expression_->x = p.x;
+    expression_->y = p.y;
+    double v = 0.0;
+    try {
+      v = expression_->parser.Eval();
+    } catch (const mu::Parser::exception_type& ex) {
+      throw Error(ErrorClass::usage, "sizing", "--size-expr: " + ex.GetMsg());
+    }
+    if (!(v > 0) || !std::isfinite(v))
+      throw Error(ErrorClass::usage, "sizing",
+                  "--size-expr '" + expression_->text + "' gives " + std::to_string(v) + " at " +
+                      fmt_point(p) + "; sizes must be positive");
+    h = std::min(h, v);
+  }
+  if (raster_) {
+    const double v = raster_->sample(p);
+    if (!std::isnan(v)) {
+      if (!(v > 0))
+        throw Error(ErrorClass::input, "sizing",
+                    "--size-raster '" + raster_->path() + "' has size " + std::to_string(v) +
+                        " at " + fmt_point(p) + "; sizes must be positive");
+      h = std::min(h, v);
+    }
+  }
+  if (bathymetry_) {
+    const double raw = bathymetry_->sample(p);
+    if (!std::isnan(raw)) {
+      const double d = std::max(params_.min_depth_m, raw);
+      if (params_.wavelength_period_s > 0)
+        h = std::min(h, params_.wavelength_period_s * std::sqrt(kGravity * d) /
+                            params_.cells_per_wavelength);
+      if (params_.slope_factor > 0) {
+        const double s = gradient_step_m_;
+        const double dx = bathymetry_->sample({p.x + s, p.y}) - bathymetry_->sample({p.x - s, p.y});
+        const double dy = bathymetry_->sample({p.x, p.y + s}) - bathymetry_->sample({p.x, p.y - s});
+        const double grad = std::hypot(dx, dy) / (2 * s);
+        if (std::isfinite(grad) && grad > 0)
+          h = std::min(h, 2 * M_PI * d / (params_.slope_factor * grad));
+      }
+    }
+  }
+  if (!std::isfinite(h)) h = hmax_;
+  if (!std::isfinite(h))
+    throw Error(ErrorClass::usage, "sizing",
+                "no size at " + fmt_point(p) + " (outside every raster); give --hmax or --size");
+  return std::clamp(h, hmin_, hmax_);
+}
+
+double SizingField::at(const BackgroundMesh& mesh, int f, const std::array<double, 3>& b) const {
+  const auto& t = mesh.triangles[f];
+  return b[0] * size_m[t[0]] + b[1] * size_m[t[1]] + b[2] * size_m[t[2]];
+}
+
+void limit_gradient(const BackgroundMesh& mesh, double gradation, std::vector<double>& h) {
+  const std::size_t nv = mesh.points.size();
+  // Vertex adjacency (CSR) from the triangles.
+  std::vector<int> start(nv + 1, 0), adj;
+  for (const auto& t : mesh.triangles)
+    for (int v : t) start[v + 1] += 2;
+  for (std::size_t i = 0; i < nv; ++i) start[i + 1] += start[i];
+  adj.resize(start[nv]);
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (const auto& t : mesh.triangles)
+    for (int i = 0; i < 3; ++i) {
+      adj[fill[t[i]]++] = t[(i + 1) % 3];
+      adj[fill[t[i]]++] = t[(i + 2) % 3];
+    }
+  // Dijkstra from the smallest sizes: a popped vertex is final; each relaxation enforces
+  // h_v <= h_u + K |u - v|.
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (std::size_t v = 0; v < nv; ++v) queue.push({h[v], static_cast<int>(v)});
+  while (!queue.empty()) {
+    const auto [hu, u] = queue.top();
+    queue.pop();
+    if (hu > h[u]) continue;  // stale
+    const Point2& pu = mesh.points[u];
+    for (int k = start[u]; k < start[u + 1]; ++k) {
+      const int v = adj[k];
+      const Point2& pv = mesh.points[v];
+      const double bound = hu + gradation * std::hypot(pv.x - pu.x, pv.y - pu.y);
+      if (bound < h[v]) {
+        h[v] = bound;
+        queue.push({bound, v});
+      }
+    }
+  }
+}
+
+SizingField sample_sizing_field(const BackgroundMesh& mesh, const SizingOracle& oracle,
+                                double gradation) {
+  SizingField field;
+  field.size_m.resize(mesh.points.size());
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) field.size_m[v] = oracle(mesh.points[v]);
+  limit_gradient(mesh, gradation, field.size_m);
+  return field;
+}
+
+}  // namespace isoquad

@@ -1,0 +1,145 @@
+#include "gis/gpkg_writer.h"
+
+#include <cpl_conv.h>
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include "core/error.h"
+#include "gis/atomic_output.h"
+#include "gis/gdal_env.h"
+
+namespace isoquad {
+
+namespace {
+
+OGRLinearRing to_ogr_ring(const Ring& r) {
+  OGRLinearRing lr;
+  lr.setNumPoints(static_cast<int>(r.size() + 1), FALSE);
+  for (std::size_t i = 0; i <= r.size(); ++i) {
+    const Point2& p = r[i % r.size()];
+    lr.setPoint(static_cast<int>(i), p.x, p.y);
+  }
+  return lr;
+}
+
+struct DatasetCloser {
+  void operator()(GDALDataset* d) const { GDALClose(d); }
+};
+
+}  // namespace
+
+struct GpkgWriter::State {
+  std::string path;
+  std::unique_ptr<AtomicOutput> out;
+  // Same input, same bytes: GeoPackage stores a "last change" time, which we pin unless
+  // the user sets OGR_CURRENT_DATE.
+  CPLConfigOptionSetter fixed_date{"OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z", true};
+  GdalErrorCapture capture;
+  std::unique_ptr<GDALDataset, DatasetCloser> ds;
+  OGRSpatialReference srs;
+  OGRLayer* layer = nullptr;
+  std::vector<FieldDef> fields;
+};
+
+void GpkgWriter::fail(const std::string& what) const {
+  const std::string detail = state_->capture.last_message();
+  throw Error(ErrorClass::output, "write",
+              "'" + state_->path + "': " + what + (detail.empty() ? "" : ": " + detail));
+}
+
+GpkgWriter::GpkgWriter(const std::string& path, bool overwrite, const std::string& crs_wkt) {
+  ensure_gdal_registered();
+  state_ = std::make_unique<State>();
+  state_->path = path;
+  state_->out = std::make_unique<AtomicOutput>(path, overwrite);
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
+  if (!driver) fail("GDAL has no GeoPackage driver");
+  state_->ds.reset(driver->Create(state_->out->temp_path().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+  if (!state_->ds) fail("cannot create the GeoPackage");
+  state_->srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  if (!crs_wkt.empty() && state_->srs.importFromWkt(crs_wkt.c_str()) != OGRERR_NONE)
+    fail("cannot use the CRS");
+}
+
+GpkgWriter::~GpkgWriter() {
+  if (state_) state_->ds.reset();  // close before the temporary file is removed
+}
+
+void GpkgWriter::end_layer() {
+  if (state_->layer && state_->layer->CommitTransaction() != OGRERR_NONE)
+    fail("cannot commit layer '" + std::string(state_->layer->GetName()) + "'");
+  state_->layer = nullptr;
+}
+
+void GpkgWriter::begin_layer(const std::string& name, GeometryKind kind,
+                             const std::vector<FieldDef>& fields) {
+  end_layer();
+  const OGRwkbGeometryType type = kind == GeometryKind::point  ? wkbPoint
+                                  : kind == GeometryKind::line ? wkbLineString
+                                                               : wkbPolygon;
+  OGRSpatialReference* srs = state_->srs.IsEmpty() ? nullptr : &state_->srs;
+  state_->layer = state_->ds->CreateLayer(name.c_str(), srs, type, nullptr);
+  if (!state_->layer) fail("cannot create layer '" + name + "'");
+  for (const FieldDef& f : fields) {
+    OGRFieldDefn def(f.name.c_str(), f.type == FieldType::integer ? OFTInteger64
+                                     : f.type == FieldType::real  ? OFTReal
+                                                                  : OFTString);
+    if (state_->layer->CreateField(&def) != OGRERR_NONE) fail("cannot create field " + f.name);
+  }
+  state_->fields = fields;
+  if (state_->layer->StartTransaction() != OGRERR_NONE) fail("cannot start a transaction");
+}
+
+void GpkgWriter::add(OGRGeometry& g, const std::vector<FieldValue>& values) {
+  if (!state_->layer) throw Error(ErrorClass::internal, "write", "no layer begun");
+  OGRFeature feature(state_->layer->GetLayerDefn());
+  for (std::size_t i = 0; i < state_->fields.size() && i < values.size(); ++i) {
+    const int idx = static_cast<int>(i);
+    switch (state_->fields[i].type) {
+      case FieldType::integer: feature.SetField(idx, static_cast<GIntBig>(values[i].i)); break;
+      case FieldType::real: feature.SetField(idx, values[i].r); break;
+      case FieldType::text: feature.SetField(idx, values[i].s.c_str()); break;
+    }
+  }
+  feature.SetGeometry(&g);
+  if (state_->layer->CreateFeature(&feature) != OGRERR_NONE) fail("cannot write a feature");
+}
+
+void GpkgWriter::add_point(const Point2& p, const std::vector<FieldValue>& values) {
+  OGRPoint pt(p.x, p.y);
+  add(pt, values);
+}
+
+void GpkgWriter::add_polygon(const Polygon& polygon, const std::vector<FieldValue>& values) {
+  OGRPolygon poly;
+  OGRLinearRing outer = to_ogr_ring(polygon.outer);
+  poly.addRing(&outer);
+  for (const Ring& h : polygon.holes) {
+    OGRLinearRing hole = to_ogr_ring(h);
+    poly.addRing(&hole);
+  }
+  add(poly, values);
+}
+
+void GpkgWriter::add_polygon(const std::vector<Point2>& ring, const std::vector<FieldValue>& values) {
+  OGRPolygon poly;
+  OGRLinearRing outer = to_ogr_ring(ring);
+  poly.addRing(&outer);
+  add(poly, values);
+}
+
+void GpkgWriter::add_line(const std::vector<Point2>& line, const std::vector<FieldValue>& values) {
+  OGRLineString ls;
+  for (const Point2& p : line) ls.addPoint(p.x, p.y);
+  add(ls, values);
+}
+
+void GpkgWriter::commit() {
+  end_layer();
+  CPLErrorReset();
+  state_->ds.reset();  // closes the file; GDAL reports failures through its error state
+  if (CPLGetLastErrorType() == CE_Failure) fail("cannot finish the GeoPackage");
+  state_->out->commit();
+}
+
+}  // namespace isoquad

@@ -1,0 +1,63 @@
+// A GeoPackage written atomically, layer by layer: the common part of every GeoPackage
+// output (domain, fields, mesh).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+
+class GDALDataset;
+class OGRLayer;
+class OGRGeometry;
+
+namespace isoquad {
+
+enum class FieldType { integer, real, text };
+
+struct FieldDef {
+  std::string name;
+  FieldType type = FieldType::real;
+};
+
+// One attribute value; the variant follows the field's type.
+struct FieldValue {
+  long long i = 0;
+  double r = 0.0;
+  std::string s;
+  static FieldValue integer(long long v) { FieldValue f; f.i = v; return f; }
+  static FieldValue real(double v) { FieldValue f; f.r = v; return f; }
+  static FieldValue text(std::string v) { FieldValue f; f.s = std::move(v); return f; }
+};
+
+enum class GeometryKind { point, line, polygon };
+
+class GpkgWriter {
+ public:
+  // Creates the temporary file next to `path`. Throws Error(output).
+  GpkgWriter(const std::string& path, bool overwrite, const std::string& crs_wkt);
+  ~GpkgWriter();  // without commit(), removes everything
+  GpkgWriter(const GpkgWriter&) = delete;
+  GpkgWriter& operator=(const GpkgWriter&) = delete;
+
+  // Starts a layer (ending the previous one).
+  void begin_layer(const std::string& name, GeometryKind kind, const std::vector<FieldDef>& fields);
+  // Adds a feature to the current layer; values follow the layer's fields.
+  void add_point(const Point2& p, const std::vector<FieldValue>& values);
+  void add_polygon(const Polygon& polygon, const std::vector<FieldValue>& values);
+  void add_polygon(const std::vector<Point2>& ring, const std::vector<FieldValue>& values);
+  void add_line(const std::vector<Point2>& line, const std::vector<FieldValue>& values);
+  // Finishes the file and moves it into place.
+  void commit();
+
+ private:
+  void add(OGRGeometry& g, const std::vector<FieldValue>& values);
+  void end_layer();
+  [[noreturn]] void fail(const std::string& what) const;
+
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace isoquad

@@ -1,0 +1,72 @@
+#include "gis/raster_field.h"
+
+#include <gdal_priv.h>
+#include <ogr_spatialref.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sys/stat.h>
+
+#include "core/error.h"
+#include "gis/gdal_env.h"
+
+namespace isoquad {
+
+RasterField::RasterField(const std::string& path, const std::string& what,
+                         const CrsInfo& query_crs)
+    : path_(path) {
+  ensure_gdal_registered();
+  auto fail = [&](const std::string& problem) {
+    throw Error(ErrorClass::input, "raster", what + " '" + path + "': " + problem);
+  };
+  struct stat st {};
+  if (path.rfind("/vsi", 0) != 0 && stat(path.c_str(), &st) != 0) fail("no such file");
+  GdalErrorCapture capture;
+  std::unique_ptr<GDALDataset> ds(static_cast<GDALDataset*>(
+      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  if (!ds) fail("cannot read as a raster (" + capture.last_message() + ")");
+  if (ds->GetRasterCount() < 1) fail("has no raster band");
+  width_ = ds->GetRasterXSize();
+  height_ = ds->GetRasterYSize();
+  double gt[6];
+  if (ds->GetGeoTransform(gt) != CE_None) fail("has no georeferencing (geotransform)");
+  if (!GDALInvGeoTransform(gt, inverse_)) fail("has a singular geotransform");
+  GDALRasterBand* band = ds->GetRasterBand(1);
+  int ok = 0;
+  nodata_ = band->GetNoDataValue(&ok);
+  has_nodata_ = ok != 0;
+  values_.resize(static_cast<std::size_t>(width_) * height_);
+  if (band->RasterIO(GF_Read, 0, 0, width_, height_, values_.data(), width_, height_, GDT_Float32,
+                     0, 0) != CE_None)
+    fail("cannot read band 1 (" + capture.last_message() + ")");
+  const OGRSpatialReference* srs = ds->GetSpatialRef();
+  if (srs) {
+    CrsInfo raster_crs = crs_from_srs(*srs);
+    to_raster_ = std::make_unique<CrsTransform>(query_crs, raster_crs);
+  }
+}
+
+RasterField::~RasterField() = default;
+
+double RasterField::sample(const Point2& p) const {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Point2 q = p;
+  if (to_raster_ && !to_raster_->transform(q)) return nan;
+  // Pixel centres are at half-integer pixel coordinates.
+  const double px = inverse_[0] + q.x * inverse_[1] + q.y * inverse_[2] - 0.5;
+  const double py = inverse_[3] + q.x * inverse_[4] + q.y * inverse_[5] - 0.5;
+  if (!(px >= -0.5 && py >= -0.5 && px <= width_ - 0.5 && py <= height_ - 0.5)) return nan;
+  const int i0 = std::clamp(static_cast<int>(std::floor(px)), 0, std::max(0, width_ - 2));
+  const int j0 = std::clamp(static_cast<int>(std::floor(py)), 0, std::max(0, height_ - 2));
+  const int i1 = std::min(i0 + 1, width_ - 1), j1 = std::min(j0 + 1, height_ - 1);
+  const double tx = std::clamp(px - i0, 0.0, 1.0), ty = std::clamp(py - j0, 0.0, 1.0);
+  auto at = [&](int i, int j) {
+    const double v = values_[static_cast<std::size_t>(j) * width_ + i];
+    return (has_nodata_ && v == static_cast<float>(nodata_)) || std::isnan(v) ? nan : v;
+  };
+  return (1 - ty) * ((1 - tx) * at(i0, j0) + tx * at(i1, j0)) +
+         ty * ((1 - tx) * at(i0, j1) + tx * at(i1, j1));
+}
+
+}  // namespace isoquad

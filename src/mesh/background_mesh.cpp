@@ -1,0 +1,395 @@
+// The only CGAL translation unit of the meshing stages: CGAL headers dominate compile
+// time, and keeping CGAL types out of the header lets every later stage work on flat
+// arrays.
+#include "mesh/background_mesh.h"
+
+#include <CGAL/Constrained_Delaunay_triangulation_2.h>
+#include <CGAL/Constrained_triangulation_plus_2.h>
+#include <CGAL/Delaunay_mesh_face_base_2.h>
+#include <CGAL/Delaunay_mesh_size_criteria_2.h>
+#include <CGAL/Delaunay_mesher_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_face_base_with_info_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <string>
+#include <utility>
+
+#include "core/error.h"
+
+namespace isoquad {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+const char* const kStage = "mesh";
+
+struct FaceInfo {
+  int nesting_level = -1;  // 0 outside, 1 in a polygon, 2 in its hole, ...
+  int id = -1;             // output triangle id, -1 outside the domain
+};
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;  // output vertex id
+using Fbi = CGAL::Triangulation_face_base_with_info_2<FaceInfo, K>;
+using Cfb = CGAL::Constrained_Delaunay_triangulation_face_base_2<
+    K, CGAL::Constrained_triangulation_face_base_2<K, Fbi>>;
+using Fb = CGAL::Delaunay_mesh_face_base_2<K, Cfb>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
+using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
+// The "plus" wrapper keeps each ring as one constraint and follows the splits made by
+// refinement, so the boundary chains can be read back in order.
+using Ct = CGAL::Constrained_triangulation_plus_2<Cdt>;
+using FaceHandle = Ct::Face_handle;
+using VertexHandle = Ct::Vertex_handle;
+
+using SizeOracle = std::function<double(const Point2&)>;
+
+// Like CGAL::Delaunay_mesh_size_criteria_2, but the size bound is the oracle at the
+// face centroid. The mesher copies the criteria and calls is_bad_object() on every
+// evaluation, so both hold only a pointer to the caller's oracle and the bound.
+class SizeAndAngleCriteria {
+ public:
+  // (squared sine of the smallest angle, (longest edge / max edge)^2); CGAL's ordering
+  // refines size violations first, the largest first.
+  using Quality = CGAL::Delaunay_mesh_size_criteria_2<Ct>::Quality;
+
+  class Is_bad {
+   public:
+    Is_bad(const SizeOracle* max_edge_m, double squared_sine_bound)
+        : max_edge_m_(max_edge_m), b_(squared_sine_bound) {}
+
+    CGAL::Mesh_2::Face_badness operator()(const Quality& q) const {
+      if (q.size() > 1) return CGAL::Mesh_2::IMPERATIVELY_BAD;
+      if (q.sine() < b_) return CGAL::Mesh_2::BAD;
+      return CGAL::Mesh_2::NOT_BAD;
+    }
+
+    CGAL::Mesh_2::Face_badness operator()(const FaceHandle& fh, Quality& q) const {
+      const K::Point_2& pa = fh->vertex(0)->point();
+      const K::Point_2& pb = fh->vertex(1)->point();
+      const K::Point_2& pc = fh->vertex(2)->point();
+      const double a = CGAL::to_double(CGAL::squared_distance(pb, pc));
+      const double b = CGAL::to_double(CGAL::squared_distance(pc, pa));
+      const double c = CGAL::to_double(CGAL::squared_distance(pa, pb));
+      const double max_sq = std::max({a, b, c});
+      const double second_sq = std::max(std::min(a, b), std::min(std::max(a, b), c));
+
+      const Point2 centroid{(pa.x() + pb.x() + pc.x()) / 3.0, (pa.y() + pb.y() + pc.y()) / 3.0};
+      const double h = (*max_edge_m_)(centroid);
+      if (!(h > 0.0))  // also catches NaN
+        throw Error(ErrorClass::meshing, kStage,
+                    "the sizing oracle returned " + std::to_string(h) + " m at (" +
+                        std::to_string(centroid.x) + ", " + std::to_string(centroid.y) +
+                        "); sizes must be positive");
+      q.second = max_sq / (h * h);  // 0 when h is infinite: no size limit there
+      if (q.size() > 1) {
+        q.first = 1;  // the sine is irrelevant: size violations are refined regardless
+        return CGAL::Mesh_2::IMPERATIVELY_BAD;
+      }
+      const double twice_area = (pb.x() - pa.x()) * (pc.y() - pa.y()) -
+                                (pb.y() - pa.y()) * (pc.x() - pa.x());
+      q.first = twice_area * twice_area / (max_sq * second_sq);
+      return q.sine() < b_ ? CGAL::Mesh_2::BAD : CGAL::Mesh_2::NOT_BAD;
+    }
+
+   private:
+    const SizeOracle* max_edge_m_;
+    double b_;
+  };
+
+  SizeAndAngleCriteria(const SizeOracle* max_edge_m, double squared_sine_bound)
+      : max_edge_m_(max_edge_m), b_(squared_sine_bound) {}
+
+  Is_bad is_bad_object() const { return Is_bad(max_edge_m_, b_); }
+
+ private:
+  const SizeOracle* max_edge_m_;
+  double b_;
+};
+
+// Floods faces from `start` with `level` without crossing constraints, collecting the
+// constrained edges met on the way (the next level starts across them).
+void flood_nesting_level(FaceHandle start, int level, std::vector<std::pair<FaceHandle, int>>& border) {
+  if (start->info().nesting_level != -1) return;
+  std::vector<FaceHandle> stack{start};
+  start->info().nesting_level = level;
+  while (!stack.empty()) {
+    FaceHandle fh = stack.back();
+    stack.pop_back();
+    for (int i = 0; i < 3; ++i) {
+      FaceHandle n = fh->neighbor(i);
+      if (n->info().nesting_level != -1) continue;
+      if (fh->is_constrained(i)) {
+        border.emplace_back(fh, i);
+      } else {
+        n->info().nesting_level = level;
+        stack.push_back(n);
+      }
+    }
+  }
+}
+
+// Marks the domain by nesting level (odd = inside): CGAL 5.5 has no
+// mark_domain_in_triangulation, and the mesher's default marks the whole convex hull,
+// holes included.
+void mark_domain(Ct& ct) {
+  for (auto f = ct.all_faces_begin(); f != ct.all_faces_end(); ++f) f->info().nesting_level = -1;
+  std::vector<std::pair<FaceHandle, int>> border;
+  flood_nesting_level(ct.infinite_face(), 0, border);
+  // Breadth-first over levels so that each face gets the smallest crossing count.
+  for (std::size_t k = 0; k < border.size(); ++k) {
+    const auto [fh, i] = border[k];
+    FaceHandle n = fh->neighbor(i);
+    if (n->info().nesting_level == -1)
+      flood_nesting_level(n, fh->info().nesting_level + 1, border);
+  }
+  for (auto f = ct.all_faces_begin(); f != ct.all_faces_end(); ++f)
+    f->set_in_domain(f->info().nesting_level % 2 == 1);
+}
+
+std::string ring_name(int polygon, int ring) {
+  return "polygon " + std::to_string(polygon) +
+         (ring == 0 ? std::string(" outer ring") : " hole " + std::to_string(ring - 1));
+}
+
+// Signed turning angle at ring[k], degrees, positive for a left turn.
+double turning_angle_deg(const Ring& ring, std::size_t k) {
+  const std::size_t n = ring.size();
+  const Point2& p = ring[(k + n - 1) % n];
+  const Point2& q = ring[k];
+  const Point2& r = ring[(k + 1) % n];
+  const double ax = q.x - p.x, ay = q.y - p.y, bx = r.x - q.x, by = r.y - q.y;
+  return std::atan2(ax * by - ay * bx, ax * bx + ay * by) * 180.0 / kPi;
+}
+
+void check_input(const Domain& domain, const BackgroundMeshParams& params) {
+  if (!params.max_edge_m)
+    throw Error(ErrorClass::internal, kStage, "no sizing oracle (max_edge_m) given");
+  if (!(params.min_angle_deg >= 0.0 && params.min_angle_deg <= 20.7 + 1e-9))
+    throw Error(ErrorClass::internal, kStage,
+                "min_angle_deg must be in [0, 20.7] for refinement to terminate");
+  if (domain.polygons.empty()) throw Error(ErrorClass::input, kStage, "the domain is empty");
+  for (std::size_t p = 0; p < domain.polygons.size(); ++p) {
+    const Polygon& poly = domain.polygons[p];
+    for (std::size_t r = 0; r <= poly.holes.size(); ++r) {
+      const Ring& ring = r == 0 ? poly.outer : poly.holes[r - 1];
+      const std::string name = ring_name(static_cast<int>(p), static_cast<int>(r));
+      if (ring.size() < 3)
+        throw Error(ErrorClass::input, kStage, name + " has fewer than 3 vertices");
+      for (const Point2& q : ring)
+        if (!std::isfinite(q.x) || !std::isfinite(q.y))
+          throw Error(ErrorClass::input, kStage, name + " has a non-finite coordinate");
+      const double a = signed_area(ring);
+      if (r == 0 ? !(a > 0.0) : !(a < 0.0))
+        throw Error(ErrorClass::input, kStage,
+                    name + (r == 0 ? " is not counter-clockwise" : " is not clockwise") +
+                        " (orient the domain with orient_polygon first)");
+    }
+  }
+}
+
+}  // namespace
+
+BackgroundMesh build_background_mesh(const Domain& domain, const BackgroundMeshParams& params) {
+  check_input(domain, params);
+
+  // --- Constrained Delaunay triangulation of all rings.
+  struct RingRef {
+    int polygon;
+    int ring;
+    const Ring* points;
+    Ct::Constraint_id cid;
+  };
+  std::vector<RingRef> rings;
+  for (std::size_t p = 0; p < domain.polygons.size(); ++p) {
+    const Polygon& poly = domain.polygons[p];
+    rings.push_back({static_cast<int>(p), 0, &poly.outer, nullptr});
+    for (std::size_t h = 0; h < poly.holes.size(); ++h)
+      rings.push_back({static_cast<int>(p), static_cast<int>(h + 1), &poly.holes[h], nullptr});
+  }
+  Ct ct;
+  std::size_t num_input_vertices = 0;
+  for (RingRef& r : rings) {
+    std::vector<K::Point_2> pts;
+    pts.reserve(r.points->size());
+    for (const Point2& q : *r.points) pts.emplace_back(q.x, q.y);
+    r.cid = ct.insert_constraint(pts.begin(), pts.end(), /*close=*/true);
+    num_input_vertices += r.points->size();
+  }
+  // Crossings add vertices (Exact_predicates_tag computes intersections), repeated or
+  // shared vertices merge, a vertex on another segment splits it: each breaks the
+  // one-chain-per-ring structure, so the input must be a valid, simple domain.
+  for (const RingRef& r : rings) {
+    const std::size_t n = std::distance(ct.vertices_in_constraint_begin(r.cid),
+                                        ct.vertices_in_constraint_end(r.cid));
+    if (n != r.points->size() + 1)
+      throw Error(ErrorClass::input, kStage,
+                  ring_name(r.polygon, r.ring) +
+                      " repeats a vertex, or crosses or touches a ring (itself or another)");
+  }
+  if (ct.number_of_vertices() != num_input_vertices)
+    throw Error(ErrorClass::input, kStage, "the domain's rings cross, touch or share vertices");
+
+  // --- Delaunay refinement inside the domain only.
+  mark_domain(ct);
+  const double sine = std::sin(params.min_angle_deg * kPi / 180.0);
+  const SizeAndAngleCriteria criteria(&params.max_edge_m, sine * sine);
+  CGAL::Delaunay_mesher_2<Ct, SizeAndAngleCriteria> mesher(ct, criteria);
+  mesher.init(/*domain_specified=*/true);
+  // One point at a time, so that a runaway refinement is stopped.
+  while (mesher.step_by_step_refine_mesh()) {
+    if (ct.number_of_vertices() > params.max_num_vertices)
+      throw Error(ErrorClass::meshing, kStage,
+                  "refinement exceeded " + std::to_string(params.max_num_vertices) +
+                      " vertices; simplify the domain or coarsen the sizing");
+  }
+
+  // --- Flat arrays. Vertices keep CGAL's (deterministic) order: input vertices first.
+  BackgroundMesh mesh;
+  for (auto v = ct.finite_vertices_begin(); v != ct.finite_vertices_end(); ++v) v->info() = -1;
+  for (auto f = ct.finite_faces_begin(); f != ct.finite_faces_end(); ++f) {
+    f->info().id = -1;
+    if (!f->is_in_domain()) continue;
+    f->info().id = 0;
+    for (int i = 0; i < 3; ++i) f->vertex(i)->info() = 0;  // used
+  }
+  for (auto v = ct.finite_vertices_begin(); v != ct.finite_vertices_end(); ++v) {
+    if (v->info() < 0) continue;
+    v->info() = static_cast<int>(mesh.points.size());
+    mesh.points.push_back({v->point().x(), v->point().y()});
+  }
+  int num_faces = 0;
+  for (auto f = ct.finite_faces_begin(); f != ct.finite_faces_end(); ++f)
+    if (f->info().id >= 0) f->info().id = num_faces++;
+  mesh.triangles.resize(num_faces);
+  mesh.neighbours.resize(num_faces);
+  for (auto f = ct.finite_faces_begin(); f != ct.finite_faces_end(); ++f) {
+    const int id = f->info().id;
+    if (id < 0) continue;
+    for (int i = 0; i < 3; ++i) {
+      mesh.triangles[id][i] = f->vertex(i)->info();
+      FaceHandle n = f->neighbor(i);
+      mesh.neighbours[id][i] = ct.is_infinite(n) ? -1 : n->info().id;
+    }
+  }
+
+  // --- Boundary chains, read from the constraints that refinement split.
+  mesh.boundary_chain_of_vertex.assign(mesh.points.size(), -1);
+  const double corner_deg = params.corner_angle_deg;
+  for (const RingRef& r : rings) {
+    BoundaryChain chain;
+    chain.polygon = r.polygon;
+    chain.ring = r.ring;
+    const Ring& ring = *r.points;
+    std::size_t next_input = 0;  // the next input vertex expected along the chain
+    for (auto it = ct.vertices_in_constraint_begin(r.cid); it != ct.vertices_in_constraint_end(r.cid);
+         ++it) {
+      const int id = (*it)->info();
+      if (!chain.vertices.empty() && id == chain.vertices.front()) break;  // closing vertex
+      if (id < 0)
+        throw Error(ErrorClass::internal, kStage, "a boundary vertex is not in the domain");
+      const bool is_input = next_input < ring.size() && (*it)->point().x() == ring[next_input].x &&
+                            (*it)->point().y() == ring[next_input].y;
+      const double turn = is_input ? turning_angle_deg(ring, next_input) : 0.0;
+      if (is_input) ++next_input;
+      chain.vertices.push_back(id);
+      chain.turning_angle_deg.push_back(turn);
+      chain.is_corner.push_back(std::abs(turn) > corner_deg ? 1 : 0);
+      chain.is_input_vertex.push_back(is_input ? 1 : 0);
+    }
+    if (next_input != ring.size())
+      throw Error(ErrorClass::internal, kStage,
+                  ring_name(r.polygon, r.ring) + ": the boundary chain lost input vertices");
+    const std::size_t n = chain.vertices.size();
+    chain.arc_length_m.resize(n);
+    double s = 0.0;
+    for (std::size_t k = 0; k < n; ++k) {
+      chain.arc_length_m[k] = s;
+      const Point2& a = mesh.points[chain.vertices[k]];
+      const Point2& b = mesh.points[chain.vertices[(k + 1) % n]];
+      s += std::hypot(b.x - a.x, b.y - a.y);
+    }
+    chain.length_m = s;
+    const int chain_id = static_cast<int>(mesh.chains.size());
+    for (int v : chain.vertices) {
+      if (mesh.boundary_chain_of_vertex[v] != -1)
+        throw Error(ErrorClass::internal, kStage, "a vertex lies on two boundary chains");
+      mesh.boundary_chain_of_vertex[v] = chain_id;
+    }
+    mesh.chains.push_back(std::move(chain));
+  }
+
+  validate_background_mesh(mesh);
+  // The marked faces must cover the domain exactly; a wrong flood would show here.
+  double mesh_area_m2 = 0.0;
+  for (const auto& t : mesh.triangles) {
+    const Point2 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
+    mesh_area_m2 += 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+  }
+  const double domain_area_m2 = area(domain);
+  if (std::abs(mesh_area_m2 - domain_area_m2) > 1e-6 * domain_area_m2)
+    throw Error(ErrorClass::internal, kStage, "the triangles do not cover the domain exactly");
+  return mesh;
+}
+
+void validate_background_mesh(const BackgroundMesh& mesh) {
+  const auto fail = [](const std::string& what) {
+    throw Error(ErrorClass::internal, kStage, "invalid background mesh: " + what);
+  };
+  const int num_points = static_cast<int>(mesh.points.size());
+  const int num_triangles = static_cast<int>(mesh.triangles.size());
+  if (mesh.neighbours.size() != mesh.triangles.size()) fail("#neighbours != #triangles");
+  if (mesh.boundary_chain_of_vertex.size() != mesh.points.size())
+    fail("#boundary_chain_of_vertex != #points");
+
+  // Directed boundary edges (a, b) -> count; each must match one chain edge exactly.
+  std::map<std::pair<int, int>, int> boundary_edges;
+  for (int f = 0; f < num_triangles; ++f) {
+    const auto& t = mesh.triangles[f];
+    for (int i = 0; i < 3; ++i)
+      if (t[i] < 0 || t[i] >= num_points) fail("vertex id out of range");
+    const Point2 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
+    if (!((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x) > 0.0))
+      fail("triangle " + std::to_string(f) + " is not counter-clockwise");
+    for (int i = 0; i < 3; ++i) {
+      const int u = t[(i + 1) % 3], w = t[(i + 2) % 3];
+      const int g = mesh.neighbours[f][i];
+      if (g == -1) {
+        if (++boundary_edges[{u, w}] > 1) fail("a boundary edge appears twice");
+        continue;
+      }
+      if (g < 0 || g >= num_triangles || g == f) fail("neighbour id out of range");
+      const auto& s = mesh.triangles[g];
+      bool ok = false;
+      for (int j = 0; j < 3; ++j)
+        if (s[(j + 1) % 3] == w && s[(j + 2) % 3] == u && mesh.neighbours[g][j] == f) ok = true;
+      if (!ok) fail("neighbours of triangles " + std::to_string(f) + " and " + std::to_string(g) +
+                    " are not symmetric");
+    }
+  }
+  std::size_t num_chain_edges = 0;
+  for (std::size_t c = 0; c < mesh.chains.size(); ++c) {
+    const BoundaryChain& chain = mesh.chains[c];
+    const std::size_t n = chain.vertices.size();
+    if (n < 3 || chain.arc_length_m.size() != n || chain.is_corner.size() != n ||
+        chain.turning_angle_deg.size() != n || chain.is_input_vertex.size() != n)
+      fail("chain " + std::to_string(c) + " has inconsistent sizes");
+    for (std::size_t k = 0; k < n; ++k) {
+      const int a = chain.vertices[k], b = chain.vertices[(k + 1) % n];
+      if (a < 0 || a >= num_points || mesh.boundary_chain_of_vertex[a] != static_cast<int>(c))
+        fail("chain " + std::to_string(c) + " vertex mismatch");
+      // Domain on the left of a -> b means a CCW triangle holds the directed edge a -> b.
+      if (boundary_edges.find({a, b}) == boundary_edges.end())
+        fail("chain " + std::to_string(c) + " edge is not a boundary edge with the domain on its left");
+    }
+    num_chain_edges += n;
+  }
+  if (num_chain_edges != boundary_edges.size())
+    fail("boundary edges that belong to no chain");
+}
+
+}  // namespace isoquad

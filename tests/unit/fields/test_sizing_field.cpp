@@ -1,0 +1,199 @@
+#include "fields/sizing_field.h"
+
+#include <gtest/gtest.h>
+
+#include <gdal_priv.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "fields/feature_size.h"
+#include "gis/crs.h"
+#include "gis/gdal_env.h"
+#include "mesh/background_mesh.h"
+#include "support/test_support.h"
+
+using namespace isoquad;
+using namespace isoquad::test;
+
+namespace {
+
+Domain rectangle(double w, double h) {
+  Domain d;
+  d.polygons.push_back({{{0, 0}, {w, 0}, {w, h}, {0, h}}, {}});
+  d.crs_wkt = parse_crs("EPSG:3857", "test").wkt;
+  d.crs_name = "test";
+  return d;
+}
+
+BackgroundMesh mesh_for(const Domain& d, const SizingOracle& oracle, double factor = 0.5) {
+  BackgroundMeshParams p;
+  p.max_edge_m = [&](const Point2& x) { return factor * oracle(x); };
+  return build_background_mesh(d, p);
+}
+
+void expect_lipschitz(const BackgroundMesh& mesh, const SizingField& f, double k) {
+  std::size_t checked = 0;
+  for (const auto& t : mesh.triangles)
+    for (int i = 0; i < 3; ++i) {
+      const int a = t[i], b = t[(i + 1) % 3];
+      const double len = std::hypot(mesh.points[a].x - mesh.points[b].x,
+                                    mesh.points[a].y - mesh.points[b].y);
+      ASSERT_LE(std::abs(f.size_m[a] - f.size_m[b]), k * len * (1 + 1e-9) + 1e-9);
+      ++checked;
+    }
+  EXPECT_GT(checked, 0u);
+}
+
+Error error_of(const std::function<void()>& fn) {
+  try {
+    fn();
+  } catch (const Error& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no error";
+  return Error(ErrorClass::internal, "", "");
+}
+
+}  // namespace
+
+TEST(SizingField, ConstantSizeIsReproducedAtVertices) {
+  const Domain d = rectangle(1000, 500);
+  SizingParams p;
+  p.automatic = false;
+  p.constant_m = 50.0;
+  SizingOracle oracle(d, p);
+  const BackgroundMesh mesh = mesh_for(d, oracle);
+  const SizingField f = sample_sizing_field(mesh, oracle, p.gradation);
+  for (double h : f.size_m) ASSERT_DOUBLE_EQ(h, 50.0);
+}
+
+// The paper's Figure 12 field on the unit square; its slope (0.19) is below K = 1, so
+// gradation leaves it unchanged.
+TEST(SizingField, ExpressionIsReproducedAtVertices) {
+  const Domain d = rectangle(1, 1);
+  SizingParams p;
+  p.automatic = false;
+  p.expression = "0.01*(2+sin(6*x*pi-pi/2))";
+  SizingOracle oracle(d, p);
+  const BackgroundMesh mesh = mesh_for(d, oracle);
+  const SizingField f = sample_sizing_field(mesh, oracle, p.gradation);
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
+    ASSERT_NEAR(f.size_m[v], 0.01 * (2 + std::sin(6 * mesh.points[v].x * M_PI - M_PI / 2)), 1e-12);
+  // Triangles follow the field: small where h is small.
+  expect_lipschitz(mesh, f, 1.0);
+}
+
+TEST(SizingField, GradationMakesEveryEdgeLipschitz) {
+  const Domain d = rectangle(1000, 1000);
+  SizingParams p;
+  p.automatic = false;
+  p.expression = "x < 500 ? 20 : 100";  // a jump
+  p.gradation = 0.3;
+  SizingOracle oracle(d, p);
+  const BackgroundMesh mesh = mesh_for(d, oracle);
+  const SizingField f = sample_sizing_field(mesh, oracle, p.gradation);
+  expect_lipschitz(mesh, f, 0.3);
+  // Far from the jump the field keeps its value; near it, it is graded down.
+  double far_max = 0;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v)
+    if (mesh.points[v].x > 900) far_max = std::max(far_max, f.size_m[v]);
+  EXPECT_GT(far_max, 99.0);
+}
+
+TEST(SizingField, AutomaticSizingPutsCellsAcrossAThinRectangle) {
+  for (double cells : {2.0, 4.0}) {
+    const double width = 1000.0;
+    const Domain d = rectangle(20000, width);
+    SizingParams p;
+    p.cells_across = cells;
+    p.hmax_m = 5000;
+    p.hmin_m = 20;
+    SizingOracle oracle(d, p);
+    // Elements across the middle cross-section: the integral of dy / h(y).
+    double across = 0.0;
+    const int n = 2000;
+    for (int i = 0; i < n; ++i) across += (width / n) / oracle({10000, (i + 0.5) * width / n});
+    EXPECT_GE(across, cells) << cells;
+    EXPECT_LE(across, 2.5 * cells) << cells;
+  }
+}
+
+TEST(SizingField, AutomaticSizingIsLipschitzAndBounded) {
+  // An L-shaped domain with a narrow slot.
+  Domain d = rectangle(10000, 10000);
+  d.polygons[0].outer = {{0, 0}, {10000, 0}, {10000, 4000}, {3000, 4000}, {3000, 4300}, {10000, 4300},
+                         {10000, 10000}, {0, 10000}};
+  SizingParams p;
+  p.hmax_m = 2000;
+  p.hmin_m = 50;
+  SizingOracle oracle(d, p);
+  EXPECT_GT(oracle.summary().num_boundary_samples, 100u);
+  const BackgroundMesh mesh = mesh_for(d, oracle);
+  const SizingField f = sample_sizing_field(mesh, oracle, p.gradation);
+  expect_lipschitz(mesh, f, 1.0);
+  for (double h : f.size_m) {
+    ASSERT_GE(h, 50.0);
+    ASSERT_LE(h, 2000.0);
+  }
+  // In the slot (300 m wide) the size is at most 300 / 2.
+  EXPECT_LE(oracle({6000, 4150}), 150.0 * 1.01);
+  // Far from every feature it reaches hmax.
+  EXPECT_DOUBLE_EQ(oracle({5000, 8000}), 2000.0);
+}
+
+TEST(SizingField, RasterIsSampledBilinearly) {
+  TempDir dir;
+  const std::string path = dir.file("size.tif");
+  ensure_gdal_registered();
+  {
+    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
+    GDALDataset* ds = drv->Create(path.c_str(), 20, 10, 1, GDT_Float32, nullptr);
+    // 100 m pixels from (0, 1000) down to (2000, 0).
+    double gt[6] = {0, 100, 0, 1000, 0, -100};
+    ds->SetGeoTransform(gt);
+    OGRSpatialReference srs;
+    srs.importFromEPSG(3857);
+    ds->SetSpatialRef(&srs);
+    std::vector<float> v(200);
+    for (int j = 0; j < 10; ++j)
+      for (int i = 0; i < 20; ++i) {
+        const double x = (i + 0.5) * 100, y = 1000 - (j + 0.5) * 100;
+        v[j * 20 + i] = static_cast<float>(10 + x / 100 + y / 50);
+      }
+    if (ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 20, 10, v.data(), 20, 10, GDT_Float32, 0,
+                                       0) != CE_None)
+      FAIL();
+    GDALClose(ds);
+  }
+  const Domain d = rectangle(2000, 1000);
+  SizingParams p;
+  p.automatic = false;
+  p.raster_path = path;
+  SizingOracle oracle(d, p);
+  for (const Point2 q : {Point2{123, 456}, Point2{1500, 200}, Point2{999, 999 - 400}})
+    EXPECT_NEAR(oracle(q), 10 + q.x / 100 + q.y / 50, 1e-4);
+}
+
+TEST(SizingField, BadSourcesAreRejected) {
+  const Domain d = rectangle(100, 100);
+  for (const char* expr : {"2*", "foo(x)", "x +* y", ""}) {
+    SizingParams p;
+    p.automatic = false;
+    p.expression = expr;
+    if (!*expr) p.constant_m = -1.0;
+    const Error e = error_of([&] { SizingOracle o(d, p); });
+    EXPECT_EQ(e.error_class(), ErrorClass::usage) << expr << ": " << e.what();
+  }
+  SizingParams p;
+  p.automatic = false;
+  p.expression = "x - 50";
+  SizingOracle o(d, p);
+  const Error e = error_of([&] { o({10, 10}); });
+  EXPECT_NE(std::string(e.what()).find("must be positive"), std::string::npos) << e.what();
+  p.expression.clear();
+  p.raster_path = "/no/such/raster.tif";
+  const Error r = error_of([&] { SizingOracle o2(d, p); });
+  EXPECT_EQ(r.error_class(), ErrorClass::input);
+  EXPECT_NE(std::string(r.what()).find("/no/such/raster.tif"), std::string::npos);
+}
