@@ -7,7 +7,9 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "fields/size_cache.h"
 #include "gis/raster_field.h"
+#include "plot/canvas.h"
 
 namespace isoquad {
 
@@ -51,8 +53,13 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options,
   progress.report("background", 0.2);
   BackgroundMeshParams bp;
   const double factor = 2.0 * options.background_factor;  // tiles are 2h wide
-  bp.max_edge_m = [&oracle, factor](const Point2& p) { return factor * oracle(p); };
+  // Refinement evaluates the size many times, at scattered points: it reads a quadtree
+  // cache (cells at most a quarter of the local size) instead of the sources.
+  const SizeCache cache(bounding_box(domain), [&oracle](const Point2& p) { return oracle(p); },
+                        0.25);
+  bp.max_edge_m = [&cache, factor](const Point2& p) { return factor * cache(p); };
   r.mesh = build_background_mesh(domain, bp);
+  r.num_size_cache_leaves = cache.num_leaves();
   timer.lap("background mesh");
 
   progress.report("sizing", 0.6);

@@ -4,6 +4,8 @@
 #include <CGAL/Apollonius_graph_traits_2.h>
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Orthogonal_k_neighbor_search.h>
+#include <CGAL/Search_traits_2.h>
 
 #include <algorithm>
 #include <cmath>
@@ -20,6 +22,9 @@ using Delaunay = CGAL::Delaunay_triangulation_2<K>;
 using ApolloniusTraits = CGAL::Apollonius_graph_traits_2<K>;
 using Apollonius = CGAL::Apollonius_graph_2<ApolloniusTraits>;
 using Site = ApolloniusTraits::Site_2;
+using MedialTraits = CGAL::Search_traits_2<K>;
+using MedialSearch = CGAL::Orthogonal_k_neighbor_search<MedialTraits>;
+using MedialTree = MedialSearch::Tree;
 
 // Radius of the smallest circle enclosing a triangle: the circumradius when it is acute,
 // half the longest edge otherwise.
@@ -80,7 +85,10 @@ BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSize
       medial_radius.push_back(std::sqrt(CGAL::squared_radius(a, b, c)));
     }
   }
-  Delaunay medial_dt(medial.begin(), medial.end());
+  // Nearest medial point by kd-tree: the circumcentres are highly degenerate (many
+  // coincide where the boundary is straight), which a Delaunay triangulation of them
+  // handles badly.
+  MedialTree tree(medial.begin(), medial.end());
 
   // Size per unit of feature size. In a straight channel of width w, sites sit on both
   // banks and on the centre line (all with lfs = w/2), and between them h grows with
@@ -93,11 +101,10 @@ BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSize
   size_.resize(samples_.size(), params.max_size_m);
   std::vector<Site> sites;
   sites.reserve(samples_.size());
-  Delaunay::Vertex_handle near;
   for (std::size_t i = 0; i < samples_.size(); ++i) {
-    if (medial_dt.number_of_vertices() > 0) {
-      near = medial_dt.nearest_vertex(pts[i], near == Delaunay::Vertex_handle() ? Delaunay::Face_handle() : near->face());
-      lfs_[i] = std::sqrt(CGAL::squared_distance(near->point(), pts[i]));
+    if (!medial.empty()) {
+      MedialSearch search(tree, pts[i], 1);
+      lfs_[i] = std::sqrt(search.begin()->second);
       size_[i] = std::min(params.max_size_m, size_per_lfs * lfs_[i]);
     }
     // Apollonius distance |x - p| - w with w = -h/K gives (h + K |x - p|) / K.

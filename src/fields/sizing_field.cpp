@@ -2,7 +2,9 @@
 
 #include <muParser.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <queue>
@@ -202,11 +204,42 @@ void limit_gradient(const BackgroundMesh& mesh, double gradation, std::vector<do
   }
 }
 
+namespace {
+
+// Interleaves the bits of two 21-bit integers (Morton order).
+uint64_t morton(uint32_t x, uint32_t y) {
+  uint64_t key = 0;
+  for (int b = 0; b < 21; ++b)
+    key |= (static_cast<uint64_t>((x >> b) & 1) << (2 * b)) |
+           (static_cast<uint64_t>((y >> b) & 1) << (2 * b + 1));
+  return key;
+}
+
+}  // namespace
+
+std::vector<int> spatial_order(const std::vector<Point2>& points) {
+  double xmin = 1e300, ymin = 1e300, xmax = -1e300, ymax = -1e300;
+  for (const Point2& p : points)
+    xmin = std::min(xmin, p.x), ymin = std::min(ymin, p.y), xmax = std::max(xmax, p.x),
+    ymax = std::max(ymax, p.y);
+  const double scale = ((1 << 21) - 1) / std::max({xmax - xmin, ymax - ymin, 1e-300});
+  std::vector<std::pair<uint64_t, int>> keys(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    keys[i] = {morton(static_cast<uint32_t>((points[i].x - xmin) * scale),
+                      static_cast<uint32_t>((points[i].y - ymin) * scale)),
+               static_cast<int>(i)};
+  std::sort(keys.begin(), keys.end());
+  std::vector<int> order(points.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) order[i] = keys[i].second;
+  return order;
+}
+
 SizingField sample_sizing_field(const BackgroundMesh& mesh, const SizingOracle& oracle,
                                 double gradation) {
   SizingField field;
   field.size_m.resize(mesh.points.size());
-  for (std::size_t v = 0; v < mesh.points.size(); ++v) field.size_m[v] = oracle(mesh.points[v]);
+  // In spatial order: consecutive queries are close, which keeps them cheap.
+  for (int v : spatial_order(mesh.points)) field.size_m[v] = oracle(mesh.points[v]);
   limit_gradient(mesh, gradation, field.size_m);
   return field;
 }

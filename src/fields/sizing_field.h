@@ -85,6 +85,9 @@ struct SizingField {
 SizingField sample_sizing_field(const BackgroundMesh& mesh, const SizingOracle& oracle,
                                 double gradation);
 
+// Point indices sorted along a Morton (Z-order) curve.
+std::vector<int> spatial_order(const std::vector<Point2>& points);
+
 // Limits the gradient of per-vertex values in place (see sample_sizing_field).
 void limit_gradient(const BackgroundMesh& mesh, double gradation, std::vector<double>& size_m);
 

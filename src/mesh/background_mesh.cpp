@@ -9,11 +9,15 @@
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
 #include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Spatial_sort_traits_adapter_2.h>
+#include <CGAL/hilbert_sort.h>
+#include <CGAL/property_map.h>
 #include <CGAL/Triangulation_face_base_with_info_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <map>
 #include <string>
 #include <utility>
@@ -151,6 +155,16 @@ void mark_domain(Ct& ct) {
     f->set_in_domain(f->info().nesting_level % 2 == 1);
 }
 
+// Indices of `points` in Hilbert curve order.
+std::vector<std::size_t> hilbert_order(const std::vector<K::Point_2>& points) {
+  std::vector<std::size_t> order(points.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  using Map = CGAL::Pointer_property_map<K::Point_2>::const_type;
+  CGAL::hilbert_sort(order.begin(), order.end(),
+                     CGAL::Spatial_sort_traits_adapter_2<K, Map>(CGAL::make_property_map(points)));
+  return order;
+}
+
 std::string ring_name(int polygon, int ring) {
   return "polygon " + std::to_string(polygon) +
          (ring == 0 ? std::string(" outer ring") : " hole " + std::to_string(ring - 1));
@@ -236,6 +250,25 @@ BackgroundMesh build_background_mesh(const Domain& domain, const BackgroundMeshP
 
   // --- Delaunay refinement inside the domain only.
   mark_domain(ct);
+  // The flood follows the geometry, not the polygon structure: with a polygon inside
+  // another one, or a hole outside its polygon, some ring has the domain on its right.
+  for (const RingRef& r : rings) {
+    auto it = ct.vertices_in_constraint_begin(r.cid);
+    for (auto next = std::next(it); next != ct.vertices_in_constraint_end(r.cid); it = next++) {
+      FaceHandle fh;
+      int i = 0;
+      if (!ct.is_edge(*it, *next, fh, i))
+        throw Error(ErrorClass::internal, kStage, "a ring edge is missing from the triangulation");
+      // In a CCW face, the edge opposite vertex i runs from vertex(ccw(i)) to vertex(cw(i)).
+      FaceHandle left = fh->vertex(Ct::ccw(i)) == *it ? fh : fh->neighbor(i);
+      FaceHandle right = left == fh ? fh->neighbor(i) : fh;
+      if (!left->is_in_domain() || right->is_in_domain())
+        throw Error(ErrorClass::input, kStage,
+                    ring_name(r.polygon, r.ring) +
+                        " does not bound the domain as its polygon says (a polygon inside "
+                        "another one, or a hole outside its polygon)");
+    }
+  }
   const double sine = std::sin(params.min_angle_deg * kPi / 180.0);
   const SizeAndAngleCriteria criteria(&params.max_edge_m, sine * sine);
   CGAL::Delaunay_mesher_2<Ct, SizeAndAngleCriteria> mesher(ct, criteria);
@@ -248,28 +281,44 @@ BackgroundMesh build_background_mesh(const Domain& domain, const BackgroundMeshP
                       " vertices; simplify the domain or coarsen the sizing");
   }
 
-  // --- Flat arrays. Vertices keep CGAL's (deterministic) order: input vertices first.
+  // --- Flat arrays, vertices and triangles in Hilbert curve order: later stages walk
+  // the mesh by adjacency (floods, smoothing), and neighbours close in memory keep that
+  // cache-friendly. The median policy is deterministic.
   BackgroundMesh mesh;
+  std::vector<VertexHandle> used_vertices;
+  std::vector<FaceHandle> domain_faces;
   for (auto v = ct.finite_vertices_begin(); v != ct.finite_vertices_end(); ++v) v->info() = -1;
   for (auto f = ct.finite_faces_begin(); f != ct.finite_faces_end(); ++f) {
     f->info().id = -1;
     if (!f->is_in_domain()) continue;
-    f->info().id = 0;
-    for (int i = 0; i < 3; ++i) f->vertex(i)->info() = 0;  // used
+    domain_faces.push_back(f);
+    for (int i = 0; i < 3; ++i) {
+      if (f->vertex(i)->info() == -1) used_vertices.push_back(f->vertex(i));
+      f->vertex(i)->info() = 0;
+    }
   }
-  for (auto v = ct.finite_vertices_begin(); v != ct.finite_vertices_end(); ++v) {
-    if (v->info() < 0) continue;
-    v->info() = static_cast<int>(mesh.points.size());
-    mesh.points.push_back({v->point().x(), v->point().y()});
+  std::vector<K::Point_2> keys;
+  keys.reserve(used_vertices.size());
+  for (VertexHandle v : used_vertices) keys.push_back(v->point());
+  const std::vector<std::size_t> vertex_order = hilbert_order(keys);
+  mesh.points.resize(used_vertices.size());
+  for (std::size_t k = 0; k < vertex_order.size(); ++k) {
+    VertexHandle v = used_vertices[vertex_order[k]];
+    v->info() = static_cast<int>(k);
+    mesh.points[k] = {v->point().x(), v->point().y()};
   }
-  int num_faces = 0;
-  for (auto f = ct.finite_faces_begin(); f != ct.finite_faces_end(); ++f)
-    if (f->info().id >= 0) f->info().id = num_faces++;
+  keys.clear();
+  for (FaceHandle f : domain_faces)
+    keys.push_back(
+        CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()));
+  const std::vector<std::size_t> face_order = hilbert_order(keys);
+  for (std::size_t k = 0; k < face_order.size(); ++k)
+    domain_faces[face_order[k]]->info().id = static_cast<int>(k);
+  const int num_faces = static_cast<int>(domain_faces.size());
   mesh.triangles.resize(num_faces);
   mesh.neighbours.resize(num_faces);
-  for (auto f = ct.finite_faces_begin(); f != ct.finite_faces_end(); ++f) {
+  for (FaceHandle f : domain_faces) {
     const int id = f->info().id;
-    if (id < 0) continue;
     for (int i = 0; i < 3; ++i) {
       mesh.triangles[id][i] = f->vertex(i)->info();
       FaceHandle n = f->neighbor(i);
@@ -324,7 +373,7 @@ BackgroundMesh build_background_mesh(const Domain& domain, const BackgroundMeshP
   }
 
   validate_background_mesh(mesh);
-  // The marked faces must cover the domain exactly; a wrong flood would show here.
+  // The marked faces must cover the domain exactly.
   double mesh_area_m2 = 0.0;
   for (const auto& t : mesh.triangles) {
     const Point2 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
@@ -332,7 +381,10 @@ BackgroundMesh build_background_mesh(const Domain& domain, const BackgroundMeshP
   }
   const double domain_area_m2 = area(domain);
   if (std::abs(mesh_area_m2 - domain_area_m2) > 1e-6 * domain_area_m2)
-    throw Error(ErrorClass::internal, kStage, "the triangles do not cover the domain exactly");
+    throw Error(ErrorClass::internal, kStage,
+                "the triangles do not cover the domain (meshed area " +
+                    std::to_string(mesh_area_m2) + " m2, domain area " +
+                    std::to_string(domain_area_m2) + " m2)");
   return mesh;
 }
 

@@ -63,7 +63,8 @@ struct BackgroundMesh {
 // Builds the refined background mesh of `domain` (planar, metres; outer rings CCW, holes
 // CW, rings open, see orient_polygon). Holes stay empty. The output is a deterministic
 // function of the input. Throws Error(input) when rings are degenerate, wrongly
-// oriented, cross, touch or share vertices; Error(meshing) when refinement exceeds
+// oriented, cross, touch or share vertices, or nest inconsistently (a polygon inside
+// another, a hole outside its polygon); Error(meshing) when refinement exceeds
 // params.max_num_vertices or the oracle returns a non-positive size; Error(internal) if
 // the result fails validation (a bug).
 BackgroundMesh build_background_mesh(const Domain& domain, const BackgroundMeshParams& params);

@@ -81,9 +81,10 @@ inline std::string shell_quote(const std::string& s) {
   return q + "'";
 }
 
-// Runs the built isoquad binary with `args` (each quoted), capturing both streams.
-inline CliResult run_cli(const std::vector<std::string>& args, const TempDir& dir) {
-  std::string cmd = shell_quote(ISOQUAD_CLI);
+// Runs `program` with `args` (each quoted), capturing both streams.
+inline CliResult run_cli_program(const std::string& program, const std::vector<std::string>& args,
+                                 const TempDir& dir) {
+  std::string cmd = shell_quote(program);
   for (const std::string& a : args) cmd += " " + shell_quote(a);
   const std::string out = dir.path() + "/.stdout", err = dir.path() + "/.stderr";
   cmd += " >" + shell_quote(out) + " 2>" + shell_quote(err) + " </dev/null";
@@ -95,6 +96,11 @@ inline CliResult run_cli(const std::vector<std::string>& args, const TempDir& di
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return r;
+}
+
+// Runs the built isoquad binary.
+inline CliResult run_cli(const std::vector<std::string>& args, const TempDir& dir) {
+  return run_cli_program(ISOQUAD_CLI, args, dir);
 }
 
 }  // namespace isoquad::test

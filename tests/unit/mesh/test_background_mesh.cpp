@@ -183,7 +183,7 @@ TEST(BackgroundMesh, SquareIsValidWellShapedAndSized) {
       EXPECT_NEAR(chain.turning_angle_deg[k], 90.0, 1e-9);
     }
   EXPECT_EQ(num_corners, 4);
-  EXPECT_EQ(chain.vertices[0], 0);  // the ring's first vertex starts the chain
+  EXPECT_EQ(m.points[chain.vertices[0]], d.polygons[0].outer[0]);  // the chain starts there
 }
 
 TEST(BackgroundMesh, AnnulusKeepsTheHoleEmpty) {
@@ -282,6 +282,23 @@ TEST(BackgroundMesh, RejectsWrongOrientationAndRepeatedVertices) {
   Domain r = square_domain(1000.0);
   r.polygons[0].outer.insert(r.polygons[0].outer.begin() + 1, {1000, 0});
   EXPECT_THROW(build_background_mesh(r, uniform(100.0)), Error);
+}
+
+TEST(BackgroundMesh, RejectsAPolygonInsideAnother) {
+  Domain d = square_domain(1000.0);
+  d.polygons.push_back({{{400, 400}, {600, 400}, {600, 600}, {400, 600}}, {}});
+  try {
+    build_background_mesh(d, uniform(100.0));
+    FAIL() << "expected Error(input)";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::input) << e.what();
+  }
+}
+
+TEST(BackgroundMesh, RejectsAHoleOutsideItsPolygon) {
+  Domain d = square_domain(1000.0);
+  d.polygons[0].holes.push_back({{2000, 0}, {2000, 100}, {2100, 100}, {2100, 0}});  // CW
+  EXPECT_THROW(build_background_mesh(d, uniform(100.0)), Error);
 }
 
 TEST(BackgroundMesh, StopsARunawayRefinement) {

@@ -1,0 +1,67 @@
+#include "fields/size_cache.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace isoquad {
+
+SizeCache::SizeCache(const std::array<double, 4>& box,
+                     const std::function<double(const Point2&)>& size, double cell_ratio,
+                     int max_depth)
+    : cell_ratio_(cell_ratio), max_depth_(max_depth) {
+  side_ = std::max(box[2] - box[0], box[3] - box[1]);
+  side_ = side_ > 0 ? side_ * (1 + 1e-9) : 1.0;
+  x0_ = box[0];
+  y0_ = box[1];
+  resolution_ = 1LL << max_depth_;
+  nodes_.push_back(Node{});
+  build(0, 0, 0, 0, resolution_, size);
+}
+
+double SizeCache::corner(long long i, long long j,
+                         const std::function<double(const Point2&)>& size) {
+  const long long key = i * (resolution_ + 1) + j;
+  auto it = corner_value_.find(key);
+  if (it != corner_value_.end()) return it->second;
+  const double s = side_ / static_cast<double>(resolution_);
+  const double v = size({x0_ + i * s, y0_ + j * s});
+  corner_value_.emplace(key, v);
+  return v;
+}
+
+void SizeCache::build(int node, int depth, long long i0, long long j0, long long span,
+                      const std::function<double(const Point2&)>& size) {
+  const std::array<double, 4> c{corner(i0, j0, size), corner(i0 + span, j0, size),
+                                corner(i0, j0 + span, size), corner(i0 + span, j0 + span, size)};
+  nodes_[node].corner = c;
+  const double cell = side_ * static_cast<double>(span) / static_cast<double>(resolution_);
+  const double smallest = *std::min_element(c.begin(), c.end());
+  if (depth >= max_depth_ || cell <= cell_ratio_ * smallest) {
+    ++num_leaves_;
+    return;
+  }
+  const int first = static_cast<int>(nodes_.size());
+  nodes_[node].child = first;
+  nodes_.resize(nodes_.size() + 4);
+  const long long half = span / 2;
+  build(first + 0, depth + 1, i0, j0, half, size);
+  build(first + 1, depth + 1, i0 + half, j0, half, size);
+  build(first + 2, depth + 1, i0, j0 + half, half, size);
+  build(first + 3, depth + 1, i0 + half, j0 + half, half, size);
+}
+
+double SizeCache::operator()(const Point2& p) const {
+  double u = std::clamp((p.x - x0_) / side_, 0.0, 1.0);
+  double v = std::clamp((p.y - y0_) / side_, 0.0, 1.0);
+  int node = 0;
+  while (nodes_[node].child >= 0) {
+    const int qx = u >= 0.5 ? 1 : 0, qy = v >= 0.5 ? 1 : 0;
+    u = 2 * u - qx;
+    v = 2 * v - qy;
+    node = nodes_[node].child + qx + 2 * qy;
+  }
+  const auto& c = nodes_[node].corner;
+  return (1 - v) * ((1 - u) * c[0] + u * c[1]) + v * ((1 - u) * c[2] + u * c[3]);
+}
+
+}  // namespace isoquad

@@ -1,0 +1,84 @@
+// `isoquad fields`: the background mesh and fields as a user opens them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include "gis/gdal_env.h"
+#include "support/fixtures.h"
+
+using namespace isoquad::test;
+
+TEST(CliFields, VtuLoadsInMeshioWithSizeAndCrossAngle) {
+  TempDir dir;
+  const std::string vtu = dir.file("fields.vtu"), png = dir.file("fields.png");
+  const CliResult r = run_cli({"fields", sample("corsica.geojson"), "-o", vtu, "--plot", png,
+                               "--hmax", "8000"},
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("singularities"), std::string::npos) << r.out;
+  // A real reader: meshio (Debian's python3-meshio, under /usr/bin/python3).
+  const std::string script = dir.file("check.py");
+  write_file(script,
+             "import sys, meshio, numpy as np\n"
+             "m = meshio.read(sys.argv[1])\n"
+             "tri = m.cells_dict['triangle']\n"
+             "size = m.point_data['size']; cross = m.point_data['cross_angle']\n"
+             "assert len(m.points) > 100 and len(tri) > 100\n"
+             "assert size.shape == (len(m.points),) and cross.shape == (len(m.points),)\n"
+             "assert size.min() > 0 and size.max() <= 8000 * (1 + 1e-9)\n"
+             "assert cross.min() >= 0 and cross.max() < 90\n"
+             "p = m.points[:, :2]; a = p[tri[:, 1]] - p[tri[:, 0]]; b = p[tri[:, 2]] - p[tri[:, 0]]\n"
+             "assert (a[:, 0] * b[:, 1] - a[:, 1] * b[:, 0]).min() > 0\n"
+             "print('ok', len(m.points), len(tri))\n");
+  const CliResult py = run_cli_program("/usr/bin/python3", {script, vtu}, dir);
+  EXPECT_EQ(py.exit_code, 0) << py.err << py.out;
+  EXPECT_EQ(py.out.rfind("ok ", 0), 0u) << py.out;
+  // The plot is a PNG.
+  EXPECT_EQ(read_file(png).substr(1, 3), "PNG");
+}
+
+TEST(CliFields, GeoPackageHasVerticesAndTriangles) {
+  TempDir dir;
+  const std::string gpkg = dir.file("fields.gpkg");
+  const CliResult r = run_cli({"fields", sample("corsica.shp"), "-o", gpkg, "--size", "4000",
+                               "--cross-angle", "30"},
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  isoquad::ensure_gdal_registered();
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(gpkg.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  OGRLayer* v = ds->GetLayerByName("vertices");
+  OGRLayer* t = ds->GetLayerByName("triangles");
+  ASSERT_NE(v, nullptr);
+  ASSERT_NE(t, nullptr);
+  EXPECT_GT(v->GetFeatureCount(), 100);
+  EXPECT_GT(t->GetFeatureCount(), 100);
+  for (auto& f : *v) {
+    ASSERT_DOUBLE_EQ(f->GetFieldAsDouble("size_m"), 4000.0);
+    ASSERT_NEAR(f->GetFieldAsDouble("cross_angle_deg"), 30.0, 1e-9);
+  }
+  GDALClose(ds);
+}
+
+TEST(CliFields, BadSizingOptionsFailCleanly) {
+  TempDir dir;
+  const std::string out = dir.file("f.vtu");
+  for (const auto& extra : std::vector<std::vector<std::string>>{
+           {"--size-expr", "2*"},
+           {"--size-expr", "x-1e12"},
+           {"--hmin", "5000", "--hmax", "100"},
+           {"--cross-angle", "10", "--cross-raster", "a.tif"},
+           {"--size-raster", dir.file("missing.tif")}}) {
+    std::vector<std::string> args{"fields", sample("corsica.geojson"), "-o", out};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliResult r = run_cli(args, dir);
+    EXPECT_NE(r.exit_code, 0) << extra[0];
+    EXPECT_NE(r.exit_code, 70) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << extra[0];
+  }
+}
