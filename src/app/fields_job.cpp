@@ -112,8 +112,9 @@ std::string format_fields_summary(const FieldsResult& r) {
   os << buf;
   if (!r.size.size_m.empty()) {
     const auto [lo, hi] = std::minmax_element(r.size.size_m.begin(), r.size.size_m.end());
-    std::snprintf(buf, sizeof buf, "size field:   %.6g .. %.6g m on %zu background vertices\n", *lo,
-                  *hi, r.size.size_m.size());
+    std::snprintf(buf, sizeof buf,
+                  "size field:   %.6g .. %.6g m on %zu background vertices; about %.0f quads\n",
+                  *lo, *hi, r.size.size_m.size(), predicted_num_quads(r.mesh, r.size));
     os << buf;
   }
   std::snprintf(buf, sizeof buf, "background:   %zu vertices, %zu triangles, %zu boundary chains\n",

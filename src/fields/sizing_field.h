@@ -79,6 +79,10 @@ struct SizingField {
   double at(const BackgroundMesh& mesh, int f, const std::array<double, 3>& bary) const;
 };
 
+// The number of quads of size h that cover the mesh: the integral of 1 / h^2 over the
+// domain (one quad of side h(x) per h(x)^2 of area), by the midpoint rule per triangle.
+double predicted_num_quads(const BackgroundMesh& mesh, const SizingField& field);
+
 // Samples the oracle at every vertex and limits the gradient: afterwards
 // |h_u - h_v| <= K |u - v| holds on every background edge (Dijkstra-like sweep from
 // the smallest sizes).

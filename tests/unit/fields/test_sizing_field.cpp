@@ -197,3 +197,14 @@ TEST(SizingField, BadSourcesAreRejected) {
   EXPECT_EQ(r.error_class(), ErrorClass::input);
   EXPECT_NE(std::string(r.what()).find("/no/such/raster.tif"), std::string::npos);
 }
+
+TEST(SizingField, PredictedQuadCountOfAConstantField) {
+  const Domain d = rectangle(1000, 500);
+  SizingParams p;
+  p.automatic = false;
+  p.constant_m = 50.0;
+  SizingOracle oracle(d, p);
+  const BackgroundMesh mesh = mesh_for(d, oracle);
+  const SizingField f = sample_sizing_field(mesh, oracle, p.gradation);
+  EXPECT_NEAR(predicted_num_quads(mesh, f), 1000.0 * 500.0 / (50.0 * 50.0), 1e-6);
+}
