@@ -9,6 +9,8 @@
 #include <CGAL/Delaunay_mesh_size_criteria_2.h>
 #include <CGAL/Delaunay_mesher_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Orthogonal_k_neighbor_search.h>
+#include <CGAL/Search_traits_2.h>
 #include <CGAL/Spatial_sort_traits_adapter_2.h>
 #include <CGAL/hilbert_sort.h>
 #include <CGAL/property_map.h>
@@ -155,6 +157,95 @@ void mark_domain(Ct& ct) {
     f->set_in_domain(f->info().nesting_level % 2 == 1);
 }
 
+// Seeds the inside of the domain with the centres of the leaves of a quadtree whose
+// cells are as large as the size allows (side <= max_edge / 1.5, so the right-angled
+// triangles between neighbouring centres meet the bound). Delaunay refinement from the
+// boundary alone would insert every point one at a time through its queue of bad
+// faces; after seeding it only mends the transitions and the boundary, several times
+// faster. Seeds closer to the boundary than half a cell are left out: they would make
+// refinement split the boundary edges very finely.
+void seed_interior(Ct& ct, const Domain& domain, const BackgroundMeshParams& params) {
+  const SizeOracle& size = params.max_edge_m;
+  double xmin = 1e300, ymin = 1e300, xmax = -1e300, ymax = -1e300;
+  std::vector<K::Point_2> boundary;
+  for (const Polygon& poly : domain.polygons) {
+    std::vector<const Ring*> rings{&poly.outer};
+    for (const Ring& h : poly.holes) rings.push_back(&h);
+    for (const Ring* r : rings)
+      for (std::size_t i = 0; i < r->size(); ++i) {
+        const Point2 a = (*r)[i], b = (*r)[(i + 1) % r->size()];
+        xmin = std::min(xmin, a.x), ymin = std::min(ymin, a.y);
+        xmax = std::max(xmax, a.x), ymax = std::max(ymax, a.y);
+        const double len = std::hypot(b.x - a.x, b.y - a.y);
+        const double e = size({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)});
+        const int n = std::max(1, static_cast<int>(std::ceil(len / (0.25 * e))));
+        for (int k = 0; k < n; ++k)
+          boundary.emplace_back(a.x + (b.x - a.x) * k / n, a.y + (b.y - a.y) * k / n);
+      }
+  }
+  using Traits = CGAL::Search_traits_2<K>;
+  using Search = CGAL::Orthogonal_k_neighbor_search<Traits>;
+  Search::Tree tree(boundary.begin(), boundary.end());
+
+  struct Cell {
+    double x, y, side;
+    int depth;
+  };
+  // Leaves are at least twice the local edge bound e and filled with a k x k lattice of
+  // spacing d = side / k <= 0.85 e, every other row shifted by d / 2: nearly equilateral
+  // triangles whose longest edge (1.12 d) stays under 0.95 e, at a density within a factor
+  // of about 2 of the ideal.
+  std::vector<Cell> stack{{xmin, ymin, std::max(xmax - xmin, ymax - ymin), 0}};
+  std::vector<std::pair<K::Point_2, double>> leaves;  // (point, lattice spacing)
+  while (!stack.empty()) {
+    const Cell c = stack.back();
+    stack.pop_back();
+    double e = size({c.x + 0.5 * c.side, c.y + 0.5 * c.side});
+    if (!(e > 0.0))  // also catches NaN
+      throw Error(ErrorClass::meshing, kStage,
+                  "the sizing oracle returned " + std::to_string(e) + " m at (" +
+                      std::to_string(c.x + 0.5 * c.side) + ", " + std::to_string(c.y + 0.5 * c.side) +
+                      "); sizes must be positive");
+    if (leaves.size() + stack.size() > params.max_num_vertices)
+      throw Error(ErrorClass::meshing, kStage,
+                  "the sizing asks for more than " + std::to_string(params.max_num_vertices) +
+                      " vertices; simplify the domain or coarsen the sizing");
+    if (c.side > 2.0 * e && c.depth < 40) {
+      const double h = 0.5 * c.side;
+      for (int q = 3; q >= 0; --q) stack.push_back({c.x + (q & 1) * h, c.y + (q >> 1) * h, h, c.depth + 1});
+      continue;
+    }
+    // The bound may vary inside the leaf: take the smallest at its corners and centre,
+    // but not below a quarter of the centre's (refinement mends sharper variations).
+    const double floor_e = 0.25 * e;
+    for (int q = 0; q < 4; ++q) {
+      const double corner = size({c.x + (q & 1) * c.side, c.y + (q >> 1) * c.side});
+      if (corner > 0.0) e = std::min(e, std::max(corner, floor_e));
+    }
+    const int k = std::max(1, static_cast<int>(std::ceil(c.side / (0.85 * e))));
+    const double d = c.side / k;
+    for (int j = 0; j < k; ++j)
+      for (int i = 0; i < k; ++i) {
+        const double shift = (j % 2) ? 0.25 : -0.25;
+        leaves.emplace_back(K::Point_2(c.x + (i + 0.5 + shift) * d, c.y + (j + 0.5) * d), d);
+      }
+  }
+  if (ct.number_of_vertices() + leaves.size() > params.max_num_vertices)
+    throw Error(ErrorClass::meshing, kStage,
+                "the sizing asks for more than " + std::to_string(params.max_num_vertices) +
+                    " vertices; simplify the domain or coarsen the sizing");
+  std::vector<K::Point_2> seeds;
+  FaceHandle hint;
+  for (const auto& [p, side] : leaves) {
+    hint = ct.locate(p, hint);
+    if (ct.is_infinite(hint) || !hint->is_in_domain()) continue;
+    Search nearest(tree, p, 1);
+    if (nearest.begin()->second < 0.36 * side * side) continue;
+    seeds.push_back(p);
+  }
+  ct.insert(seeds.begin(), seeds.end());
+}
+
 // Indices of `points` in Hilbert curve order.
 std::vector<std::size_t> hilbert_order(const std::vector<K::Point_2>& points) {
   std::vector<std::size_t> order(points.size());
@@ -269,6 +360,11 @@ BackgroundMesh build_background_mesh(const Domain& domain, const BackgroundMeshP
                         "another one, or a hole outside its polygon)");
     }
   }
+  if (params.seed_interior) {
+    seed_interior(ct, domain, params);
+    mark_domain(ct);  // the faces made by the seeds have no flags yet
+  }
+
   const double sine = std::sin(params.min_angle_deg * kPi / 180.0);
   const SizeAndAngleCriteria criteria(&params.max_edge_m, sine * sine);
   CGAL::Delaunay_mesher_2<Ct, SizeAndAngleCriteria> mesher(ct, criteria);
