@@ -1,5 +1,6 @@
 #include "fields/cross_field.h"
 
+#include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
 
@@ -136,7 +137,9 @@ CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh) {
     Eigen::SparseMatrix<double> laplacian(num_unknowns, num_unknowns);
     laplacian.setFromTriplets(triplets.begin(), triplets.end());
 
-    Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(laplacian);
+    // CHOLMOD's supernodal factorisation: several times faster than Eigen's simplicial
+    // one on meshes of a few hundred thousand vertices.
+    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver(laplacian);
     if (solver.info() != Eigen::Success)
       throw Error(ErrorClass::meshing, kStage,
                   "the Laplacian could not be factorised (a mesh component without boundary?)");
