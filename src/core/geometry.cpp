@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 namespace isoquad {
 
@@ -111,6 +112,13 @@ std::size_t remove_duplicates_and_spikes(Ring& ring) {
     ring.swap(out);
   }
   return before - ring.size();
+}
+
+std::string format_point(const Point2& p) {
+  std::ostringstream os;
+  os.precision(10);
+  os << "(" << p.x << ", " << p.y << ")";
+  return os.str();
 }
 
 void sort_by_area(std::vector<Polygon>& polygons) {

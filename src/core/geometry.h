@@ -51,6 +51,9 @@ void orient_polygon(Polygon& polygon);
 // number of points removed.
 std::size_t remove_duplicates_and_spikes(Ring& ring);
 
+// "(x, y)" with 10 significant digits, for messages.
+std::string format_point(const Point2& p);
+
 // Sorts components by decreasing area, ties broken by the first vertex, so that the
 // order is deterministic and the largest comes first.
 void sort_by_area(std::vector<Polygon>& polygons);

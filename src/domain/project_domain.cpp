@@ -25,13 +25,6 @@ bool transform_all(const CrsTransform& t, std::vector<Polygon>& polys, Point2* f
   return true;
 }
 
-std::string fmt_point(const Point2& p) {
-  std::ostringstream os;
-  os.precision(10);
-  os << "(" << p.x << ", " << p.y << ")";
-  return os.str();
-}
-
 }  // namespace
 
 ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo& source_crs,
@@ -65,7 +58,7 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
   Point2 failed;
   if (!transform_all(t, projected, &failed))
     throw Error(ErrorClass::crs, "crs",
-                "point " + fmt_point(failed) + " cannot be transformed from '" + source_crs.name +
+                "point " + format_point(failed) + " cannot be transformed from '" + source_crs.name +
                     "' to '" + target.name + "'");
   for (Polygon& p : projected) orient_polygon(p);
   sort_by_area(projected);

@@ -10,13 +10,6 @@ namespace isoquad {
 
 namespace {
 
-std::string fmt_point(const Point2& p) {
-  std::ostringstream os;
-  os.precision(10);
-  os << "(" << p.x << ", " << p.y << ")";
-  return os.str();
-}
-
 }  // namespace
 
 SelectResult select_domain(const SourceData& source, const SelectParams& params) {
@@ -36,7 +29,7 @@ SelectResult select_domain(const SourceData& source, const SelectParams& params)
         throw Error(ErrorClass::input, "domain",
                     file + ": feature " + std::to_string(sp.fid) +
                         (sp.part ? " part " + std::to_string(sp.part) : std::string()) +
-                        " is invalid: " + v.reason + " at or near " + fmt_point(v.location) +
+                        " is invalid: " + v.reason + " at or near " + format_point(v.location) +
                         "; use --repair to fix it");
       g = geos.make_valid(g);
       ++result.num_repaired;

@@ -21,13 +21,6 @@ namespace {
 
 constexpr double kGravity = 9.81;  // m/s2
 
-std::string fmt_point(const Point2& p) {
-  std::ostringstream os;
-  os.precision(10);
-  os << "(" << p.x << ", " << p.y << ")";
-  return os.str();
-}
-
 }  // namespace
 
 struct SizingOracle::Expression {
@@ -126,7 +119,7 @@ double SizingOracle::operator()(const Point2& p) const {
     if (!(v > 0) || !std::isfinite(v))
       throw Error(ErrorClass::usage, "sizing",
                   "--size-expr '" + expression_->text + "' gives " + std::to_string(v) + " at " +
-                      fmt_point(p) + "; sizes must be positive");
+                      format_point(p) + "; sizes must be positive");
     h = std::min(h, v);
   }
   if (raster_) {
@@ -135,7 +128,7 @@ double SizingOracle::operator()(const Point2& p) const {
       if (!(v > 0))
         throw Error(ErrorClass::input, "sizing",
                     "--size-raster '" + raster_->path() + "' has size " + std::to_string(v) +
-                        " at " + fmt_point(p) + "; sizes must be positive");
+                        " at " + format_point(p) + "; sizes must be positive");
       h = std::min(h, v);
     }
   }
@@ -159,7 +152,7 @@ double SizingOracle::operator()(const Point2& p) const {
   if (!std::isfinite(h)) h = hmax_;
   if (!std::isfinite(h))
     throw Error(ErrorClass::usage, "sizing",
-                "no size at " + fmt_point(p) + " (outside every raster); give --hmax or --size");
+                "no size at " + format_point(p) + " (outside every raster); give --hmax or --size");
   return std::clamp(h, hmin_, hmax_);
 }
 
