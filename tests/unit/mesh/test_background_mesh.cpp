@@ -13,10 +13,7 @@
 #include "core/error.h"
 #include "unit/mesh/test_domains.h"
 
-#if __has_include("app/front_end.h")
 #include "app/front_end.h"
-#define ISOQUAD_HAVE_FRONT_END 1
-#endif
 
 using namespace isoquad;
 using namespace isoquad::test;
@@ -332,16 +329,10 @@ TEST(BackgroundMesh, LargeSquareTiming) {
 }
 
 TEST(BackgroundMesh, RealSample) {
-#ifdef ISOQUAD_HAVE_FRONT_END
   FrontEndOptions options;
   options.read.path = std::string(ISOQUAD_SOURCE_DIR) + "/shapefiles/corsica.shp";
   options.target_size_m = 2000.0;
-  Domain d;
-  try {
-    d = build_planar_domain(options).domain;
-  } catch (const std::exception& e) {
-    GTEST_SKIP() << "front end unavailable: " << e.what();
-  }
+  const Domain d = build_planar_domain(options).domain;
   const BackgroundMeshParams params = uniform(400.0);  // 0.1 x tile size 2h
   const auto start = std::chrono::steady_clock::now();
   const BackgroundMesh m = build_background_mesh(d, params);
@@ -355,7 +346,4 @@ TEST(BackgroundMesh, RealSample) {
   for (int f = 0; f < static_cast<int>(m.triangles.size()); ++f)
     if (smallest_angle_deg(m, f) < 20.0) ++num_small;
   EXPECT_LT(num_small, static_cast<int>(m.triangles.size() / 100));
-#else
-  GTEST_SKIP() << "front end not built";
-#endif
 }
