@@ -1,0 +1,88 @@
+#include "mesh/locate.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace isoquad {
+
+std::array<double, 3> barycentric(const Point2& a, const Point2& b, const Point2& c,
+                                  const Point2& p) {
+  const double d = (b.y - c.y) * (a.x - c.x) + (c.x - b.x) * (a.y - c.y);
+  const double l0 = ((b.y - c.y) * (p.x - c.x) + (c.x - b.x) * (p.y - c.y)) / d;
+  const double l1 = ((c.y - a.y) * (p.x - c.x) + (a.x - c.x) * (p.y - c.y)) / d;
+  return {l0, l1, 1.0 - l0 - l1};
+}
+
+TriangleLocator::TriangleLocator(const BackgroundMesh& mesh) : mesh_(&mesh) {
+  double xmin = 1e300, ymin = 1e300, xmax = -1e300, ymax = -1e300;
+  for (const Point2& p : mesh.points)
+    xmin = std::min(xmin, p.x), ymin = std::min(ymin, p.y), xmax = std::max(xmax, p.x),
+    ymax = std::max(ymax, p.y);
+  const std::size_t nf = mesh.triangles.size();
+  // About two triangles per cell.
+  const double area = std::max((xmax - xmin) * (ymax - ymin), 1e-300);
+  cell_ = std::max(std::sqrt(2.0 * area / std::max<std::size_t>(nf, 1)), 1e-12);
+  x0_ = xmin;
+  y0_ = ymin;
+  nx_ = std::max(1, static_cast<int>(std::ceil((xmax - xmin) / cell_)) + 1);
+  ny_ = std::max(1, static_cast<int>(std::ceil((ymax - ymin) / cell_)) + 1);
+  std::vector<int> count(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
+  auto for_cells = [&](std::size_t f, auto&& fn) {
+    const auto& t = mesh.triangles[f];
+    double bx0 = 1e300, by0 = 1e300, bx1 = -1e300, by1 = -1e300;
+    for (int v : t)
+      bx0 = std::min(bx0, mesh.points[v].x), by0 = std::min(by0, mesh.points[v].y),
+      bx1 = std::max(bx1, mesh.points[v].x), by1 = std::max(by1, mesh.points[v].y);
+    const int i0 = static_cast<int>((bx0 - x0_) / cell_), i1 = static_cast<int>((bx1 - x0_) / cell_);
+    const int j0 = static_cast<int>((by0 - y0_) / cell_), j1 = static_cast<int>((by1 - y0_) / cell_);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) fn(static_cast<std::size_t>(j) * nx_ + i);
+  };
+  for (std::size_t f = 0; f < nf; ++f) for_cells(f, [&](std::size_t c) { ++count[c + 1]; });
+  for (std::size_t c = 0; c + 1 < count.size(); ++c) count[c + 1] += count[c];
+  start_ = count;
+  items_.resize(start_.back());
+  std::vector<int> fill(start_.begin(), start_.end() - 1);
+  for (std::size_t f = 0; f < nf; ++f)
+    for_cells(f, [&](std::size_t c) { items_[fill[c]++] = static_cast<int>(f); });
+}
+
+Location TriangleLocator::locate(const Point2& p) const {
+  const BackgroundMesh& m = *mesh_;
+  const int ci = std::clamp(static_cast<int>((p.x - x0_) / cell_), 0, nx_ - 1);
+  const int cj = std::clamp(static_cast<int>((p.y - y0_) / cell_), 0, ny_ - 1);
+  Location best;
+  double best_violation = std::numeric_limits<double>::infinity();
+  // Search rings of cells until a containing triangle is found, or the nearest one
+  // once a ring adds nothing better.
+  for (int ring = 0; ring < std::max(nx_, ny_); ++ring) {
+    for (int j = cj - ring; j <= cj + ring; ++j)
+      for (int i = ci - ring; i <= ci + ring; ++i) {
+        if (std::max(std::abs(i - ci), std::abs(j - cj)) != ring) continue;
+        if (i < 0 || j < 0 || i >= nx_ || j >= ny_) continue;
+        const std::size_t c = static_cast<std::size_t>(j) * nx_ + i;
+        for (int k = start_[c]; k < start_[c + 1]; ++k) {
+          const int f = items_[k];
+          const auto& t = m.triangles[f];
+          const auto b = barycentric(m.points[t[0]], m.points[t[1]], m.points[t[2]], p);
+          const double violation = std::max({0.0, -b[0], -b[1], -b[2]});
+          if (violation < best_violation || (violation == best_violation && f < best.triangle)) {
+            best_violation = violation;
+            best.triangle = f;
+            best.bary = b;
+          }
+        }
+      }
+    if (best_violation == 0.0) break;
+    if (best.triangle >= 0 && ring >= 1) break;
+  }
+  if (best.triangle >= 0 && best_violation > 0) {
+    for (double& w : best.bary) w = std::max(0.0, w);
+    const double s = best.bary[0] + best.bary[1] + best.bary[2];
+    for (double& w : best.bary) w /= s;
+  }
+  return best;
+}
+
+}  // namespace isoquad

@@ -1,0 +1,150 @@
+#include "quad/quad_quality.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "mesh/locate.h"
+
+namespace isoquad {
+
+namespace {
+
+double percentile(std::vector<double> v, double p) {
+  if (v.empty()) return 0.0;
+  const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(p * (v.size() - 1) + 0.5));
+  std::nth_element(v.begin(), v.begin() + k, v.end());
+  return v[k];
+}
+
+void add_to_histogram(std::vector<int>& h, double value, double lo, double width) {
+  const int n = static_cast<int>(h.size());
+  const int bin = std::clamp(static_cast<int>(std::floor((value - lo) / width)), 0, n - 1);
+  ++h[bin];
+}
+
+}  // namespace
+
+QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, const SizingField& size,
+                               const CrossField& cross, QuadMetrics* out) {
+  QualitySummary s;
+  QuadMetrics local;
+  QuadMetrics& qm = out ? *out : local;
+  const int nq = static_cast<int>(m.quads.size());
+  const int np = static_cast<int>(m.points.size());
+  s.num_quads = nq;
+  s.num_vertices = np;
+  qm = QuadMetrics{};
+  qm.min_angle_deg.resize(nq);
+  qm.max_angle_deg.resize(nq);
+  qm.size_ratio.resize(nq);
+  qm.orientation_deg.resize(nq);
+  qm.eta.resize(nq);
+  s.angle_histogram.assign(36, 0);
+  s.size_ratio_histogram.assign(30, 0);
+  s.orientation_histogram.assign(45, 0);
+  const TriangleLocator locator(bg);
+  std::size_t in_range = 0, angles = 0;
+  s.min_angle_deg = 360;
+  s.max_angle_deg = 0;
+  s.eta_min = 1;
+  double eta_sum = 0, orient_sum = 0;
+  for (int q = 0; q < nq; ++q) {
+    if (quad_convexity(m, q) <= 0) ++s.num_nonconvex;
+    const auto a = quad_angles_deg(m, q);
+    double amin = 360, amax = 0, worst = 0;
+    for (double x : a) {
+      amin = std::min(amin, x), amax = std::max(amax, x);
+      worst = std::max(worst, std::abs(90 - x));
+      in_range += x >= 75 && x <= 105;
+      ++angles;
+      add_to_histogram(s.angle_histogram, x, 0, 5);
+    }
+    qm.min_angle_deg[q] = amin;
+    qm.max_angle_deg[q] = amax;
+    qm.eta[q] = 1 - worst / 90;
+    s.min_angle_deg = std::min(s.min_angle_deg, amin);
+    s.max_angle_deg = std::max(s.max_angle_deg, amax);
+    eta_sum += qm.eta[q];
+    s.eta_min = std::min(s.eta_min, qm.eta[q]);
+    if (amax > 0 && amin / amax < 0.5) ++s.schism_angle_ratio_violations;
+
+    const auto& t = m.quads[q];
+    Point2 c{0, 0};
+    double emin = 1e300, emax = 0;
+    for (int i = 0; i < 4; ++i) {
+      c.x += 0.25 * m.points[t[i]].x, c.y += 0.25 * m.points[t[i]].y;
+      const Point2 &p = m.points[t[i]], &r = m.points[t[(i + 1) % 4]];
+      const double len = std::hypot(r.x - p.x, r.y - p.y);
+      emin = std::min(emin, len), emax = std::max(emax, len);
+    }
+    if (emin > 0 && emax / emin > 5) ++s.schism_aspect_violations;
+    const Location loc = locator.locate(c);
+    const double h = loc.triangle >= 0 ? size.at(bg, loc.triangle, loc.bary) : 0.0;
+    qm.size_ratio[q] = h > 0 ? std::sqrt(std::max(0.0, quad_area(m, q))) / h : 0.0;
+    add_to_histogram(s.size_ratio_histogram, qm.size_ratio[q], 0.25, 0.05);
+    const double theta = loc.triangle >= 0 ? cross_angle_at(bg, cross, loc.triangle, loc.bary) : 0.0;
+    double dev = 0;
+    for (int i = 0; i < 4; ++i) {
+      const Point2 &p = m.points[t[i]], &r = m.points[t[(i + 1) % 4]];
+      const double phi = std::atan2(r.y - p.y, r.x - p.x);
+      dev += std::abs(cross_rotation_rad(theta, phi)) * 180.0 / M_PI;
+    }
+    qm.orientation_deg[q] = dev / 4;
+    orient_sum += qm.orientation_deg[q];
+    add_to_histogram(s.orientation_histogram, qm.orientation_deg[q], 0, 1);
+  }
+  s.share_angles_75_105 = angles ? static_cast<double>(in_range) / angles : 0;
+  s.eta_mean = nq ? eta_sum / nq : 0;
+  s.orientation_mean_deg = nq ? orient_sum / nq : 0;
+  s.orientation_p90_deg = percentile(qm.orientation_deg, 0.9);
+  s.size_ratio_median = percentile(qm.size_ratio, 0.5);
+  std::size_t size_ok = 0;
+  for (double r : qm.size_ratio) size_ok += r >= 0.8 && r <= 1.25;
+  s.share_size_08_125 = nq ? static_cast<double>(size_ok) / nq : 0;
+
+  // Degrees; boundary vertices from edges used by one quad, with the boundary angle
+  // (sum of the incident quads' angles) giving the ideal degree.
+  qm.degree.assign(np, 0);
+  qm.boundary.assign(np, 0);
+  qm.ideal_degree.assign(np, 4);
+  std::vector<double> angle_sum(np, 0.0);
+  std::vector<std::pair<std::pair<int, int>, int>> edges;
+  for (int q = 0; q < nq; ++q) {
+    const auto a = quad_angles_deg(m, q);
+    for (int i = 0; i < 4; ++i) {
+      const int v = m.quads[q][i], w = m.quads[q][(i + 1) % 4];
+      ++qm.degree[v];
+      angle_sum[v] += a[i];
+      edges.push_back({{std::min(v, w), std::max(v, w)}, q});
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
+    if (j - i == 1) qm.boundary[edges[i].first.first] = qm.boundary[edges[i].first.second] = 1;
+    i = j;
+  }
+  std::size_t interior = 0, interior_regular = 0, boundary = 0, boundary_regular = 0;
+  s.interior_degree_histogram.assign(9, 0);
+  for (int v = 0; v < np; ++v) {
+    if (qm.degree[v] == 0) continue;
+    if (qm.boundary[v]) {
+      qm.ideal_degree[v] = std::max(1, static_cast<int>(std::lround(angle_sum[v] / 90.0)));
+      ++boundary;
+      boundary_regular += qm.degree[v] == qm.ideal_degree[v];
+    } else {
+      ++interior;
+      interior_regular += qm.degree[v] == 4;
+      ++s.interior_degree_histogram[std::min(qm.degree[v], 8)];
+    }
+  }
+  s.num_boundary_vertices = boundary;
+  s.share_regular_interior = interior ? static_cast<double>(interior_regular) / interior : 0;
+  s.share_regular_boundary = boundary ? static_cast<double>(boundary_regular) / boundary : 0;
+  s.share_regular_all =
+      interior + boundary ? static_cast<double>(interior_regular + boundary_regular) / (interior + boundary) : 0;
+  return s;
+}
+
+}  // namespace isoquad

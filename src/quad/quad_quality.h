@@ -1,0 +1,49 @@
+// Quality of a quad mesh against the paper's criteria and what ocean modellers check:
+// angles, size conformance sqrt(area)/h, orientation deviation from the cross field,
+// vertex regularity, Gmsh's eta, SCHISM's angle-ratio and aspect-ratio checks.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "fields/cross_field.h"
+#include "fields/sizing_field.h"
+#include "mesh/background_mesh.h"
+#include "quad/quad_mesh.h"
+
+namespace isoquad {
+
+// Per-element and per-vertex values (written to the outputs).
+struct QuadMetrics {
+  std::vector<double> min_angle_deg;    // #Q
+  std::vector<double> max_angle_deg;    // #Q
+  std::vector<double> size_ratio;       // #Q sqrt(area) / h(centroid)
+  std::vector<double> orientation_deg;  // #Q mean deviation of the 4 edges from the cross, [0, 45]
+  std::vector<double> eta;              // #Q Gmsh's eta = 1 - max|90 - a| / 90
+  std::vector<int> degree;              // #P number of quads at each vertex
+  std::vector<char> boundary;           // #P 1 on the domain boundary
+  std::vector<int> ideal_degree;        // #P 4 inside; on the boundary round(angle / 90)
+};
+
+struct QualitySummary {
+  std::size_t num_quads = 0, num_vertices = 0, num_boundary_vertices = 0;
+  std::size_t num_nonconvex = 0;  // not strictly convex counter-clockwise
+  double share_angles_75_105 = 0, min_angle_deg = 0, max_angle_deg = 0;
+  std::vector<int> angle_histogram;  // 36 bins of 5 degrees over [0, 180)
+  double size_ratio_median = 0, share_size_08_125 = 0;
+  std::vector<int> size_ratio_histogram;  // 30 bins of 0.05 over [0.25, 1.75), clamped
+  double orientation_mean_deg = 0, orientation_p90_deg = 0;
+  std::vector<int> orientation_histogram;  // 45 bins of 1 degree over [0, 45]
+  double share_regular_interior = 0, share_regular_boundary = 0, share_regular_all = 0;
+  std::vector<int> interior_degree_histogram;  // [d] interior vertices of degree d
+  double eta_mean = 0, eta_min = 0;
+  std::size_t schism_angle_ratio_violations = 0;  // min/max angle < 0.5
+  std::size_t schism_aspect_violations = 0;       // longest / shortest edge > 5
+};
+
+QualitySummary measure_quality(const QuadMesh& mesh, const BackgroundMesh& background,
+                               const SizingField& size, const CrossField& cross,
+                               QuadMetrics* metrics = nullptr);
+
+}  // namespace isoquad

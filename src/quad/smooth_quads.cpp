@@ -1,0 +1,186 @@
+#include "quad/smooth_quads.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace isoquad {
+
+namespace {
+
+struct Topology {
+  std::vector<int> quad_start, quad_items;  // CSR vertex -> incident quads
+  std::vector<std::vector<int>> neighbours;  // vertex -> edge-adjacent vertices
+  std::vector<std::array<int, 2>> boundary_neighbours;  // along the boundary, -1 if none
+};
+
+Topology topology(const QuadMesh& m) {
+  Topology t;
+  const std::size_t n = m.points.size();
+  t.quad_start.assign(n + 1, 0);
+  for (const auto& q : m.quads)
+    for (int v : q) ++t.quad_start[v + 1];
+  for (std::size_t i = 0; i < n; ++i) t.quad_start[i + 1] += t.quad_start[i];
+  t.quad_items.resize(t.quad_start[n]);
+  std::vector<int> fill(t.quad_start.begin(), t.quad_start.end() - 1);
+  for (std::size_t q = 0; q < m.quads.size(); ++q)
+    for (int v : m.quads[q]) t.quad_items[fill[v]++] = static_cast<int>(q);
+  t.neighbours.assign(n, {});
+  // An edge used by one quad only is a boundary edge.
+  std::vector<std::pair<std::pair<int, int>, int>> edges;
+  for (const auto& q : m.quads)
+    for (int i = 0; i < 4; ++i) {
+      const int a = q[i], b = q[(i + 1) % 4];
+      t.neighbours[a].push_back(b);
+      t.neighbours[b].push_back(a);
+      edges.push_back({{std::min(a, b), std::max(a, b)}, 1});
+    }
+  for (auto& nb : t.neighbours) {
+    std::sort(nb.begin(), nb.end());
+    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+  }
+  std::sort(edges.begin(), edges.end());
+  t.boundary_neighbours.assign(n, {-1, -1});
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i;
+    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
+    if (j - i == 1) {
+      const auto [a, b] = edges[i].first;
+      for (auto [u, w] : {std::pair{a, b}, std::pair{b, a}}) {
+        auto& bn = t.boundary_neighbours[u];
+        (bn[0] < 0 ? bn[0] : bn[1]) = w;
+      }
+    }
+    i = j;
+  }
+  return t;
+}
+
+double worst_convexity(const QuadMesh& m, const Topology& t, int v) {
+  double worst = 1.0;
+  for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k)
+    worst = std::min(worst, quad_convexity(m, t.quad_items[k]));
+  return worst;
+}
+
+// Signed arc distance from a to b along a closed chain of length len, in (-len/2, len/2].
+double arc_delta(double a, double b, double len) {
+  double d = std::fmod(b - a, len);
+  if (d > 0.5 * len) d -= len;
+  if (d <= -0.5 * len) d += len;
+  return d;
+}
+
+// Tries to move vertex v to `target` (and arc `arc` on the boundary): kept only if the
+// incident quads stay at least as convex as required (or as they were).
+bool try_move(QuadMesh& m, const Topology& t, int v, const Point2& target, double arc,
+              double min_convexity) {
+  const double before = worst_convexity(m, t, v);
+  const Point2 old = m.points[v];
+  const double old_arc = m.arc_m[v];
+  m.points[v] = target;
+  m.arc_m[v] = arc;
+  const double after = worst_convexity(m, t, v);
+  if (after > min_convexity || after >= before) return true;
+  m.points[v] = old;
+  m.arc_m[v] = old_arc;
+  return false;
+}
+
+// The boundary target of v: the arc-length midpoint of its two boundary neighbours.
+bool boundary_target(const BackgroundMesh& bg, const QuadMesh& m, const Topology& t, int v,
+                     Point2& target, double& arc) {
+  const auto& bn = t.boundary_neighbours[v];
+  if (bn[0] < 0 || bn[1] < 0) return false;
+  const int c = m.chain[v];
+  if (m.chain[bn[0]] != c || m.chain[bn[1]] != c) return false;
+  const double len = bg.chains[c].length_m;
+  const double d0 = arc_delta(m.arc_m[v], m.arc_m[bn[0]], len);
+  const double d1 = arc_delta(m.arc_m[v], m.arc_m[bn[1]], len);
+  if (d0 * d1 >= 0) return false;  // neighbours must lie on both sides
+  arc = m.arc_m[v] + 0.5 * (d0 + d1);
+  target = chain_point(bg, bg.chains[c], arc);
+  return true;
+}
+
+}  // namespace
+
+SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params) {
+  SmoothStats stats;
+  const Topology t = topology(m);
+  const int nq = static_cast<int>(m.quads.size());
+  auto count_nonconvex = [&] {
+    int n = 0;
+    for (int q = 0; q < nq; ++q) n += quad_convexity(m, q) <= params.min_convexity;
+    return n;
+  };
+  stats.num_nonconvex_before = count_nonconvex();
+  const int nv = static_cast<int>(m.points.size());
+
+  for (int it = 0; it < params.iterations; ++it) {
+    for (int v = 0; v < nv; ++v) {
+      if (m.fixed[v]) continue;
+      if (m.chain[v] >= 0) {
+        Point2 target;
+        double arc = 0;
+        if (boundary_target(bg, m, t, v, target, arc)) try_move(m, t, v, target, arc, params.min_convexity);
+        continue;
+      }
+      Point2 c{0, 0};
+      for (int w : t.neighbours[v]) c.x += m.points[w].x, c.y += m.points[w].y;
+      const double k = static_cast<double>(t.neighbours[v].size());
+      if (k == 0) continue;
+      try_move(m, t, v, {c.x / k, c.y / k}, m.arc_m[v], params.min_convexity);
+    }
+  }
+
+  // Untangling: move the vertices of non-convex quads to maximise the worst convexity
+  // around them (pattern search with shrinking steps).
+  for (int sweep = 0; sweep < params.untangle_iterations; ++sweep) {
+    std::vector<int> bad;
+    for (int q = 0; q < nq; ++q)
+      if (quad_convexity(m, q) <= params.min_convexity) bad.push_back(q);
+    if (bad.empty()) break;
+    ++stats.num_untangle_sweeps;
+    for (int q : bad)
+      for (int v : m.quads[q]) {
+        if (m.fixed[v]) continue;
+        double edge = 0;
+        for (int w : t.neighbours[v])
+          edge = std::max(edge, std::hypot(m.points[w].x - m.points[v].x, m.points[w].y - m.points[v].y));
+        double best = worst_convexity(m, t, v);
+        for (double step = 0.25 * edge; step > 1e-3 * edge; step *= 0.5) {
+          bool improved = true;
+          while (improved) {
+            improved = false;
+            for (int dir = 0; dir < 8; ++dir) {
+              const double a = dir * M_PI / 4;
+              const Point2 old = m.points[v];
+              const double old_arc = m.arc_m[v];
+              if (m.chain[v] >= 0) {
+                // Boundary vertices only slide along the boundary.
+                if (dir >= 2) break;
+                const double arc = old_arc + (dir == 0 ? step : -step);
+                m.points[v] = chain_point(bg, bg.chains[m.chain[v]], arc);
+                m.arc_m[v] = arc;
+              } else {
+                m.points[v] = {old.x + step * std::cos(a), old.y + step * std::sin(a)};
+              }
+              const double value = worst_convexity(m, t, v);
+              if (value > best + 1e-12) {
+                best = value;
+                improved = true;
+              } else {
+                m.points[v] = old;
+                m.arc_m[v] = old_arc;
+              }
+            }
+          }
+        }
+      }
+  }
+  stats.num_nonconvex_after = count_nonconvex();
+  return stats;
+}
+
+}  // namespace isoquad

@@ -1,0 +1,29 @@
+// Smoothing of the quad mesh (paper, section 2.7) and the convexity guarantee: Laplacian
+// smoothing where boundary vertices slide along the domain boundary and corners stay
+// fixed, no move allowed to make a quad non-convex; then untangling of any quad that is
+// still not strictly convex.
+#pragma once
+
+#include "mesh/background_mesh.h"
+#include "quad/quad_mesh.h"
+
+namespace isoquad {
+
+struct SmoothParams {
+  int iterations = 10;             // Laplacian sweeps
+  int untangle_iterations = 200;   // sweeps of the convexity repair
+  double min_convexity = 0.02;     // a quad is accepted when quad_convexity() > this (~1.1 deg)
+};
+
+struct SmoothStats {
+  int num_nonconvex_before = 0;  // after subdivision, before smoothing
+  int num_nonconvex_after = 0;   // 0 unless the repair failed
+  int num_untangle_sweeps = 0;
+};
+
+// Smooths in place. Does not throw; the caller decides what a remaining non-convex quad
+// means (the pipeline stops with Error(internal)).
+SmoothStats smooth_quads(const BackgroundMesh& background, QuadMesh& mesh,
+                         const SmoothParams& params);
+
+}  // namespace isoquad

@@ -1,0 +1,52 @@
+// The tiling stages of the paper in order: initialization by merging (2.2), discrete
+// L-infinity relaxation along the cross field (2.3), conforming relaxation (2.4) and
+// butterfly removal by local parameterization (2.5).
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/progress.h"
+#include "fields/cross_field.h"
+#include "fields/sizing_field.h"
+#include "mesh/background_mesh.h"
+#include "tiling/meta_graph.h"
+#include "tiling/tiling.h"
+
+namespace isoquad {
+
+enum class TilingStep { init, relax, conform, butterfly };
+
+struct TilingParams {
+  int relax_iters = 50;         // --relax-iters: cap on L-infinity Lloyd iterations
+  int conform_iters = 20;       // --conform-iters
+  double conform_shift = 0.2;   // --conform-shift: fraction of the projected meta-edge length
+  double butterfly_max = 0.5;   // --butterfly-max: inner meta-edge shorter than this times h
+  MetaGraphParams graph;
+  TilingStep stop_after = TilingStep::butterfly;  // --stop-after
+};
+
+// What one step did, for the report (--report) and the summary.
+struct TilingStepReport {
+  std::string step;  // "init", "relax", "conform", "butterfly"
+  TilingStats stats;
+  int iterations = 0;
+  double energy = 0.0;  // the step's objective (relaxation: the discrete energy H)
+  int butterflies_found = 0;
+  int butterflies_removed = 0;
+  double seconds = 0.0;
+};
+
+struct TilingResult {
+  Tiling tiling;
+  MetaGraph graph;  // of the final tiling
+  std::vector<TilingStepReport> steps;
+};
+
+// Tiles are sized 2h: the final barycentric subdivision halves every edge. Throws
+// Error(meshing) if an invariant (check_tiling) cannot be restored.
+TilingResult build_tiling(const BackgroundMesh& mesh, const SizingField& size,
+                          const CrossField& cross, const TilingParams& params,
+                          const Progress& progress = Progress());
+
+}  // namespace isoquad

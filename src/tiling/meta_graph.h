@@ -1,0 +1,71 @@
+// The meta-graph of a tiling (paper, section 2.1), derived from the triangle labels:
+// meta-vertices, meta-edges (edge paths of the background mesh between meta-vertices)
+// and, for every tile, its boundary cycle. Rebuilt from the labels whenever needed; it
+// is cheap. Every tiling step and the barycentric subdivision use it.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "mesh/background_mesh.h"
+#include "tiling/tiling.h"
+
+namespace isoquad {
+
+// A background vertex is a meta-vertex when it is incident to 3 or more tiles inside
+// the domain, to 2 or more tiles on the boundary, or to 1 tile when it is a corner
+// boundary vertex (BoundaryChain::is_corner, subject to MetaGraphParams).
+struct MetaGraphParams {
+  // Boundary vertices whose |turning angle| exceeds this are corners (meta-vertices of
+  // the single tile touching them).
+  double corner_angle_deg = 45.0;
+};
+
+struct MetaEdge {
+  // Background vertex ids from one meta-vertex to the next; front() and back() are
+  // meta-vertices (equal for a closed loop with a single meta-vertex, which a valid
+  // tiling does not have). Consecutive ids are joined by background edges.
+  std::vector<int> path;
+  int tile_left = -1;   // tile on the left of path (walking front to back); -1 outside
+  int tile_right = -1;  // tile on the right; -1 outside the domain (boundary meta-edge)
+  double length_m = 0.0;
+  bool on_boundary() const { return tile_left < 0 || tile_right < 0; }
+};
+
+// The boundary of one tile, counter-clockwise (the tile on the left).
+struct TileCycle {
+  std::vector<int> edges;     // meta-edge ids in order
+  std::vector<char> forward;  // 1 when edges[i] is walked front to back (tile on its left)
+  std::vector<int> vertices;  // meta-vertex ids; vertices[i] is where edges[i] starts
+};
+
+struct MetaGraph {
+  std::vector<int> vertices;    // #MV background vertex id of each meta-vertex
+  std::vector<int> meta_index;  // #V meta-vertex id of a background vertex, or -1
+  std::vector<int> vertex_num_tiles;  // #MV number of tiles incident to each meta-vertex
+  std::vector<char> vertex_on_boundary;  // #MV
+  std::vector<MetaEdge> edges;
+  std::vector<TileCycle> tiles;  // #T
+};
+
+MetaGraph build_meta_graph(const BackgroundMesh& mesh, const Tiling& tiling,
+                           const MetaGraphParams& params = MetaGraphParams());
+
+// The invariants that every tiling step keeps (checked in tests and debug builds):
+// every triangle labelled, every tile non-empty, connected and a topological disk (one
+// boundary cycle), every tile with at least 3 meta-vertices. Returns "" when they hold,
+// else a description of the first violation.
+std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const MetaGraph& graph);
+
+// Statistics of a tiling, as the report gives them per step.
+struct TilingStats {
+  int num_tiles = 0;
+  double share_quads = 0.0;  // tiles with exactly 4 meta-vertices
+  std::vector<int> tile_num_vertices_histogram;  // [k] = tiles with k meta-vertices
+  // [d] = interior meta-vertices incident to d tiles (boundary ones are not counted)
+  std::vector<int> interior_degree_histogram;
+  int num_irregular_interior = 0;  // interior meta-vertices with degree != 4
+};
+TilingStats tiling_stats(const MetaGraph& graph);
+
+}  // namespace isoquad

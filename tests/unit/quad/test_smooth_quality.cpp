@@ -1,0 +1,128 @@
+// Smoothing and quality of quad meshes, on structured grids over a square whose
+// background mesh gives the boundary chain.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "fields/cross_field.h"
+#include "fields/sizing_field.h"
+#include "mesh/background_mesh.h"
+#include "quad/quad_quality.h"
+#include "quad/smooth_quads.h"
+
+using namespace isoquad;
+
+namespace {
+
+constexpr double kSide = 1000.0;
+constexpr int kN = 10;  // quads per side
+
+BackgroundMesh square_background() {
+  Domain d;
+  d.polygons.push_back({{{0, 0}, {kSide, 0}, {kSide, kSide}, {0, kSide}}, {}});
+  BackgroundMeshParams p;
+  p.max_edge_m = [](const Point2&) { return 50.0; };
+  return build_background_mesh(d, p);
+}
+
+// Arc length of a point on the square's boundary (the ring starts at (0,0), CCW).
+double square_arc(const Point2& p) {
+  if (p.y == 0) return p.x;
+  if (p.x == kSide) return kSide + p.y;
+  if (p.y == kSide) return 2 * kSide + (kSide - p.x);
+  return 3 * kSide + (kSide - p.y);
+}
+
+QuadMesh grid() {
+  QuadMesh m;
+  const double h = kSide / kN;
+  for (int j = 0; j <= kN; ++j)
+    for (int i = 0; i <= kN; ++i) {
+      const Point2 p{i * h, j * h};
+      const bool on_boundary = i == 0 || j == 0 || i == kN || j == kN;
+      const bool corner = (i == 0 || i == kN) && (j == 0 || j == kN);
+      m.points.push_back(p);
+      m.chain.push_back(on_boundary ? 0 : -1);
+      m.arc_m.push_back(on_boundary ? square_arc(p) : 0.0);
+      m.fixed.push_back(corner ? 1 : 0);
+    }
+  for (int j = 0; j < kN; ++j)
+    for (int i = 0; i < kN; ++i) {
+      const int a = j * (kN + 1) + i;
+      m.quads.push_back({a, a + 1, a + kN + 2, a + kN + 1});
+    }
+  return m;
+}
+
+double distance_to_square_boundary(const Point2& p) {
+  return std::min({std::abs(p.x), std::abs(p.y), std::abs(kSide - p.x), std::abs(kSide - p.y)});
+}
+
+}  // namespace
+
+TEST(QuadQuality, PerfectGridIsPerfect) {
+  const BackgroundMesh bg = square_background();
+  const QuadMesh m = grid();
+  SizingField size;
+  size.size_m.assign(bg.points.size(), kSide / kN);
+  const CrossField cross = constant_cross_field(bg, 0.0);
+  QuadMetrics metrics;
+  const QualitySummary s = measure_quality(m, bg, size, cross, &metrics);
+  EXPECT_EQ(s.num_quads, static_cast<std::size_t>(kN * kN));
+  EXPECT_EQ(s.num_nonconvex, 0u);
+  EXPECT_DOUBLE_EQ(s.share_angles_75_105, 1.0);
+  EXPECT_NEAR(s.min_angle_deg, 90.0, 1e-9);
+  EXPECT_NEAR(s.max_angle_deg, 90.0, 1e-9);
+  EXPECT_NEAR(s.size_ratio_median, 1.0, 1e-9);
+  EXPECT_DOUBLE_EQ(s.share_size_08_125, 1.0);
+  EXPECT_NEAR(s.orientation_mean_deg, 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(s.share_regular_interior, 1.0);
+  EXPECT_DOUBLE_EQ(s.share_regular_boundary, 1.0);  // corners have degree 1 at 90 degrees
+  EXPECT_NEAR(s.eta_min, 1.0, 1e-9);
+  EXPECT_EQ(s.schism_angle_ratio_violations, 0u);
+  EXPECT_EQ(s.num_boundary_vertices, static_cast<std::size_t>(4 * kN));
+}
+
+TEST(QuadQuality, MeasuresOrientationAndSizeDeviation) {
+  const BackgroundMesh bg = square_background();
+  const QuadMesh m = grid();
+  SizingField size;
+  size.size_m.assign(bg.points.size(), 2 * kSide / kN);  // quads half the asked size
+  const CrossField cross = constant_cross_field(bg, 30.0);
+  const QualitySummary s = measure_quality(m, bg, size, cross);
+  EXPECT_NEAR(s.orientation_mean_deg, 30.0, 1e-6);
+  EXPECT_NEAR(s.size_ratio_median, 0.5, 1e-9);
+  EXPECT_DOUBLE_EQ(s.share_size_08_125, 0.0);
+}
+
+TEST(SmoothQuads, UntanglesAndKeepsTheBoundaryOnTheBoundary) {
+  const BackgroundMesh bg = square_background();
+  QuadMesh m = grid();
+  // Fold one interior vertex over its neighbours and drag boundary vertices along.
+  const int v = 5 * (kN + 1) + 5;
+  m.points[v].x += 1.6 * kSide / kN;
+  m.points[v].y += 0.7 * kSide / kN;
+  for (int i = 1; i < kN; ++i) {
+    m.arc_m[i] += 0.4 * kSide / kN;  // bottom edge vertices, unevenly spaced
+    m.points[i] = chain_point(bg, bg.chains[0], m.arc_m[i]);
+  }
+  int nonconvex = 0;
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) nonconvex += quad_convexity(m, q) <= 0;
+  ASSERT_GT(nonconvex, 0);
+  SmoothParams params;
+  params.iterations = 40;
+  const SmoothStats st = smooth_quads(bg, m, params);
+  EXPECT_GT(st.num_nonconvex_before, 0);
+  EXPECT_EQ(st.num_nonconvex_after, 0);
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) EXPECT_GT(quad_convexity(m, q), 0.02);
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    if (m.chain[i] >= 0) {
+      EXPECT_LT(distance_to_square_boundary(m.points[i]), 1e-6) << i;
+    }
+    if (m.fixed[i]) {
+      EXPECT_EQ(distance_to_square_boundary(m.points[i]), 0.0);
+    }
+  }
+  // Smoothing spreads the bottom vertices evenly again.
+  EXPECT_NEAR(m.points[5].x, 5 * kSide / kN, 0.05 * kSide / kN);
+}
