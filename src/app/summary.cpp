@@ -13,27 +13,6 @@ std::string num(double v, int precision = 6) {
   return buf;
 }
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char buf[8];
-          std::snprintf(buf, sizeof buf, "\\u%04x", c);
-          out += buf;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
-
 }  // namespace
 
 std::string format_domain_summary(const DomainSummary& s) {
@@ -61,37 +40,39 @@ std::string format_domain_summary(const DomainSummary& s) {
   return os.str();
 }
 
+void add_domain_summary(JsonWriter& j, const DomainSummary& s) {
+  j.value("input", s.input_path)
+      .value("layer", s.layer_name)
+      .value("source_crs", s.source_crs_name)
+      .value("meshing_crs", s.meshing_crs_name)
+      .value("meshing_crs_proj", s.meshing_crs_proj)
+      .value("automatic_crs", s.automatic_crs)
+      .value("num_features", s.num_features)
+      .value("num_source_polygons", s.num_source_polygons)
+      .value("num_components", s.num_components)
+      .value("num_rings", s.num_rings)
+      .value("num_holes", s.num_holes)
+      .value("num_vertices_before", s.num_vertices_before)
+      .value("num_vertices_after", s.num_vertices_after)
+      .value("area_m2", s.area_m2)
+      .value("perimeter_m", s.perimeter_m)
+      .value("simplify_m", s.simplify_m)
+      .value("min_island_area_m2", s.min_island_area_m2)
+      .value("num_islands_dropped", s.dropped.num_islands_dropped)
+      .value("num_holes_dropped", s.dropped.num_holes_dropped)
+      .value("num_components_dropped", s.dropped.num_components_dropped)
+      .value("num_repaired", s.num_repaired)
+      .value("num_rings_closed", s.num_rings_closed)
+      .value("num_points_removed", s.num_points_removed)
+      .array("warnings", s.warnings);
+}
+
 std::string domain_summary_json(const DomainSummary& s) {
-  std::ostringstream os;
-  os << "{\n";
-  os << "  \"input\": " << json_string(s.input_path) << ",\n";
-  os << "  \"layer\": " << json_string(s.layer_name) << ",\n";
-  os << "  \"source_crs\": " << json_string(s.source_crs_name) << ",\n";
-  os << "  \"meshing_crs\": " << json_string(s.meshing_crs_name) << ",\n";
-  os << "  \"meshing_crs_proj\": " << json_string(s.meshing_crs_proj) << ",\n";
-  os << "  \"automatic_crs\": " << (s.automatic_crs ? "true" : "false") << ",\n";
-  os << "  \"num_features\": " << s.num_features << ",\n";
-  os << "  \"num_source_polygons\": " << s.num_source_polygons << ",\n";
-  os << "  \"num_components\": " << s.num_components << ",\n";
-  os << "  \"num_rings\": " << s.num_rings << ",\n";
-  os << "  \"num_holes\": " << s.num_holes << ",\n";
-  os << "  \"num_vertices_before\": " << s.num_vertices_before << ",\n";
-  os << "  \"num_vertices_after\": " << s.num_vertices_after << ",\n";
-  os << "  \"area_m2\": " << num(s.area_m2, 12) << ",\n";
-  os << "  \"perimeter_m\": " << num(s.perimeter_m, 12) << ",\n";
-  os << "  \"simplify_m\": " << num(s.simplify_m, 12) << ",\n";
-  os << "  \"min_island_area_m2\": " << num(s.min_island_area_m2, 12) << ",\n";
-  os << "  \"num_islands_dropped\": " << s.dropped.num_islands_dropped << ",\n";
-  os << "  \"num_holes_dropped\": " << s.dropped.num_holes_dropped << ",\n";
-  os << "  \"num_components_dropped\": " << s.dropped.num_components_dropped << ",\n";
-  os << "  \"num_repaired\": " << s.num_repaired << ",\n";
-  os << "  \"num_rings_closed\": " << s.num_rings_closed << ",\n";
-  os << "  \"num_points_removed\": " << s.num_points_removed << ",\n";
-  os << "  \"warnings\": [";
-  for (std::size_t i = 0; i < s.warnings.size(); ++i)
-    os << (i ? ", " : "") << json_string(s.warnings[i]);
-  os << "]\n}\n";
-  return os.str();
+  JsonWriter j;
+  j.begin_object();
+  add_domain_summary(j, s);
+  j.end_object();
+  return j.str();
 }
 
 }  // namespace isoquad

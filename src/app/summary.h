@@ -4,10 +4,13 @@
 #include <string>
 
 #include "app/front_end.h"
+#include "core/json_writer.h"
 
 namespace isoquad {
 
 std::string format_domain_summary(const DomainSummary& s);
 std::string domain_summary_json(const DomainSummary& s);
+// Adds the summary's members to the object being written.
+void add_domain_summary(JsonWriter& json, const DomainSummary& s);
 
 }  // namespace isoquad

@@ -44,10 +44,55 @@ Canvas::Canvas(const std::array<double, 4>& box, int width_px, int legend_px) : 
   scale_ = (width_px - 2 * margin_) / w;
   map_height_ = static_cast<int>(std::ceil(h * scale_ + 2 * margin_));
   height_ = map_height_ + legend_px;
+  offset_x_ = margin_;
+  offset_y_ = map_height_ - margin_;
   surface_ = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width_, height_);
   cr_ = cairo_create(surface_);
   cairo_set_source_rgb(cr_, 1, 1, 1);
   cairo_paint(cr_);
+}
+
+Canvas::Canvas(int width_px, int height_px) {
+  width_ = width_px;
+  height_ = height_px;
+  map_height_ = height_px;
+  surface_ = cairo_image_surface_create(CAIRO_FORMAT_RGB24, width_, height_);
+  cr_ = cairo_create(surface_);
+  cairo_set_source_rgb(cr_, 1, 1, 1);
+  cairo_paint(cr_);
+}
+
+void Canvas::set_view(const std::array<double, 4>& box, double x, double y, double w, double h) {
+  box_ = box;
+  const double bw = std::max(box[2] - box[0], 1e-12), bh = std::max(box[3] - box[1], 1e-12);
+  scale_ = std::min(w / bw, h / bh);
+  // Centre the box in the rectangle; y grows downwards in pixels.
+  offset_x_ = x + 0.5 * (w - bw * scale_);
+  offset_y_ = y + h - 0.5 * (h - bh * scale_);
+}
+
+void Canvas::histogram(double x, double y, double w, double h, const std::vector<int>& counts,
+                       const std::string& title, const std::string& left, const std::string& right,
+                       const Rgb& colour) {
+  int top = 1;
+  for (int c : counts) top = std::max(top, c);
+  const double bar = w / std::max<std::size_t>(counts.size(), 1);
+  set_colour(colour);
+  for (std::size_t i = 0; i < counts.size(); ++i) {
+    const double bh = (h - 20) * counts[i] / top;
+    cairo_rectangle(cr_, x + i * bar, y + h - bh, std::max(bar - 1, 0.5), bh);
+  }
+  cairo_fill(cr_);
+  cairo_set_source_rgb(cr_, 0, 0, 0);
+  cairo_set_line_width(cr_, 1);
+  cairo_move_to(cr_, x, y + h);
+  cairo_line_to(cr_, x + w, y + h);
+  cairo_stroke(cr_);
+  text(x, y + 12, title, 13);
+  text(x, y + h + 14, left, 12);
+  cairo_text_extents_t ext;
+  cairo_text_extents(cr_, right.c_str(), &ext);
+  text(x + w - ext.width, y + h + 14, right, 12);
 }
 
 Canvas::~Canvas() {
@@ -56,7 +101,7 @@ Canvas::~Canvas() {
 }
 
 Point2 Canvas::to_pixel(const Point2& p) const {
-  return {margin_ + (p.x - box_[0]) * scale_, map_height_ - margin_ - (p.y - box_[1]) * scale_};
+  return {offset_x_ + (p.x - box_[0]) * scale_, offset_y_ - (p.y - box_[1]) * scale_};
 }
 
 void Canvas::polygon_path(const Point2* pts, int n) {

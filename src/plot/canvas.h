@@ -4,6 +4,7 @@
 #include <array>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/geometry.h"
 
@@ -26,7 +27,16 @@ class Canvas {
   // The world box [xmin, ymin, xmax, ymax] is fitted into width_px, keeping the aspect
   // ratio, with a margin; `legend_px` extra pixels below for text.
   Canvas(const std::array<double, 4>& world_box, int width_px, int legend_px = 40);
+  // A blank canvas of the given size; set_view() places world boxes on it.
+  Canvas(int width_px, int height_px);
   ~Canvas();
+  // Maps `world_box` into the pixel rectangle (x, y, w, h), keeping the aspect ratio.
+  void set_view(const std::array<double, 4>& world_box, double x_px, double y_px, double w_px,
+                double h_px);
+  // A histogram with bars of `colour`, its title and its axis range labels.
+  void histogram(double x_px, double y_px, double w_px, double h_px, const std::vector<int>& counts,
+                 const std::string& title, const std::string& left, const std::string& right,
+                 const Rgb& colour);
   Canvas(const Canvas&) = delete;
   Canvas& operator=(const Canvas&) = delete;
 
@@ -53,6 +63,7 @@ class Canvas {
   std::array<double, 4> box_{};
   double scale_ = 1.0;
   double margin_ = 10.0;
+  double offset_x_ = 0.0, offset_y_ = 0.0;  // pixel position of the view's lower-left corner
   int width_ = 0, height_ = 0, map_height_ = 0;
 };
 
