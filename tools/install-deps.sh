@@ -15,7 +15,7 @@ PACKAGES=(
   libmuparser-dev libcli11-dev
   libcairo2-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
-  python3-gdal python3-numpy python3-meshio
+  python3-gdal python3-numpy python3-meshio python3-scipy gmsh
 )
 stamp=/var/lib/apt/periodic/update-success-stamp
 if [ ! -d /var/lib/apt/lists/partial ] || [ -z "$(ls -A /var/lib/apt/lists 2>/dev/null | grep -v -e partial -e lock)" ]; then

@@ -1,0 +1,175 @@
+#!/usr/bin/python3
+"""Side-by-side comparison of isoquad and Gmsh on the same projected domain and size.
+
+Runs `isoquad domain` to get the planar domain (meshing CRS, simplified), writes it as a
+Gmsh .geo, meshes it with Gmsh (Frontal-Delaunay for quads, Blossom full-quad
+recombination, uniform size H) and with `isoquad mesh --size H`, then computes the same
+metrics for both meshes here, independently of isoquad's own report:
+
+  angles in [75,105], min and max angle, non-convex quads, triangles left,
+  sqrt(area)/H median and share in [0.8,1.25], orientation deviation from isoquad's
+  boundary-aligned cross field (mean, p90), regular interior vertices, and wall time.
+
+Usage: tools/compare_gmsh.py INPUT --size H [--isoquad build/isoquad] [--workdir DIR]
+       [--simplify M] [extra isoquad options after --]
+Needs Debian's gmsh, python3-meshio, python3-gdal, python3-scipy (tools/install-deps.sh).
+"""
+import argparse
+import math
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+import meshio
+import numpy as np
+from osgeo import ogr
+from scipy.spatial import cKDTree
+
+
+def run(cmd):
+    t0 = time.perf_counter()
+    proc = subprocess.run(cmd, capture_output=True, text=True)
+    elapsed = time.perf_counter() - t0
+    if proc.returncode != 0:
+        sys.exit(f"compare_gmsh: {' '.join(cmd)} failed ({proc.returncode}):\n{proc.stderr}")
+    return elapsed, proc.stdout
+
+
+def domain_to_geo(gpkg, geo_path, size):
+    """Writes every ring of the domain layer as Gmsh points/lines/plane surfaces."""
+    ds = ogr.Open(gpkg)
+    layer = ds.GetLayerByName("domain")
+    lines, point_id, line_id, loop_id, surfaces = [], 0, 0, 0, []
+    for feature in layer:
+        poly = feature.GetGeometryRef()
+        loops = []
+        for r in range(poly.GetGeometryCount()):
+            ring = poly.GetGeometryRef(r)
+            pts = ring.GetPoints()[:-1]
+            first = point_id + 1
+            for x, y, *_ in pts:
+                point_id += 1
+                lines.append(f"Point({point_id}) = {{{x!r}, {y!r}, 0, {size!r}}};")
+            ids = list(range(first, point_id + 1))
+            seg_ids = []
+            for i, a in enumerate(ids):
+                b = ids[(i + 1) % len(ids)]
+                line_id += 1
+                lines.append(f"Line({line_id}) = {{{a}, {b}}};")
+                seg_ids.append(line_id)
+            loop_id += 1
+            lines.append(f"Curve Loop({loop_id}) = {{{', '.join(map(str, seg_ids))}}};")
+            loops.append(loop_id)
+        surfaces.append(loops)
+    for s, loops in enumerate(surfaces, start=1):
+        lines.append(f"Plane Surface({s}) = {{{', '.join(map(str, loops))}}};")
+    lines += [
+        "Mesh.Algorithm = 8;",
+        "Mesh.CrossFieldClosestPoint = 0;",
+        "Mesh.RecombineAll = 1;",
+        "Mesh.RecombinationAlgorithm = 3;",
+        f"Mesh.MeshSizeMin = {size!r};",
+        f"Mesh.MeshSizeMax = {size!r};",
+        "Mesh.MeshSizeExtendFromBoundary = 0;",
+        "Mesh.MeshSizeFromPoints = 0;",
+    ]
+    with open(geo_path, "w") as f:
+        f.write("\n".join(lines) + "\n")
+
+
+def cross_at(fields_vtu):
+    """Nearest-vertex lookup of isoquad's cross angle (radians)."""
+    f = meshio.read(fields_vtu)
+    tree = cKDTree(f.points[:, :2])
+    angle = np.radians(f.point_data["cross_angle"])
+    return lambda pts: angle[tree.query(pts)[1]]
+
+
+def metrics(points, quads, triangles, size, cross):
+    p = points[:, :2]
+    q = p[quads]  # (n, 4, 2)
+    prev = np.roll(q, 1, axis=1) - q
+    nxt = np.roll(q, -1, axis=1) - q
+    # Interior angle of a counter-clockwise polygon: from the next edge to the previous.
+    ang = np.degrees(np.arctan2(nxt[..., 0] * prev[..., 1] - nxt[..., 1] * prev[..., 0],
+                                (prev * nxt).sum(-1)))
+    ang = np.where(ang < 0, ang + 360, ang)
+    area = 0.5 * ((q[:, 2, 0] - q[:, 0, 0]) * (q[:, 3, 1] - q[:, 1, 1]) -
+                  (q[:, 3, 0] - q[:, 1, 0]) * (q[:, 2, 1] - q[:, 0, 1]))
+    edge = np.roll(q, -1, axis=1) - q
+    turn = edge[..., 0] * np.roll(edge, -1, axis=1)[..., 1] - edge[..., 1] * np.roll(edge, -1, axis=1)[..., 0]
+    nonconvex = int(np.sum(~np.all(turn > 0, axis=1)))
+    ratio = np.sqrt(np.abs(area)) / size
+    theta = cross(q.mean(axis=1))
+    phi = np.arctan2(edge[..., 1], edge[..., 0])
+    d = np.mod(phi - theta[:, None] + math.pi / 4, math.pi / 2) - math.pi / 4
+    dev = np.degrees(np.abs(d)).mean(axis=1)
+    # Interior vertex degrees: vertices not on an edge used once.
+    edges = np.sort(np.stack([quads, np.roll(quads, -1, axis=1)], -1).reshape(-1, 2), axis=1)
+    uniq, counts = np.unique(edges, axis=0, return_counts=True)
+    boundary = np.zeros(len(points), bool)
+    boundary[uniq[counts == 1].ravel()] = True
+    degree = np.bincount(quads.ravel(), minlength=len(points))
+    used = degree > 0
+    interior = used & ~boundary
+    return {
+        "quads": len(quads),
+        "triangles": int(triangles),
+        "non-convex quads": nonconvex,
+        "angles in [75,105]": f"{100 * np.mean((ang >= 75) & (ang <= 105)):.1f}%",
+        "min / max angle": f"{ang.min():.1f} / {ang.max():.1f}",
+        "sqrt(area)/H median": f"{np.median(ratio):.3f}",
+        "sqrt(area)/H in [0.8,1.25]": f"{100 * np.mean((ratio >= 0.8) & (ratio <= 1.25)):.1f}%",
+        "orientation dev. mean / p90": f"{dev.mean():.1f} / {np.percentile(dev, 90):.1f} deg",
+        "regular interior vertices": f"{100 * np.mean(degree[interior] == 4):.1f}%",
+    }
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("input")
+    ap.add_argument("--size", type=float, required=True, help="uniform element size H, metres")
+    ap.add_argument("--isoquad", default=os.path.join(os.path.dirname(__file__), "..", "build", "isoquad"))
+    ap.add_argument("--simplify", type=float, help="boundary simplification (default H/4)")
+    ap.add_argument("--workdir")
+    ap.add_argument("extra", nargs="*", help="further isoquad options (after --)")
+    a = ap.parse_args()
+    work = a.workdir or tempfile.mkdtemp(prefix="isoquad-vs-gmsh-")
+    os.makedirs(work, exist_ok=True)
+    simplify = a.simplify if a.simplify is not None else a.size / 4
+    common = [a.input, "--size", repr(a.size), "--simplify", repr(simplify), "--overwrite", "-q"] + a.extra
+    domain = os.path.join(work, "domain.gpkg")
+    run([a.isoquad, "domain", *common, "-o", domain])
+    fields = os.path.join(work, "fields.vtu")
+    run([a.isoquad, "fields", *common, "-o", fields])
+    cross = cross_at(fields)
+
+    iq_vtu = os.path.join(work, "isoquad.vtu")
+    t_iq, _ = run([a.isoquad, "mesh", *common, "-o", iq_vtu])
+    iq = meshio.read(iq_vtu)
+    iq_metrics = metrics(iq.points, iq.cells_dict["quad"], 0, a.size, cross)
+
+    geo = os.path.join(work, "domain.geo")
+    domain_to_geo(domain, geo, a.size)
+    msh = os.path.join(work, "gmsh.msh")
+    t_gm, _ = run(["gmsh", geo, "-2", "-format", "msh22", "-o", msh, "-v", "1"])
+    gm = meshio.read(msh)
+    gm_quads = gm.cells_dict.get("quad", np.zeros((0, 4), int))
+    gm_tris = len(gm.cells_dict.get("triangle", []))
+    gm_metrics = metrics(gm.points, gm_quads, gm_tris, a.size, cross)
+
+    rows = list(iq_metrics.keys()) + ["seconds (read to write)"]
+    iq_metrics["seconds (read to write)"] = f"{t_iq:.2f}"
+    gm_metrics["seconds (read to write)"] = f"{t_gm:.2f}"
+    w = max(len(r) for r in rows)
+    print(f"{'':{w}}  {'isoquad':>16}  {'gmsh 4.8':>16}")
+    for r in rows:
+        print(f"{r:{w}}  {str(iq_metrics[r]):>16}  {str(gm_metrics[r]):>16}")
+    print(f"{'time ratio gmsh / isoquad':{w}}  {t_gm / t_iq:>16.2f}")
+    print(f"(files in {work})")
+
+
+if __name__ == "__main__":
+    main()
