@@ -191,16 +191,17 @@ void seed_interior(Ct& ct, const Domain& domain, const BackgroundMeshParams& par
     double x, y, side;
     int depth;
   };
-  // Leaves are at least twice the local edge bound e and filled with a k x k lattice of
-  // spacing d = side / k <= 0.85 e, every other row shifted by d / 2: nearly equilateral
-  // triangles whose longest edge (1.12 d) stays under 0.95 e, at a density within a factor
-  // of about 2 of the ideal.
+  // Leaves are up to 8 times the local edge bound e, and small enough that e varies by
+  // less than 25% over them; each is filled with a hexagonal lattice (rows d apart along
+  // x, 0.87 d apart along y, every other row shifted by d / 2) whose edges are at most
+  // 0.95 e: nearly equilateral triangles at close to the ideal density. Large leaves
+  // keep the rounding of d small.
   std::vector<Cell> stack{{xmin, ymin, std::max(xmax - xmin, ymax - ymin), 0}};
   std::vector<std::pair<K::Point_2, double>> leaves;  // (point, lattice spacing)
   while (!stack.empty()) {
     const Cell c = stack.back();
     stack.pop_back();
-    double e = size({c.x + 0.5 * c.side, c.y + 0.5 * c.side});
+    const double e = size({c.x + 0.5 * c.side, c.y + 0.5 * c.side});
     if (!(e > 0.0))  // also catches NaN
       throw Error(ErrorClass::meshing, kStage,
                   "the sizing oracle returned " + std::to_string(e) + " m at (" +
@@ -210,24 +211,24 @@ void seed_interior(Ct& ct, const Domain& domain, const BackgroundMeshParams& par
       throw Error(ErrorClass::meshing, kStage,
                   "the sizing asks for more than " + std::to_string(params.max_num_vertices) +
                       " vertices; simplify the domain or coarsen the sizing");
-    if (c.side > 2.0 * e && c.depth < 40) {
+    double lo = e, hi = e;
+    for (int q = 0; q < 4; ++q) {
+      const double corner = size({c.x + (q & 1) * c.side, c.y + (q >> 1) * c.side});
+      if (corner > 0.0) lo = std::min(lo, corner), hi = std::max(hi, corner);
+    }
+    if ((c.side > 8.0 * e || hi > 2.0 * lo) && c.side > 0.5 * lo && c.depth < 40) {
       const double h = 0.5 * c.side;
       for (int q = 3; q >= 0; --q) stack.push_back({c.x + (q & 1) * h, c.y + (q >> 1) * h, h, c.depth + 1});
       continue;
     }
-    // The bound may vary inside the leaf: take the smallest at its corners and centre,
-    // but not below a quarter of the centre's (refinement mends sharper variations).
-    const double floor_e = 0.25 * e;
-    for (int q = 0; q < 4; ++q) {
-      const double corner = size({c.x + (q & 1) * c.side, c.y + (q >> 1) * c.side});
-      if (corner > 0.0) e = std::min(e, std::max(corner, floor_e));
-    }
-    const int k = std::max(1, static_cast<int>(std::ceil(c.side / (0.85 * e))));
-    const double d = c.side / k;
-    for (int j = 0; j < k; ++j)
-      for (int i = 0; i < k; ++i) {
+    const double target = 0.95 * std::max(lo, 0.25 * e);
+    const int kx = std::max(1, static_cast<int>(std::ceil(c.side / target)));
+    const int ky = std::max(1, static_cast<int>(std::ceil(c.side / (0.866 * target))));
+    const double dx = c.side / kx, dy = c.side / ky;
+    for (int j = 0; j < ky; ++j)
+      for (int i = 0; i < kx; ++i) {
         const double shift = (j % 2) ? 0.25 : -0.25;
-        leaves.emplace_back(K::Point_2(c.x + (i + 0.5 + shift) * d, c.y + (j + 0.5) * d), d);
+        leaves.emplace_back(K::Point_2(c.x + (i + 0.5 + shift) * dx, c.y + (j + 0.5) * dy), dx);
       }
   }
   if (ct.number_of_vertices() + leaves.size() > params.max_num_vertices)
