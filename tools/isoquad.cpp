@@ -18,11 +18,15 @@
 
 #include "app/fields_job.h"
 #include "app/front_end.h"
+#include "app/mesh_job.h"
 #include "app/summary.h"
 #include "core/error.h"
 #include "gis/atomic_output.h"
 #include "gis/write_domain.h"
 #include "io/write_fields.h"
+#include "io/write_mesh.h"
+#include "plot/plot_mesh.h"
+#include "plot/plot_tiling.h"
 #include "plot/plot_fields.h"
 
 namespace {
@@ -298,6 +302,120 @@ int run_fields(CommonArgs& a, FieldArgs& f) {
   return 0;
 }
 
+struct MeshArgs {
+  MeshOptions mesh;
+  std::string stop_after = "butterfly";
+  std::string conform_rule = "lattice";
+  double conform_shift = -1.0;  // by rule when not given
+};
+
+void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
+  const char* g = "Tiling (paper, sections 2.2 to 2.5)";
+  cmd->add_option("--relax-iters", m.mesh.tiling.relax_iters,
+                  "Cap on L-infinity relaxation iterations (default 50)")
+      ->check(CLI::NonNegativeNumber)
+      ->group(g);
+  cmd->add_option("--conform-iters", m.mesh.tiling.conform_iters,
+                  "Conforming relaxation iterations (default 20)")
+      ->check(CLI::NonNegativeNumber)
+      ->group(g);
+  cmd->add_option("--conform-shift", m.conform_shift,
+                  "Generator shift: a fraction of the offset between neighbouring tiles (lattice; "
+                  "default 0.5) or of the projected meta-edge length (other rules; default 0.2, "
+                  "the paper's)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->group(g);
+  cmd->add_option("--butterfly-max", m.mesh.tiling.butterfly_max,
+                  "Remove butterflies whose inner meta-edge is shorter than this times h (default "
+                  "1: the paper's 0.5 of the tile size 2h)")
+      ->check(CLI::NonNegativeNumber)
+      ->group(g);
+  cmd->add_option("--conform-rule", m.conform_rule,
+                  "How conforming relaxation shifts a tile: lattice (default; towards the rows and "
+                  "columns of its neighbours along the cross field), longest-away (the paper: along "
+                  "the longest meta-edge with one corner end, away from the corner), "
+                  "longest-towards, or close-shortest (closing the shortest such meta-edge)")
+      ->check(CLI::IsMember({"close-shortest", "longest-away", "longest-towards", "lattice"}))
+      ->group(g);
+  cmd->add_option("--corner-angle", m.mesh.tiling.graph.corner_angle_deg,
+                  "Boundary vertices turning by more than this many degrees are corners (default 45)")
+      ->check(CLI::Range(0.0, 180.0))
+      ->group(g);
+  cmd->add_option("--stop-after", m.stop_after,
+                  "Stop after a tiling step and plot the tiles: init, relax, conform or butterfly")
+      ->check(CLI::IsMember({"init", "relax", "conform", "butterfly"}))
+      ->group(g);
+  cmd->add_option("--smooth-iters", m.mesh.smooth.iterations, "Laplacian smoothing sweeps (default 10)")
+      ->check(CLI::NonNegativeNumber)
+      ->group("Quads");
+}
+
+std::string joined_command_line(int argc, char** argv) {
+  std::string s;
+  for (int i = 0; i < argc; ++i) s += (i ? " " : "") + std::string(argv[i]);
+  return s;
+}
+
+int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& command_line) {
+  finish_front_end_args(a);
+  const bool tiling_only = m.stop_after != "butterfly";
+  if (!tiling_only) check_mesh_output_format(a.output);
+  check_output_path(a.output, a.overwrite);
+  if (!f.plot_path.empty()) check_output_path(f.plot_path, a.overwrite);
+  if (!a.report_path.empty()) check_output_path(a.report_path, a.overwrite);
+  if (tiling_only && f.plot_path.empty() && a.report_path.empty())
+    throw Error(ErrorClass::usage, "options", "--stop-after needs --plot or --report to show the tiling");
+  MeshOptions options = m.mesh;
+  options.fields = fields_options(a, f);
+  options.subdivide.corner_angle_deg = options.tiling.graph.corner_angle_deg;
+  options.tiling.conform_rule = m.conform_rule == "longest-away" ? ConformShiftRule::longest_away_from_corner
+                                 : m.conform_rule == "longest-towards" ? ConformShiftRule::longest_towards_corner
+                                 : m.conform_rule == "lattice" ? ConformShiftRule::lattice
+                                                                     : ConformShiftRule::close_shortest;
+  options.tiling.conform_shift =
+      m.conform_shift >= 0.0 ? m.conform_shift
+                             : options.tiling.conform_rule == ConformShiftRule::lattice ? 0.5 : 0.2;
+  options.tiling.stop_after = m.stop_after == "init"      ? TilingStep::init
+                              : m.stop_after == "relax"   ? TilingStep::relax
+                              : m.stop_after == "conform" ? TilingStep::conform
+                                                          : TilingStep::butterfly;
+  const auto t0 = std::chrono::steady_clock::now();
+  MeshResult r = build_mesh(options, Progress(make_progress(a.quiet)));
+  if (r.has_quads) {
+    MeshOutput out;
+    out.path = a.output;
+    out.overwrite = a.overwrite;
+    write_mesh(r.quads, r.metrics, r.fields.front.domain.crs_wkt, out);
+  }
+  if (!f.plot_path.empty()) {
+    if (r.has_quads) {
+      PlotMeshParams pp;
+      pp.path = f.plot_path;
+      pp.overwrite = a.overwrite;
+      plot_mesh(r.quads, r.metrics, r.quality, pp);
+    } else {
+      PlotTilingParams pp;
+      pp.path = f.plot_path;
+      pp.overwrite = a.overwrite;
+      plot_tiling(r.fields.mesh, r.tiling.tiling, r.tiling.graph, pp);
+    }
+  }
+  if (!a.report_path.empty())
+    write_text_atomically(a.report_path, mesh_report_json(r, command_line), a.overwrite);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!a.quiet) {
+    std::cout << format_domain_summary(r.fields.front.summary) << format_fields_summary(r.fields)
+              << format_mesh_summary(r);
+    if (r.has_quads) std::cout << "output:       " << a.output << "\n";
+    if (!f.plot_path.empty()) std::cout << "plot:         " << f.plot_path << "\n";
+    std::printf("time:         %.3f s, peak memory %.0f MB\n", seconds,
+                r.memory.empty() ? 0.0 : r.memory.back().peak_mb);
+    for (const std::string& w : r.fields.front.summary.warnings)
+      std::cerr << "isoquad: warning: " << w << "\n";
+  }
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -326,6 +444,18 @@ int main(int argc, char** argv) {
   add_field_options(fields_cmd, field_args);
   fields_cmd->footer(kExitCodes);
 
+  CommonArgs mesh_args;
+  FieldArgs mesh_field_args;
+  MeshArgs mesh_extra;
+  CLI::App* mesh_cmd = app.add_subcommand(
+      "mesh",
+      "The main job: an isotropic all-quadrangle mesh of the domain that follows the sizing "
+      "and cross fields (.gpkg or .vtu), with a quality summary.");
+  add_front_end_options(mesh_cmd, mesh_args);
+  add_field_options(mesh_cmd, mesh_field_args);
+  add_mesh_options(mesh_cmd, mesh_extra);
+  mesh_cmd->footer(kExitCodes);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -342,6 +472,8 @@ int main(int argc, char** argv) {
   try {
     if (domain_cmd->parsed()) return run_domain(domain_args);
     if (fields_cmd->parsed()) return run_fields(fields_args, field_args);
+    if (mesh_cmd->parsed())
+      return run_mesh(mesh_args, mesh_field_args, mesh_extra, joined_command_line(argc, argv));
   } catch (const Error& e) {
     std::cerr << "isoquad: " << e.what() << "\n";
     return exit_code(e.error_class());

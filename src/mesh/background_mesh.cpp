@@ -445,6 +445,7 @@ BackgroundMesh build_background_mesh(const Domain& domain, const BackgroundMeshP
       chain.vertices.push_back(id);
       chain.turning_angle_deg.push_back(turn);
       chain.is_corner.push_back(std::abs(turn) > corner_deg ? 1 : 0);
+      chain.corner_turning_deg.push_back(std::abs(turn) > corner_deg ? turn : 0.0);
       chain.is_input_vertex.push_back(is_input ? 1 : 0);
     }
     if (next_input != ring.size())

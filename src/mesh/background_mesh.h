@@ -48,6 +48,9 @@ struct BoundaryChain {
   // #C 1 where |turning_angle_deg| > corner_angle_deg (convex or reflex by the sign of
   // the turning angle), else 0.
   std::vector<char> is_corner;
+  // #C at corners, the signed turning that made them corners (tag_corners: the turning
+  // within one tile; here: turning_angle_deg), 0 elsewhere. Negative = reflex.
+  std::vector<double> corner_turning_deg;
   // #C 1 where the vertex is an input ring vertex, 0 for Steiner points.
   std::vector<char> is_input_vertex;
 };

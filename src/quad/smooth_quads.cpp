@@ -135,49 +135,66 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
   }
 
   // Untangling: move the vertices of non-convex quads to maximise the worst convexity
-  // around them (pattern search with shrinking steps).
+  // around them (pattern search with shrinking steps). When that stalls, the vertices of
+  // the quads around them move too, and at last domain corners may slide along the
+  // boundary (a cut corner is better than a non-convex quad).
+  std::vector<char> active(nv, 0);
+  int stalled = 0, previous_bad = -1;
   for (int sweep = 0; sweep < params.untangle_iterations; ++sweep) {
     std::vector<int> bad;
     for (int q = 0; q < nq; ++q)
       if (quad_convexity(m, q) <= params.min_convexity) bad.push_back(q);
     if (bad.empty()) break;
     ++stats.num_untangle_sweeps;
+    stalled = static_cast<int>(bad.size()) >= previous_bad && previous_bad >= 0 ? stalled + 1 : 0;
+    previous_bad = static_cast<int>(bad.size());
+    const bool widen = sweep >= params.untangle_iterations / 10 && stalled > 2;
+    const bool free_corners = sweep >= params.untangle_iterations / 2;
+    std::fill(active.begin(), active.end(), 0);
+    std::vector<int> order;
     for (int q : bad)
       for (int v : m.quads[q]) {
-        if (m.fixed[v]) continue;
-        double edge = 0;
-        for (int w : t.neighbours[v])
-          edge = std::max(edge, std::hypot(m.points[w].x - m.points[v].x, m.points[w].y - m.points[v].y));
-        double best = worst_convexity(m, t, v);
-        for (double step = 0.25 * edge; step > 1e-3 * edge; step *= 0.5) {
-          bool improved = true;
-          while (improved) {
-            improved = false;
-            for (int dir = 0; dir < 8; ++dir) {
-              const double a = dir * M_PI / 4;
-              const Point2 old = m.points[v];
-              const double old_arc = m.arc_m[v];
-              if (m.chain[v] >= 0) {
-                // Boundary vertices only slide along the boundary.
-                if (dir >= 2) break;
-                const double arc = old_arc + (dir == 0 ? step : -step);
-                m.points[v] = chain_point(bg, bg.chains[m.chain[v]], arc);
-                m.arc_m[v] = arc;
-              } else {
-                m.points[v] = {old.x + step * std::cos(a), old.y + step * std::sin(a)};
-              }
-              const double value = worst_convexity(m, t, v);
-              if (value > best + 1e-12) {
-                best = value;
-                improved = true;
-              } else {
-                m.points[v] = old;
-                m.arc_m[v] = old_arc;
-              }
+        if (!active[v]) active[v] = 1, order.push_back(v);
+        if (!widen) continue;
+        for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k)
+          for (int w : m.quads[t.quad_items[k]])
+            if (!active[w]) active[w] = 1, order.push_back(w);
+      }
+    for (int v : order) {
+      if (m.fixed[v] && !(free_corners && m.chain[v] >= 0)) continue;
+      double edge = 0;
+      for (int w : t.neighbours[v])
+        edge = std::max(edge, std::hypot(m.points[w].x - m.points[v].x, m.points[w].y - m.points[v].y));
+      double best = worst_convexity(m, t, v);
+      for (double step = 0.25 * edge; step > 1e-3 * edge; step *= 0.5) {
+        bool improved = true;
+        while (improved) {
+          improved = false;
+          for (int dir = 0; dir < 8; ++dir) {
+            const double a = dir * M_PI / 4;
+            const Point2 old = m.points[v];
+            const double old_arc = m.arc_m[v];
+            if (m.chain[v] >= 0) {
+              // Boundary vertices only slide along the boundary.
+              if (dir >= 2) break;
+              const double arc = old_arc + (dir == 0 ? step : -step);
+              m.points[v] = chain_point(bg, bg.chains[m.chain[v]], arc);
+              m.arc_m[v] = arc;
+            } else {
+              m.points[v] = {old.x + step * std::cos(a), old.y + step * std::sin(a)};
+            }
+            const double value = worst_convexity(m, t, v);
+            if (value > best + 1e-12) {
+              best = value;
+              improved = true;
+            } else {
+              m.points[v] = old;
+              m.arc_m[v] = old_arc;
             }
           }
         }
       }
+    }
   }
   stats.num_nonconvex_after = count_nonconvex();
   return stats;

@@ -41,7 +41,7 @@ QuadMesh subdivide_tiles(const BackgroundMesh& bg, const Tiling& tiling, const M
       const BoundaryChain& ch = bg.chains[c];
       const int k = in_chain[v];
       arc = ch.arc_length_m[k];
-      fixed = std::abs(ch.turning_angle_deg[k]) > params.corner_angle_deg;
+      fixed = ch.is_corner[k] != 0;
     }
     of_meta_vertex[i] = add_point(bg.points[v], c, arc, fixed);
   }

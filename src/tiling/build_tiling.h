@@ -11,6 +11,7 @@
 #include "fields/sizing_field.h"
 #include "mesh/background_mesh.h"
 #include "tiling/meta_graph.h"
+#include "tiling/relax_tiling.h"
 #include "tiling/tiling.h"
 
 namespace isoquad {
@@ -20,8 +21,14 @@ enum class TilingStep { init, relax, conform, butterfly };
 struct TilingParams {
   int relax_iters = 50;         // --relax-iters: cap on L-infinity Lloyd iterations
   int conform_iters = 20;       // --conform-iters
-  double conform_shift = 0.2;   // --conform-shift: fraction of the projected meta-edge length
-  double butterfly_max = 0.5;   // --butterfly-max: inner meta-edge shorter than this times h
+  // --conform-rule and --conform-shift: the shift is a fraction of the offset between
+  // neighbouring tiles (lattice) or of the projected meta-edge length (the other rules;
+  // the paper uses 0.2 with longest_away_from_corner).
+  ConformShiftRule conform_rule = ConformShiftRule::lattice;
+  double conform_shift = 0.5;
+  // --butterfly-max: remove butterflies whose inner meta-edge is shorter than this times
+  // h. The paper's 0.5 is relative to the sizing field the tiling sees, the tile size 2h.
+  double butterfly_max = 1.0;
   MetaGraphParams graph;
   TilingStep stop_after = TilingStep::butterfly;  // --stop-after
 };
@@ -43,9 +50,10 @@ struct TilingResult {
   std::vector<TilingStepReport> steps;
 };
 
-// Tiles are sized 2h: the final barycentric subdivision halves every edge. Throws
+// Tiles are sized 2h: the final barycentric subdivision halves every edge. The repairs
+// may clear corner tags of the mesh's boundary chains that no tiling honours. Throws
 // Error(meshing) if an invariant (check_tiling) cannot be restored.
-TilingResult build_tiling(const BackgroundMesh& mesh, const SizingField& size,
+TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
                           const CrossField& cross, const TilingParams& params,
                           const Progress& progress = Progress());
 

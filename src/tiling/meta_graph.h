@@ -14,10 +14,10 @@ namespace isoquad {
 
 // A background vertex is a meta-vertex when it is incident to 3 or more tiles inside
 // the domain, to 2 or more tiles on the boundary, or to 1 tile when it is a corner
-// boundary vertex (BoundaryChain::is_corner, subject to MetaGraphParams).
+// boundary vertex (BoundaryChain::is_corner, set by tag_corners for the tile scale).
 struct MetaGraphParams {
-  // Boundary vertices whose |turning angle| exceeds this are corners (meta-vertices of
-  // the single tile touching them).
+  // The turning threshold tag_corners uses (--corner-angle); the meta-graph itself reads
+  // the tags from the boundary chains.
   double corner_angle_deg = 45.0;
 };
 

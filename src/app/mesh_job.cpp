@@ -1,0 +1,192 @@
+#include "app/mesh_job.h"
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+
+#include "app/summary.h"
+#include "core/error.h"
+#include "core/json_writer.h"
+#include "mesh/boundary_corners.h"
+
+namespace isoquad {
+
+namespace {
+
+double peak_memory_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // kilobytes on Linux
+}
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
+  MeshResult r;
+  r.fields = build_fields(options.fields, progress.slice(0.0, 0.45));
+  r.memory.push_back({"fields", peak_memory_mb()});
+
+  auto t0 = std::chrono::steady_clock::now();
+  CornerParams corners;
+  corners.corner_angle_deg = options.tiling.graph.corner_angle_deg;
+  tag_corners(r.fields.mesh, r.fields.size, corners);
+  r.tiling = build_tiling(r.fields.mesh, r.fields.size, r.fields.cross, options.tiling,
+                          progress.slice(0.45, 0.9));
+  r.fields.times.push_back({"tiling", seconds_since(t0)});
+  r.memory.push_back({"tiling", peak_memory_mb()});
+  if (options.tiling.stop_after != TilingStep::butterfly) return r;
+
+  progress.report("subdivide", 0.9);
+  t0 = std::chrono::steady_clock::now();
+  r.quads = subdivide_tiles(r.fields.mesh, r.tiling.tiling, r.tiling.graph, options.subdivide);
+  r.fields.times.push_back({"subdivision", seconds_since(t0)});
+  progress.report("smooth", 0.93);
+  t0 = std::chrono::steady_clock::now();
+  r.smooth = smooth_quads(r.fields.mesh, r.quads, options.smooth);
+  r.fields.times.push_back({"smoothing", seconds_since(t0)});
+  r.memory.push_back({"quads", peak_memory_mb()});
+  if (r.smooth.num_nonconvex_after > 0) {
+    std::string where;
+    for (int q = 0; q < static_cast<int>(r.quads.quads.size()) && where.empty(); ++q)
+      if (quad_convexity(r.quads, q) <= options.smooth.min_convexity)
+        where = " (the first near " + format_point(r.quads.points[r.quads.quads[q][0]]) + ")";
+    throw Error(ErrorClass::internal, "smooth",
+                std::to_string(r.smooth.num_nonconvex_after) +
+                    " quad(s) could not be made strictly convex" + where + "; no mesh is written");
+  }
+  progress.report("quality", 0.97);
+  t0 = std::chrono::steady_clock::now();
+  r.quality = measure_quality(r.quads, r.fields.mesh, r.fields.size, r.fields.cross, &r.metrics);
+  r.fields.times.push_back({"quality", seconds_since(t0)});
+  if (r.quality.num_nonconvex > 0)
+    throw Error(ErrorClass::internal, "quality",
+                std::to_string(r.quality.num_nonconvex) + " quad(s) are not strictly convex");
+  r.has_quads = true;
+  progress.report("mesh", 1.0);
+  return r;
+}
+
+std::string format_mesh_summary(const MeshResult& r) {
+  std::ostringstream os;
+  char buf[320];
+  for (const TilingStepReport& s : r.tiling.steps) {
+    std::snprintf(buf, sizeof buf, "tiling %-10s %d tiles, %.1f%% with 4 meta-vertices, %d irregular interior meta-vertices%s, %.3f s\n",
+                  (s.step + ":").c_str(), s.stats.num_tiles, 100 * s.stats.share_quads,
+                  s.stats.num_irregular_interior,
+                  s.step == "butterfly"
+                      ? (", " + std::to_string(s.butterflies_removed) + "/" +
+                         std::to_string(s.butterflies_found) + " butterflies removed").c_str()
+                      : "",
+                  s.seconds);
+    os << buf;
+  }
+  if (!r.has_quads) return os.str();
+  const QualitySummary& q = r.quality;
+  std::snprintf(buf, sizeof buf, "quads:        %zu quads, %zu vertices, %zu non-convex\n", q.num_quads,
+                q.num_vertices, q.num_nonconvex);
+  os << buf;
+  std::snprintf(buf, sizeof buf, "angles:       %.1f%% in [75,105], min %.1f, max %.1f deg; eta mean %.3f, min %.3f\n",
+                100 * q.share_angles_75_105, q.min_angle_deg, q.max_angle_deg, q.eta_mean, q.eta_min);
+  os << buf;
+  std::snprintf(buf, sizeof buf, "size:         sqrt(area)/h median %.3f, %.1f%% in [0.8,1.25]\n",
+                q.size_ratio_median, 100 * q.share_size_08_125);
+  os << buf;
+  std::snprintf(buf, sizeof buf, "orientation:  mean deviation %.2f deg, p90 %.2f deg\n",
+                q.orientation_mean_deg, q.orientation_p90_deg);
+  os << buf;
+  std::snprintf(buf, sizeof buf, "regularity:   %.1f%% of interior, %.1f%% of boundary, %.1f%% of all vertices regular\n",
+                100 * q.share_regular_interior, 100 * q.share_regular_boundary, 100 * q.share_regular_all);
+  os << buf;
+  std::snprintf(buf, sizeof buf, "SCHISM:       %zu quads with min/max angle < 0.5, %zu with aspect ratio > 5\n",
+                q.schism_angle_ratio_violations, q.schism_aspect_violations);
+  os << buf;
+  return os.str();
+}
+
+std::string mesh_report_json(const MeshResult& r, const std::string& command_line) {
+  JsonWriter j;
+  j.begin_object();
+  j.value("isoquad_version", ISOQUAD_VERSION).value("command_line", command_line);
+  j.begin_object("domain");
+  add_domain_summary(j, r.fields.front.summary);
+  j.end_object();
+  j.begin_object("sizing")
+      .value("hmin_m", r.fields.sizing.hmin_m)
+      .value("hmax_m", r.fields.sizing.hmax_m)
+      .value("gradation", r.fields.sizing.gradation)
+      .array("sources", r.fields.sizing.sources)
+      .value("predicted_quads", predicted_num_quads(r.fields.mesh, r.fields.size))
+      .end_object();
+  j.begin_object("background")
+      .value("num_vertices", r.fields.mesh.points.size())
+      .value("num_triangles", r.fields.mesh.triangles.size())
+      .value("num_singularities", r.fields.singularities.size())
+      .end_object();
+  j.begin_array("tiling");
+  for (const TilingStepReport& s : r.tiling.steps) {
+    j.begin_object()
+        .value("step", s.step)
+        .value("num_tiles", s.stats.num_tiles)
+        .value("share_quads", s.stats.share_quads)
+        .array("tile_num_meta_vertices_histogram", s.stats.tile_num_vertices_histogram)
+        .array("interior_degree_histogram", s.stats.interior_degree_histogram)
+        .value("num_irregular_interior", s.stats.num_irregular_interior)
+        .value("iterations", s.iterations)
+        .value("energy", s.energy)
+        .value("butterflies_found", s.butterflies_found)
+        .value("butterflies_removed", s.butterflies_removed)
+        .value("seconds", s.seconds)
+        .end_object();
+  }
+  j.end_array();
+  if (r.has_quads) {
+    const QualitySummary& q = r.quality;
+    j.begin_object("quality")
+        .value("num_quads", q.num_quads)
+        .value("num_vertices", q.num_vertices)
+        .value("num_boundary_vertices", q.num_boundary_vertices)
+        .value("num_triangles", 0)
+        .value("num_nonconvex", q.num_nonconvex)
+        .value("share_angles_75_105", q.share_angles_75_105)
+        .value("min_angle_deg", q.min_angle_deg)
+        .value("max_angle_deg", q.max_angle_deg)
+        .array("angle_histogram_5deg", q.angle_histogram)
+        .value("size_ratio_median", q.size_ratio_median)
+        .value("share_size_ratio_08_125", q.share_size_08_125)
+        .array("size_ratio_histogram_005_from_025", q.size_ratio_histogram)
+        .value("orientation_mean_deg", q.orientation_mean_deg)
+        .value("orientation_p90_deg", q.orientation_p90_deg)
+        .array("orientation_histogram_1deg", q.orientation_histogram)
+        .value("share_regular_interior", q.share_regular_interior)
+        .value("share_regular_boundary", q.share_regular_boundary)
+        .value("share_regular_all", q.share_regular_all)
+        .array("interior_degree_histogram", q.interior_degree_histogram)
+        .value("eta_mean", q.eta_mean)
+        .value("eta_min", q.eta_min)
+        .value("schism_angle_ratio_violations", q.schism_angle_ratio_violations)
+        .value("schism_aspect_ratio_violations", q.schism_aspect_violations)
+        .end_object();
+    j.begin_object("smoothing")
+        .value("num_nonconvex_before", r.smooth.num_nonconvex_before)
+        .value("num_untangle_sweeps", r.smooth.num_untangle_sweeps)
+        .end_object();
+  }
+  j.begin_array("stages");
+  for (const StageTime& t : r.fields.times)
+    j.begin_object().value("stage", t.stage).value("seconds", t.seconds).end_object();
+  j.end_array();
+  j.begin_array("peak_memory");
+  for (const StageMemory& m : r.memory)
+    j.begin_object().value("after", m.stage).value("megabytes", m.peak_mb).end_object();
+  j.end_array();
+  j.end_object();
+  return j.str();
+}
+
+}  // namespace isoquad

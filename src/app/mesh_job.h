@@ -1,0 +1,46 @@
+// The whole pipeline (paper, Algorithm 1): front end, background mesh and fields,
+// tiling, barycentric subdivision, smoothing and the convexity guarantee, quality.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/fields_job.h"
+#include "quad/quad_mesh.h"
+#include "quad/quad_quality.h"
+#include "quad/smooth_quads.h"
+#include "quad/subdivide_tiles.h"
+#include "tiling/build_tiling.h"
+
+namespace isoquad {
+
+struct MeshOptions {
+  FieldsOptions fields;
+  TilingParams tiling;
+  SubdivideParams subdivide;
+  SmoothParams smooth;
+};
+
+struct StageMemory {
+  std::string stage;
+  double peak_mb = 0.0;  // process peak resident memory after the stage
+};
+
+struct MeshResult {
+  FieldsResult fields;
+  TilingResult tiling;
+  bool has_quads = false;  // false when the tiling stopped early (--stop-after)
+  QuadMesh quads;
+  QuadMetrics metrics;
+  QualitySummary quality;
+  SmoothStats smooth;
+  std::vector<StageMemory> memory;
+};
+
+// Throws Error(internal) rather than return a quad that is not strictly convex.
+MeshResult build_mesh(const MeshOptions& options, const Progress& progress = Progress());
+
+std::string format_mesh_summary(const MeshResult& r);
+std::string mesh_report_json(const MeshResult& r, const std::string& command_line);
+
+}  // namespace isoquad

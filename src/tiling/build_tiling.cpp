@@ -1,0 +1,104 @@
+#include "tiling/build_tiling.h"
+
+#include <chrono>
+
+#include "core/error.h"
+#include "tiling/init_tiling.h"
+#include "tiling/relax_tiling.h"
+#include "tiling/repair_tiling.h"
+#include "tiling/tile_geometry.h"
+#ifdef ISOQUAD_HAVE_BUTTERFLIES
+#include "tiling/butterflies.h"
+#endif
+
+namespace isoquad {
+
+namespace {
+
+const char* const kStage = "tiling";
+
+void validate(const BackgroundMesh& mesh, const SizingField& size, const CrossField& cross,
+              const TilingParams& params) {
+  if (mesh.triangles.empty()) throw Error(ErrorClass::meshing, kStage, "the background mesh is empty");
+  if (size.size_m.size() != mesh.points.size() || cross.angle_rad.size() != mesh.points.size())
+    throw Error(ErrorClass::internal, kStage, "the sizing or cross field does not match the mesh");
+  if (params.relax_iters < 0) throw Error(ErrorClass::usage, kStage, "--relax-iters must be >= 0");
+  if (params.conform_iters < 0)
+    throw Error(ErrorClass::usage, kStage, "--conform-iters must be >= 0");
+  if (!(params.conform_shift >= 0.0 && params.conform_shift <= 1.0))
+    throw Error(ErrorClass::usage, kStage, "--conform-shift must be in [0, 1]");
+  if (!(params.butterfly_max >= 0.0))
+    throw Error(ErrorClass::usage, kStage, "--butterfly-max must be >= 0");
+}
+
+}  // namespace
+
+TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
+                          const CrossField& cross, const TilingParams& params,
+                          const Progress& progress) {
+  validate(mesh, size, cross, params);
+  using Clock = std::chrono::steady_clock;
+  const TriangleGeometry geom = triangle_geometry(mesh, size);
+  RepairParams repair;
+  repair.graph = params.graph;
+  TilingResult result;
+  Tiling& tiling = result.tiling;
+
+  // Every step ends with the invariants restored, its meta-graph and its report.
+  auto finish = [&](const char* step, Clock::time_point start, int iterations) {
+    repair_tiling(mesh, geom, tiling, repair);
+    result.graph = build_meta_graph(mesh, tiling, params.graph);
+    TilingStepReport r;
+    r.step = step;
+    r.stats = tiling_stats(result.graph);
+    r.iterations = iterations;
+    r.energy = tiling_energy(mesh, geom, cross, tiling);
+    r.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    result.steps.push_back(r);
+    return &result.steps.back();
+  };
+
+  // 2.2: merging by compactness.
+  auto start = Clock::now();
+  progress.report("tiling init", 0.0);
+  tiling = init_tiling(mesh, geom);
+  finish("init", start, 0);
+  if (params.stop_after == TilingStep::init) return result;
+
+  // 2.3: L-infinity relaxation.
+  start = Clock::now();
+  RelaxParams relax;
+  relax.max_iters = params.relax_iters;
+  const RelaxResult relaxed = relax_tiling(mesh, geom, cross, tiling, relax, progress.slice(0.2, 0.6));
+  finish("relax", start, relaxed.iterations);
+  if (params.stop_after == TilingStep::relax) return result;
+
+  // 2.4: conforming relaxation.
+  start = Clock::now();
+  ConformParams conform;
+  conform.iters = params.conform_iters;
+  conform.shift = params.conform_shift;
+  conform.rule = params.conform_rule;
+  conform.graph = params.graph;
+  const RelaxResult conformed =
+      conform_tiling(mesh, geom, cross, tiling, conform, progress.slice(0.6, 0.9));
+  finish("conform", start, conformed.iterations);
+  if (params.stop_after == TilingStep::conform) return result;
+
+#ifdef ISOQUAD_HAVE_BUTTERFLIES
+  // 2.5: butterfly removal by local parameterization.
+  start = Clock::now();
+  progress.report("tiling butterflies", 0.9);
+  ButterflyParams butterfly;
+  butterfly.max_length_ratio = params.butterfly_max;
+  butterfly.graph = params.graph;
+  const ButterflyStats removed = remove_butterflies(mesh, size, tiling, butterfly);
+  TilingStepReport* r = finish("butterfly", start, 0);
+  r->butterflies_found = removed.found;
+  r->butterflies_removed = removed.removed;
+#endif
+  progress.report("tiling", 1.0);
+  return result;
+}
+
+}  // namespace isoquad

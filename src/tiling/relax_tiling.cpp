@@ -1,0 +1,314 @@
+#include "tiling/relax_tiling.h"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "tiling/choose_corners.h"
+#include "tiling/flood_tiling.h"
+
+namespace isoquad {
+
+namespace {
+
+std::uint64_t hash_of(const std::vector<int>& v) {
+  std::uint64_t h = 1469598103934665603ull;  // FNV-1a
+  for (int x : v) {
+    h ^= static_cast<std::uint32_t>(x);
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+// The generator sets met so far: discrete L-inf Lloyd iterations may cycle (2.3).
+class GeneratorHistory {
+ public:
+  bool contains(const std::vector<int>& g) const {
+    const std::uint64_t h = hash_of(g);
+    for (std::size_t i = 0; i < hashes_.size(); ++i)
+      if (hashes_[i] == h && sets_[i] == g) return true;
+    return false;
+  }
+  void add(const std::vector<int>& g) {
+    hashes_.push_back(hash_of(g));
+    sets_.push_back(g);
+  }
+
+ private:
+  std::vector<std::uint64_t> hashes_;
+  std::vector<std::vector<int>> sets_;
+};
+
+// Relocation of the tiles marked in `changed` (2.3): the triangle nearest the weighted
+// centroid, found by a search of the tile from its generator (tiles of a flood are
+// connected and own their generator). Other tiles keep their generator: an unchanged
+// tile has the same centroid.
+class Relocator {
+ public:
+  Relocator(const BackgroundMesh& mesh, const TriangleGeometry& geom)
+      : mesh_(mesh), geom_(geom), stamp_(geom.num_triangles(), 0) {}
+
+  void relocate(const std::vector<int>& label, const std::vector<char>& changed,
+                std::vector<int>& generator) {
+    for (int t = 0; t < static_cast<int>(generator.size()); ++t) {
+      if (!changed[t]) continue;
+      ++current_;
+      const int start = generator[t];
+      stamp_[start] = current_;
+      members_.assign(1, start);
+      double w = 0.0, sx = 0.0, sy = 0.0;
+      for (std::size_t k = 0; k < members_.size(); ++k) {
+        const int f = members_[k];
+        w += geom_.weight[f];
+        sx += geom_.weight[f] * geom_.cx[f];
+        sy += geom_.weight[f] * geom_.cy[f];
+        for (int g : mesh_.neighbours[f])
+          if (g >= 0 && label[g] == t && stamp_[g] != current_) {
+            stamp_[g] = current_;
+            members_.push_back(g);
+          }
+      }
+      const double x = sx / w, y = sy / w;
+      int best = start;
+      double best_d2 = std::numeric_limits<double>::infinity();
+      for (int f : members_) {
+        const double dx = geom_.cx[f] - x, dy = geom_.cy[f] - y;
+        const double d2 = dx * dx + dy * dy;
+        if (d2 < best_d2 || (d2 == best_d2 && f < best)) {
+          best_d2 = d2;
+          best = f;
+        }
+      }
+      generator[t] = best;
+    }
+  }
+
+ private:
+  const BackgroundMesh& mesh_;
+  const TriangleGeometry& geom_;
+  std::vector<int> stamp_;
+  int current_ = 0;
+  std::vector<int> members_;
+};
+
+double energy_of(const BackgroundMesh& mesh, const TriangleGeometry& geom,
+                 const CrossField& cross, const std::vector<int>& label,
+                 const std::vector<int>& generator) {
+  Tiling t;
+  t.label = label;
+  t.generator = generator;
+  return tiling_energy(mesh, geom, cross, t);
+}
+
+// ConformShiftRule::lattice. out holds the tile centroids on entry.
+void lattice_targets(const BackgroundMesh& mesh, const TriangleGeometry& geom,
+                     const CrossField& cross, const MetaGraph& graph,
+                     const std::vector<int>& relocated, double pull, ConformTargets& out) {
+  const int num_tiles = static_cast<int>(relocated.size());
+  // Shared boundary length between adjacent tiles.
+  std::vector<std::vector<std::pair<int, double>>> adjacent(num_tiles);
+  auto add = [&](int a, int b, double len) {
+    for (auto& [t, l] : adjacent[a])
+      if (t == b) {
+        l += len;
+        return;
+      }
+    adjacent[a].push_back({b, len});
+  };
+  for (const MetaEdge& e : graph.edges) {
+    if (e.on_boundary() || e.tile_left == e.tile_right) continue;
+    add(e.tile_left, e.tile_right, e.length_m);
+    add(e.tile_right, e.tile_left, e.length_m);
+  }
+  const std::vector<double> cx = out.x, cy = out.y;
+  for (int t = 0; t < num_tiles; ++t) {
+    if (relocated[t] < 0) continue;
+    const double theta = frame_angle_at(mesh, cross, relocated[t]);
+    const double ux = std::cos(theta), uy = std::sin(theta);
+    // Per side (+u, -u, +v, -v): the neighbour sharing the most boundary, and its offset
+    // across that side's axis.
+    double best_len[4] = {0, 0, 0, 0}, across[4] = {0, 0, 0, 0};
+    for (const auto& [j, len] : adjacent[t]) {
+      const double dx = cx[j] - cx[t], dy = cy[j] - cy[t];
+      const double du = dx * ux + dy * uy, dv = dy * ux - dx * uy;
+      const int side = std::abs(du) >= std::abs(dv) ? (du > 0 ? 0 : 1) : (dv > 0 ? 2 : 3);
+      if (len > best_len[side]) {
+        best_len[side] = len;
+        across[side] = side < 2 ? dv : du;
+      }
+    }
+    double move_u = 0.0, move_v = 0.0;
+    int nu = 0, nv = 0;
+    for (int side = 0; side < 4; ++side) {
+      if (best_len[side] <= 0.0) continue;
+      if (side < 2) move_v += across[side], ++nv;
+      else move_u += across[side], ++nu;
+    }
+    if (nu > 0) move_u *= pull / nu;
+    if (nv > 0) move_v *= pull / nv;
+    out.x[t] += move_u * ux - move_v * uy;
+    out.y[t] += move_u * uy + move_v * ux;
+    out.shift_m[t] = std::hypot(move_u, move_v);
+  }
+  (void)geom;
+}
+
+}  // namespace
+
+RelaxResult relax_tiling(const BackgroundMesh& mesh, const TriangleGeometry& geom,
+                         const CrossField& cross, Tiling& tiling, const RelaxParams& params,
+                         const Progress& progress) {
+  RelaxResult r;
+  fix_generators(geom, tiling);
+  const int num_tiles = tiling.num_tiles();
+  LinfFlood flood(mesh, geom, cross);
+  Relocator relocator(mesh, geom);
+  std::vector<int> generator = tiling.generator;
+  std::vector<int> label;
+  flood.flood(generator, label);
+  r.num_flooded += flood.num_flooded();
+  if (params.record_energy)
+    r.energy_history.push_back(energy_of(mesh, geom, cross, label, generator));
+  std::vector<char> changed(num_tiles, 1);
+  GeneratorHistory history;
+  history.add(generator);
+  for (int it = 0; it < params.max_iters; ++it) {
+    progress.report("relax", static_cast<double>(it) / params.max_iters);
+    std::vector<int> next = generator;
+    relocator.relocate(label, changed, next);
+    ++r.iterations;
+    if (next == generator) {
+      r.converged = true;
+      break;
+    }
+    if (history.contains(next)) {
+      r.cycled = true;
+      break;
+    }
+    history.add(next);
+    generator.swap(next);
+    flood.reflood(generator, label, changed);
+    r.num_flooded += flood.num_flooded();
+    if (params.record_energy)
+      r.energy_history.push_back(energy_of(mesh, geom, cross, label, generator));
+  }
+  tiling.label.swap(label);
+  tiling.generator.swap(generator);
+  r.energy = tiling_energy(mesh, geom, cross, tiling);
+  progress.report("relax", 1.0);
+  return r;
+}
+
+ConformTargets conform_targets(const BackgroundMesh& mesh, const TriangleGeometry& geom,
+                               const CrossField& cross, const Tiling& tiling,
+                               const MetaGraph& graph, const ConformParams& params) {
+  const int num_tiles = tiling.num_tiles();
+  const TileCentroids c = tile_centroids(geom, tiling.label, num_tiles);
+  const std::vector<int> relocated = nearest_triangles_in_tiles(geom, tiling.label, c.x, c.y);
+  ConformTargets out;
+  out.x = c.x;
+  out.y = c.y;
+  out.shift_m.assign(num_tiles, 0.0);
+  if (params.rule == ConformShiftRule::lattice) {
+    lattice_targets(mesh, geom, cross, graph, relocated, params.shift, out);
+    return out;
+  }
+  std::vector<Point2> pos;
+  std::vector<char> is_corner;
+  std::vector<int> side_of;
+  for (int t = 0; t < num_tiles; ++t) {
+    const TileCycle& cycle = graph.tiles[t];
+    const int p = static_cast<int>(cycle.vertices.size());
+    // Quadrangles and triangles are not shifted (2.4).
+    if (p <= 4 || relocated[t] < 0) continue;
+    // The frame is the cross at the tile's relocated triangle (2.4).
+    const double theta = frame_angle_at(mesh, cross, relocated[t]);
+    pos.resize(p);
+    for (int i = 0; i < p; ++i) pos[i] = mesh.points[graph.vertices[cycle.vertices[i]]];
+    const CornerChoice choice = choose_corners_and_axes(pos, theta);
+    is_corner.assign(p, 0);
+    side_of.assign(p, 0);
+    for (int k = 0; k < 4; ++k) {
+      is_corner[choice.corners[k]] = 1;
+      const int end = choice.corners[(k + 1) % 4];
+      for (int i = choice.corners[k]; i != end; i = (i + 1) % p) side_of[i] = k;
+    }
+    const double ux = std::cos(theta), uy = std::sin(theta);
+    // Meta-edge i runs from meta-vertex i to i+1; only those with exactly one corner end
+    // carry a T-junction to close.
+    int chosen = -1;
+    double chosen_len = 0.0, ref_x = 0.0, ref_y = 0.0;
+    const bool longest = params.rule != ConformShiftRule::close_shortest;
+    for (int i = 0; i < p; ++i) {
+      const int j = (i + 1) % p;
+      if (is_corner[i] == is_corner[j]) continue;
+      const bool along_v = (side_of[i] + (choice.first_side_along_v ? 1 : 0)) % 2 == 1;
+      const double rx = along_v ? -uy : ux, ry = along_v ? ux : uy;
+      const double len = std::abs((pos[j].x - pos[i].x) * rx + (pos[j].y - pos[i].y) * ry);
+      if (chosen < 0 || (longest ? len > chosen_len : len < chosen_len)) {
+        chosen = i;
+        chosen_len = len;
+        ref_x = rx;
+        ref_y = ry;
+      }
+    }
+    if (chosen < 0) continue;
+    const int a = chosen, b = (chosen + 1) % p;
+    const Point2& corner = is_corner[a] ? pos[a] : pos[b];
+    const Point2& other = is_corner[a] ? pos[b] : pos[a];
+    // Unit vector along the reference direction pointing from the other end to the corner.
+    const double sign =
+        (corner.x - other.x) * ref_x + (corner.y - other.y) * ref_y >= 0.0 ? 1.0 : -1.0;
+    double towards = params.shift * chosen_len;
+    if (params.rule != ConformShiftRule::longest_towards_corner) towards = -towards;
+    out.x[t] += towards * sign * ref_x;
+    out.y[t] += towards * sign * ref_y;
+    out.shift_m[t] = std::abs(towards);
+  }
+  return out;
+}
+
+RelaxResult conform_tiling(const BackgroundMesh& mesh, const TriangleGeometry& geom,
+                           const CrossField& cross, Tiling& tiling, const ConformParams& params,
+                           const Progress& progress) {
+  RelaxResult r;
+  fix_generators(geom, tiling);
+  const int num_tiles = tiling.num_tiles();
+  LinfFlood flood(mesh, geom, cross);
+  Tiling current;
+  current.generator = tiling.generator;
+  flood.flood(current.generator, current.label);
+  r.num_flooded += flood.num_flooded();
+  if (params.record_energy) r.energy_history.push_back(tiling_energy(mesh, geom, cross, current));
+  std::vector<char> changed(num_tiles, 1);
+  GeneratorHistory history;
+  history.add(current.generator);
+  for (int it = 0; it < params.iters; ++it) {
+    progress.report("conform", static_cast<double>(it) / params.iters);
+    const MetaGraph graph = build_meta_graph(mesh, current, params.graph);
+    const ConformTargets targets = conform_targets(mesh, geom, cross, current, graph, params);
+    std::vector<int> next =
+        nearest_triangles_in_tiles(geom, current.label, targets.x, targets.y);
+    ++r.iterations;
+    if (next == current.generator) {
+      r.converged = true;
+      break;
+    }
+    if (history.contains(next)) {
+      r.cycled = true;
+      break;
+    }
+    history.add(next);
+    current.generator.swap(next);
+    flood.reflood(current.generator, current.label, changed);
+    r.num_flooded += flood.num_flooded();
+    if (params.record_energy)
+      r.energy_history.push_back(tiling_energy(mesh, geom, cross, current));
+  }
+  tiling = std::move(current);
+  r.energy = tiling_energy(mesh, geom, cross, tiling);
+  progress.report("conform", 1.0);
+  return r;
+}
+
+}  // namespace isoquad

@@ -1,0 +1,66 @@
+// Per-triangle quantities that every tiling step reads, and the relocation of
+// generators to tile centroids (paper, section 2.3).
+#pragma once
+
+#include <vector>
+
+#include "core/geometry.h"
+#include "fields/cross_field.h"
+#include "fields/sizing_field.h"
+#include "mesh/background_mesh.h"
+#include "tiling/tiling.h"
+
+namespace isoquad {
+
+struct TriangleGeometry {
+  std::vector<double> cx, cy;     // #F centroid, metres
+  std::vector<double> area_m2;    // #F
+  std::vector<double> size_m;     // #F h at the centroid (mean of the vertex sizes)
+  // #F rho * area with rho = h^-4 (2.3), in units of hmin^-4 so that values stay near 1.
+  std::vector<double> weight;
+  double weight_unit_m = 1.0;     // the hmin of the line above
+  // #F area / (2h)^2: the share of one ideally sized tile (tiles are 2h wide).
+  std::vector<double> mass;
+  int num_triangles() const { return static_cast<int>(cx.size()); }
+};
+
+TriangleGeometry triangle_geometry(const BackgroundMesh& mesh, const SizingField& size);
+
+// The cross angle at the centroid of triangle f.
+double frame_angle_at(const BackgroundMesh& mesh, const CrossField& cross, int f);
+
+// Per tile, the rho-weighted centroid of its triangle centroids and the total weight.
+// sum_j w_j |c_j - x|^2 = W |x - C|^2 + const, so the triangle minimising the paper's
+// f(t) is the one whose centroid is nearest C.
+struct TileCentroids {
+  std::vector<double> x, y;    // #T
+  std::vector<double> weight;  // #T
+};
+TileCentroids tile_centroids(const TriangleGeometry& geom, const std::vector<int>& label,
+                             int num_tiles);
+
+// Per tile t with selected[t] (all when selected is empty), the triangle of tile t whose
+// centroid is nearest target (x[t], y[t]); -1 for an empty tile or one not selected.
+// Ties go to the lowest triangle id.
+std::vector<int> nearest_triangles_in_tiles(const TriangleGeometry& geom,
+                                            const std::vector<int>& label,
+                                            const std::vector<double>& x,
+                                            const std::vector<double>& y,
+                                            const std::vector<char>& selected = {});
+
+// Relocation: per tile, the triangle nearest its weighted centroid (the paper's Gamma).
+std::vector<int> relocated_generators(const TriangleGeometry& geom, const std::vector<int>& label,
+                                      int num_tiles);
+
+// The discrete energy H of 2.3: sum over triangles of rho area d_inf(c(t), c(g)), with
+// the L-infinity distance in the cross frame of the tile's generator. rho = h^-4 in
+// metres, so H is in 1/m.
+double tiling_energy(const BackgroundMesh& mesh, const TriangleGeometry& geom,
+                     const CrossField& cross, const Tiling& tiling);
+
+// Replaces missing (-1), out-of-tile and duplicate generators by the relocated triangle
+// of their tile, so that every tile owns its generator and no two tiles share one.
+// Returns the number replaced.
+int fix_generators(const TriangleGeometry& geom, Tiling& tiling);
+
+}  // namespace isoquad
