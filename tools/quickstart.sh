@@ -7,7 +7,7 @@ cd "$ROOT"
 bash tools/install-deps.sh
 bash tools/build.sh
 mkdir -p out
-SAMPLE=${1:-shapefiles/france.shp}
-OUT=out/$(basename "${SAMPLE%.*}")_domain.gpkg
-build/isoquad domain "$SAMPLE" -o "$OUT" --size 11000 --overwrite
+SAMPLE=${1:-shapefiles/corsica.shp}
+OUT=out/$(basename "${SAMPLE%.*}")_mesh.gpkg
+build/isoquad mesh "$SAMPLE" -o "$OUT" --overwrite --report "${OUT%.gpkg}.json" --plot "${OUT%.gpkg}.png"
 echo "wrote $OUT (open it in QGIS)"

@@ -1,0 +1,185 @@
+// `isoquad mesh`: the whole job as a user runs it, its outputs read back by real readers
+// (GDAL for the GeoPackage, meshio for the VTU), and the mesh properties of issue 5:
+// only quads, all strictly convex and counter-clockwise, boundary vertices on the
+// boundary, islands still holes, area within 1% of the domain's.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include "gis/gdal_env.h"
+#include "support/fixtures.h"
+
+using namespace isoquad::test;
+
+namespace {
+
+std::string golden_input(const std::string& name) {
+  return std::string(ISOQUAD_SOURCE_DIR) + "/tests/golden/" + name + "/input.geojson";
+}
+
+struct QuadLayer {
+  std::vector<std::vector<std::array<double, 2>>> quads;  // open rings
+  int num_other = 0;                                      // features that are not 4-gons
+};
+
+QuadLayer read_quads(const std::string& gpkg) {
+  isoquad::ensure_gdal_registered();
+  QuadLayer out;
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(gpkg.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  EXPECT_NE(ds, nullptr) << gpkg;
+  if (ds == nullptr) return out;
+  OGRLayer* layer = ds->GetLayerByName("quads");
+  EXPECT_NE(layer, nullptr);
+  if (layer != nullptr)
+    for (auto& f : *layer) {
+      const OGRPolygon* poly = dynamic_cast<const OGRPolygon*>(f->GetGeometryRef());
+      if (poly == nullptr || poly->getNumInteriorRings() != 0 ||
+          poly->getExteriorRing()->getNumPoints() != 5) {
+        ++out.num_other;
+        continue;
+      }
+      std::vector<std::array<double, 2>> ring;
+      for (int i = 0; i < 4; ++i)
+        ring.push_back({poly->getExteriorRing()->getX(i), poly->getExteriorRing()->getY(i)});
+      out.quads.push_back(ring);
+    }
+  GDALClose(ds);
+  return out;
+}
+
+double cross(const std::array<double, 2>& o, const std::array<double, 2>& a,
+             const std::array<double, 2>& b) {
+  return (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0]);
+}
+
+// Every quad strictly convex and counter-clockwise; returns the total area.
+double check_convex_ccw(const QuadLayer& layer) {
+  double total = 0.0;
+  int bad = 0;
+  for (const auto& q : layer.quads) {
+    for (int i = 0; i < 4; ++i)
+      if (!(cross(q[i], q[(i + 1) % 4], q[(i + 2) % 4]) > 0.0)) ++bad;
+    total += 0.5 * (cross(q[0], q[1], q[2]) + cross(q[0], q[2], q[3]));
+  }
+  EXPECT_EQ(bad, 0) << "corners that are not strictly convex";
+  return total;
+}
+
+}  // namespace
+
+TEST(CliMesh, SquareGivesConvexQuadsCoveringTheSquare) {
+  TempDir dir;
+  const std::string gpkg = dir.file("mesh.gpkg"), report = dir.file("report.json");
+  const CliResult r = run_cli({"mesh", golden_input("square"), "--dst-crs", "EPSG:3857", "--size",
+                               "50", "--cross-angle", "0", "-o", gpkg, "--report", report},
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("0 non-convex"), std::string::npos) << r.out;
+  const QuadLayer layer = read_quads(gpkg);
+  EXPECT_EQ(layer.num_other, 0);
+  // 1000 m square, h = 50 m: about 400 quads of 50 m (subdivided tiles of 100 m).
+  EXPECT_GT(layer.quads.size(), 300u);
+  EXPECT_LT(layer.quads.size(), 700u);
+  const double area = check_convex_ccw(layer);
+  EXPECT_NEAR(area, 1.0e6, 0.01 * 1.0e6);
+  // Vertices on the boundary lie on it: a vertex within h/4 of a side is exactly on it
+  // (within 1e-6 h), and none is outside.
+  int off = 0;
+  for (const auto& q : layer.quads)
+    for (const auto& p : q)
+      for (double c : {p[0], p[1]}) {
+        if (c < -1e-6 * 50 || c > 1000 + 1e-6 * 50) ++off;
+        const double d = std::min(std::abs(c), std::abs(c - 1000));
+        if (d > 1e-6 * 50 && d < 12.5) ++off;
+      }
+  EXPECT_EQ(off, 0);
+  EXPECT_NE(read_file(report).find("\"tiling\""), std::string::npos);
+}
+
+TEST(CliMesh, AnnulusKeepsItsHoleAndLoadsInMeshio) {
+  TempDir dir;
+  const std::string gpkg = dir.file("mesh.gpkg"), vtu = dir.file("mesh.vtu");
+  CliResult r = run_cli({"mesh", golden_input("annulus"), "--dst-crs", "EPSG:3857", "--size", "60",
+                         "-o", gpkg, "-q"},
+                        dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const QuadLayer layer = read_quads(gpkg);
+  EXPECT_EQ(layer.num_other, 0);
+  const double area = check_convex_ccw(layer);
+  // The domain's own area, from the input through GDAL.
+  isoquad::ensure_gdal_registered();
+  GDALDataset* ds = static_cast<GDALDataset*>(GDALOpenEx(
+      golden_input("annulus").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  double domain_area = 0.0;
+  OGREnvelope hole;
+  for (auto& f : *ds->GetLayer(0)) {
+    const OGRPolygon* poly = dynamic_cast<const OGRPolygon*>(f->GetGeometryRef());
+    ASSERT_NE(poly, nullptr);
+    ASSERT_EQ(poly->getNumInteriorRings(), 1);
+    domain_area += poly->get_Area();
+    poly->getInteriorRing(0)->getEnvelope(&hole);
+  }
+  GDALClose(ds);
+  EXPECT_NEAR(area, domain_area, 0.01 * domain_area);
+  // No quad centre in the hole (a circle: centre and radius from its bounding box).
+  const double hx = 0.5 * (hole.MinX + hole.MaxX), hy = 0.5 * (hole.MinY + hole.MaxY);
+  const double radius = 0.5 * (hole.MaxX - hole.MinX);
+  int inside = 0;
+  for (const auto& q : layer.quads) {
+    const double x = 0.25 * (q[0][0] + q[1][0] + q[2][0] + q[3][0]);
+    const double y = 0.25 * (q[0][1] + q[1][1] + q[2][1] + q[3][1]);
+    if (std::hypot(x - hx, y - hy) < radius) ++inside;
+  }
+  EXPECT_EQ(inside, 0);
+
+  r = run_cli({"mesh", golden_input("annulus"), "--dst-crs", "EPSG:3857", "--size", "60", "-o", vtu,
+               "-q"},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string script = dir.file("check.py");
+  write_file(script,
+             "import sys, meshio, numpy as np\n"
+             "m = meshio.read(sys.argv[1])\n"
+             "assert list(m.cells_dict) == ['quad'], m.cells_dict.keys()\n"
+             "q = m.cells_dict['quad']\n"
+             "assert len(q) == int(sys.argv[2]), (len(q), sys.argv[2])\n"
+             "for name in ('size_ratio', 'orientation_deg', 'min_angle_deg', 'max_angle_deg'):\n"
+             "    assert m.cell_data[name][0].shape == (len(q),), name\n"
+             "assert m.point_data['degree'].shape == (len(m.points),)\n"
+             "assert m.cell_data['min_angle_deg'][0].min() > 0\n"
+             "assert m.cell_data['max_angle_deg'][0].max() < 180\n"
+             "print('ok', len(q))\n");
+  const CliResult py = run_cli_program(
+      "/usr/bin/python3", {script, vtu, std::to_string(layer.quads.size())}, dir);
+  EXPECT_EQ(py.exit_code, 0) << py.err << py.out;
+}
+
+TEST(CliMesh, TilingStepNeedsSomethingToShowIt) {
+  TempDir dir;
+  const CliResult r = run_cli({"mesh", golden_input("square"), "--dst-crs", "EPSG:3857", "--size",
+                               "50", "-o", dir.file("m.gpkg"), "--stop-after", "relax"},
+                              dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("m.gpkg")));
+}
+
+TEST(CliMesh, SameInputGivesByteIdenticalOutput) {
+  TempDir dir;
+  std::string bytes[2];
+  for (int i = 0; i < 2; ++i) {
+    const std::string out = dir.file("m" + std::to_string(i) + ".vtu");
+    const CliResult r = run_cli({"mesh", golden_input("annulus"), "--dst-crs", "EPSG:3857",
+                                 "--size", "60", "-o", out, "-q"},
+                                dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    bytes[i] = read_file(out);
+  }
+  EXPECT_FALSE(bytes[0].empty());
+  EXPECT_TRUE(bytes[0] == bytes[1]);
+}

@@ -1,0 +1,92 @@
+#!/usr/bin/python3
+"""Golden-file regression tests of `isoquad mesh`.
+
+Each case is a directory tests/golden/<case>/ holding:
+  args.txt       the isoquad mesh arguments, one per line; {dir} stands for the case
+                 directory and {src} for the source tree (inputs live in either)
+  expected.json  the expected report values: {"path.to.value": {"value": v, "tol": t}}
+                 where path follows the --report JSON ("quality.num_quads", ...), and
+                 tol is absolute ("tol") or relative ("rtol")
+
+  tools/golden.py check tests/golden/<case> --isoquad build/isoquad
+  tools/golden.py update tests/golden/*            (after an intended change; review
+                                                    the diff of expected.json)
+
+Only values listed in expected.json are compared, with their tolerances; the mesh
+itself is not stored (byte-exact floating point would fail across compilers).
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+SRC = os.path.abspath(os.path.join(os.path.dirname(__file__), ".."))
+
+
+def run_case(case, isoquad):
+    with open(os.path.join(case, "args.txt")) as f:
+        args = [l.strip().replace("{dir}", case).replace("{src}", SRC) for l in f if l.strip()]
+    with tempfile.TemporaryDirectory() as tmp:
+        report = os.path.join(tmp, "report.json")
+        cmd = [isoquad, "mesh", *args, "-o", os.path.join(tmp, "mesh.gpkg"), "--report", report, "-q"]
+        proc = subprocess.run(cmd, capture_output=True, text=True)
+        if proc.returncode != 0:
+            sys.exit(f"golden: {case}: isoquad failed ({proc.returncode}): {proc.stderr.strip()}")
+        with open(report) as f:
+            return json.load(f)
+
+
+def lookup(report, path):
+    node = report
+    for part in path.split("."):
+        node = node[int(part)] if isinstance(node, list) else node[part]
+    return node
+
+
+def check(case, isoquad):
+    case = os.path.abspath(case)
+    report = run_case(case, isoquad)
+    with open(os.path.join(case, "expected.json")) as f:
+        expected = json.load(f)
+    failures = []
+    for path, spec in sorted(expected.items()):
+        got = lookup(report, path)
+        want = spec["value"]
+        tol = spec.get("tol", 0.0) + spec.get("rtol", 0.0) * abs(want)
+        ok = abs(got - want) <= tol
+        print(f"{'ok  ' if ok else 'FAIL'} {os.path.basename(case)}: {path} = {got!r} "
+              f"(expected {want!r} +- {tol:g})")
+        if not ok:
+            failures.append(path)
+    if failures:
+        sys.exit(f"golden: {case}: {len(failures)} value(s) out of tolerance: {', '.join(failures)}")
+
+
+def update(case, isoquad):
+    case = os.path.abspath(case)
+    report = run_case(case, isoquad)
+    path = os.path.join(case, "expected.json")
+    with open(path) as f:
+        expected = json.load(f)
+    for key, spec in expected.items():
+        spec["value"] = lookup(report, key)
+    with open(path, "w") as f:
+        json.dump(expected, f, indent=2, sort_keys=True)
+        f.write("\n")
+    print(f"updated {path}")
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("command", choices=["check", "update"])
+    ap.add_argument("cases", nargs="+")
+    ap.add_argument("--isoquad", default=os.path.join(SRC, "build", "isoquad"))
+    a = ap.parse_args()
+    for case in a.cases:
+        (check if a.command == "check" else update)(case, a.isoquad)
+
+
+if __name__ == "__main__":
+    main()
