@@ -166,6 +166,25 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
       for (int w : t.neighbours[v])
         edge = std::max(edge, std::hypot(m.points[w].x - m.points[v].x, m.points[w].y - m.points[v].y));
       double best = worst_convexity(m, t, v);
+      if (m.chain[v] < 0 && best <= params.min_convexity) {
+        // A local search may sit in the wrong part of a non-convex 1-ring: try a grid
+        // over the ring's bounding box first.
+        double x0 = m.points[v].x, x1 = x0, y0 = m.points[v].y, y1 = y0;
+        for (int w : t.neighbours[v]) {
+          x0 = std::min(x0, m.points[w].x), x1 = std::max(x1, m.points[w].x);
+          y0 = std::min(y0, m.points[w].y), y1 = std::max(y1, m.points[w].y);
+        }
+        const Point2 start = m.points[v];
+        Point2 best_point = start;
+        constexpr int kGrid = 24;
+        for (int i = 1; i < kGrid; ++i)
+          for (int j = 1; j < kGrid; ++j) {
+            m.points[v] = {x0 + (x1 - x0) * i / kGrid, y0 + (y1 - y0) * j / kGrid};
+            const double value = worst_convexity(m, t, v);
+            if (value > best + 1e-12) best = value, best_point = m.points[v];
+          }
+        m.points[v] = best_point;
+      }
       for (double step = 0.25 * edge; step > 1e-3 * edge; step *= 0.5) {
         bool improved = true;
         while (improved) {
