@@ -91,6 +91,22 @@ class Relocator {
   std::vector<int> members_;
 };
 
+// Whether the Lloyd iterations stop at the relocated generators `next` (nothing moved, or
+// a generator set came back); otherwise records them.
+bool stop_iterating(const std::vector<int>& next, const std::vector<int>& generator,
+                    GeneratorHistory& history, RelaxResult& r) {
+  if (next == generator) {
+    r.converged = true;
+    return true;
+  }
+  if (history.contains(next)) {
+    r.cycled = true;
+    return true;
+  }
+  history.add(next);
+  return false;
+}
+
 double energy_of(const BackgroundMesh& mesh, const TriangleGeometry& geom,
                  const CrossField& cross, const std::vector<int>& label,
                  const std::vector<int>& generator) {
@@ -177,15 +193,7 @@ RelaxResult relax_tiling(const BackgroundMesh& mesh, const TriangleGeometry& geo
     std::vector<int> next = generator;
     relocator.relocate(label, changed, next);
     ++r.iterations;
-    if (next == generator) {
-      r.converged = true;
-      break;
-    }
-    if (history.contains(next)) {
-      r.cycled = true;
-      break;
-    }
-    history.add(next);
+    if (stop_iterating(next, generator, history, r)) break;
     generator.swap(next);
     flood.reflood(generator, label, changed);
     r.num_flooded += flood.num_flooded();
@@ -290,15 +298,7 @@ RelaxResult conform_tiling(const BackgroundMesh& mesh, const TriangleGeometry& g
     std::vector<int> next =
         nearest_triangles_in_tiles(geom, current.label, targets.x, targets.y);
     ++r.iterations;
-    if (next == current.generator) {
-      r.converged = true;
-      break;
-    }
-    if (history.contains(next)) {
-      r.cycled = true;
-      break;
-    }
-    history.add(next);
+    if (stop_iterating(next, current.generator, history, r)) break;
     current.generator.swap(next);
     flood.reflood(current.generator, current.label, changed);
     r.num_flooded += flood.num_flooded();
