@@ -103,41 +103,14 @@ bool boundary_target(const BackgroundMesh& bg, const QuadMesh& m, const Topology
   return true;
 }
 
-}  // namespace
-
-SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params) {
-  SmoothStats stats;
-  const Topology t = topology(m);
+// Untangling: move the vertices of non-convex quads to maximise the worst convexity
+// around them (pattern search with shrinking steps). When that stalls, the vertices of
+// the quads around them move too, and at last domain corners may slide along the
+// boundary (a cut corner is better than a non-convex quad).
+void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const SmoothParams& params,
+              SmoothStats& stats) {
   const int nq = static_cast<int>(m.quads.size());
-  auto count_nonconvex = [&] {
-    int n = 0;
-    for (int q = 0; q < nq; ++q) n += quad_convexity(m, q) <= params.min_convexity;
-    return n;
-  };
-  stats.num_nonconvex_before = count_nonconvex();
   const int nv = static_cast<int>(m.points.size());
-
-  for (int it = 0; it < params.iterations; ++it) {
-    for (int v = 0; v < nv; ++v) {
-      if (m.fixed[v]) continue;
-      if (m.chain[v] >= 0) {
-        Point2 target;
-        double arc = 0;
-        if (boundary_target(bg, m, t, v, target, arc)) try_move(m, t, v, target, arc, params.min_convexity);
-        continue;
-      }
-      Point2 c{0, 0};
-      for (int w : t.neighbours[v]) c.x += m.points[w].x, c.y += m.points[w].y;
-      const double k = static_cast<double>(t.neighbours[v].size());
-      if (k == 0) continue;
-      try_move(m, t, v, {c.x / k, c.y / k}, m.arc_m[v], params.min_convexity);
-    }
-  }
-
-  // Untangling: move the vertices of non-convex quads to maximise the worst convexity
-  // around them (pattern search with shrinking steps). When that stalls, the vertices of
-  // the quads around them move too, and at last domain corners may slide along the
-  // boundary (a cut corner is better than a non-convex quad).
   std::vector<char> active(nv, 0);
   int stalled = 0, previous_bad = -1;
   for (int sweep = 0; sweep < params.untangle_iterations; ++sweep) {
@@ -214,6 +187,111 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
         }
       }
     }
+  }
+}
+
+// Quad edge flips: a non-convex quad and a neighbour form a hexagon, which splits into
+// two quads along any of its three long diagonals. A split is kept when its worse quad
+// is more convex than the worse of the pair before. Returns the number of flips.
+int flip_nonconvex(QuadMesh& m, double min_convexity) {
+  const int nq = static_cast<int>(m.quads.size());
+  std::vector<std::pair<std::pair<int, int>, int>> edges;  // (edge, quad)
+  for (int q = 0; q < nq; ++q)
+    for (int i = 0; i < 4; ++i) {
+      const int a = m.quads[q][i], b = m.quads[q][(i + 1) % 4];
+      edges.push_back({{std::min(a, b), std::max(a, b)}, q});
+    }
+  std::sort(edges.begin(), edges.end());
+  auto other_quad = [&](int a, int b, int q) {
+    const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
+    auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(key, -1));
+    for (; it != edges.end() && it->first == key; ++it)
+      if (it->second != q) return it->second;
+    return -1;
+  };
+  std::vector<char> done(nq, 0);
+  int flips = 0;
+  for (int q = 0; q < nq; ++q) {
+    if (done[q] || quad_convexity(m, q) > min_convexity) continue;
+    double best = -2.0;
+    int best_n = -1;
+    std::array<int, 4> best_a{}, best_b{};
+    for (int i = 0; i < 4; ++i) {
+      const int a = m.quads[q][i], b = m.quads[q][(i + 1) % 4];
+      const int n = other_quad(a, b, q);
+      if (n < 0 || done[n]) continue;
+      // Hexagon: q from b round to a (b, q[i+2], q[i+3], a), then n from a round to b.
+      const auto& nq4 = m.quads[n];
+      int j = 0;
+      while (nq4[j] != a) ++j;
+      if (nq4[(j + 1) % 4] != b) continue;  // inconsistent orientation
+      const std::array<int, 6> h = {b, m.quads[q][(i + 2) % 4], m.quads[q][(i + 3) % 4], a,
+                                    nq4[(j + 2) % 4], nq4[(j + 3) % 4]};
+      const double before = std::min(quad_convexity(m, q), quad_convexity(m, n));
+      for (int d = 0; d < 3; ++d) {
+        if (d == 0) continue;  // diagonal (h0, h3) = the shared edge: the current pair
+        const std::array<int, 4> qa = {h[d], h[d + 1], h[d + 2], h[(d + 3) % 6]};
+        const std::array<int, 4> qb = {h[(d + 3) % 6], h[(d + 4) % 6], h[(d + 5) % 6], h[d]};
+        const Point2* pa[4];
+        const Point2* pb[4];
+        for (int k = 0; k < 4; ++k) pa[k] = &m.points[qa[k]], pb[k] = &m.points[qb[k]];
+        const double value = std::min(quad_convexity(*pa[0], *pa[1], *pa[2], *pa[3]),
+                                      quad_convexity(*pb[0], *pb[1], *pb[2], *pb[3]));
+        if (value > before + 1e-9 && value > best) {
+          best = value;
+          best_n = n;
+          best_a = qa;
+          best_b = qb;
+        }
+      }
+    }
+    if (best_n < 0) continue;
+    m.quads[q] = best_a;
+    m.quads[best_n] = best_b;
+    done[q] = done[best_n] = 1;
+    ++flips;
+  }
+  return flips;
+}
+
+}  // namespace
+
+SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params) {
+  SmoothStats stats;
+  const Topology t = topology(m);
+  const int nq = static_cast<int>(m.quads.size());
+  auto count_nonconvex = [&] {
+    int n = 0;
+    for (int q = 0; q < nq; ++q) n += quad_convexity(m, q) <= params.min_convexity;
+    return n;
+  };
+  stats.num_nonconvex_before = count_nonconvex();
+  const int nv = static_cast<int>(m.points.size());
+
+  for (int it = 0; it < params.iterations; ++it) {
+    for (int v = 0; v < nv; ++v) {
+      if (m.fixed[v]) continue;
+      if (m.chain[v] >= 0) {
+        Point2 target;
+        double arc = 0;
+        if (boundary_target(bg, m, t, v, target, arc)) try_move(m, t, v, target, arc, params.min_convexity);
+        continue;
+      }
+      Point2 c{0, 0};
+      for (int w : t.neighbours[v]) c.x += m.points[w].x, c.y += m.points[w].y;
+      const double k = static_cast<double>(t.neighbours[v].size());
+      if (k == 0) continue;
+      try_move(m, t, v, {c.x / k, c.y / k}, m.arc_m[v], params.min_convexity);
+    }
+  }
+
+  untangle(bg, m, t, params, stats);
+  // Where moving vertices is not enough, change the local topology and untangle again.
+  for (int round = 0; round < params.flip_rounds && count_nonconvex() > 0; ++round) {
+    const int flips = flip_nonconvex(m, params.min_convexity);
+    if (flips == 0) break;
+    stats.num_flips += flips;
+    untangle(bg, m, topology(m), params, stats);
   }
   stats.num_nonconvex_after = count_nonconvex();
   return stats;

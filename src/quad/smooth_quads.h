@@ -13,12 +13,14 @@ struct SmoothParams {
   int iterations = 10;             // Laplacian sweeps
   int untangle_iterations = 200;   // sweeps of the convexity repair
   double min_convexity = 0.02;     // a quad is accepted when quad_convexity() > this (~1.1 deg)
+  int flip_rounds = 5;             // rounds of quad edge flips when untangling is not enough
 };
 
 struct SmoothStats {
   int num_nonconvex_before = 0;  // after subdivision, before smoothing
   int num_nonconvex_after = 0;   // 0 unless the repair failed
   int num_untangle_sweeps = 0;
+  int num_flips = 0;             // quad edge flips (local topology changes)
 };
 
 // Smooths in place. Does not throw; the caller decides what a remaining non-convex quad

@@ -43,8 +43,10 @@ void LinfFlood::set_frame(int tile, int generator) {
 float LinfFlood::key(int tile, int f) const {
   const double dx = geom_.cx[f] - gx_[tile], dy = geom_.cy[f] - gy_[tile];
   const double c = cu_[tile], s = su_[tile];
-  return static_cast<float>(std::max(std::abs(dx * c + dy * s), std::abs(dy * c - dx * s)) *
-                            inv_h_[tile]);
+  // The size between generator and triangle: the mean of both ends, so that a tile of a
+  // large generator stops where the sizing asks for small tiles.
+  const double h = 0.5 * (1.0 / inv_h_[tile] + geom_.size_m[f]);
+  return static_cast<float>(std::max(std::abs(dx * c + dy * s), std::abs(dy * c - dx * s)) / h);
 }
 
 void LinfFlood::offer(int tile, int f) {

@@ -39,14 +39,21 @@ class GeneratorHistory {
   std::vector<std::vector<int>> sets_;
 };
 
+// Whether generator triangle g is close enough to its tile's target (x, y) to stay.
+bool settled(const TriangleGeometry& geom, int g, double x, double y, double settle_h) {
+  const double r = settle_h * geom.size_m[g];
+  const double dx = geom.cx[g] - x, dy = geom.cy[g] - y;
+  return dx * dx + dy * dy <= r * r;
+}
+
 // Relocation of the tiles marked in `changed` (2.3): the triangle nearest the weighted
 // centroid, found by a search of the tile from its generator (tiles of a flood are
 // connected and own their generator). Other tiles keep their generator: an unchanged
 // tile has the same centroid.
 class Relocator {
  public:
-  Relocator(const BackgroundMesh& mesh, const TriangleGeometry& geom)
-      : mesh_(mesh), geom_(geom), stamp_(geom.num_triangles(), 0) {}
+  Relocator(const BackgroundMesh& mesh, const TriangleGeometry& geom, double settle_h)
+      : mesh_(mesh), geom_(geom), settle_h_(settle_h), stamp_(geom.num_triangles(), 0) {}
 
   void relocate(const std::vector<int>& label, const std::vector<char>& changed,
                 std::vector<int>& generator) {
@@ -69,6 +76,7 @@ class Relocator {
           }
       }
       const double x = sx / w, y = sy / w;
+      if (settled(geom_, start, x, y, settle_h_)) continue;
       int best = start;
       double best_d2 = std::numeric_limits<double>::infinity();
       for (int f : members_) {
@@ -86,6 +94,7 @@ class Relocator {
  private:
   const BackgroundMesh& mesh_;
   const TriangleGeometry& geom_;
+  double settle_h_;
   std::vector<int> stamp_;
   int current_ = 0;
   std::vector<int> members_;
@@ -178,7 +187,9 @@ RelaxResult relax_tiling(const BackgroundMesh& mesh, const TriangleGeometry& geo
   fix_generators(geom, tiling);
   const int num_tiles = tiling.num_tiles();
   LinfFlood flood(mesh, geom, cross);
-  Relocator relocator(mesh, geom);
+  Relocator relocator(mesh, geom, params.settle_h);
+  double best_energy = std::numeric_limits<double>::infinity();
+  int since_best = 0;
   std::vector<int> generator = tiling.generator;
   std::vector<int> label;
   flood.flood(generator, label);
@@ -197,8 +208,17 @@ RelaxResult relax_tiling(const BackgroundMesh& mesh, const TriangleGeometry& geo
     generator.swap(next);
     flood.reflood(generator, label, changed);
     r.num_flooded += flood.num_flooded();
-    if (params.record_energy)
-      r.energy_history.push_back(energy_of(mesh, geom, cross, label, generator));
+    // The discrete iterations shuffle a few generators long after the energy stopped
+    // falling: stop when it has not improved its best by energy_tol in `patience` floods.
+    const double e = energy_of(mesh, geom, cross, label, generator);
+    if (params.record_energy) r.energy_history.push_back(e);
+    if (e < best_energy * (1.0 - params.energy_tol)) {
+      best_energy = e;
+      since_best = 0;
+    } else if (++since_best >= params.patience) {
+      r.converged = true;
+      break;
+    }
   }
   tiling.label.swap(label);
   tiling.generator.swap(generator);
@@ -297,6 +317,9 @@ RelaxResult conform_tiling(const BackgroundMesh& mesh, const TriangleGeometry& g
     const ConformTargets targets = conform_targets(mesh, geom, cross, current, graph, params);
     std::vector<int> next =
         nearest_triangles_in_tiles(geom, current.label, targets.x, targets.y);
+    for (int t = 0; t < num_tiles; ++t)
+      if (settled(geom, current.generator[t], targets.x[t], targets.y[t], params.settle_h))
+        next[t] = current.generator[t];
     ++r.iterations;
     if (stop_iterating(next, current.generator, history, r)) break;
     current.generator.swap(next);

@@ -19,12 +19,20 @@ namespace isoquad {
 
 struct RelaxParams {
   int max_iters = 50;          // the paper's default cap
+  // A generator stays put while its triangle's centroid is within this many h of its
+  // tile's target: discrete L-inf Lloyd iterations otherwise jitter between neighbouring
+  // triangles, never converge, and every reflood touches the whole mesh.
+  double settle_h = 0.15;
+  // Stop once the energy H has not fallen by this fraction of its best value for
+  // `patience` iterations in a row.
+  double energy_tol = 1e-3;
+  int patience = 5;
   bool record_energy = false;  // fill RelaxResult::energy_history (one O(#F) pass each)
 };
 
 struct RelaxResult {
   int iterations = 0;      // relocations performed
-  bool converged = false;  // the last relocation moved no generator
+  bool converged = false;  // nothing moved, or the energy stopped falling
   bool cycled = false;     // stopped because a generator set came back
   double energy = 0.0;     // H of the final tiling (tile_geometry.h)
   // H after each flood, the first entry for the flood of the incoming generators.
@@ -59,6 +67,7 @@ enum class ConformShiftRule {
 
 struct ConformParams {
   int iters = 20;
+  double settle_h = 0.15;  // as RelaxParams::settle_h
   double shift = 0.2;  // fraction of the projected meta-edge length
   ConformShiftRule rule = ConformShiftRule::close_shortest;
   MetaGraphParams graph;
