@@ -108,7 +108,7 @@ bool boundary_target(const BackgroundMesh& bg, const QuadMesh& m, const Topology
 // the quads around them move too, and at last domain corners may slide along the
 // boundary (a cut corner is better than a non-convex quad).
 void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const SmoothParams& params,
-              SmoothStats& stats) {
+              SmoothStats& stats, bool may_free_corners = true) {
   const int nq = static_cast<int>(m.quads.size());
   const int nv = static_cast<int>(m.points.size());
   std::vector<char> active(nv, 0);
@@ -122,7 +122,7 @@ void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const Sm
     stalled = static_cast<int>(bad.size()) >= previous_bad && previous_bad >= 0 ? stalled + 1 : 0;
     previous_bad = static_cast<int>(bad.size());
     const bool widen = sweep >= params.untangle_iterations / 10 && stalled > 2;
-    const bool free_corners = sweep >= params.untangle_iterations / 2;
+    const bool free_corners = may_free_corners && sweep >= params.untangle_iterations / 2;
     std::fill(active.begin(), active.end(), 0);
     std::vector<int> order;
     for (int q : bad)
@@ -285,6 +285,13 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
     }
   }
 
+  // A few sweeps that lift the flattest quads (angles near 0 or 180 degrees) as far as
+  // they can; only the pass below must succeed.
+  SmoothParams lift = params;
+  lift.min_convexity = params.lift_convexity;
+  lift.untangle_iterations = params.lift_iterations;
+  SmoothStats ignored;
+  untangle(bg, m, t, lift, ignored, false);
   untangle(bg, m, t, params, stats);
   // Where moving vertices is not enough, change the local topology and untangle again.
   for (int round = 0; round < params.flip_rounds && count_nonconvex() > 0; ++round) {

@@ -13,7 +13,11 @@ struct SmoothParams {
   int iterations = 10;             // Laplacian sweeps
   int untangle_iterations = 200;   // sweeps of the convexity repair
   double min_convexity = 0.02;     // a quad is accepted when quad_convexity() > this (~1.1 deg)
-  int flip_rounds = 5;             // rounds of quad edge flips when untangling is not enough
+  int flip_rounds = 5;
+  // Before the convexity repair, quads flatter than this (sine of the worst corner
+  // turn; 0.26 ~ 15 degrees) get `lift_iterations` sweeps of the same search.
+  double lift_convexity = 0.26;
+  int lift_iterations = 10;             // rounds of quad edge flips when untangling is not enough
 };
 
 struct SmoothStats {
