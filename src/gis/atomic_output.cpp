@@ -71,4 +71,24 @@ void AtomicOutput::commit() {
   committed_ = true;
 }
 
+const std::string& OutputSet::add(const std::string& final_path, bool overwrite) {
+  std::error_code ec;
+  const std::string key = fs::weakly_canonical(fs::absolute(final_path, ec), ec).string();
+  for (const std::string& p : paths_)
+    if (p == key) throw Error(ErrorClass::usage, "write", quote(final_path) + " is given twice");
+  outputs_.push_back(std::make_unique<AtomicOutput>(final_path, overwrite));
+  paths_.push_back(key);
+  return outputs_.back()->temp_path();
+}
+
+void OutputSet::commit_all() {
+  std::size_t done = 0;
+  try {
+    for (; done < outputs_.size(); ++done) outputs_[done]->commit();
+  } catch (...) {
+    for (std::size_t i = 0; i < done; ++i) std::remove(paths_[i].c_str());
+    throw;
+  }
+}
+
 }  // namespace isoquad

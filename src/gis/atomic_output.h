@@ -2,7 +2,9 @@
 // place only when complete, so a failure never leaves a partial output behind.
 #pragma once
 
+#include <memory>
 #include <string>
+#include <vector>
 
 namespace isoquad {
 
@@ -27,6 +29,23 @@ class AtomicOutput {
   std::string temp_path_;
   bool overwrite_ = false;
   bool committed_ = false;
+};
+
+// Several outputs written as one: each goes to its temporary file, and only when all are
+// complete are they moved into place. If a move fails, the outputs already moved are
+// removed again, so a run leaves either every output or none.
+class OutputSet {
+ public:
+  // Adds an output and returns where to write it. Throws Error(output) (see
+  // check_output_path) or Error(usage) for a path given twice.
+  const std::string& add(const std::string& final_path, bool overwrite);
+  // Moves every output into place, or none. Throws Error(output).
+  void commit_all();
+  std::size_t size() const { return outputs_.size(); }
+
+ private:
+  std::vector<std::string> paths_;
+  std::vector<std::unique_ptr<AtomicOutput>> outputs_;
 };
 
 }  // namespace isoquad

@@ -62,3 +62,25 @@ TEST(AtomicOutput, MissingDirectoryIsAnOutputError) {
     EXPECT_NE(std::string(e.what()).find("does not exist"), std::string::npos);
   }
 }
+
+// When moving the second output into place fails, the first, already moved, is removed.
+TEST(OutputSet, CommitIsAllOrNothing) {
+  TempDir dir;
+  {
+    OutputSet set;
+    write_file(set.add(dir.file("a.txt"), false), "a");
+    write_file(set.add(dir.file("b.txt"), false), "b");
+    write_file(dir.file("b.txt"), "someone else's");  // appears while writing
+    EXPECT_THROW(set.commit_all(), Error);
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("a.txt")));
+  EXPECT_EQ(read_file(dir.file("b.txt")), "someone else's");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"b.txt"});
+  {
+    OutputSet set;
+    write_file(set.add(dir.file("a.txt"), false), "a");
+    EXPECT_THROW(set.add(dir.path() + "/./a.txt", false), Error);  // the same file twice
+    set.commit_all();
+  }
+  EXPECT_EQ(read_file(dir.file("a.txt")), "a");
+}
