@@ -15,7 +15,9 @@ PACKAGES=(
   libmuparser-dev libcli11-dev
   libcairo2-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
-  python3-gdal python3-numpy python3-meshio python3-scipy gmsh
+  libnetcdf-dev
+  python3-gdal python3-numpy python3-meshio python3-scipy python3-netcdf4 gmsh
+  python3-qgis qgis-providers
 )
 stamp=/var/lib/apt/periodic/update-success-stamp
 if [ ! -d /var/lib/apt/lists/partial ] || [ -z "$(ls -A /var/lib/apt/lists 2>/dev/null | grep -v -e partial -e lock)" ]; then

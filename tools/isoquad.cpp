@@ -24,6 +24,7 @@
 #include "gis/atomic_output.h"
 #include "gis/write_domain.h"
 #include "io/write_fields.h"
+#include "gis/raster_field.h"
 #include "io/write_mesh.h"
 #include "plot/plot_mesh.h"
 #include "plot/plot_tiling.h"
@@ -45,7 +46,9 @@ const char* kExitCodes =
 
 struct CommonArgs {
   std::string input;
-  std::string output;
+  std::vector<std::string> outputs;  // -o, repeatable for `mesh`
+  std::string output;                // the first
+  bool many_outputs = false;         // the subcommand accepts several -o
   std::string bbox;
   std::string domain_kind = "land";
   double simplify_m = -1.0;
@@ -59,7 +62,12 @@ struct CommonArgs {
 void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
   cmd->add_option("INPUT", a.input, "Input vector file (shapefile, GeoJSON, TopoJSON, GeoPackage...)")
       ->required();
-  cmd->add_option("-o,--output", a.output, "Output file (.gpkg)")->required();
+  cmd->add_option("-o,--output", a.outputs,
+                  a.many_outputs ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc); repeat for several"
+                                 : "Output file (.gpkg)")
+      ->required()
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   cmd->add_option("--layer", a.fe.read.layer, "Layer to read (default: the only layer, or the first with polygons)")
       ->group("Selection");
   cmd->add_option("--where", a.fe.read.where, "OGR SQL attribute filter, e.g. \"name = 'France'\"")
@@ -225,6 +233,10 @@ FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {
 }
 
 void finish_front_end_args(CommonArgs& a) {
+  if (a.outputs.empty()) throw Error(ErrorClass::usage, "options", "give the output with -o FILE");
+  if (a.outputs.size() > 1 && !a.many_outputs)
+    throw Error(ErrorClass::usage, "options", "this subcommand writes one output: give -o once");
+  a.output = a.outputs.front();
   a.fe.read.path = a.input;
   if (!a.bbox.empty()) a.fe.read.bbox = parse_bbox(a.bbox);
   a.fe.kind = a.domain_kind == "water" ? DomainKind::water : DomainKind::land;
@@ -304,6 +316,9 @@ int run_fields(CommonArgs& a, FieldArgs& f) {
 
 struct MeshArgs {
   MeshOptions mesh;
+  std::vector<std::string> output_formats;
+  std::string msh_version = "4.1";
+  std::string output_crs;
   std::string stop_after = "butterfly";
   std::string conform_rule = "lattice";
   double conform_shift = -1.0;  // by rule when not given
@@ -348,6 +363,75 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
   cmd->add_option("--smooth-iters", m.mesh.smooth.iterations, "Laplacian smoothing sweeps (default 10)")
       ->check(CLI::NonNegativeNumber)
       ->group("Quads");
+  cmd->add_option("--output-format", m.output_formats,
+                  "gpkg, vtu, vtk, msh, gr3 or nc: once for every -o, or once per -o in order "
+                  "(default: by extension)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->check(CLI::IsMember({"gpkg", "vtu", "vtk", "msh", "gr3", "nc"}))
+      ->group("Output");
+  cmd->add_option("--msh-version", m.msh_version, "Gmsh file version: 4.1 (default) or 2.2")
+      ->check(CLI::IsMember({"4.1", "2.2"}))
+      ->group("Output");
+  cmd->add_option("--output-crs", m.output_crs,
+                  "Write coordinates in this CRS (e.g. EPSG:4326); SCHISM .gr3 stays in the "
+                  "meshing CRS (its .ll is in lon/lat)")
+      ->group("Output");
+}
+
+std::vector<MeshOutput> mesh_outputs(const CommonArgs& a, const MeshArgs& m) {
+  const auto& formats = m.output_formats;
+  if (formats.size() > 1 && formats.size() != a.outputs.size())
+    throw Error(ErrorClass::usage, "options",
+                "give --output-format once, or once per -o (" + std::to_string(a.outputs.size()) +
+                    " outputs, " + std::to_string(formats.size()) + " formats)");
+  std::vector<MeshOutput> outs;
+  for (std::size_t i = 0; i < a.outputs.size(); ++i) {
+    MeshOutput o;
+    o.path = a.outputs[i];
+    o.format = formats.empty() ? "" : formats.size() == 1 ? formats[0] : formats[i];
+    o.overwrite = a.overwrite;
+    outs.push_back(o);
+  }
+  return outs;
+}
+
+std::string format_number(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+std::vector<std::pair<std::string, std::string>> quality_items(const QualitySummary& q) {
+  return {{"num_quads", std::to_string(q.num_quads)},
+          {"num_vertices", std::to_string(q.num_vertices)},
+          {"num_nonconvex", std::to_string(q.num_nonconvex)},
+          {"min_angle_deg", format_number(q.min_angle_deg)},
+          {"max_angle_deg", format_number(q.max_angle_deg)},
+          {"share_angles_75_105", format_number(q.share_angles_75_105)},
+          {"size_ratio_median", format_number(q.size_ratio_median)},
+          {"share_size_08_125", format_number(q.share_size_08_125)},
+          {"orientation_mean_deg", format_number(q.orientation_mean_deg)},
+          {"share_regular_interior", format_number(q.share_regular_interior)},
+          {"eta_mean", format_number(q.eta_mean)},
+          {"eta_min", format_number(q.eta_min)},
+          {"schism_angle_ratio_violations", std::to_string(q.schism_angle_ratio_violations)},
+          {"schism_aspect_violations", std::to_string(q.schism_aspect_violations)}};
+}
+
+// Depth at every vertex from the --bathymetry raster (bilinear, metres, positive down);
+// 0 where the raster has no value. Returns the number of such vertices.
+std::size_t sample_depths(const std::string& path, const Domain& domain, const QuadMesh& mesh,
+                          std::vector<double>& depth) {
+  const RasterField raster(path, "--bathymetry", CrsInfo{domain.crs_wkt, domain.crs_name});
+  std::size_t missing = 0;
+  depth.resize(mesh.points.size());
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    const double d = raster.sample(mesh.points[i]);
+    depth[i] = std::isfinite(d) ? d : 0.0;
+    missing += !std::isfinite(d);
+  }
+  return missing;
 }
 
 std::string joined_command_line(int argc, char** argv) {
@@ -359,8 +443,17 @@ std::string joined_command_line(int argc, char** argv) {
 int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& command_line) {
   finish_front_end_args(a);
   const bool tiling_only = m.stop_after != "butterfly";
-  if (!tiling_only) check_mesh_output_format(a.output);
-  check_output_path(a.output, a.overwrite);
+  const std::vector<MeshOutput> outputs = mesh_outputs(a, m);
+  MeshWriteOptions write_options;
+  write_options.msh_version = m.msh_version;
+  write_options.output_crs = m.output_crs;
+  if (!tiling_only) check_mesh_outputs(outputs, write_options);
+  else check_output_path(a.output, a.overwrite);
+  // --bathymetry alone gives the depths of the outputs; with a wavelength or slope rule
+  // it also sets the sizing.
+  const std::string bathymetry = f.sizing.bathymetry_path;
+  if (!bathymetry.empty() && !f.sizing.wavelength_period_s && !f.sizing.slope_factor)
+    f.sizing.bathymetry_path.clear();
   if (!f.plot_path.empty()) check_output_path(f.plot_path, a.overwrite);
   if (!a.report_path.empty()) check_output_path(a.report_path, a.overwrite);
   if (tiling_only && f.plot_path.empty() && a.report_path.empty())
@@ -381,32 +474,62 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
                                                           : TilingStep::butterfly;
   const auto t0 = std::chrono::steady_clock::now();
   MeshResult r = build_mesh(options, Progress(make_progress(a.quiet)));
+  // Every output of the run (mesh files, plot, report) is moved into place only when all
+  // are complete.
+  OutputSet set;
+  std::size_t num_open_edges = 0, num_land_edges = 0;
   if (r.has_quads) {
-    MeshOutput out;
-    out.path = a.output;
-    out.overwrite = a.overwrite;
-    write_mesh(r.quads, r.metrics, r.fields.front.domain.crs_wkt, out);
+    const FrontEndResult& front = r.fields.front;
+    MeshOutputData data;
+    data.mesh = &r.quads;
+    data.metrics = &r.metrics;
+    data.crs_wkt = front.domain.crs_wkt;
+    // Boundary parts on the projected bbox (within the simplification tolerance) are open.
+    double extent = 0.0;
+    if (front.open_boundary_ring)
+      for (const Point2& p : *front.open_boundary_ring)
+        extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
+    data.boundary = extract_boundary(r.quads, front.open_boundary_ring,
+                                     1.01 * front.summary.simplify_m + 1e-7 * extent);
+    num_open_edges = data.boundary.num_open_edges;
+    num_land_edges = data.boundary.num_land_edges;
+    if (!bathymetry.empty()) {
+      const std::size_t missing = sample_depths(bathymetry, front.domain, r.quads, data.depth);
+      if (missing && !a.quiet)
+        std::cerr << "isoquad: warning: " << missing
+                  << " vertices lie outside the bathymetry (or on nodata); their depth is 0\n";
+    }
+    data.command_line = command_line;
+    data.quality = quality_items(r.quality);
+    write_mesh_outputs(data, outputs, write_options, set);
   }
   if (!f.plot_path.empty()) {
     if (r.has_quads) {
       PlotMeshParams pp;
-      pp.path = f.plot_path;
-      pp.overwrite = a.overwrite;
+      pp.path = set.add(f.plot_path, a.overwrite);
+      pp.overwrite = true;
       plot_mesh(r.quads, r.metrics, r.quality, pp);
     } else {
       PlotTilingParams pp;
-      pp.path = f.plot_path;
-      pp.overwrite = a.overwrite;
+      pp.path = set.add(f.plot_path, a.overwrite);
+      pp.overwrite = true;
       plot_tiling(r.fields.mesh, r.tiling.tiling, r.tiling.graph, pp);
     }
   }
   if (!a.report_path.empty())
-    write_text_atomically(a.report_path, mesh_report_json(r, command_line), a.overwrite);
+    write_text_atomically(set.add(a.report_path, a.overwrite), mesh_report_json(r, command_line), true);
+  set.commit_all();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
     std::cout << format_domain_summary(r.fields.front.summary) << format_fields_summary(r.fields)
               << format_mesh_summary(r);
-    if (r.has_quads) std::cout << "output:       " << a.output << "\n";
+    if (r.has_quads) {
+      std::cout << "output:      ";
+      for (const MeshOutput& o : outputs)
+        for (const std::string& file : mesh_output_files(o)) std::cout << " " << file;
+      std::cout << "\nboundary:     " << num_open_edges << " open edges, " << num_land_edges
+                << " land edges\n";
+    }
     if (!f.plot_path.empty()) std::cout << "plot:         " << f.plot_path << "\n";
     std::printf("time:         %.3f s, peak memory %.0f MB\n", seconds,
                 r.memory.empty() ? 0.0 : r.memory.back().peak_mb);
@@ -445,12 +568,14 @@ int main(int argc, char** argv) {
   fields_cmd->footer(kExitCodes);
 
   CommonArgs mesh_args;
+  mesh_args.many_outputs = true;
   FieldArgs mesh_field_args;
   MeshArgs mesh_extra;
   CLI::App* mesh_cmd = app.add_subcommand(
       "mesh",
       "The main job: an isotropic all-quadrangle mesh of the domain that follows the sizing "
-      "and cross fields (.gpkg or .vtu), with a quality summary.");
+      "and cross fields, with a quality summary; outputs for GIS and ocean models (.gpkg, "
+      ".vtu, .vtk, .msh, .gr3, .nc), several in one run.");
   add_front_end_options(mesh_cmd, mesh_args);
   add_field_options(mesh_cmd, mesh_field_args);
   add_mesh_options(mesh_cmd, mesh_extra);

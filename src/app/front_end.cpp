@@ -1,6 +1,7 @@
 #include "app/front_end.h"
 
 #include "core/error.h"
+#include "gis/crs.h"
 
 namespace isoquad {
 
@@ -35,6 +36,20 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   s.automatic_crs = projected.local.has_value();
   s.local = projected.local;
   s.meshing_crs_proj = crs_proj_string(CrsInfo{result.domain.crs_wkt, result.domain.crs_name});
+  if (options.kind == DomainKind::water && source.bbox_ring) {
+    // Every domain vertex that came from the bbox lies on a straight segment of the
+    // source bbox ring; 16 points per segment follow its curved image closely.
+    const Ring& box = *source.bbox_ring;
+    Ring dense;
+    for (std::size_t i = 0; i < box.size(); ++i) {
+      const Point2& a = box[i];
+      const Point2& b = box[(i + 1) % box.size()];
+      for (int k = 0; k < 16; ++k)
+        dense.push_back({a.x + (b.x - a.x) * k / 16.0, a.y + (b.y - a.y) * k / 16.0});
+    }
+    CrsTransform t(source.crs, CrsInfo{result.domain.crs_wkt, result.domain.crs_name});
+    if (t.transform(dense) < 0) result.open_boundary_ring = std::move(dense);
+  }
 
   progress.report("clean", 0.7);
   double h = options.target_size_m;

@@ -64,6 +64,10 @@ struct DomainSummary {
 struct FrontEndResult {
   Domain domain;
   DomainSummary summary;
+  // For a water domain: the bbox ring in the meshing CRS, densified so that it follows
+  // the projected bbox edges. Boundary parts lying on it are the open (sea) boundary;
+  // the rest is land. Empty for a land domain.
+  std::optional<Ring> open_boundary_ring;
 };
 
 FrontEndResult build_planar_domain(const FrontEndOptions& options,

@@ -76,8 +76,10 @@ void GpkgWriter::begin_layer(const std::string& name, GeometryKind kind,
   end_layer();
   const OGRwkbGeometryType type = kind == GeometryKind::point  ? wkbPoint
                                   : kind == GeometryKind::line ? wkbLineString
+                                  : kind == GeometryKind::none ? wkbNone
                                                                : wkbPolygon;
-  OGRSpatialReference* srs = state_->srs.IsEmpty() ? nullptr : &state_->srs;
+  OGRSpatialReference* srs =
+      state_->srs.IsEmpty() || kind == GeometryKind::none ? nullptr : &state_->srs;
   state_->layer = state_->ds->CreateLayer(name.c_str(), srs, type, nullptr);
   if (!state_->layer) fail("cannot create layer '" + name + "'");
   for (const FieldDef& f : fields) {
@@ -90,7 +92,7 @@ void GpkgWriter::begin_layer(const std::string& name, GeometryKind kind,
   if (state_->layer->StartTransaction() != OGRERR_NONE) fail("cannot start a transaction");
 }
 
-void GpkgWriter::add(OGRGeometry& g, const std::vector<FieldValue>& values) {
+void GpkgWriter::add(OGRGeometry* g, const std::vector<FieldValue>& values) {
   if (!state_->layer) throw Error(ErrorClass::internal, "write", "no layer begun");
   OGRFeature feature(state_->layer->GetLayerDefn());
   for (std::size_t i = 0; i < state_->fields.size() && i < values.size(); ++i) {
@@ -101,13 +103,13 @@ void GpkgWriter::add(OGRGeometry& g, const std::vector<FieldValue>& values) {
       case FieldType::text: feature.SetField(idx, values[i].s.c_str()); break;
     }
   }
-  feature.SetGeometry(&g);
+  if (g) feature.SetGeometry(g);
   if (state_->layer->CreateFeature(&feature) != OGRERR_NONE) fail("cannot write a feature");
 }
 
 void GpkgWriter::add_point(const Point2& p, const std::vector<FieldValue>& values) {
   OGRPoint pt(p.x, p.y);
-  add(pt, values);
+  add(&pt, values);
 }
 
 void GpkgWriter::add_polygon(const Polygon& polygon, const std::vector<FieldValue>& values) {
@@ -118,21 +120,23 @@ void GpkgWriter::add_polygon(const Polygon& polygon, const std::vector<FieldValu
     OGRLinearRing hole = to_ogr_ring(h);
     poly.addRing(&hole);
   }
-  add(poly, values);
+  add(&poly, values);
 }
 
 void GpkgWriter::add_polygon(const std::vector<Point2>& ring, const std::vector<FieldValue>& values) {
   OGRPolygon poly;
   OGRLinearRing outer = to_ogr_ring(ring);
   poly.addRing(&outer);
-  add(poly, values);
+  add(&poly, values);
 }
 
 void GpkgWriter::add_line(const std::vector<Point2>& line, const std::vector<FieldValue>& values) {
   OGRLineString ls;
   for (const Point2& p : line) ls.addPoint(p.x, p.y);
-  add(ls, values);
+  add(&ls, values);
 }
+
+void GpkgWriter::add_row(const std::vector<FieldValue>& values) { add(nullptr, values); }
 
 void GpkgWriter::commit() {
   end_layer();

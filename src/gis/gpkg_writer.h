@@ -31,7 +31,7 @@ struct FieldValue {
   static FieldValue text(std::string v) { FieldValue f; f.s = std::move(v); return f; }
 };
 
-enum class GeometryKind { point, line, polygon };
+enum class GeometryKind { point, line, polygon, none };  // none: an attribute table
 
 class GpkgWriter {
  public:
@@ -48,11 +48,13 @@ class GpkgWriter {
   void add_polygon(const Polygon& polygon, const std::vector<FieldValue>& values);
   void add_polygon(const std::vector<Point2>& ring, const std::vector<FieldValue>& values);
   void add_line(const std::vector<Point2>& line, const std::vector<FieldValue>& values);
+  // Adds a row without geometry (a GeometryKind::none layer).
+  void add_row(const std::vector<FieldValue>& values);
   // Finishes the file and moves it into place.
   void commit();
 
  private:
-  void add(OGRGeometry& g, const std::vector<FieldValue>& values);
+  void add(OGRGeometry* g, const std::vector<FieldValue>& values);
   void end_layer();
   [[noreturn]] void fail(const std::string& what) const;
 

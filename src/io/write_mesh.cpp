@@ -1,79 +1,244 @@
 #include "io/write_mesh.h"
 
 #include <filesystem>
+#include <map>
 
 #include "core/error.h"
+#include "gis/atomic_output.h"
+#include "gis/crs.h"
 #include "gis/gpkg_writer.h"
+#include "io/mesh_formats.h"
+#include "io/mesh_styles.h"
 #include "io/write_vtu.h"
 
 namespace isoquad {
 
 namespace {
 
-std::string extension(const std::string& path) {
-  std::string ext = std::filesystem::path(path).extension().string();
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext;
+std::string lower(std::string s) {
+  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return s;
 }
 
-void write_gpkg(const QuadMesh& m, const QuadMetrics& q, const std::string& crs_wkt,
-                const MeshOutput& out) {
-  GpkgWriter w(out.path, out.overwrite, crs_wkt);
+const std::map<std::string, MeshFormat>& format_names() {
+  static const std::map<std::string, MeshFormat> names = {
+      {"gpkg", MeshFormat::gpkg}, {"vtu", MeshFormat::vtu}, {"vtk", MeshFormat::vtk},
+      {"msh", MeshFormat::msh},   {"gr3", MeshFormat::gr3}, {"nc", MeshFormat::nc}};
+  return names;
+}
+
+std::string companion_ll(const std::string& path) {
+  return std::filesystem::path(path).replace_extension(".ll").string();
+}
+
+void write_gpkg(const MeshView& v, const std::string& path, const std::string& what) {
+  const QuadMesh& m = *v.data->mesh;
+  const QuadMetrics& q = *v.data->metrics;
+  const auto& pts = v.points;
+  GpkgWriter w(path, true, v.crs_wkt);
+  (void)what;
   w.begin_layer("quads", GeometryKind::polygon,
                 {{"id", FieldType::integer},
                  {"size_ratio", FieldType::real},
                  {"orientation_deg", FieldType::real},
                  {"min_angle_deg", FieldType::real},
                  {"max_angle_deg", FieldType::real},
-                 {"eta", FieldType::real}});
+                 {"eta", FieldType::real},
+                 {"irregular_corners", FieldType::integer}});
   for (std::size_t i = 0; i < m.quads.size(); ++i) {
     const auto& t = m.quads[i];
-    w.add_polygon(std::vector<Point2>{m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]},
+    int irregular = 0;
+    for (int c : t) irregular += q.degree[c] != q.ideal_degree[c];
+    w.add_polygon(std::vector<Point2>{pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]]},
                   {FieldValue::integer(static_cast<long long>(i)), FieldValue::real(q.size_ratio[i]),
                    FieldValue::real(q.orientation_deg[i]), FieldValue::real(q.min_angle_deg[i]),
-                   FieldValue::real(q.max_angle_deg[i]), FieldValue::real(q.eta[i])});
+                   FieldValue::real(q.max_angle_deg[i]), FieldValue::real(q.eta[i]),
+                   FieldValue::integer(irregular)});
   }
-  w.begin_layer("vertices", GeometryKind::point,
+  std::vector<FieldDef> vfields = {{"id", FieldType::integer},
+                                   {"degree", FieldType::integer},
+                                   {"ideal_degree", FieldType::integer},
+                                   {"boundary", FieldType::integer}};
+  const bool depth = !v.data->depth.empty();
+  if (depth) vfields.push_back({"depth", FieldType::real});
+  w.begin_layer("vertices", GeometryKind::point, vfields);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    std::vector<FieldValue> values = {FieldValue::integer(static_cast<long long>(i)),
+                                      FieldValue::integer(q.degree[i]),
+                                      FieldValue::integer(q.ideal_degree[i]),
+                                      FieldValue::integer(q.boundary[i])};
+    if (depth) values.push_back(FieldValue::real(v.data->depth[i]));
+    w.add_point(pts[i], values);
+  }
+  w.begin_layer("boundary", GeometryKind::line,
                 {{"id", FieldType::integer},
-                 {"degree", FieldType::integer},
-                 {"ideal_degree", FieldType::integer},
-                 {"boundary", FieldType::integer}});
-  for (std::size_t v = 0; v < m.points.size(); ++v)
-    w.add_point(m.points[v], {FieldValue::integer(static_cast<long long>(v)),
-                              FieldValue::integer(q.degree[v]), FieldValue::integer(q.ideal_degree[v]),
-                              FieldValue::integer(q.boundary[v])});
+                 {"kind", FieldType::text},
+                 {"loop", FieldType::integer},
+                 {"island", FieldType::integer},
+                 {"num_nodes", FieldType::integer}});
+  const auto& segs = v.data->boundary.segments;
+  for (std::size_t s = 0; s < segs.size(); ++s) {
+    std::vector<Point2> line;
+    for (int n : segs[s].nodes) line.push_back(pts[n]);
+    if (segs[s].closed && !line.empty()) line.push_back(line.front());
+    w.add_line(line, {FieldValue::integer(static_cast<long long>(s)),
+                      FieldValue::text(boundary_kind_name(segs[s].kind)),
+                      FieldValue::integer(segs[s].loop), FieldValue::integer(segs[s].island),
+                      FieldValue::integer(static_cast<long long>(segs[s].nodes.size()))});
+  }
+  w.begin_layer("metadata", GeometryKind::none, {{"key", FieldType::text}, {"value", FieldType::text}});
+  auto row = [&w](const std::string& k, const std::string& val) {
+    w.add_row({FieldValue::text(k), FieldValue::text(val)});
+  };
+  row("isoquad_version", ISOQUAD_VERSION);
+  row("command_line", v.data->command_line);
+  row("crs_wkt", v.crs_wkt);
+  row("mesh_crs_wkt", v.data->crs_wkt);
+  row("num_open_boundary_edges", std::to_string(v.data->boundary.num_open_edges));
+  row("num_land_boundary_edges", std::to_string(v.data->boundary.num_land_edges));
+  row("depth", depth ? "metres, positive down" : "unknown");
+  for (const auto& [k, val] : v.data->quality) row("quality." + k, val);
+  // QGIS reads a layer's styles from this table (the columns QGIS itself creates).
+  w.begin_layer("layer_styles", GeometryKind::none,
+                {{"f_table_catalog", FieldType::text},
+                 {"f_table_schema", FieldType::text},
+                 {"f_table_name", FieldType::text},
+                 {"f_geometry_column", FieldType::text},
+                 {"styleName", FieldType::text},
+                 {"styleQML", FieldType::text},
+                 {"styleSLD", FieldType::text},
+                 {"useAsDefault", FieldType::integer},
+                 {"description", FieldType::text},
+                 {"owner", FieldType::text},
+                 {"ui", FieldType::text},
+                 {"update_time", FieldType::text}});
+  for (const MeshStyle& s : mesh_styles()) {
+    if (!depth && std::string(s.layer) == "vertices" && std::string(s.name) == "depth") continue;
+    w.add_row({FieldValue::text(""), FieldValue::text(""), FieldValue::text(s.layer),
+               FieldValue::text("geom"), FieldValue::text(s.name), FieldValue::text(s.qml),
+               FieldValue::text(""), FieldValue::integer(s.is_default ? 1 : 0),
+               FieldValue::text(s.description), FieldValue::text("isoquad"), FieldValue::text(""),
+               FieldValue::text("2000-01-01T00:00:00Z")});
+  }
   w.commit();
 }
 
-void write_vtu_mesh(const QuadMesh& m, const QuadMetrics& q, const MeshOutput& out) {
+void write_vtu_mesh(const MeshView& mv, const std::string& path) {
+  const QuadMetrics& q = *mv.data->metrics;
   VtuMesh v;
-  v.points = &m.points;
-  for (const auto& t : m.quads) v.cells.push_back({t[0], t[1], t[2], t[3]});
+  v.points = &mv.points;
+  for (const auto& t : mv.data->mesh->quads) v.cells.push_back({t[0], t[1], t[2], t[3]});
   std::vector<double> degree(q.degree.begin(), q.degree.end());
   v.point_data = {{"degree", degree}};
+  if (!mv.data->depth.empty()) v.point_data.push_back({"depth", mv.data->depth});
   v.cell_data = {{"size_ratio", q.size_ratio},
                  {"orientation_deg", q.orientation_deg},
                  {"min_angle_deg", q.min_angle_deg},
-                 {"max_angle_deg", q.max_angle_deg}};
-  write_vtu(v, out.path, out.overwrite);
+                 {"max_angle_deg", q.max_angle_deg},
+                 {"eta", q.eta}};
+  write_vtu(v, path, true);
 }
 
 }  // namespace
 
-void check_mesh_output_format(const std::string& path) {
-  const std::string ext = extension(path);
-  if (ext != ".gpkg" && ext != ".vtu")
+MeshFormat mesh_output_format(const MeshOutput& out) {
+  const std::string ext = lower(std::filesystem::path(out.path).extension().string());
+  const std::string name = out.format.empty() ? (ext.empty() ? "" : ext.substr(1)) : lower(out.format);
+  const auto it = format_names().find(name);
+  if (it == format_names().end())
     throw Error(ErrorClass::usage, "options",
-                "'" + path + "': unknown mesh format '" + ext + "'; use .gpkg or .vtu");
+                out.format.empty()
+                    ? "'" + out.path + "': unknown mesh format '" + ext +
+                          "'; use .gpkg, .vtu, .vtk, .msh, .gr3 or .nc (or --output-format)"
+                    : "unknown --output-format '" + out.format +
+                          "'; use gpkg, vtu, vtk, msh, gr3 or nc");
+  return it->second;
 }
 
-void write_mesh(const QuadMesh& m, const QuadMetrics& q, const std::string& crs_wkt,
-                const MeshOutput& out) {
-  check_mesh_output_format(out.path);
-  if (extension(out.path) == ".gpkg")
-    write_gpkg(m, q, crs_wkt, out);
-  else
-    write_vtu_mesh(m, q, out);
+std::vector<std::string> mesh_output_files(const MeshOutput& out) {
+  if (mesh_output_format(out) == MeshFormat::gr3) return {out.path, companion_ll(out.path)};
+  return {out.path};
+}
+
+void check_mesh_output_format(const std::string& path) { mesh_output_format(MeshOutput{path, "", false}); }
+
+void check_mesh_outputs(const std::vector<MeshOutput>& outputs, const MeshWriteOptions& options) {
+  if (outputs.empty()) throw Error(ErrorClass::usage, "options", "no output: give -o FILE");
+  if (options.msh_version != "4.1" && options.msh_version != "2.2")
+    throw Error(ErrorClass::usage, "options", "--msh-version must be 4.1 or 2.2");
+  if (!options.output_crs.empty()) parse_crs(options.output_crs, "--output-crs");
+  OutputSet probe;  // checks every path (exists, directory writable, given twice)
+  for (const MeshOutput& o : outputs)
+    for (const std::string& f : mesh_output_files(o)) probe.add(f, o.overwrite);
+}
+
+void write_mesh_outputs(const MeshOutputData& data, const std::vector<MeshOutput>& outputs,
+                        const MeshWriteOptions& options) {
+  OutputSet set;
+  write_mesh_outputs(data, outputs, options, set);
+  set.commit_all();
+}
+
+void write_mesh_outputs(const MeshOutputData& data, const std::vector<MeshOutput>& outputs,
+                        const MeshWriteOptions& options, OutputSet& set) {
+  check_mesh_outputs(outputs, options);
+  MeshView native;
+  native.data = &data;
+  native.points = data.mesh->points;
+  native.crs_wkt = data.crs_wkt;
+  MeshView reprojected;
+  const MeshView* view = &native;
+  if (!options.output_crs.empty()) {
+    const CrsInfo to = parse_crs(options.output_crs, "--output-crs");
+    reprojected = native;
+    reprojected.crs_wkt = to.wkt;
+    reprojected.geographic = to.geographic;
+    CrsTransform t(CrsInfo{data.crs_wkt, "mesh CRS"}, to);
+    const long bad = t.transform(reprojected.points);
+    if (bad >= 0)
+      throw Error(ErrorClass::crs, "write",
+                  "vertex " + format_point(native.points[bad]) + " cannot be transformed to '" +
+                      to.name + "' (--output-crs)");
+    view = &reprojected;
+  }
+  std::vector<Point2> lonlat;
+  for (const MeshOutput& o : outputs) {
+    const MeshFormat fmt = mesh_output_format(o);
+    const std::string tmp = set.add(o.path, o.overwrite);
+    switch (fmt) {
+      case MeshFormat::gpkg: write_gpkg(*view, tmp, o.path); break;
+      case MeshFormat::vtu: write_vtu_mesh(*view, tmp); break;
+      case MeshFormat::vtk: write_vtk_legacy_file(*view, tmp, o.path); break;
+      case MeshFormat::msh: write_msh_file(*view, tmp, o.path, options.msh_version); break;
+      case MeshFormat::nc: write_ugrid_file(*view, tmp, o.path); break;
+      case MeshFormat::gr3: {
+        write_gr3_file(native, native.points, tmp, o.path);
+        if (lonlat.empty()) {
+          lonlat = native.points;
+          CrsTransform t(CrsInfo{data.crs_wkt, "mesh CRS"}, parse_crs("EPSG:4326", "hgrid.ll"));
+          const long bad = t.transform(lonlat);
+          if (bad >= 0)
+            throw Error(ErrorClass::crs, "write",
+                        "vertex " + format_point(native.points[bad]) + " has no longitude and latitude");
+        }
+        MeshView ll = native;
+        ll.geographic = true;
+        const std::string ll_path = companion_ll(o.path);
+        write_gr3_file(ll, lonlat, set.add(ll_path, o.overwrite), ll_path);
+        break;
+      }
+    }
+  }
+}
+
+void write_mesh(const QuadMesh& mesh, const QuadMetrics& metrics, const std::string& crs_wkt,
+                const MeshOutput& output) {
+  MeshOutputData d;
+  d.mesh = &mesh;
+  d.metrics = &metrics;
+  d.crs_wkt = crs_wkt;
+  d.boundary = extract_boundary(mesh, std::nullopt, 0.0);
+  write_mesh_outputs(d, {output});
 }
 
 }  // namespace isoquad

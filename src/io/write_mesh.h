@@ -1,26 +1,73 @@
-// Writers of the quad mesh: GeoPackage (layers `quads` with per-quad metrics and
-// `vertices` with degree) and VTK XML (.vtu, cell data size ratio, orientation
-// deviation, min and max angle; point data degree), chosen by extension.
+// Writers of the quad mesh, chosen by extension or by name (--output-format):
+//   gpkg  GeoPackage: layers `quads` (per-quad metrics), `vertices` (degree, depth),
+//         `boundary` (lines with kind open/land), table `metadata`, QGIS styles in
+//         `layer_styles`;
+//   vtu   VTK XML unstructured grid; vtk: legacy VTK (ASCII);
+//   msh   Gmsh 4.1 ASCII (or 2.2), physical groups land (1), open (2), domain (3);
+//   gr3   SCHISM hgrid.gr3 (quads, depth positive down, open and land boundaries) and its
+//         lon/lat companion (same name, extension .ll);
+//   nc    UGRID-1.0 netCDF.
+// Several outputs are written as one transaction (gis/atomic_output.h: OutputSet).
 #pragma once
 
 #include <string>
+#include <vector>
 
+#include "gis/atomic_output.h"
+#include "io/mesh_boundary.h"
 #include "quad/quad_mesh.h"
 #include "quad/quad_quality.h"
 
 namespace isoquad {
 
+enum class MeshFormat { gpkg, vtu, vtk, msh, gr3, nc };
+
 struct MeshOutput {
   std::string path;
+  std::string format;  // gpkg, vtu, vtk, msh, gr3, nc; empty: by the path's extension
   bool overwrite = false;
 };
 
-// Throws Error(usage) for an unknown extension, Error(output) when writing fails. The
-// file is written atomically.
+// What is written besides the mesh itself.
+struct MeshOutputData {
+  const QuadMesh* mesh = nullptr;
+  const QuadMetrics* metrics = nullptr;
+  std::string crs_wkt;         // the mesh's (meshing) CRS
+  MeshBoundary boundary;       // extract_boundary()
+  std::vector<double> depth;   // #P metres, positive down; empty: unknown (written as 0)
+  // GeoPackage metadata.
+  std::string command_line;
+  std::vector<std::pair<std::string, std::string>> quality;  // name, value
+};
+
+struct MeshWriteOptions {
+  std::string msh_version = "4.1";  // or "2.2"
+  // Writes coordinates in this CRS (anything parse_crs accepts); empty: the mesh's CRS.
+  // Applies to every format but gr3, which is in the mesh's CRS (its .ll in lon/lat).
+  std::string output_crs;
+  std::string styles_dir;  // folder of the QGIS .qml styles embedded in GeoPackages
+};
+
+// The format of an output (Error(usage) for an unknown extension or format name).
+MeshFormat mesh_output_format(const MeshOutput& output);
+// Every file an output writes (gr3: also the .ll companion).
+std::vector<std::string> mesh_output_files(const MeshOutput& output);
+// Fails early (Error(usage) or Error(output)) for an unknown format or an output that
+// cannot be written. Call before any long work.
+void check_mesh_outputs(const std::vector<MeshOutput>& outputs, const MeshWriteOptions& options);
+// Fails early for an extension write_mesh does not know.
+void check_mesh_output_format(const std::string& path);
+
+// Writes every output, all or none. Throws Error(usage|crs|output).
+void write_mesh_outputs(const MeshOutputData& data, const std::vector<MeshOutput>& outputs,
+                        const MeshWriteOptions& options = MeshWriteOptions());
+// The same, adding the outputs to `set`, whose commit_all() the caller calls (so that
+// other outputs of the run, e.g. a plot or a report, join the same all-or-nothing set).
+void write_mesh_outputs(const MeshOutputData& data, const std::vector<MeshOutput>& outputs,
+                        const MeshWriteOptions& options, OutputSet& set);
+
+// One output, land boundary only, no depth (kept for simple callers).
 void write_mesh(const QuadMesh& mesh, const QuadMetrics& metrics, const std::string& crs_wkt,
                 const MeshOutput& output);
-
-// Fails early (Error(usage)) for an extension write_mesh does not know.
-void check_mesh_output_format(const std::string& path);
 
 }  // namespace isoquad

@@ -1,0 +1,116 @@
+#include "io/mesh_boundary.h"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include "core/error.h"
+
+namespace isoquad {
+
+namespace {
+
+double distance_to_segment(const Point2& p, const Point2& a, const Point2& b) {
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double len2 = dx * dx + dy * dy;
+  double t = len2 > 0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return std::hypot(p.x - (a.x + t * dx), p.y - (a.y + t * dy));
+}
+
+bool near_ring(const Point2& p, const Ring& ring, double tol) {
+  for (std::size_t i = 0; i < ring.size(); ++i)
+    if (distance_to_segment(p, ring[i], ring[(i + 1) % ring.size()]) <= tol) return true;
+  return false;
+}
+
+}  // namespace
+
+const char* boundary_kind_name(BoundaryKind k) { return k == BoundaryKind::open ? "open" : "land"; }
+
+MeshBoundary extract_boundary(const QuadMesh& mesh, const std::optional<Ring>& open_ring,
+                              double tolerance_m) {
+  // Directed edges of the counter-clockwise quads; a boundary edge has no twin.
+  std::map<std::pair<int, int>, int> count;
+  for (const auto& q : mesh.quads)
+    for (int i = 0; i < 4; ++i) ++count[{q[i], q[(i + 1) % 4]}];
+  std::map<int, int> next;
+  for (const auto& [e, n] : count) {
+    if (count.count({e.second, e.first})) continue;
+    if (n != 1 || !next.emplace(e.first, e.second).second)
+      throw Error(ErrorClass::internal, "write",
+                  "the mesh boundary is not a set of simple loops at vertex " +
+                      std::to_string(e.first));
+  }
+  MeshBoundary b;
+  std::vector<char> on_open(mesh.points.size(), 0);
+  if (open_ring && open_ring->size() >= 2)
+    for (const auto& [v, w] : next) {
+      (void)w;
+      on_open[v] = near_ring(mesh.points[v], *open_ring, tolerance_m);
+    }
+  std::map<int, char> seen;
+  for (const auto& [start, w] : next) {  // increasing vertex id: deterministic order
+    (void)w;
+    if (seen.count(start)) continue;
+    std::vector<int> loop;
+    int v = start;
+    do {
+      seen[v] = 1;
+      loop.push_back(v);
+      auto it = next.find(v);
+      if (it == next.end())
+        throw Error(ErrorClass::internal, "write", "an open boundary chain in the mesh");
+      v = it->second;
+    } while (v != start && !seen.count(v));
+    if (v != start) throw Error(ErrorClass::internal, "write", "a boundary loop does not close");
+    std::vector<BoundaryKind> kinds(loop.size(), BoundaryKind::land);
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const int a = loop[i], c = loop[(i + 1) % loop.size()];
+      const Point2 mid{0.5 * (mesh.points[a].x + mesh.points[c].x),
+                       0.5 * (mesh.points[a].y + mesh.points[c].y)};
+      if (on_open[a] && on_open[c] && near_ring(mid, *open_ring, tolerance_m))
+        kinds[i] = BoundaryKind::open;
+      ++(kinds[i] == BoundaryKind::open ? b.num_open_edges : b.num_land_edges);
+    }
+    b.loops.push_back(std::move(loop));
+    b.edge_kind.push_back(std::move(kinds));
+  }
+  for (std::size_t l = 0; l < b.loops.size(); ++l) {
+    const auto& loop = b.loops[l];
+    const auto& kinds = b.edge_kind[l];
+    Ring ring;
+    for (int v : loop) ring.push_back(mesh.points[v]);
+    const bool island = signed_area(ring) < 0;
+    const std::size_t n = loop.size();
+    std::size_t first = n;  // an edge where the kind changes from the previous edge
+    for (std::size_t i = 0; i < n; ++i)
+      if (kinds[i] != kinds[(i + n - 1) % n]) { first = i; break; }
+    if (first == n) {
+      BoundarySegment s;
+      s.nodes = loop;
+      s.kind = kinds[0];
+      s.closed = true;
+      s.island = island;
+      s.loop = static_cast<int>(l);
+      b.segments.push_back(std::move(s));
+      continue;
+    }
+    for (std::size_t k = 0; k < n;) {
+      const std::size_t i0 = (first + k) % n;
+      BoundarySegment s;
+      s.kind = kinds[i0];
+      s.island = island;
+      s.loop = static_cast<int>(l);
+      s.nodes.push_back(loop[i0]);
+      while (k < n && kinds[(first + k) % n] == s.kind) {
+        s.nodes.push_back(loop[(first + k + 1) % n]);
+        ++k;
+      }
+      b.segments.push_back(std::move(s));
+    }
+  }
+  return b;
+}
+
+}  // namespace isoquad

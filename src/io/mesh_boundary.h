@@ -1,0 +1,46 @@
+// The boundary of a quad mesh as closed loops of boundary edges, each edge flagged
+// `open` (on the bbox of a water domain: the sea boundary of an ocean model) or `land`
+// (a coastline), and cut into segments of one kind, as SCHISM and Gmsh want them.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "core/geometry.h"
+#include "quad/quad_mesh.h"
+
+namespace isoquad {
+
+enum class BoundaryKind { land, open };
+
+const char* boundary_kind_name(BoundaryKind k);  // "land" or "open"
+
+// A run of boundary edges of one kind: nodes[i] -> nodes[i+1], domain on the left. A
+// whole loop of one kind is one closed segment (last node not repeated).
+struct BoundarySegment {
+  std::vector<int> nodes;
+  BoundaryKind kind = BoundaryKind::land;
+  bool closed = false;  // a whole loop
+  bool island = false;  // on a clockwise loop (a hole of the domain)
+  int loop = -1;
+};
+
+struct MeshBoundary {
+  // Closed loops of boundary vertex ids (first not repeated), domain on the left: outer
+  // loops counter-clockwise, holes clockwise. Loop and start vertex are deterministic
+  // (ordered by their smallest vertex id).
+  std::vector<std::vector<int>> loops;
+  // loops[l][i] -> loops[l][i+1] kind.
+  std::vector<std::vector<BoundaryKind>> edge_kind;
+  std::vector<BoundarySegment> segments;  // loop by loop
+  std::size_t num_open_edges = 0, num_land_edges = 0;
+};
+
+// `open_ring`: a closed polyline (meshing CRS) whose neighbourhood within `tolerance_m`
+// is open boundary; an edge is open when both its ends and its midpoint are that close.
+// Without it every edge is land. Throws Error(internal) when the boundary is not a set of
+// simple loops.
+MeshBoundary extract_boundary(const QuadMesh& mesh, const std::optional<Ring>& open_ring,
+                              double tolerance_m);
+
+}  // namespace isoquad

@@ -1,0 +1,29 @@
+// The format writers behind write_mesh_outputs (internal to src/io). Each writes to the
+// temporary path it is given; the caller moves it into place.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/write_mesh.h"
+
+namespace isoquad {
+
+// The mesh with its coordinates in the output CRS.
+struct MeshView {
+  const MeshOutputData* data = nullptr;
+  std::vector<Point2> points;  // #P output coordinates
+  std::string crs_wkt;
+  bool geographic = false;     // lon/lat degrees
+};
+
+// The `what` path is the final name, for messages.
+void write_msh_file(const MeshView& v, const std::string& path, const std::string& what,
+                    const std::string& version);
+// `ll` is `points` in lon/lat (EPSG:4326).
+void write_gr3_file(const MeshView& v, const std::vector<Point2>& points,
+                    const std::string& path, const std::string& what);
+void write_vtk_legacy_file(const MeshView& v, const std::string& path, const std::string& what);
+void write_ugrid_file(const MeshView& v, const std::string& path, const std::string& what);
+
+}  // namespace isoquad

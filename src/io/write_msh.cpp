@@ -1,0 +1,102 @@
+// Gmsh MSH 4.1 and 2.2 ASCII: one surface (the domain), one curve per boundary segment,
+// physical groups land (1), open (2) and domain (3).
+#include <cstdio>
+#include <fstream>
+#include <iomanip>
+#include <limits>
+
+#include "core/error.h"
+#include "io/mesh_formats.h"
+
+namespace isoquad {
+
+namespace {
+
+constexpr int kLand = 1, kOpen = 2, kDomain = 3;
+
+int physical_of(BoundaryKind k) { return k == BoundaryKind::open ? kOpen : kLand; }
+
+// The edges (node pairs, 0-based) of a segment.
+std::vector<std::array<int, 2>> segment_edges(const BoundarySegment& s) {
+  std::vector<std::array<int, 2>> e;
+  for (std::size_t i = 0; i + 1 < s.nodes.size(); ++i) e.push_back({s.nodes[i], s.nodes[i + 1]});
+  if (s.closed && s.nodes.size() > 1) e.push_back({s.nodes.back(), s.nodes.front()});
+  return e;
+}
+
+struct Box {
+  double x0 = std::numeric_limits<double>::max(), y0 = x0, x1 = -x0, y1 = -x0;
+  void add(const Point2& p) {
+    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  }
+};
+
+}  // namespace
+
+void write_msh_file(const MeshView& v, const std::string& path, const std::string& what,
+                    const std::string& version) {
+  if (version != "4.1" && version != "2.2")
+    throw Error(ErrorClass::usage, "options", "--msh-version must be 4.1 or 2.2");
+  const QuadMesh& m = *v.data->mesh;
+  const auto& segs = v.data->boundary.segments;
+  std::ofstream f(path);
+  f << std::setprecision(17);
+  bool has[3] = {false, false, false};
+  for (const auto& s : segs) has[physical_of(s.kind)] = true;
+  f << "$MeshFormat\n" << version << " 0 8\n$EndMeshFormat\n";
+  f << "$PhysicalNames\n" << (1 + has[kLand] + has[kOpen]) << "\n";
+  if (has[kLand]) f << "1 " << kLand << " \"land\"\n";
+  if (has[kOpen]) f << "1 " << kOpen << " \"open\"\n";
+  f << "2 " << kDomain << " \"domain\"\n$EndPhysicalNames\n";
+  const std::size_t np = m.points.size(), nq = m.quads.size();
+  std::size_t nl = 0;
+  for (const auto& s : segs) nl += segment_edges(s).size();
+  if (version == "2.2") {
+    f << "$Nodes\n" << np << "\n";
+    for (std::size_t i = 0; i < np; ++i)
+      f << i + 1 << " " << v.points[i].x << " " << v.points[i].y << " 0\n";
+    f << "$EndNodes\n$Elements\n" << nl + nq << "\n";
+    std::size_t id = 1;
+    for (std::size_t c = 0; c < segs.size(); ++c)
+      for (const auto& e : segment_edges(segs[c]))
+        f << id++ << " 1 2 " << physical_of(segs[c].kind) << " " << c + 1 << " " << e[0] + 1 << " "
+          << e[1] + 1 << "\n";
+    for (const auto& q : m.quads)
+      f << id++ << " 3 2 " << kDomain << " 1 " << q[0] + 1 << " " << q[1] + 1 << " " << q[2] + 1
+        << " " << q[3] + 1 << "\n";
+    f << "$EndElements\n";
+  } else {
+    Box all;
+    for (const Point2& p : v.points) all.add(p);
+    f << "$Entities\n0 " << segs.size() << " 1 0\n";
+    for (std::size_t c = 0; c < segs.size(); ++c) {
+      Box b;
+      for (int n : segs[c].nodes) b.add(v.points[n]);
+      f << c + 1 << " " << b.x0 << " " << b.y0 << " 0 " << b.x1 << " " << b.y1 << " 0 1 "
+        << physical_of(segs[c].kind) << " 0\n";
+    }
+    f << "1 " << all.x0 << " " << all.y0 << " 0 " << all.x1 << " " << all.y1 << " 0 1 " << kDomain
+      << " " << segs.size();
+    for (std::size_t c = 0; c < segs.size(); ++c) f << " " << c + 1;
+    f << "\n$EndEntities\n";
+    f << "$Nodes\n1 " << np << " 1 " << np << "\n2 1 0 " << np << "\n";
+    for (std::size_t i = 0; i < np; ++i) f << i + 1 << "\n";
+    for (std::size_t i = 0; i < np; ++i) f << v.points[i].x << " " << v.points[i].y << " 0\n";
+    f << "$EndNodes\n";
+    f << "$Elements\n" << segs.size() + 1 << " " << nl + nq << " 1 " << nl + nq << "\n";
+    std::size_t id = 1;
+    for (std::size_t c = 0; c < segs.size(); ++c) {
+      const auto edges = segment_edges(segs[c]);
+      f << "1 " << c + 1 << " 1 " << edges.size() << "\n";
+      for (const auto& e : edges) f << id++ << " " << e[0] + 1 << " " << e[1] + 1 << "\n";
+    }
+    f << "2 1 3 " << nq << "\n";
+    for (const auto& q : m.quads)
+      f << id++ << " " << q[0] + 1 << " " << q[1] + 1 << " " << q[2] + 1 << " " << q[3] + 1 << "\n";
+    f << "$EndElements\n";
+  }
+  f.close();
+  if (!f) throw Error(ErrorClass::output, "write", "'" + what + "': cannot write");
+}
+
+}  // namespace isoquad

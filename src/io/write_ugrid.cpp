@@ -1,0 +1,165 @@
+// UGRID-1.0 netCDF (CF-1.8): mesh topology variable `mesh` with node coordinates, face
+// node connectivity (0-based, fill value -1), edge node connectivity, the CRS as a
+// grid-mapping variable, per-face metrics and depth on nodes when known.
+#include <netcdf.h>
+
+#include <map>
+
+#include "core/error.h"
+#include "io/mesh_formats.h"
+
+namespace isoquad {
+
+namespace {
+
+class NcFile {
+ public:
+  NcFile(const std::string& path, std::string what) : what_(std::move(what)) {
+    check(nc_create(path.c_str(), NC_CLOBBER | NC_NETCDF4, &id_), "cannot create");
+  }
+  ~NcFile() {
+    if (id_ >= 0) nc_close(id_);
+  }
+  void check(int status, const std::string& doing) const {
+    if (status != NC_NOERR)
+      throw Error(ErrorClass::output, "write", "'" + what_ + "': " + doing + ": " + nc_strerror(status));
+  }
+  int dim(const char* name, std::size_t n) {
+    int d = -1;
+    check(nc_def_dim(id_, name, n, &d), std::string("dimension ") + name);
+    return d;
+  }
+  int var(const char* name, nc_type type, std::vector<int> dims) {
+    int v = -1;
+    check(nc_def_var(id_, name, type, static_cast<int>(dims.size()), dims.data(), &v),
+          std::string("variable ") + name);
+    return v;
+  }
+  void text(int var, const char* name, const std::string& value) {
+    check(nc_put_att_text(id_, var, name, value.size(), value.c_str()), std::string("attribute ") + name);
+  }
+  void integer(int var, const char* name, int value) {
+    check(nc_put_att_int(id_, var, name, NC_INT, 1, &value), std::string("attribute ") + name);
+  }
+  void close() {
+    const int id = id_;
+    id_ = -1;
+    check(nc_close(id), "cannot finish");
+  }
+  int id() const { return id_; }
+
+ private:
+  int id_ = -1;
+  std::string what_;
+};
+
+}  // namespace
+
+void write_ugrid_file(const MeshView& v, const std::string& path, const std::string& what) {
+  const QuadMesh& m = *v.data->mesh;
+  const QuadMetrics& q = *v.data->metrics;
+  // Unique edges, in order of first appearance around the quads.
+  std::map<std::pair<int, int>, int> edge_id;
+  std::vector<int> edges;
+  for (const auto& c : m.quads)
+    for (int i = 0; i < 4; ++i) {
+      const int a = c[i], b = c[(i + 1) % 4];
+      if (edge_id.emplace(std::make_pair(std::min(a, b), std::max(a, b)), int(edges.size() / 2)).second) {
+        edges.push_back(a);
+        edges.push_back(b);
+      }
+    }
+  NcFile nc(path, what);
+  const int g = NC_GLOBAL;
+  nc.text(g, "Conventions", "CF-1.8 UGRID-1.0");
+  nc.text(g, "title", "isoquad quad mesh");
+  nc.text(g, "source", std::string("isoquad ") + ISOQUAD_VERSION);
+  if (!v.data->command_line.empty()) nc.text(g, "history", v.data->command_line);
+  const int dn = nc.dim("n_node", m.points.size());
+  const int df = nc.dim("n_face", m.quads.size());
+  const int de = nc.dim("n_edge", edges.size() / 2);
+  const int d2 = nc.dim("two", 2);
+  const int d4 = nc.dim("max_face_nodes", 4);
+
+  const int mesh = nc.var("mesh", NC_INT, {});
+  nc.text(mesh, "cf_role", "mesh_topology");
+  nc.text(mesh, "long_name", "Topology data of 2D unstructured mesh");
+  nc.integer(mesh, "topology_dimension", 2);
+  nc.text(mesh, "node_coordinates", "mesh_node_x mesh_node_y");
+  nc.text(mesh, "face_node_connectivity", "mesh_face_nodes");
+  nc.text(mesh, "face_dimension", "n_face");
+  nc.text(mesh, "edge_node_connectivity", "mesh_edge_nodes");
+  nc.text(mesh, "edge_dimension", "n_edge");
+
+  const int crs = nc.var("crs", NC_INT, {});
+  nc.text(crs, "crs_wkt", v.crs_wkt);
+  nc.text(crs, "spatial_ref", v.crs_wkt);
+
+  const int vx = nc.var("mesh_node_x", NC_DOUBLE, {dn});
+  const int vy = nc.var("mesh_node_y", NC_DOUBLE, {dn});
+  nc.text(vx, "standard_name", v.geographic ? "longitude" : "projection_x_coordinate");
+  nc.text(vy, "standard_name", v.geographic ? "latitude" : "projection_y_coordinate");
+  nc.text(vx, "units", v.geographic ? "degrees_east" : "m");
+  nc.text(vy, "units", v.geographic ? "degrees_north" : "m");
+  nc.text(vx, "mesh", "mesh");
+  nc.text(vy, "mesh", "mesh");
+  nc.text(vx, "location", "node");
+  nc.text(vy, "location", "node");
+  nc.text(vx, "grid_mapping", "crs");
+  nc.text(vy, "grid_mapping", "crs");
+
+  const int vf = nc.var("mesh_face_nodes", NC_INT, {df, d4});
+  nc.text(vf, "cf_role", "face_node_connectivity");
+  nc.text(vf, "long_name", "Maps every face to its corner nodes (counter-clockwise)");
+  nc.integer(vf, "start_index", 0);
+  const int fill = -1;
+  nc.check(nc_def_var_fill(nc.id(), vf, 0, &fill), "fill value");
+  const int ve = nc.var("mesh_edge_nodes", NC_INT, {de, d2});
+  nc.text(ve, "cf_role", "edge_node_connectivity");
+  nc.text(ve, "long_name", "Maps every edge to the two nodes it connects");
+  nc.integer(ve, "start_index", 0);
+
+  struct FaceVar {
+    const char* name;
+    const std::vector<double>* values;
+    const char* units;
+    int id = -1;
+  };
+  std::vector<FaceVar> face_vars = {{"size_ratio", &q.size_ratio, "1"},
+                                    {"orientation_deg", &q.orientation_deg, "degree"},
+                                    {"min_angle_deg", &q.min_angle_deg, "degree"},
+                                    {"max_angle_deg", &q.max_angle_deg, "degree"},
+                                    {"eta", &q.eta, "1"}};
+  for (FaceVar& fv : face_vars) {
+    fv.id = nc.var(fv.name, NC_DOUBLE, {df});
+    nc.text(fv.id, "mesh", "mesh");
+    nc.text(fv.id, "location", "face");
+    nc.text(fv.id, "units", fv.units);
+  }
+  int vd = -1;
+  if (!v.data->depth.empty()) {
+    vd = nc.var("depth", NC_DOUBLE, {dn});
+    nc.text(vd, "standard_name", "sea_floor_depth_below_geoid");
+    nc.text(vd, "units", "m");
+    nc.text(vd, "positive", "down");
+    nc.text(vd, "mesh", "mesh");
+    nc.text(vd, "location", "node");
+    nc.text(vd, "grid_mapping", "crs");
+  }
+  nc.check(nc_enddef(nc.id()), "cannot finish the header");
+
+  std::vector<double> xs, ys;
+  for (const Point2& p : v.points) xs.push_back(p.x), ys.push_back(p.y);
+  nc.check(nc_put_var_double(nc.id(), vx, xs.data()), "node x");
+  nc.check(nc_put_var_double(nc.id(), vy, ys.data()), "node y");
+  std::vector<int> faces;
+  for (const auto& c : m.quads) faces.insert(faces.end(), c.begin(), c.end());
+  if (!faces.empty()) nc.check(nc_put_var_int(nc.id(), vf, faces.data()), "faces");
+  if (!edges.empty()) nc.check(nc_put_var_int(nc.id(), ve, edges.data()), "edges");
+  for (const FaceVar& fv : face_vars)
+    if (!fv.values->empty()) nc.check(nc_put_var_double(nc.id(), fv.id, fv.values->data()), fv.name);
+  if (vd >= 0) nc.check(nc_put_var_double(nc.id(), vd, v.data->depth.data()), "depth");
+  nc.close();
+}
+
+}  // namespace isoquad

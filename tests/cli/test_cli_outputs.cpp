@@ -1,0 +1,374 @@
+// `isoquad mesh` with every output format in one run, on a small water domain (a bbox
+// of sea with an island and a peninsula that crosses the bbox's east side), read back
+// by real readers: GDAL (GeoPackage layers, CRS, counts, styles, metadata), the gmsh
+// binary, meshio (legacy VTK), python3-netcdf4 (UGRID) and our SCHISM parser; open
+// boundary edges on the bbox, depths from a bathymetry raster, all-or-nothing outputs.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include "gis/gdal_env.h"
+#include "support/test_support.h"
+
+using namespace isoquad::test;
+
+namespace {
+
+const double kBox[4] = {-4.6, 48.2, -4.4, 48.35};
+
+std::string water_input(const TempDir& d) {
+  const std::string path = d.file("land.geojson");
+  write_file(path, geojson_polygons({"[[[-4.45,48.25],[-4.3,48.25],[-4.3,48.3],[-4.45,48.3],[-4.45,48.25]]]",
+                                     "[[[-4.55,48.22],[-4.52,48.22],[-4.52,48.25],[-4.55,48.25],[-4.55,48.22]]]"}));
+  return path;
+}
+
+double depth_at(double lon, double lat) { return 1000.0 * (lon + 4.7) + 200.0 * (lat - 48.1); }
+
+// A GeoTIFF in lon/lat, depth linear in lon and lat (so bilinear sampling is exact).
+std::string bathymetry(const TempDir& d) {
+  isoquad::ensure_gdal_registered();
+  const std::string path = d.file("dem.tif");
+  GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
+  const int nx = 40, ny = 35;
+  GDALDataset* ds = drv->Create(path.c_str(), nx, ny, 1, GDT_Float32, nullptr);
+  double gt[6] = {-4.7, 0.01, 0, 48.45, 0, -0.01};
+  ds->SetGeoTransform(gt);
+  OGRSpatialReference srs;
+  srs.importFromEPSG(4326);
+  ds->SetSpatialRef(&srs);
+  std::vector<float> v(nx * ny);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      v[j * nx + i] = static_cast<float>(depth_at(gt[0] + (i + 0.5) * gt[1], gt[3] + (j + 0.5) * gt[5]));
+  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, nx, ny, v.data(), nx, ny, GDT_Float32, 0, 0),
+            CE_None);
+  GDALClose(ds);
+  return path;
+}
+
+struct Gr3 {
+  std::vector<std::array<double, 3>> nodes;
+  std::size_t num_elements = 0;
+  std::vector<std::vector<int>> open, land;
+  std::vector<int> land_flags;
+};
+
+Gr3 parse_gr3(const std::string& path) {
+  std::istringstream in(read_file(path));
+  Gr3 g;
+  std::string line;
+  std::getline(in, line);
+  std::size_t ne = 0, np = 0;
+  in >> ne >> np;
+  g.num_elements = ne;
+  for (std::size_t i = 0; i < np; ++i) {
+    int id;
+    std::array<double, 3> n;
+    in >> id >> n[0] >> n[1] >> n[2];
+    g.nodes.push_back(n);
+  }
+  for (std::size_t e = 0; e < ne; ++e) {
+    int id, k, v;
+    in >> id >> k;
+    EXPECT_EQ(k, 4);
+    for (int i = 0; i < k; ++i) in >> v;
+  }
+  std::size_t n = 0, total = 0;
+  in >> n;
+  std::getline(in, line);
+  in >> total;
+  std::getline(in, line);
+  for (std::size_t s = 0; s < n; ++s) {
+    std::size_t m = 0;
+    in >> m;
+    std::getline(in, line);
+    std::vector<int> seg(m);
+    for (int& v : seg) in >> v;
+    g.open.push_back(seg);
+  }
+  in >> n;
+  std::getline(in, line);
+  in >> total;
+  std::getline(in, line);
+  for (std::size_t s = 0; s < n; ++s) {
+    std::size_t m = 0;
+    int flag = -1;
+    in >> m >> flag;
+    std::getline(in, line);
+    std::vector<int> seg(m);
+    for (int& v : seg) in >> v;
+    g.land.push_back(seg);
+    g.land_flags.push_back(flag);
+  }
+  EXPECT_FALSE(in.fail()) << path;
+  return g;
+}
+
+bool on_bbox(double lon, double lat, double tol) {
+  return std::abs(lon - kBox[0]) < tol || std::abs(lon - kBox[2]) < tol ||
+         std::abs(lat - kBox[1]) < tol || std::abs(lat - kBox[3]) < tol;
+}
+
+std::string run_python(const TempDir& dir, const std::string& script, const std::vector<std::string>& args) {
+  const std::string path = dir.file("check.py");
+  write_file(path, script);
+  std::vector<std::string> all = {path};
+  all.insert(all.end(), args.begin(), args.end());
+  const CliResult r = run_cli_program("/usr/bin/python3", all, dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
+  return r.out;
+}
+
+}  // namespace
+
+TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
+  TempDir dir;
+  const std::string input = water_input(dir);
+  const std::string dem = bathymetry(dir);
+  const CliResult r = run_cli(
+      {"mesh", input, "--domain", "water", "--bbox", "-4.6,48.2,-4.4,48.35", "--size", "800",
+       "--bathymetry", dem, "-o", dir.file("m.gpkg"), "-o", dir.file("m.msh"), "-o",
+       dir.file("hgrid.gr3"), "-o", dir.file("m.vtk"), "-o", dir.file("m.nc"), "-o",
+       dir.file("m.vtu"), "--output-crs", "EPSG:4326"},
+      dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;  // every vertex has a depth
+
+  // SCHISM: the projected grid and its lon/lat companion.
+  const Gr3 g = parse_gr3(dir.file("hgrid.gr3"));
+  const Gr3 ll = parse_gr3(dir.file("hgrid.ll"));
+  const std::size_t np = g.nodes.size(), ne = g.num_elements;
+  ASSERT_GT(ne, 100u);
+  ASSERT_EQ(ll.nodes.size(), np);
+  EXPECT_EQ(ll.open, g.open);
+  EXPECT_EQ(ll.land, g.land);
+  for (std::size_t i = 0; i < np; ++i) {
+    EXPECT_GT(std::abs(g.nodes[i][0]), 1.0);  // metres, not degrees
+    EXPECT_NEAR(ll.nodes[i][2], depth_at(ll.nodes[i][0], ll.nodes[i][1]), 0.01) << i;
+    EXPECT_EQ(g.nodes[i][2], ll.nodes[i][2]);
+  }
+  // One open segment (the peninsula cuts the east side off from the rest of the sea
+  // boundary only at its two ends), the mainland coast and the island (flag 1).
+  ASSERT_EQ(g.open.size(), 1u);
+  ASSERT_EQ(g.land.size(), 2u);
+  EXPECT_EQ(g.land_flags, (std::vector<int>{0, 1}));
+  // Within 1e-4 degrees (11 m): simplification (200 m here) keeps the bbox corners but
+  // may replace a curved parallel by chords.
+  for (int n : g.open[0]) EXPECT_TRUE(on_bbox(ll.nodes[n - 1][0], ll.nodes[n - 1][1], 1e-4)) << n;
+  for (const auto& seg : g.land) {
+    int inside = 0;
+    for (int n : seg) inside += !on_bbox(ll.nodes[n - 1][0], ll.nodes[n - 1][1], 1e-3);
+    EXPECT_GE(inside, static_cast<int>(seg.size()) - 2);  // at most the two ends on the bbox
+  }
+  // The open segment runs counter-clockwise (sea on its left) from where the peninsula's
+  // north coast meets the east side, round by north, west and south, to its south coast.
+  const auto& first = ll.nodes[g.open[0].front() - 1];
+  const auto& last = ll.nodes[g.open[0].back() - 1];
+  EXPECT_NEAR(first[0], -4.4, 1e-5);
+  EXPECT_NEAR(first[1], 48.3, 1e-6);
+  EXPECT_NEAR(last[0], -4.4, 1e-5);
+  EXPECT_NEAR(last[1], 48.25, 1e-6);
+
+  // GeoPackage through GDAL: layers, CRS (EPSG:4326 by --output-crs), counts, depth,
+  // boundary kinds, metadata, styles.
+  isoquad::ensure_gdal_registered();
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(dir.file("m.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  OGRLayer* quads = ds->GetLayerByName("quads");
+  OGRLayer* vertices = ds->GetLayerByName("vertices");
+  OGRLayer* boundary = ds->GetLayerByName("boundary");
+  OGRLayer* metadata = ds->GetLayerByName("metadata");
+  OGRLayer* styles = ds->GetLayerByName("layer_styles");
+  ASSERT_TRUE(quads && vertices && boundary && metadata && styles);
+  EXPECT_EQ(quads->GetFeatureCount(), static_cast<GIntBig>(ne));
+  EXPECT_EQ(vertices->GetFeatureCount(), static_cast<GIntBig>(np));
+  for (OGRLayer* l : {quads, vertices, boundary}) {
+    ASSERT_NE(l->GetSpatialRef(), nullptr);
+    EXPECT_STREQ(l->GetSpatialRef()->GetAuthorityCode(nullptr), "4326");
+  }
+  for (auto& f : *vertices) {
+    const OGRPoint* p = f->GetGeometryRef()->toPoint();
+    const int id = static_cast<int>(f->GetFieldAsInteger64("id"));
+    EXPECT_NEAR(p->getX(), ll.nodes[id][0], 1e-9);
+    EXPECT_NEAR(p->getY(), ll.nodes[id][1], 1e-9);
+    EXPECT_NEAR(f->GetFieldAsDouble("depth"), ll.nodes[id][2], 1e-5);
+  }
+  std::map<std::string, int> kinds;
+  for (auto& f : *boundary) {
+    const std::string kind = f->GetFieldAsString("kind");
+    ++kinds[kind];
+    const OGRLineString* line = f->GetGeometryRef()->toLineString();
+    if (kind == "open") {
+      for (int i = 0; i < line->getNumPoints(); ++i)
+        EXPECT_TRUE(on_bbox(line->getX(i), line->getY(i), 1e-4));
+    }
+  }
+  EXPECT_EQ(kinds["open"], 1);
+  EXPECT_EQ(kinds["land"], 2);
+  std::map<std::string, std::string> meta;
+  for (auto& f : *metadata) meta[f->GetFieldAsString("key")] = f->GetFieldAsString("value");
+  EXPECT_FALSE(meta["isoquad_version"].empty());
+  EXPECT_NE(meta["command_line"].find("--output-crs EPSG:4326"), std::string::npos);
+  EXPECT_NE(meta["crs_wkt"].find("WGS 84"), std::string::npos);
+  EXPECT_EQ(meta["quality.num_quads"], std::to_string(ne));
+  std::set<std::string> styled;
+  for (auto& f : *styles) {
+    const std::string qml = f->GetFieldAsString("styleQML");
+    EXPECT_NE(qml.find("<renderer-v2"), std::string::npos);
+    EXPECT_EQ(std::string(f->GetFieldAsString("f_geometry_column")), "geom");
+    if (f->GetFieldAsInteger("useAsDefault")) styled.insert(f->GetFieldAsString("f_table_name"));
+  }
+  EXPECT_EQ(styled, (std::set<std::string>{"quads", "vertices", "boundary"}));
+  GDALClose(ds);
+
+  // Gmsh reads the .msh; it writes it back as 2.2 with the same elements and groups.
+  const CliResult gm = run_cli_program(
+      "gmsh", {dir.file("m.msh"), "-0", "-format", "msh22", "-o", dir.file("re.msh")}, dir);
+  ASSERT_EQ(gm.exit_code, 0) << gm.out << gm.err;
+  std::istringstream in(read_file(dir.file("re.msh")));
+  std::string line;
+  std::map<std::pair<int, int>, std::size_t> count;
+  while (std::getline(in, line))
+    if (line == "$Elements") {
+      int n = 0;
+      in >> n;
+      for (int i = 0; i < n; ++i) {
+        int id, type, ntags, phys;
+        in >> id >> type >> ntags >> phys;
+        std::getline(in, line);
+        ++count[{type, phys}];
+      }
+    }
+  std::size_t open_edges = 0, land_edges = 0;
+  for (const auto& s : g.open) open_edges += s.size() - 1;
+  for (std::size_t s = 0; s < g.land.size(); ++s) land_edges += g.land[s].size() - (g.land_flags[s] ? 0 : 1);
+  EXPECT_EQ(count[std::make_pair(3, 3)], ne);
+  EXPECT_EQ(count[std::make_pair(1, 2)], open_edges);
+  EXPECT_EQ(count[std::make_pair(1, 1)], land_edges);
+
+  // Legacy VTK and VTU in meshio, UGRID in netCDF4: the same counts, lon/lat, depth.
+  run_python(dir,
+             "import sys, meshio, netCDF4, numpy as np\n"
+             "np_, ne = int(sys.argv[3]), int(sys.argv[4])\n"
+             "for f in sys.argv[1:3]:\n"
+             "    m = meshio.read(f)\n"
+             "    assert m.points.shape[0] == np_ and m.cells_dict['quad'].shape == (ne, 4), f\n"
+             "    assert -4.61 < m.points[:, 0].min() and m.points[:, 0].max() < -4.39, f\n"
+             "    assert np.ravel(m.point_data['depth']).min() > 100, f\n"
+             "d = netCDF4.Dataset(sys.argv[5])\n"
+             "assert d.dimensions['n_node'].size == np_ and d.dimensions['n_face'].size == ne\n"
+             "assert d['mesh_node_x'].standard_name == 'longitude'\n"
+             "assert 'WGS 84' in d['crs'].crs_wkt\n"
+             "assert d['mesh_face_nodes'][:].max() == np_ - 1\n",
+             {dir.file("m.vtk"), dir.file("m.vtu"), std::to_string(np), std::to_string(ne),
+              dir.file("m.nc")});
+}
+
+TEST(CliOutputs, UnwritableSecondOutputLeavesNothing) {
+  TempDir dir;
+  const std::string input = water_input(dir);
+  std::filesystem::create_directory(dir.file("locked"));
+  std::filesystem::permissions(dir.file("locked"), std::filesystem::perms::owner_read |
+                                                       std::filesystem::perms::owner_exec);
+  const std::vector<std::string> base = {"mesh", input, "--domain", "water", "--bbox",
+                                         "-4.6,48.2,-4.4,48.35", "--size", "800", "-q"};
+  auto run = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args, dir);
+  };
+  const std::set<std::string> before = {"land.geojson", "locked"};
+  auto entries = [&dir] {
+    const auto e = dir.entries();
+    return std::set<std::string>(e.begin(), e.end());
+  };
+  // A directory that does not exist, one that is not writable (unless we are root), a
+  // file given twice, an unknown format.
+  CliResult r = run({"-o", dir.file("a.gpkg"), "-o", dir.file("missing/b.msh")});
+  EXPECT_EQ(r.exit_code, 6) << r.err;
+  EXPECT_EQ(entries(), before);
+  if (access(dir.file("locked").c_str(), W_OK) != 0) {  // not root
+    r = run({"-o", dir.file("a.gpkg"), "-o", dir.file("locked/b.msh")});
+    EXPECT_EQ(r.exit_code, 6) << r.err;
+    EXPECT_EQ(entries(), before);
+  }
+  r = run({"-o", dir.file("a.gpkg"), "-o", dir.file("a.gpkg")});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(entries(), before);
+  r = run({"-o", dir.file("a.gpkg"), "-o", dir.file("b.shp")});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(entries(), before);
+  r = run({"-o", dir.file("a.gpkg"), "--output-format", "gpkg", "--output-format", "msh"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;  // two formats for one output
+  // The .ll companion exists: without --overwrite nothing is written.
+  write_file(dir.file("hgrid.ll"), "old");
+  r = run({"-o", dir.file("a.gpkg"), "-o", dir.file("hgrid.gr3")});
+  EXPECT_EQ(r.exit_code, 6) << r.err;
+  EXPECT_NE(r.err.find("hgrid.ll"), std::string::npos) << r.err;
+  EXPECT_EQ(entries(), (std::set<std::string>{"land.geojson", "locked", "hgrid.ll"}));
+  EXPECT_EQ(read_file(dir.file("hgrid.ll")), "old");
+  // --output-format by position, and --msh-version 2.2; the report joins the outputs.
+  r = run({"-o", dir.file("x.data"), "-o", dir.file("y.data"), "--output-format", "msh",
+           "--output-format", "vtk", "--msh-version", "2.2", "--report", dir.file("r.json")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_file(dir.file("r.json")).find("\"num_quads\""), std::string::npos);
+  EXPECT_EQ(read_file(dir.file("x.data")).substr(0, 20), "$MeshFormat\n2.2 0 8\n");
+  EXPECT_EQ(read_file(dir.file("y.data")).substr(0, 26), "# vtk DataFile Version 3.0");
+  std::filesystem::permissions(dir.file("locked"), std::filesystem::perms::owner_all);
+}
+
+// Acceptance: QGIS 3.22 (python3-qgis, headless) opens the GeoPackage with its embedded
+// styles and renders it; the PNG shows the size-conformance colours of styles/quads_size.qml
+// and the boundary colours of styles/boundary_kind.qml. Skipped without python3-qgis.
+TEST(CliOutputs, QgisRendersTheEmbeddedStyles) {
+  TempDir dir;
+  if (run_cli_program("/usr/bin/python3", {"-c", "import qgis.core"}, dir).exit_code != 0)
+    GTEST_SKIP() << "python3-qgis is not installed";
+  const CliResult r = run_cli({"mesh", water_input(dir), "--domain", "water", "--bbox",
+                               "-4.6,48.2,-4.4,48.35", "--size", "800", "-o", dir.file("m.gpkg"), "-q"},
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CliResult q = run_cli_program(
+      "/usr/bin/python3",
+      {source_dir() + "/tools/render_gpkg_qgis.py", dir.file("m.gpkg"), dir.file("m.png"), "--size", "600"},
+      dir);
+  ASSERT_EQ(q.exit_code, 0) << q.out << q.err;
+  EXPECT_NE(q.out.find("quads: "), std::string::npos) << q.out;
+  EXPECT_NE(q.out.find("renderer graduatedSymbol"), std::string::npos) << q.out;
+  EXPECT_NE(q.out.find("boundary: 3 features, renderer categorizedSymbol"), std::string::npos) << q.out;
+  // Pixel colours: the five size classes, land and open boundary lines.
+  const std::string out = run_python(
+      dir,
+      "import sys\n"
+      "from osgeo import gdal\n"
+      "import numpy as np\n"
+      "ds = gdal.Open(sys.argv[1])\n"
+      "img = np.dstack([ds.GetRasterBand(b).ReadAsArray() for b in (1, 2, 3)]).astype(int)\n"
+      "colours = {'small': (44, 123, 182), 'low': (171, 217, 233), 'ok': (255, 255, 191),\n"
+      "           'high': (253, 174, 97), 'large': (215, 25, 28), 'land': (140, 81, 10),\n"
+      "           'open': (1, 102, 94)}\n"
+      "for name, c in colours.items():\n"
+      "    n = int((np.abs(img - np.array(c)).sum(axis=2) <= 6).sum())\n"
+      "    print(name, n)\n",
+      {dir.file("m.png")});
+  std::istringstream in(out);
+  std::map<std::string, int> pixels;
+  std::string name;
+  int n = 0;
+  while (in >> name >> n) pixels[name] = n;
+  int fill = 0;
+  for (const char* c : {"small", "low", "ok", "high", "large"}) fill += pixels[c];
+  EXPECT_GT(fill, 600 * 600 / 4) << out;  // the styled quads cover much of the picture
+  EXPECT_GT(pixels["land"], 100) << out;
+  EXPECT_GT(pixels["open"], 100) << out;
+}

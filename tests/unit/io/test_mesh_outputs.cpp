@@ -1,0 +1,380 @@
+// The mesh writers on a small hand-made mesh (a 3 x 3 grid of 1 km quads in UTM 31N with
+// the middle quad missing: one island; its south side on the "open" ring): boundary
+// loops and kinds, SCHISM gr3 against a golden file and a parser of its own, Gmsh files
+// read back by the gmsh binary, legacy VTK by meshio, UGRID by python3-netcdf4, and the
+// all-or-nothing writing.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "core/error.h"
+#include "gis/atomic_output.h"
+#include "gis/crs.h"
+#include "io/mesh_boundary.h"
+#include "io/write_mesh.h"
+#include "support/test_support.h"
+
+using namespace isoquad;
+using namespace isoquad::test;
+
+namespace {
+
+constexpr double kX0 = 500000, kY0 = 5000000, kStep = 1000;
+
+struct Fixture {
+  QuadMesh mesh;
+  QuadMetrics metrics;
+  std::string crs_wkt = parse_crs("EPSG:32631", "test").wkt;
+  Ring open_ring{{kX0 - 1000, kY0}, {kX0 + 4000, kY0}, {kX0 + 4000, kY0 - 9000}, {kX0 - 1000, kY0 - 9000}};
+
+  Fixture() {
+    for (int j = 0; j < 4; ++j)
+      for (int i = 0; i < 4; ++i) mesh.points.push_back({kX0 + kStep * i, kY0 + kStep * j});
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 3; ++i)
+        if (i != 1 || j != 1) {
+          const int a = j * 4 + i;
+          mesh.quads.push_back({a, a + 1, a + 5, a + 4});
+        }
+    mesh.chain.assign(mesh.points.size(), -1);
+    mesh.arc_m.assign(mesh.points.size(), 0.0);
+    mesh.fixed.assign(mesh.points.size(), 0);
+    const std::size_t nq = mesh.quads.size();
+    for (std::size_t q = 0; q < nq; ++q) {
+      metrics.size_ratio.push_back(1.0 + 0.01 * q);
+      metrics.orientation_deg.push_back(0.5 * q);
+      metrics.min_angle_deg.push_back(90);
+      metrics.max_angle_deg.push_back(90);
+      metrics.eta.push_back(1);
+    }
+    metrics.degree.assign(mesh.points.size(), 0);
+    for (const auto& q : mesh.quads)
+      for (int v : q) ++metrics.degree[v];
+    metrics.boundary.assign(mesh.points.size(), 1);
+    metrics.ideal_degree = metrics.degree;
+  }
+
+  MeshOutputData data(bool with_depth = true) const {
+    MeshOutputData d;
+    d.mesh = &mesh;
+    d.metrics = &metrics;
+    d.crs_wkt = crs_wkt;
+    d.boundary = extract_boundary(mesh, open_ring, 1.0);
+    if (with_depth)
+      for (std::size_t i = 0; i < mesh.points.size(); ++i) d.depth.push_back(10.0 + 0.5 * i);
+    d.command_line = "isoquad mesh test";
+    d.quality = {{"num_quads", "8"}};
+    return d;
+  }
+};
+
+std::string golden(const std::string& name) {
+  return std::string(ISOQUAD_SOURCE_DIR) + "/tests/golden/gr3/" + name;
+}
+
+// A SCHISM hgrid parser of our own: nodes, elements, boundary segments.
+struct Gr3 {
+  std::vector<std::array<double, 3>> nodes;       // x, y, depth
+  std::vector<std::vector<int>> elements;         // 1-based node ids
+  std::vector<std::vector<int>> open;             // node ids per open segment
+  std::vector<std::pair<int, std::vector<int>>> land;  // flag, node ids
+};
+
+Gr3 parse_gr3(const std::string& text) {
+  std::istringstream in(text);
+  Gr3 g;
+  std::string line;
+  std::getline(in, line);  // comment
+  std::size_t ne = 0, np = 0;
+  in >> ne >> np;
+  for (std::size_t i = 0; i < np; ++i) {
+    std::size_t id = 0;
+    std::array<double, 3> n{};
+    in >> id >> n[0] >> n[1] >> n[2];
+    EXPECT_EQ(id, i + 1);
+    g.nodes.push_back(n);
+  }
+  for (std::size_t e = 0; e < ne; ++e) {
+    std::size_t id = 0;
+    int k = 0;
+    in >> id >> k;
+    EXPECT_EQ(id, e + 1);
+    std::vector<int> el(k);
+    for (int& v : el) in >> v;
+    g.elements.push_back(el);
+  }
+  auto count_line = [&in](const std::string& label, int* flag = nullptr) {
+    std::size_t n = 0;
+    in >> n;
+    if (flag) in >> *flag;
+    std::string rest;
+    std::getline(in, rest);
+    EXPECT_NE(rest.find(label), std::string::npos) << rest;
+    return n;
+  };
+  const std::size_t nopen = count_line("Number of open boundaries");
+  const std::size_t total_open = count_line("Total number of open boundary nodes");
+  std::size_t seen = 0;
+  for (std::size_t k = 0; k < nopen; ++k) {
+    std::vector<int> seg(count_line("Number of nodes for open boundary"));
+    for (int& v : seg) in >> v;
+    seen += seg.size();
+    g.open.push_back(seg);
+  }
+  EXPECT_EQ(seen, total_open);
+  const std::size_t nland = count_line("Number of land boundaries");
+  const std::size_t total_land = count_line("Total number of land boundary nodes");
+  seen = 0;
+  for (std::size_t k = 0; k < nland; ++k) {
+    int flag = -1;
+    std::vector<int> seg(count_line("Number of nodes for land boundary", &flag));
+    for (int& v : seg) in >> v;
+    seen += seg.size();
+    g.land.push_back({flag, seg});
+  }
+  EXPECT_EQ(seen, total_land);
+  EXPECT_TRUE(in.good() || in.eof());
+  return g;
+}
+
+std::string run_python(const TempDir& dir, const std::string& script, const std::vector<std::string>& args) {
+  const std::string path = dir.file("check.py");
+  write_file(path, script);
+  std::vector<std::string> all = {path};
+  all.insert(all.end(), args.begin(), args.end());
+  const CliResult r = run_cli_program("/usr/bin/python3", all, dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
+  return r.out;
+}
+
+}  // namespace
+
+TEST(MeshBoundary, LoopsKindsAndSegments) {
+  const Fixture f;
+  const MeshBoundary b = extract_boundary(f.mesh, f.open_ring, 1.0);
+  ASSERT_EQ(b.loops.size(), 2u);
+  EXPECT_EQ(b.loops[0], (std::vector<int>{0, 1, 2, 3, 7, 11, 15, 14, 13, 12, 8, 4}));
+  EXPECT_EQ(b.loops[1].size(), 4u);
+  EXPECT_EQ(b.num_open_edges, 3u);
+  EXPECT_EQ(b.num_land_edges, 9u + 4u);
+  ASSERT_EQ(b.segments.size(), 3u);
+  EXPECT_EQ(b.segments[0].kind, BoundaryKind::open);
+  EXPECT_EQ(b.segments[0].nodes, (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_FALSE(b.segments[0].closed);
+  EXPECT_EQ(b.segments[1].kind, BoundaryKind::land);
+  EXPECT_EQ(b.segments[1].nodes, (std::vector<int>{3, 7, 11, 15, 14, 13, 12, 8, 4, 0}));
+  EXPECT_FALSE(b.segments[1].island);
+  EXPECT_EQ(b.segments[2].kind, BoundaryKind::land);
+  EXPECT_TRUE(b.segments[2].closed);
+  EXPECT_TRUE(b.segments[2].island);  // the hole runs clockwise
+  EXPECT_EQ(std::set<int>(b.segments[2].nodes.begin(), b.segments[2].nodes.end()),
+            (std::set<int>{5, 6, 9, 10}));
+
+  // Without a ring everything is land; a ring too far away (tolerance) changes nothing.
+  EXPECT_EQ(extract_boundary(f.mesh, std::nullopt, 1.0).num_open_edges, 0u);
+  Ring shifted = f.open_ring;
+  for (Point2& p : shifted) p.y -= 5.0;
+  EXPECT_EQ(extract_boundary(f.mesh, shifted, 1.0).num_open_edges, 0u);
+  EXPECT_EQ(extract_boundary(f.mesh, shifted, 6.0).num_open_edges, 3u);
+}
+
+TEST(MeshOutputs, Gr3MatchesGoldenAndParses) {
+  const Fixture f;
+  TempDir dir;
+  const std::string gr3 = dir.file("hgrid.gr3");
+  write_mesh_outputs(f.data(), {{gr3, "", false}});
+  ASSERT_TRUE(std::filesystem::exists(dir.file("hgrid.ll")));
+  const std::string text = read_file(gr3);
+  if (std::getenv("ISOQUAD_UPDATE_GOLDEN")) {
+    write_file(golden("hgrid.gr3"), text);
+    write_file(golden("hgrid.ll"), read_file(dir.file("hgrid.ll")));
+  }
+  EXPECT_EQ(text, read_file(golden("hgrid.gr3")));
+
+  const Gr3 g = parse_gr3(text);
+  ASSERT_EQ(g.nodes.size(), 16u);
+  ASSERT_EQ(g.elements.size(), 8u);
+  for (std::size_t i = 0; i < g.nodes.size(); ++i) {
+    EXPECT_DOUBLE_EQ(g.nodes[i][0], f.mesh.points[i].x);
+    EXPECT_DOUBLE_EQ(g.nodes[i][1], f.mesh.points[i].y);
+    EXPECT_DOUBLE_EQ(g.nodes[i][2], 10.0 + 0.5 * i);  // depth, positive down
+  }
+  for (std::size_t e = 0; e < g.elements.size(); ++e) {
+    ASSERT_EQ(g.elements[e].size(), 4u);
+    for (int k = 0; k < 4; ++k) EXPECT_EQ(g.elements[e][k], f.mesh.quads[e][k] + 1);
+  }
+  ASSERT_EQ(g.open.size(), 1u);
+  for (int n : g.open[0]) EXPECT_EQ(g.nodes[n - 1][1], kY0);  // on the south side
+  ASSERT_EQ(g.land.size(), 2u);
+  EXPECT_EQ(g.land[0].first, 0);  // exterior
+  EXPECT_EQ(g.land[1].first, 1);  // island
+  // The segments' edges are exactly the mesh's boundary edges.
+  std::map<std::pair<int, int>, int> edges;
+  for (const auto& el : g.elements)
+    for (int k = 0; k < 4; ++k) ++edges[{std::min(el[k], el[(k + 1) % 4]), std::max(el[k], el[(k + 1) % 4])}];
+  std::set<std::pair<int, int>> boundary, covered;
+  for (const auto& [e, n] : edges)
+    if (n == 1) boundary.insert(e);
+  auto cover = [&covered](const std::vector<int>& s, bool closed) {
+    for (std::size_t i = 0; i + 1 < s.size() + (closed ? 1 : 0); ++i) {
+      const int a = s[i], b = s[(i + 1) % s.size()];
+      EXPECT_TRUE(covered.insert({std::min(a, b), std::max(a, b)}).second);
+    }
+  };
+  cover(g.open[0], false);
+  cover(g.land[0].second, false);
+  cover(g.land[1].second, true);
+  EXPECT_EQ(covered, boundary);
+
+  // hgrid.ll: the same nodes in lon/lat (UTM 31N is centred on 3 E).
+  const Gr3 ll = parse_gr3(read_file(dir.file("hgrid.ll")));
+  const Gr3 ll_golden = parse_gr3(read_file(golden("hgrid.ll")));
+  ASSERT_EQ(ll.nodes.size(), 16u);
+  for (std::size_t i = 0; i < 16; ++i) {
+    EXPECT_NEAR(ll.nodes[i][0], ll_golden.nodes[i][0], 1e-9);
+    EXPECT_NEAR(ll.nodes[i][1], ll_golden.nodes[i][1], 1e-9);
+    EXPECT_NEAR(ll.nodes[i][0], 3.0 + 0.01272 * (i % 4), 0.0005);
+    EXPECT_NEAR(ll.nodes[i][1], 45.1, 0.1);
+  }
+  EXPECT_EQ(ll.elements, g.elements);
+  EXPECT_EQ(ll.open, g.open);
+}
+
+TEST(MeshOutputs, GmshReadsBothVersionsWithPhysicalGroups) {
+  const Fixture f;
+  TempDir dir;
+  MeshWriteOptions o22;
+  o22.msh_version = "2.2";
+  write_mesh_outputs(f.data(), {{dir.file("m41.msh"), "", false}});
+  write_mesh_outputs(f.data(), {{dir.file("m22.msh"), "", false}}, o22);
+  EXPECT_EQ(read_file(dir.file("m41.msh")).substr(0, 23), "$MeshFormat\n4.1 0 8\n$En");
+  EXPECT_EQ(read_file(dir.file("m22.msh")).substr(0, 23), "$MeshFormat\n2.2 0 8\n$En");
+  for (const std::string name : {"m41", "m22"}) {
+    // gmsh reads the file and writes it again (2.2); we count what it kept.
+    const CliResult r = run_cli_program(
+        "gmsh", {dir.file(name + ".msh"), "-0", "-format", "msh22", "-o", dir.file(name + "_re.msh")}, dir);
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    EXPECT_EQ(r.err.find("Error"), std::string::npos) << r.err;
+    std::istringstream in(read_file(dir.file(name + "_re.msh")));
+    std::string line;
+    std::map<std::pair<int, int>, int> count;  // (element type, physical) -> count
+    std::map<int, std::string> names;
+    std::size_t num_nodes = 0;
+    while (std::getline(in, line)) {
+      if (line == "$PhysicalNames") {
+        int n = 0;
+        in >> n;
+        for (int i = 0; i < n; ++i) {
+          int dim = 0, tag = 0;
+          std::string nm;
+          in >> dim >> tag >> nm;
+          names[tag] = nm;
+        }
+      } else if (line == "$Nodes") {
+        in >> num_nodes;
+      } else if (line == "$Elements") {
+        int n = 0;
+        in >> n;
+        for (int i = 0; i < n; ++i) {
+          int id = 0, type = 0, ntags = 0, phys = 0;
+          in >> id >> type >> ntags >> phys;
+          std::getline(in, line);
+          ++count[{type, phys}];
+        }
+      }
+    }
+    EXPECT_EQ(num_nodes, 16u) << name;
+    EXPECT_EQ(names[1], "\"land\"");
+    EXPECT_EQ(names[2], "\"open\"");
+    EXPECT_EQ(names[3], "\"domain\"");
+    EXPECT_EQ(count[std::make_pair(3, 3)], 8) << name;   // quads, domain
+    EXPECT_EQ(count[std::make_pair(1, 1)], 13) << name;  // lines, land (9 + island 4)
+    EXPECT_EQ(count[std::make_pair(1, 2)], 3) << name;   // lines, open
+    EXPECT_EQ(count.size(), 3u) << name;
+  }
+}
+
+TEST(MeshOutputs, LegacyVtkLoadsInMeshio) {
+  const Fixture f;
+  TempDir dir;
+  write_mesh_outputs(f.data(), {{dir.file("m.vtk"), "", false}});
+  run_python(dir,
+             "import sys, meshio, numpy as np\n"
+             "m = meshio.read(sys.argv[1])\n"
+             "assert list(m.cells_dict) == ['quad'], m.cells_dict.keys()\n"
+             "assert m.cells_dict['quad'].shape == (8, 4)\n"
+             "assert m.cells_dict['quad'][0].tolist() == [0, 1, 5, 4]\n"
+             "assert m.points.shape[0] == 16 and m.points[5][0] == 501000\n"
+             "assert np.allclose(np.ravel(m.cell_data['size_ratio'][0]), 1 + 0.01 * np.arange(8))\n"
+             "assert np.allclose(np.ravel(m.point_data['depth']), 10 + 0.5 * np.arange(16))\n"
+             "assert np.ravel(m.point_data['degree']).tolist()[5] == 3\n",
+             {dir.file("m.vtk")});
+}
+
+TEST(MeshOutputs, UgridNetcdfHasTheRequiredAttributes) {
+  const Fixture f;
+  TempDir dir;
+  write_mesh_outputs(f.data(), {{dir.file("m.nc"), "", false}});
+  run_python(dir,
+             "import sys, netCDF4, numpy as np\n"
+             "d = netCDF4.Dataset(sys.argv[1])\n"
+             "assert 'UGRID-1.0' in d.Conventions\n"
+             "m = d['mesh']\n"
+             "assert m.cf_role == 'mesh_topology' and m.topology_dimension == 2\n"
+             "x, y = (d[v] for v in m.node_coordinates.split())\n"
+             "assert len(x) == 16 and x.units == 'm' and x.grid_mapping == 'crs'\n"
+             "fn = d[m.face_node_connectivity]\n"
+             "assert fn.cf_role == 'face_node_connectivity' and fn.start_index == 0\n"
+             "assert fn._FillValue == -1 and fn.shape == (8, 4)\n"
+             "assert fn.dimensions[0] == m.face_dimension\n"
+             "faces = fn[:]\n"
+             "assert faces[0].tolist() == [0, 1, 5, 4] and faces[7].tolist() == [10, 11, 15, 14]\n"
+             "en = d[m.edge_node_connectivity]\n"
+             "assert en.cf_role == 'edge_node_connectivity' and en.shape == (24, 2)\n"
+             "assert en.dimensions[0] == m.edge_dimension\n"
+             "edges = {tuple(sorted(e)) for e in en[:].tolist()}\n"
+             "want = {tuple(sorted((f[i], f[(i + 1) % 4]))) for f in faces.tolist() for i in range(4)}\n"
+             "assert edges == want, (edges ^ want)\n"
+             "assert 'UTM zone 31N' in d['crs'].crs_wkt\n"
+             "dep = d['depth']\n"
+             "assert dep.location == 'node' and dep.mesh == 'mesh' and dep.positive == 'down'\n"
+             "assert np.allclose(dep[:], 10 + 0.5 * np.arange(16))\n"
+             "assert d['size_ratio'].location == 'face' and len(d['size_ratio']) == 8\n",
+             {dir.file("m.nc")});
+}
+
+TEST(MeshOutputs, FormatByExtensionOrName) {
+  EXPECT_EQ(mesh_output_format({"a.GPKG", "", false}), MeshFormat::gpkg);
+  EXPECT_EQ(mesh_output_format({"a.msh", "", false}), MeshFormat::msh);
+  EXPECT_EQ(mesh_output_format({"a.dat", "gr3", false}), MeshFormat::gr3);
+  EXPECT_EQ(mesh_output_files({"d/hgrid.gr3", "", false}),
+            (std::vector<std::string>{"d/hgrid.gr3", "d/hgrid.ll"}));
+  EXPECT_THROW(mesh_output_format({"a.dat", "", false}), Error);
+  EXPECT_THROW(mesh_output_format({"a.gpkg", "shp", false}), Error);
+}
+
+// A failure while writing the second output (its temporary file cannot be created)
+// leaves neither output, nor any temporary file.
+TEST(MeshOutputs, FailureMidWriteLeavesNothing) {
+  const Fixture f;
+  TempDir dir;
+  const std::string blocker = dir.file(".b.tmp-" + std::to_string(getpid()) + ".vtk");
+  std::filesystem::create_directory(blocker);
+  write_file(blocker + "/keep", "x");
+  try {
+    write_mesh_outputs(f.data(), {{dir.file("a.gpkg"), "", false}, {dir.file("b.vtk"), "", false}});
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::output) << e.what();
+  }
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{".b.tmp-" + std::to_string(getpid()) + ".vtk"});
+  // Once the obstacle is gone the same call writes both.
+  std::filesystem::remove_all(blocker);
+  write_mesh_outputs(f.data(), {{dir.file("a.gpkg"), "", false}, {dir.file("b.vtk"), "", false}});
+  EXPECT_EQ(dir.entries().size(), 2u);
+}
