@@ -484,13 +484,14 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
     data.mesh = &r.quads;
     data.metrics = &r.metrics;
     data.crs_wkt = front.domain.crs_wkt;
-    // Boundary parts on the projected bbox (within the simplification tolerance) are open.
+    // Boundary parts on the projected bbox (within the front end's tolerance, plus
+    // rounding) are open.
     double extent = 0.0;
     if (front.open_boundary_ring)
       for (const Point2& p : *front.open_boundary_ring)
         extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
     data.boundary = extract_boundary(r.quads, front.open_boundary_ring,
-                                     1.01 * front.summary.simplify_m + 1e-7 * extent);
+                                     front.open_boundary_tolerance_m + 1e-7 * extent);
     num_open_edges = data.boundary.num_open_edges;
     num_land_edges = data.boundary.num_land_edges;
     if (!bathymetry.empty()) {

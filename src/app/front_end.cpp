@@ -1,5 +1,8 @@
 #include "app/front_end.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/error.h"
 #include "gis/crs.h"
 
@@ -48,7 +51,20 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
         dense.push_back({a.x + (b.x - a.x) * k / 16.0, a.y + (b.y - a.y) * k / 16.0});
     }
     CrsTransform t(source.crs, CrsInfo{result.domain.crs_wkt, result.domain.crs_name});
-    if (t.transform(dense) < 0) result.open_boundary_ring = std::move(dense);
+    if (t.transform(dense) < 0) {
+      double sag = 0.0;
+      for (std::size_t i = 0; i < dense.size(); i += 16) {
+        const Point2& a = dense[i];
+        const Point2& b = dense[(i + 16) % dense.size()];
+        const double len = std::hypot(b.x - a.x, b.y - a.y);
+        for (std::size_t k = 1; k < 16 && len > 0; ++k) {
+          const Point2& p = dense[i + k];
+          sag = std::max(sag, std::abs((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / len);
+        }
+      }
+      result.open_boundary_ring = std::move(dense);
+      result.open_boundary_tolerance_m = 2.0 * sag;  // the simplification tolerance added below
+    }
   }
 
   progress.report("clean", 0.7);
@@ -72,6 +88,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   const SimplifyResult sr = simplify_domain(result.domain, simp);
   s.num_vertices_before = sr.num_vertices_before;
   s.num_vertices_after = sr.num_vertices_after;
+  if (result.open_boundary_ring) result.open_boundary_tolerance_m += 1.01 * simp.tolerance_m;
 
   s.num_components = result.domain.polygons.size();
   s.num_holes = num_holes(result.domain);

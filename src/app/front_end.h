@@ -68,6 +68,10 @@ struct FrontEndResult {
   // the projected bbox edges. Boundary parts lying on it are the open (sea) boundary;
   // the rest is land. Empty for a land domain.
   std::optional<Ring> open_boundary_ring;
+  // How far the domain's boundary may lie from that ring where it follows it: the
+  // simplification tolerance plus the largest gap between a projected bbox segment and
+  // its chord (the domain's bbox vertices are joined by chords).
+  double open_boundary_tolerance_m = 0.0;
 };
 
 FrontEndResult build_planar_domain(const FrontEndOptions& options,

@@ -69,7 +69,11 @@ MeshBoundary extract_boundary(const QuadMesh& mesh, const std::optional<Ring>& o
       const int a = loop[i], c = loop[(i + 1) % loop.size()];
       const Point2 mid{0.5 * (mesh.points[a].x + mesh.points[c].x),
                        0.5 * (mesh.points[a].y + mesh.points[c].y)};
-      if (on_open[a] && on_open[c] && near_ring(mid, *open_ring, tolerance_m))
+      // A chord of a curved open side (a projected parallel) sags away from it by about
+      // length^2 / (8 radius): 1% of the length allows radii down to 12.5 lengths.
+      const double length = std::hypot(mesh.points[c].x - mesh.points[a].x,
+                                       mesh.points[c].y - mesh.points[a].y);
+      if (on_open[a] && on_open[c] && near_ring(mid, *open_ring, tolerance_m + 0.01 * length))
         kinds[i] = BoundaryKind::open;
       ++(kinds[i] == BoundaryKind::open ? b.num_open_edges : b.num_land_edges);
     }

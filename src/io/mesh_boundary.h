@@ -37,7 +37,8 @@ struct MeshBoundary {
 };
 
 // `open_ring`: a closed polyline (meshing CRS) whose neighbourhood within `tolerance_m`
-// is open boundary; an edge is open when both its ends and its midpoint are that close.
+// is open boundary; an edge is open when both its ends are that close and its midpoint
+// within `tolerance_m` plus 1% of the edge's length (a chord of a curved side).
 // Without it every edge is land. Throws Error(internal) when the boundary is not a set of
 // simple loops.
 MeshBoundary extract_boundary(const QuadMesh& mesh, const std::optional<Ring>& open_ring,

@@ -372,3 +372,29 @@ TEST(CliOutputs, QgisRendersTheEmbeddedStyles) {
   EXPECT_GT(pixels["land"], 100) << out;
   EXPECT_GT(pixels["open"], 100) << out;
 }
+
+// Open and land whatever the simplification: without it the bbox sides keep every
+// densified vertex (and the quads' boundary vertices lie on chords of the projected,
+// curved parallels); with it the sides may be chords of up to the tolerance.
+TEST(CliOutputs, OpenBoundaryFollowsTheBboxWithAndWithoutSimplification) {
+  TempDir dir;
+  const std::string input = water_input(dir);
+  for (const char* simplify : {"0", "50", "400"}) {
+    const std::string gr3 = dir.file(std::string("s") + simplify + ".gr3");
+    const CliResult r = run_cli({"mesh", input, "--domain", "water", "--bbox", "-4.6,48.2,-4.4,48.35",
+                                 "--size", "800", "--simplify", simplify, "-o", gr3, "-q"},
+                                dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const Gr3 g = parse_gr3(gr3);
+    const Gr3 ll = parse_gr3(gr3.substr(0, gr3.size() - 4) + ".ll");
+    ASSERT_EQ(g.open.size(), 1u) << simplify;
+    EXPECT_EQ(g.land_flags, (std::vector<int>{0, 1})) << simplify;
+    for (int n : g.open[0])
+      EXPECT_TRUE(on_bbox(ll.nodes[n - 1][0], ll.nodes[n - 1][1], 1e-4)) << simplify << " " << n;
+    // A land segment touches the bbox only at its ends.
+    for (const auto& seg : g.land)
+      for (std::size_t i = 1; i + 1 < seg.size(); ++i)
+        EXPECT_FALSE(on_bbox(ll.nodes[seg[i] - 1][0], ll.nodes[seg[i] - 1][1], 1e-6))
+            << simplify << " " << seg[i];
+  }
+}
