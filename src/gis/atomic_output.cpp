@@ -78,17 +78,38 @@ const std::string& OutputSet::add(const std::string& final_path, bool overwrite)
     if (p == key) throw Error(ErrorClass::usage, "write", quote(final_path) + " is given twice");
   outputs_.push_back(std::make_unique<AtomicOutput>(final_path, overwrite));
   paths_.push_back(key);
+  overwrite_.push_back(overwrite);
   return outputs_.back()->temp_path();
 }
 
 void OutputSet::commit_all() {
+  // Set aside the files being replaced until every output is in place.
+  std::vector<std::string> backups(outputs_.size());
+  auto restore = [&] {
+    for (std::size_t i = 0; i < backups.size(); ++i)
+      if (!backups[i].empty()) std::rename(backups[i].c_str(), paths_[i].c_str());
+  };
+  std::error_code ec;
+  for (std::size_t i = 0; i < outputs_.size(); ++i) {
+    if (!overwrite_[i] || !fs::is_regular_file(paths_[i], ec)) continue;
+    const std::string backup = paths_[i] + ".isoquad-old-" + std::to_string(getpid());
+    if (std::rename(paths_[i].c_str(), backup.c_str()) != 0) {
+      const std::string why = std::strerror(errno);
+      restore();
+      throw Error(ErrorClass::output, "write", "cannot replace " + quote(paths_[i]) + ": " + why);
+    }
+    backups[i] = backup;
+  }
   std::size_t done = 0;
   try {
     for (; done < outputs_.size(); ++done) outputs_[done]->commit();
   } catch (...) {
     for (std::size_t i = 0; i < done; ++i) std::remove(paths_[i].c_str());
+    restore();
     throw;
   }
+  for (const std::string& b : backups)
+    if (!b.empty()) std::remove(b.c_str());
 }
 
 }  // namespace isoquad

@@ -33,7 +33,8 @@ class AtomicOutput {
 
 // Several outputs written as one: each goes to its temporary file, and only when all are
 // complete are they moved into place. If a move fails, the outputs already moved are
-// removed again, so a run leaves either every output or none.
+// removed again and the files they replaced (with overwrite) are put back, so a run
+// leaves either every new output or the files as they were.
 class OutputSet {
  public:
   // Adds an output and returns where to write it. Throws Error(output) (see
@@ -45,6 +46,7 @@ class OutputSet {
 
  private:
   std::vector<std::string> paths_;
+  std::vector<char> overwrite_;
   std::vector<std::unique_ptr<AtomicOutput>> outputs_;
 };
 

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/error.h"
 #include "support/test_support.h"
 
@@ -83,4 +85,33 @@ TEST(OutputSet, CommitIsAllOrNothing) {
     set.commit_all();
   }
   EXPECT_EQ(read_file(dir.file("a.txt")), "a");
+}
+
+// With overwrite, a failed move puts back the files the outputs had already replaced.
+TEST(OutputSet, FailedCommitRestoresReplacedFiles) {
+  TempDir dir;
+  write_file(dir.file("a.txt"), "old a");
+  {
+    OutputSet set;
+    write_file(set.add(dir.file("a.txt"), true), "new a");
+    write_file(set.add(dir.file("b.txt"), true), "new b");
+    // b.txt becomes a non-empty directory: the file cannot be moved over it.
+    std::filesystem::create_directory(dir.file("b.txt"));
+    write_file(dir.file("b.txt/x"), "x");
+    EXPECT_THROW(set.commit_all(), Error);
+  }
+  EXPECT_EQ(read_file(dir.file("a.txt")), "old a");
+  std::filesystem::remove_all(dir.file("b.txt"));
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"a.txt"});
+  {
+    OutputSet set;
+    write_file(set.add(dir.file("a.txt"), true), "new a");
+    write_file(set.add(dir.file("b.txt"), true), "new b");
+    set.commit_all();
+  }
+  EXPECT_EQ(read_file(dir.file("a.txt")), "new a");
+  EXPECT_EQ(read_file(dir.file("b.txt")), "new b");
+  auto entries = dir.entries();
+  std::sort(entries.begin(), entries.end());
+  EXPECT_EQ(entries, (std::vector<std::string>{"a.txt", "b.txt"}));  // no backup left
 }
