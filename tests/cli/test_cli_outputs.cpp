@@ -33,12 +33,13 @@ std::string water_input(const TempDir& d) {
 
 double depth_at(double lon, double lat) { return 1000.0 * (lon + 4.7) + 200.0 * (lat - 48.1); }
 
-// A GeoTIFF in lon/lat, depth linear in lon and lat (so bilinear sampling is exact).
-std::string bathymetry(const TempDir& d) {
+// A GeoTIFF in lon/lat, depth linear in lon and lat (so bilinear sampling is exact),
+// from 4.7 W eastwards over `nx` pixels of 0.01 degrees (40: past the bbox).
+std::string bathymetry(const TempDir& d, int nx = 40) {
   isoquad::ensure_gdal_registered();
-  const std::string path = d.file("dem.tif");
+  const std::string path = d.file("dem" + std::to_string(nx) + ".tif");
   GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
-  const int nx = 40, ny = 35;
+  const int ny = 35;
   GDALDataset* ds = drv->Create(path.c_str(), nx, ny, 1, GDT_Float32, nullptr);
   double gt[6] = {-4.7, 0.01, 0, 48.45, 0, -0.01};
   ds->SetGeoTransform(gt);
@@ -397,4 +398,29 @@ TEST(CliOutputs, OpenBoundaryFollowsTheBboxWithAndWithoutSimplification) {
         EXPECT_FALSE(on_bbox(ll.nodes[seg[i] - 1][0], ll.nodes[seg[i] - 1][1], 1e-6))
             << simplify << " " << seg[i];
   }
+}
+
+// Vertices outside the bathymetry get depth 0 and a warning that counts them.
+TEST(CliOutputs, VerticesOutsideTheBathymetryGetZeroDepth) {
+  TempDir dir;
+  const std::string dem = bathymetry(dir, 20);  // 4.7 W to 4.5 W: the west of the bbox
+  const CliResult r = run_cli({"mesh", water_input(dir), "--domain", "water", "--bbox",
+                               "-4.6,48.2,-4.4,48.35", "--size", "800", "--bathymetry", dem, "-o",
+                               dir.file("hgrid.gr3")},
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 ll = parse_gr3(dir.file("hgrid.ll"));
+  std::size_t zero = 0;
+  for (const auto& n : ll.nodes) {
+    if (n[0] < -4.51) {
+      EXPECT_NEAR(n[2], depth_at(n[0], n[1]), 0.01);
+    } else if (n[0] > -4.49) {
+      EXPECT_EQ(n[2], 0.0);
+    }
+    zero += n[2] == 0.0;
+  }
+  EXPECT_GT(zero, ll.nodes.size() / 4);
+  EXPECT_NE(r.err.find("warning: " + std::to_string(zero) + " vertices lie outside the bathymetry"),
+            std::string::npos)
+      << r.err;
 }
