@@ -32,36 +32,49 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
   r.fields = build_fields(options.fields, progress.slice(0.0, 0.45));
   r.memory.push_back({"fields", peak_memory_mb()});
 
-  auto t0 = std::chrono::steady_clock::now();
-  CornerParams corners;
-  corners.corner_angle_deg = options.tiling.graph.corner_angle_deg;
-  tag_corners(r.fields.mesh, r.fields.size, corners);
-  r.tiling = build_tiling(r.fields.mesh, r.fields.size, r.fields.cross, options.tiling,
-                          progress.slice(0.45, 0.9));
-  r.fields.times.push_back({"tiling", seconds_since(t0)});
-  r.memory.push_back({"tiling", peak_memory_mb()});
-  if (options.tiling.stop_after != TilingStep::butterfly) return r;
+  // The tiling and quad stages, retried with one more conforming iteration when
+  // smoothing cannot make every quad convex: such failures come from a few badly shaped
+  // tiles, and a slightly different tiling rarely has them at the same place. The
+  // attempts are a fixed sequence, so the output stays deterministic.
+  for (int attempt = 0;; ++attempt) {
+    MeshOptions o = options;
+    o.tiling.conform_iters += attempt;
+    auto t0 = std::chrono::steady_clock::now();
+    CornerParams corners;
+    corners.corner_angle_deg = o.tiling.graph.corner_angle_deg;
+    tag_corners(r.fields.mesh, r.fields.size, corners);  // the repairs may clear some
+    r.tiling = build_tiling(r.fields.mesh, r.fields.size, r.fields.cross, o.tiling,
+                            progress.slice(0.45, 0.9));
+    r.fields.times.push_back({"tiling", seconds_since(t0)});
+    r.memory.push_back({"tiling", peak_memory_mb()});
+    if (o.tiling.stop_after != TilingStep::butterfly) return r;
 
-  progress.report("subdivide", 0.9);
-  t0 = std::chrono::steady_clock::now();
-  r.quads = subdivide_tiles(r.fields.mesh, r.tiling.tiling, r.tiling.graph, options.subdivide);
-  r.fields.times.push_back({"subdivision", seconds_since(t0)});
-  progress.report("smooth", 0.93);
-  t0 = std::chrono::steady_clock::now();
-  r.smooth = smooth_quads(r.fields.mesh, r.quads, options.smooth);
-  r.fields.times.push_back({"smoothing", seconds_since(t0)});
-  r.memory.push_back({"quads", peak_memory_mb()});
-  if (r.smooth.num_nonconvex_after > 0) {
+    progress.report("subdivide", 0.9);
+    t0 = std::chrono::steady_clock::now();
+    r.quads = subdivide_tiles(r.fields.mesh, r.tiling.tiling, r.tiling.graph, o.subdivide);
+    r.fields.times.push_back({"subdivision", seconds_since(t0)});
+    progress.report("smooth", 0.93);
+    t0 = std::chrono::steady_clock::now();
+    r.smooth = smooth_quads(r.fields.mesh, r.quads, o.smooth);
+    r.fields.times.push_back({"smoothing", seconds_since(t0)});
+    r.memory.push_back({"quads", peak_memory_mb()});
+    r.attempts = attempt + 1;
+    if (r.smooth.num_nonconvex_after == 0) break;
     std::string where;
     for (int q = 0; q < static_cast<int>(r.quads.quads.size()) && where.empty(); ++q)
-      if (quad_convexity(r.quads, q) <= options.smooth.min_convexity)
+      if (quad_convexity(r.quads, q) <= o.smooth.min_convexity)
         where = " (the first near " + format_point(r.quads.points[r.quads.quads[q][0]]) + ")";
-    throw Error(ErrorClass::internal, "smooth",
-                std::to_string(r.smooth.num_nonconvex_after) +
-                    " quad(s) could not be made strictly convex" + where + "; no mesh is written");
+    const std::string problem = std::to_string(r.smooth.num_nonconvex_after) +
+                                " quad(s) could not be made strictly convex" + where;
+    if (attempt + 1 >= options.max_attempts)
+      throw Error(ErrorClass::internal, "smooth",
+                  problem + " after " + std::to_string(r.attempts) +
+                      " tiling attempt(s); no mesh is written");
+    r.retry_reasons.push_back(problem);
+    progress.report("retry: " + problem, 0.45);
   }
   progress.report("quality", 0.97);
-  t0 = std::chrono::steady_clock::now();
+  const auto t0 = std::chrono::steady_clock::now();
   r.quality = measure_quality(r.quads, r.fields.mesh, r.fields.size, r.fields.cross, &r.metrics);
   r.fields.times.push_back({"quality", seconds_since(t0)});
   if (r.quality.num_nonconvex > 0)
@@ -85,6 +98,10 @@ std::string format_mesh_summary(const MeshResult& r) {
                       : "",
                   s.seconds);
     os << buf;
+  }
+  for (std::size_t i = 0; i < r.retry_reasons.size(); ++i) {
+    os << "retried:      tiling attempt " << i + 1 << " discarded: " << r.retry_reasons[i]
+       << "\n";
   }
   if (!r.has_quads) return os.str();
   const QualitySummary& q = r.quality;
@@ -173,8 +190,10 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("schism_aspect_ratio_violations", q.schism_aspect_violations)
         .end_object();
     j.begin_object("smoothing")
+        .value("tiling_attempts", r.attempts)
         .value("num_nonconvex_before", r.smooth.num_nonconvex_before)
         .value("num_untangle_sweeps", r.smooth.num_untangle_sweeps)
+        .value("num_flips", r.smooth.num_flips)
         .end_object();
   }
   j.begin_array("stages");

@@ -19,6 +19,9 @@ struct MeshOptions {
   TilingParams tiling;
   SubdivideParams subdivide;
   SmoothParams smooth;
+  // Tiling attempts (each with one more conforming iteration) before giving up on a
+  // quad that smoothing cannot make convex.
+  int max_attempts = 4;
 };
 
 struct StageMemory {
@@ -35,6 +38,8 @@ struct MeshResult {
   QualitySummary quality;
   SmoothStats smooth;
   std::vector<StageMemory> memory;
+  int attempts = 0;                        // tiling attempts made (see MeshOptions)
+  std::vector<std::string> retry_reasons;  // why each earlier attempt was discarded
 };
 
 // Throws Error(internal) rather than return a quad that is not strictly convex.

@@ -1,0 +1,49 @@
+// The whole mesh job on a real sample: the retry of the tiling when smoothing cannot
+// make every quad convex, and the error when no attempt succeeds.
+#include "app/mesh_job.h"
+
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "quad/quad_mesh.h"
+#include "support/test_support.h"
+
+using namespace isoquad;
+using namespace isoquad::test;
+
+namespace {
+
+MeshOptions corsica(double hmax_m) {
+  MeshOptions o;
+  o.fields.front.read.path = sample("corsica.shp");
+  o.fields.sizing.hmax_m = hmax_m;
+  return o;
+}
+
+}  // namespace
+
+TEST(MeshJob, EveryQuadStrictlyConvexAndTheAttemptsAreReported) {
+  const MeshResult r = build_mesh(corsica(6000.0));
+  ASSERT_TRUE(r.smooth.num_nonconvex_after == 0);
+  EXPECT_GE(r.attempts, 1);
+  EXPECT_EQ(r.retry_reasons.size(), static_cast<std::size_t>(r.attempts - 1));
+  for (int q = 0; q < static_cast<int>(r.quads.quads.size()); ++q)
+    ASSERT_GT(quad_convexity(r.quads, q), MeshOptions().smooth.min_convexity) << "quad " << q;
+  EXPECT_NE(mesh_report_json(r, "test").find("\"tiling_attempts\""), std::string::npos);
+}
+
+TEST(MeshJob, GivesUpWithAnErrorAfterTheLastAttempt) {
+  // No quad is that convex (1 would need every corner at 90 degrees exactly): every
+  // attempt fails, and the job stops after max_attempts instead of writing a mesh.
+  MeshOptions o = corsica(9000.0);
+  o.smooth.min_convexity = 0.9999;
+  o.smooth.untangle_iterations = 2;
+  o.max_attempts = 2;
+  try {
+    build_mesh(o);
+    FAIL() << "expected an error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("after 2 tiling attempt(s)"), std::string::npos)
+        << e.what();
+  }
+}
