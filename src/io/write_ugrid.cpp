@@ -1,8 +1,11 @@
 // UGRID-1.0 netCDF (CF-1.8): mesh topology variable `mesh` with node coordinates, face
 // node connectivity (0-based, fill value -1), edge node connectivity, the CRS as a
-// grid-mapping variable, per-face metrics and depth on nodes when known.
+// grid-mapping variable (crs_wkt, and the CF attributes for common projections),
+// per-face metrics and depth on nodes when known.
 #include <netcdf.h>
+#include <ogr_spatialref.h>
 
+#include <cstring>
 #include <map>
 
 #include "core/error.h"
@@ -46,12 +49,73 @@ class NcFile {
     id_ = -1;
     check(nc_close(id), "cannot finish");
   }
+  void real(int var, const char* name, double value) {
+    check(nc_put_att_double(id_, var, name, NC_DOUBLE, 1, &value), std::string("attribute ") + name);
+  }
   int id() const { return id_; }
 
  private:
   int id_ = -1;
   std::string what_;
 };
+
+// CF grid-mapping attributes for the common cases (lon/lat and the projections isoquad
+// uses or users pick: transverse Mercator, stereographic, Mercator, Lambert conformal
+// conic), the way GDAL's netCDF driver writes them; other projections keep only
+// crs_wkt, which GDAL and CF-1.7+ readers use first.
+void write_cf_grid_mapping(NcFile& nc, int var, const std::string& wkt) {
+  OGRSpatialReference srs;
+  if (wkt.empty() || srs.importFromWkt(wkt.c_str()) != OGRERR_NONE) return;
+  OGRErr err = OGRERR_NONE;
+  const double a = srs.GetSemiMajor(&err);
+  if (err == OGRERR_NONE) nc.real(var, "semi_major_axis", a);
+  const double inv_f = srs.GetInvFlattening(&err);
+  if (err == OGRERR_NONE) nc.real(var, "inverse_flattening", inv_f);
+  nc.real(var, "longitude_of_prime_meridian", srs.GetPrimeMeridian());
+  if (srs.IsGeographic()) {
+    nc.text(var, "grid_mapping_name", "latitude_longitude");
+    return;
+  }
+  const char* method = srs.GetAttrValue("PROJECTION");
+  if (!srs.IsProjected() || !method) return;
+  auto parm = [&srs](const char* name) { return srs.GetNormProjParm(name, 0.0); };
+  auto false_origin = [&] {
+    nc.real(var, "false_easting", parm(SRS_PP_FALSE_EASTING));
+    nc.real(var, "false_northing", parm(SRS_PP_FALSE_NORTHING));
+  };
+  if (!std::strcmp(method, SRS_PT_TRANSVERSE_MERCATOR)) {
+    nc.text(var, "grid_mapping_name", "transverse_mercator");
+    nc.real(var, "scale_factor_at_central_meridian", parm(SRS_PP_SCALE_FACTOR));
+    nc.real(var, "longitude_of_central_meridian", parm(SRS_PP_CENTRAL_MERIDIAN));
+    nc.real(var, "latitude_of_projection_origin", parm(SRS_PP_LATITUDE_OF_ORIGIN));
+    false_origin();
+  } else if (!std::strcmp(method, SRS_PT_OBLIQUE_STEREOGRAPHIC) ||
+             !std::strcmp(method, SRS_PT_STEREOGRAPHIC)) {
+    // CF has no oblique (double) stereographic, isoquad's automatic projection: we use
+    // GDAL's name for it, as GDAL's netCDF driver writes and reads it.
+    const bool oblique = !std::strcmp(method, SRS_PT_OBLIQUE_STEREOGRAPHIC);
+    nc.text(var, "grid_mapping_name", oblique ? "oblique_stereographic" : "stereographic");
+    nc.real(var, "scale_factor_at_projection_origin", parm(SRS_PP_SCALE_FACTOR));
+    if (oblique) nc.real(var, "scale_factor_at_central_meridian", parm(SRS_PP_SCALE_FACTOR));
+    nc.real(var, oblique ? "longitude_of_central_meridian" : "longitude_of_projection_origin",
+            parm(SRS_PP_CENTRAL_MERIDIAN));
+    nc.real(var, "latitude_of_projection_origin", parm(SRS_PP_LATITUDE_OF_ORIGIN));
+    false_origin();
+  } else if (!std::strcmp(method, SRS_PT_MERCATOR_1SP)) {
+    nc.text(var, "grid_mapping_name", "mercator");
+    nc.real(var, "longitude_of_projection_origin", parm(SRS_PP_CENTRAL_MERIDIAN));
+    nc.real(var, "scale_factor_at_projection_origin", parm(SRS_PP_SCALE_FACTOR));
+    false_origin();
+  } else if (!std::strcmp(method, SRS_PT_LAMBERT_CONFORMAL_CONIC_2SP)) {
+    nc.text(var, "grid_mapping_name", "lambert_conformal_conic");
+    const double parallels[2] = {parm(SRS_PP_STANDARD_PARALLEL_1), parm(SRS_PP_STANDARD_PARALLEL_2)};
+    nc.check(nc_put_att_double(nc.id(), var, "standard_parallel", NC_DOUBLE, 2, parallels),
+             "attribute standard_parallel");
+    nc.real(var, "longitude_of_central_meridian", parm(SRS_PP_CENTRAL_MERIDIAN));
+    nc.real(var, "latitude_of_projection_origin", parm(SRS_PP_LATITUDE_OF_ORIGIN));
+    false_origin();
+  }
+}
 
 }  // namespace
 
@@ -94,6 +158,7 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
   const int crs = nc.var("crs", NC_INT, {});
   nc.text(crs, "crs_wkt", v.crs_wkt);
   nc.text(crs, "spatial_ref", v.crs_wkt);
+  write_cf_grid_mapping(nc, crs, v.crs_wkt);
 
   const int vx = nc.var("mesh_node_x", NC_DOUBLE, {dn});
   const int vy = nc.var("mesh_node_y", NC_DOUBLE, {dn});

@@ -270,6 +270,7 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
              "assert d.dimensions['n_node'].size == np_ and d.dimensions['n_face'].size == ne\n"
              "assert d['mesh_node_x'].standard_name == 'longitude'\n"
              "assert 'WGS 84' in d['crs'].crs_wkt\n"
+             "assert d['crs'].grid_mapping_name == 'latitude_longitude'\n"
              "assert d['mesh_face_nodes'][:].max() == np_ - 1\n",
              {dir.file("m.vtk"), dir.file("m.vtu"), std::to_string(np), std::to_string(ne),
               dir.file("m.nc")});
@@ -406,9 +407,22 @@ TEST(CliOutputs, VerticesOutsideTheBathymetryGetZeroDepth) {
   const std::string dem = bathymetry(dir, 20);  // 4.7 W to 4.5 W: the west of the bbox
   const CliResult r = run_cli({"mesh", water_input(dir), "--domain", "water", "--bbox",
                                "-4.6,48.2,-4.4,48.35", "--size", "800", "--bathymetry", dem, "-o",
-                               dir.file("hgrid.gr3")},
+                               dir.file("hgrid.gr3"), "-o", dir.file("m.nc")},
                               dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The UGRID file in the automatic local projection, depth on nodes as in the gr3.
+  run_python(dir,
+             "import sys, netCDF4, numpy as np\n"
+             "d = netCDF4.Dataset(sys.argv[1])\n"
+             "c = d['crs']\n"
+             "assert c.grid_mapping_name == 'oblique_stereographic', c.grid_mapping_name\n"
+             "assert abs(c.latitude_of_projection_origin - 48.275) < 0.01\n"
+             "assert abs(c.longitude_of_central_meridian + 4.5) < 0.01\n"
+             "assert d['mesh_node_x'].standard_name == 'projection_x_coordinate'\n"
+             "gr3 = np.loadtxt(sys.argv[2], skiprows=2, max_rows=d.dimensions['n_node'].size)\n"
+             "assert np.allclose(gr3[:, 3], d['depth'][:], atol=1e-6)\n"
+             "assert np.allclose(gr3[:, 1], d['mesh_node_x'][:], atol=1e-6)\n",
+             {dir.file("m.nc"), dir.file("hgrid.gr3")});
   const Gr3 ll = parse_gr3(dir.file("hgrid.ll"));
   std::size_t zero = 0;
   for (const auto& n : ll.nodes) {
