@@ -167,7 +167,8 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
   cmd->add_option("--size-raster", f.sizing.raster_path, "GDAL raster of sizes in metres, any CRS")
       ->group(g);
   cmd->add_option("--bathymetry", f.sizing.bathymetry_path,
-                  "GDAL raster of depths in metres, positive down (ocean-model sizing)")
+                  "GDAL raster of depths in metres, positive down: vertex depths of the mesh outputs; "
+                  "with --wavelength-period or --slope-factor also the sizing")
       ->group(g);
   cmd->add_option("--wavelength-period", f.sizing.wavelength_period_s,
                   "Wave period T in seconds: h <= T sqrt(g d) / N")
