@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/error.h"
+#include "domain/separate_rings.h"
 #include "gis/crs.h"
 
 namespace isoquad {
@@ -88,6 +90,18 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   const SimplifyResult sr = simplify_domain(result.domain, simp);
   s.num_vertices_before = sr.num_vertices_before;
   s.num_vertices_after = sr.num_vertices_after;
+  if (const std::size_t pinches = count_pinch_points(result.domain); pinches > 0) {
+    // Rings touching at a point (valid for GEOS, not for the mesher): cut apart there.
+    const double r = simp.tolerance_m > 0 ? simp.tolerance_m : 1e-4 * std::sqrt(area(result.domain));
+    separate_rings(result.domain, r);
+    char width[32];
+    std::snprintf(width, sizeof width, "%.3g", 2 * r);
+    s.warnings.push_back(std::to_string(pinches) +
+                         " point(s) where rings touched were cut apart (a " + width +
+                         " m wide gap each)");
+    if (count_pinch_points(result.domain) > 0)
+      throw Error(ErrorClass::input, "simplify", "rings still touch after cutting them apart");
+  }
   if (result.open_boundary_ring) result.open_boundary_tolerance_m += 1.01 * simp.tolerance_m;
 
   s.num_components = result.domain.polygons.size();

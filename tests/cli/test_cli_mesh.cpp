@@ -183,3 +183,24 @@ TEST(CliMesh, SameInputGivesByteIdenticalOutput) {
   EXPECT_FALSE(bytes[0].empty());
   EXPECT_TRUE(bytes[0] == bytes[1]);
 }
+
+TEST(CliMesh, HolesTouchingAtAPointAreCutApartWithAWarning) {
+  // Valid for GEOS and OGC (two holes sharing a vertex), not triangulable as it is.
+  TempDir dir;
+  const std::string input = dir.file("touch.geojson");
+  write_file(input,
+             "{\"type\":\"FeatureCollection\",\"crs\":{\"type\":\"name\",\"properties\":{\"name\":"
+             "\"urn:ogc:def:crs:EPSG::3857\"}},\"features\":[{\"type\":\"Feature\",\"properties\":"
+             "{},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[[[0,0],[1000,0],[1000,1000],"
+             "[0,1000],[0,0]],[[300,300],[500,500],[300,500],[300,300]],[[500,500],[700,500],"
+             "[700,700],[500,500]]]}}]}");
+  const std::string gpkg = dir.file("mesh.gpkg");
+  const CliResult r = run_cli({"mesh", input, "--dst-crs", "EPSG:3857", "--size", "40", "-o", gpkg}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("rings touched were cut apart"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("1 hole(s)"), std::string::npos) << r.out;  // the two holes joined
+  const QuadLayer layer = read_quads(gpkg);
+  EXPECT_EQ(layer.num_other, 0);
+  // Square minus two triangles of 20000 m2 each, minus the small cut.
+  EXPECT_NEAR(check_convex_ccw(layer), 1.0e6 - 40000.0, 0.01 * 1.0e6);
+}

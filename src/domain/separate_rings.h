@@ -1,0 +1,20 @@
+// Rings that touch at a point. GEOS (and the OGC model) allows a hole to touch its
+// shell or another hole at one vertex, and water domains cut from coastlines often have
+// such pinch points; the background mesh cannot triangulate a domain pinched to a point.
+#pragma once
+
+#include <cstddef>
+
+#include "core/geometry.h"
+
+namespace isoquad {
+
+// Vertices used twice within the domain's rings (by two rings, or twice by one ring).
+std::size_t count_pinch_points(const Domain& domain);
+
+// Separates the rings at every pinch point by cutting a small octagon of radius r out of
+// the domain there: two holes touching at a point become one hole, a hole touching its
+// shell becomes a bay. Throws Error(input) when nothing is left.
+void separate_rings(Domain& domain, double r_m);
+
+}  // namespace isoquad

@@ -1,0 +1,63 @@
+// Rings touching at a point: detected, and opened apart so that the background mesh can
+// triangulate the domain.
+#include "domain/separate_rings.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+
+using namespace isoquad;
+
+namespace {
+
+Polygon square_with_holes(std::vector<Ring> holes) {
+  Polygon p;
+  p.outer = {{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}};
+  p.holes = std::move(holes);
+  orient_polygon(p);
+  return p;
+}
+
+}  // namespace
+
+TEST(SeparateRings, TwoHolesTouchingAtAVertexBecomeOneHole) {
+  Domain d;
+  d.polygons.push_back(square_with_holes({{{300, 300}, {500, 500}, {300, 500}},
+                                          {{500, 500}, {700, 500}, {700, 700}}}));
+  const double before = area(d);
+  EXPECT_EQ(count_pinch_points(d), 1u);
+  separate_rings(d, 5.0);
+  EXPECT_EQ(count_pinch_points(d), 0u);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_EQ(d.polygons[0].holes.size(), 1u);
+  // Only a little area around the pinch changes.
+  EXPECT_NEAR(area(d), before, 0.002 * before);
+}
+
+TEST(SeparateRings, HoleTouchingTheShellBecomesABay) {
+  Domain d;
+  d.polygons.push_back(square_with_holes({{{0, 0}, {300, 300}, {300, 100}}}));
+  EXPECT_EQ(count_pinch_points(d), 1u);
+  separate_rings(d, 5.0);
+  EXPECT_EQ(count_pinch_points(d), 0u);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_TRUE(d.polygons[0].holes.empty());
+}
+
+TEST(SeparateRings, SeparateRingsAreLeftAlone) {
+  Domain d;
+  d.polygons.push_back(square_with_holes({{{300, 300}, {500, 300}, {500, 500}}}));
+  EXPECT_EQ(count_pinch_points(d), 0u);
+}
+
+TEST(SeparateRings, OnlyTheNeighbourhoodOfThePinchChanges) {
+  Domain d;
+  d.polygons.push_back(square_with_holes({{{0, 0}, {300, 300}, {300, 100}}}));
+  const double before = area(d);
+  separate_rings(d, 5.0);
+  // At most the octagon of radius 5 m (area < pi 25) is cut out.
+  EXPECT_LT(before - area(d), M_PI * 25.0);
+  EXPECT_GT(before - area(d), 0.0);
+}
