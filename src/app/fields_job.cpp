@@ -54,9 +54,10 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options,
   BackgroundMeshParams bp;
   const double factor = 2.0 * options.background_factor;  // tiles are 2h wide
   // Refinement evaluates the size many times, at scattered points: it reads a quadtree
-  // cache (cells at most a quarter of the local size) instead of the sources.
+  // cache (cells at most half the local size; bilinear values there are close to the
+  // graded field, which changes by at most K times the cell side) instead of the sources.
   const SizeCache cache(bounding_box(domain), [&oracle](const Point2& p) { return oracle(p); },
-                        0.25);
+                        0.5);
   bp.max_edge_m = [&cache, factor](const Point2& p) { return factor * cache(p); };
   r.mesh = build_background_mesh(domain, bp);
   r.num_size_cache_leaves = cache.num_leaves();
