@@ -1,10 +1,14 @@
-// Benchmark of the background mesh and fields on mainland France (Natural Earth 1:10m)
-// with automatic sizing at about 4,500 quads. Not a test: run it by hand, in a Release
-// build, and compare stages as ratios within one run.
+// Benchmarks on mainland France (Natural Earth 1:10m) with automatic sizing at about
+// 4,500 quads: the front end, the background mesh and fields, the four tiling steps, and
+// the whole mesh job. Not a test: run it by hand, in a Release build, and compare stages
+// as ratios within one run.
 //   build/isoquad_bench_fields --benchmark_repetitions=3
 #include <benchmark/benchmark.h>
 
 #include "app/fields_job.h"
+#include "app/mesh_job.h"
+#include "mesh/boundary_corners.h"
+#include "tiling/build_tiling.h"
 
 namespace {
 
@@ -43,6 +47,39 @@ void BM_FranceFields(benchmark::State& state) {
   state.counters["background_vertices"] = vertices;
 }
 BENCHMARK(BM_FranceFields)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// The four tiling steps (2.2 to 2.5) on the fields of BM_FranceFields.
+void BM_FranceTiling(benchmark::State& state) {
+  FieldsResult fields;
+  build_fields_on_domain(france_domain(), france_options(), fields);
+  double share_quads = 0, tiles = 0;
+  for (auto _ : state) {
+    BackgroundMesh mesh = fields.mesh;  // the repairs may clear corner tags
+    tag_corners(mesh, fields.size, CornerParams());
+    const TilingResult r = build_tiling(mesh, fields.size, fields.cross, TilingParams());
+    for (const TilingStepReport& s : r.steps) state.counters[s.step] = s.seconds;
+    share_quads = r.steps.back().stats.share_quads;
+    tiles = r.steps.back().stats.num_tiles;
+  }
+  state.counters["share_quads"] = share_quads;
+  state.counters["tiles"] = tiles;
+}
+BENCHMARK(BM_FranceTiling)->Unit(benchmark::kMillisecond)->Iterations(1);
+
+// The whole job without writing: read, fields, tiling, subdivision, smoothing, quality.
+void BM_FranceMesh(benchmark::State& state) {
+  MeshOptions o;
+  o.fields = france_options();
+  double quads = 0, attempts = 0;
+  for (auto _ : state) {
+    const MeshResult r = build_mesh(o);
+    quads = static_cast<double>(r.quads.quads.size());
+    attempts = r.attempts;
+  }
+  state.counters["quads"] = quads;
+  state.counters["attempts"] = attempts;
+}
+BENCHMARK(BM_FranceMesh)->Unit(benchmark::kMillisecond)->Iterations(1);
 
 void BM_FranceDomain(benchmark::State& state) {
   FrontEndOptions o;
