@@ -126,6 +126,12 @@ CrsTransform::CrsTransform(const CrsInfo& from, const CrsInfo& to) {
   }
   auto a = make_srs(from);
   auto b = make_srs(to);
+  // The same CRS written differently (a file's WKT and --dst-crs EPSG:xxxx): no
+  // transformation, so that the coordinates stay bit for bit what they were.
+  if (a->IsSame(b.get())) {
+    identity_ = true;
+    return;
+  }
   GdalErrorCapture capture;
   ct_.reset(OGRCreateCoordinateTransformation(a.get(), b.get()));
   if (!ct_)
