@@ -5,6 +5,8 @@
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polyline_simplification_2/simplify.h>
 
+#include <cstdint>
+#include <cstring>
 #include <vector>
 
 #include "core/error.h"
@@ -20,6 +22,37 @@ using Fb = CGAL::Constrained_triangulation_face_base_2<K>;
 using Tds = CGAL::Triangulation_data_structure_2<Vb, Fb>;
 using Cdt = CGAL::Constrained_Delaunay_triangulation_2<K, Tds, CGAL::Exact_predicates_tag>;
 using Ct = CGAL::Constrained_triangulation_plus_2<Cdt>;
+
+// CGAL's squared distance cost, made unique by a tiny term hashed from the vertex
+// position (at most 1e-9 of the threshold): the simplification queue otherwise breaks
+// ties between equal costs (symmetric shapes) by vertex address, and the result would
+// depend on the memory layout of the process.
+class UniqueSquaredDistanceCost {
+ public:
+  explicit UniqueSquaredDistanceCost(double threshold) : epsilon_(1e-9 * threshold) {}
+  template <class CDT>
+  boost::optional<typename CDT::Geom_traits::FT> operator()(
+      const CGAL::Constrained_triangulation_plus_2<CDT>& pct,
+      typename CGAL::Constrained_triangulation_plus_2<CDT>::Vertices_in_constraint_iterator vicq)
+      const {
+    auto cost = PS::Squared_distance_cost()(pct, vicq);
+    if (!cost) return cost;
+    const auto& p = (*vicq)->point();
+    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the coordinate bits
+    for (double c : {p.x(), p.y()}) {
+      std::uint64_t bits;
+      std::memcpy(&bits, &c, sizeof bits);
+      for (int k = 0; k < 8; ++k) {
+        h ^= (bits >> (8 * k)) & 0xffu;
+        h *= 1099511628211ull;
+      }
+    }
+    return *cost + epsilon_ * static_cast<double>(h >> 11) / static_cast<double>(1ull << 53);
+  }
+
+ private:
+  double epsilon_;
+};
 
 }  // namespace
 
@@ -46,7 +79,7 @@ SimplifyResult simplify_domain(Domain& domain, const SimplifyParams& params) {
   }
 
   // The cost is a squared distance, so the threshold is the squared tolerance.
-  PS::simplify(ct, PS::Squared_distance_cost(),
+  PS::simplify(ct, UniqueSquaredDistanceCost(params.tolerance_m * params.tolerance_m),
                PS::Stop_above_cost_threshold(params.tolerance_m * params.tolerance_m),
                /*erase_unnecessary_points=*/true);
 
