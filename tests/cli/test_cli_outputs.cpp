@@ -119,15 +119,6 @@ bool on_bbox(double lon, double lat, double tol) {
          std::abs(lat - kBox[1]) < tol || std::abs(lat - kBox[3]) < tol;
 }
 
-std::string run_python(const TempDir& dir, const std::string& script, const std::vector<std::string>& args) {
-  const std::string path = dir.file("check.py");
-  write_file(path, script);
-  std::vector<std::string> all = {path};
-  all.insert(all.end(), args.begin(), args.end());
-  const CliResult r = run_cli_program("/usr/bin/python3", all, dir);
-  EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
-  return r.out;
-}
 
 }  // namespace
 
@@ -258,7 +249,7 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
   EXPECT_EQ(count[std::make_pair(1, 1)], land_edges);
 
   // Legacy VTK and VTU in meshio, UGRID in netCDF4: the same counts, lon/lat, depth.
-  run_python(dir,
+  python_check(dir,
              "import sys, meshio, netCDF4, numpy as np\n"
              "np_, ne = int(sys.argv[3]), int(sys.argv[4])\n"
              "for f in sys.argv[1:3]:\n"
@@ -349,7 +340,7 @@ TEST(CliOutputs, QgisRendersTheEmbeddedStyles) {
   EXPECT_NE(q.out.find("renderer graduatedSymbol"), std::string::npos) << q.out;
   EXPECT_NE(q.out.find("boundary: 3 features, renderer categorizedSymbol"), std::string::npos) << q.out;
   // Pixel colours: the five size classes, land and open boundary lines.
-  const std::string out = run_python(
+  const std::string out = python_check(
       dir,
       "import sys\n"
       "from osgeo import gdal\n"
@@ -411,7 +402,7 @@ TEST(CliOutputs, VerticesOutsideTheBathymetryGetZeroDepth) {
                               dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // The UGRID file in the automatic local projection, depth on nodes as in the gr3.
-  run_python(dir,
+  python_check(dir,
              "import sys, netCDF4, numpy as np\n"
              "d = netCDF4.Dataset(sys.argv[1])\n"
              "c = d['crs']\n"

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -96,6 +97,28 @@ inline CliResult run_cli_program(const std::string& program, const std::vector<s
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return r;
+}
+
+// Writes `script` to the directory and runs it with Debian's Python (/usr/bin/python3,
+// where meshio, netCDF4, GDAL and QGIS load), capturing both streams.
+inline CliResult run_python(const TempDir& dir, const std::string& script,
+                            const std::vector<std::string>& args) {
+  const std::string path = dir.path() + "/check.py";
+  {
+    std::ofstream f(path);
+    f << script;
+  }
+  std::vector<std::string> all = {path};
+  all.insert(all.end(), args.begin(), args.end());
+  return run_cli_program("/usr/bin/python3", all, dir);
+}
+
+// run_python for a check that must succeed (exit 0); returns its standard output.
+inline std::string python_check(const TempDir& dir, const std::string& script,
+                                const std::vector<std::string>& args) {
+  const CliResult r = run_python(dir, script, args);
+  EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
+  return r.out;
 }
 
 // Runs the built isoquad binary.

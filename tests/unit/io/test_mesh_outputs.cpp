@@ -142,15 +142,6 @@ Gr3 parse_gr3(const std::string& text) {
   return g;
 }
 
-std::string run_python(const TempDir& dir, const std::string& script, const std::vector<std::string>& args) {
-  const std::string path = dir.file("check.py");
-  write_file(path, script);
-  std::vector<std::string> all = {path};
-  all.insert(all.end(), args.begin(), args.end());
-  const CliResult r = run_cli_program("/usr/bin/python3", all, dir);
-  EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
-  return r.out;
-}
 
 }  // namespace
 
@@ -303,7 +294,7 @@ TEST(MeshOutputs, LegacyVtkLoadsInMeshio) {
   const Fixture f;
   TempDir dir;
   write_mesh_outputs(f.data(), {{dir.file("m.vtk"), "", false}});
-  run_python(dir,
+  python_check(dir,
              "import sys, meshio, numpy as np\n"
              "m = meshio.read(sys.argv[1])\n"
              "assert list(m.cells_dict) == ['quad'], m.cells_dict.keys()\n"
@@ -320,7 +311,7 @@ TEST(MeshOutputs, UgridNetcdfHasTheRequiredAttributes) {
   const Fixture f;
   TempDir dir;
   write_mesh_outputs(f.data(), {{dir.file("m.nc"), "", false}});
-  run_python(dir,
+  python_check(dir,
              "import sys, netCDF4, numpy as np\n"
              "d = netCDF4.Dataset(sys.argv[1])\n"
              "assert 'UGRID-1.0' in d.Conventions\n"
