@@ -1,7 +1,5 @@
 #include "fields/feature_size.h"
 
-#include <CGAL/Apollonius_graph_2.h>
-#include <CGAL/Apollonius_graph_traits_2.h>
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Orthogonal_k_neighbor_search.h>
@@ -19,9 +17,6 @@ namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using Delaunay = CGAL::Delaunay_triangulation_2<K>;
-using ApolloniusTraits = CGAL::Apollonius_graph_traits_2<K>;
-using Apollonius = CGAL::Apollonius_graph_2<ApolloniusTraits>;
-using Site = ApolloniusTraits::Site_2;
 using MedialTraits = CGAL::Search_traits_2<K>;
 using MedialSearch = CGAL::Orthogonal_k_neighbor_search<MedialTraits>;
 using MedialTree = MedialSearch::Tree;
@@ -36,12 +31,86 @@ double enclosing_radius(const K::Point_2& a, const K::Point_2& b, const K::Point
   return std::sqrt(CGAL::squared_radius(a, b, c));
 }
 
+// A site of the size field: h(x) = h + K |x - p|.
+struct Site {
+  double x, y, h;
+};
+
 }  // namespace
 
+// h(x) = min_i(h_i + K |x - p_i|) through a grid: every cell keeps the site that is
+// best at its centre, propagated from neighbouring cells in raster sweeps (the vector
+// distance transform, with additive weights); a query evaluates the sites of the 3 x 3
+// cells around it exactly. Sites of lower h win over larger distances as K decreases,
+// which CGAL's Apollonius graph (negative weights, |w| = h/K) did not survive: with
+// K < 1 its nearest-site queries returned sites of the far bank of a channel, and
+// non-negative weights made its construction quadratic.
 struct BoundaryFeatureSize::Impl {
-  Apollonius ag;
+  std::vector<Site> sites;
   double gradation = 1.0;
-  mutable Apollonius::Vertex_handle hint;
+  double x0 = 0, y0 = 0, cell = 1;
+  int nx = 1, ny = 1;
+  std::vector<int> best;  // #cells site index, -1 before any reaches the cell
+
+  double value(int site, double x, double y) const {
+    const Site& s = sites[site];
+    return s.h + gradation * std::hypot(x - s.x, y - s.y);
+  }
+
+  void build(double min_cell) {
+    double x1 = -std::numeric_limits<double>::infinity(), y1 = x1;
+    x0 = y0 = std::numeric_limits<double>::infinity();
+    for (const Site& s : sites) {
+      x0 = std::min(x0, s.x), y0 = std::min(y0, s.y);
+      x1 = std::max(x1, s.x), y1 = std::max(y1, s.y);
+    }
+    // Cells of min_cell, at most 2048 along the longer side.
+    cell = std::max({min_cell, (x1 - x0) / 2048.0, (y1 - y0) / 2048.0, 1e-9});
+    nx = static_cast<int>((x1 - x0) / cell) + 1;
+    ny = static_cast<int>((y1 - y0) / cell) + 1;
+    best.assign(static_cast<std::size_t>(nx) * ny, -1);
+    std::vector<double> at(best.size(), std::numeric_limits<double>::infinity());
+    auto centre_x = [&](int i) { return x0 + (i + 0.5) * cell; };
+    auto centre_y = [&](int j) { return y0 + (j + 0.5) * cell; };
+    auto offer = [&](int i, int j, int site) {
+      const std::size_t c = static_cast<std::size_t>(j) * nx + i;
+      const double v = value(site, centre_x(i), centre_y(j));
+      if (v < at[c] || (v == at[c] && site < best[c])) at[c] = v, best[c] = site;
+    };
+    for (int k = 0; k < static_cast<int>(sites.size()); ++k) offer(cell_x(sites[k].x), cell_y(sites[k].y), k);
+    // Forward and backward sweeps over the 8 neighbours, twice.
+    for (int round = 0; round < 2; ++round)
+      for (int pass = 0; pass < 2; ++pass) {
+        const int step = pass == 0 ? 1 : -1;
+        for (int jj = 0; jj < ny; ++jj) {
+          const int j = pass == 0 ? jj : ny - 1 - jj;
+          for (int ii = 0; ii < nx; ++ii) {
+            const int i = pass == 0 ? ii : nx - 1 - ii;
+            for (int dj = -1; dj <= 1; ++dj)
+              for (int di = -1; di <= 1; ++di) {
+                const int a = i - step * di, b = j - step * dj;
+                if ((di == 0 && dj == 0) || a < 0 || b < 0 || a >= nx || b >= ny) continue;
+                const int site = best[static_cast<std::size_t>(b) * nx + a];
+                if (site >= 0) offer(i, j, site);
+              }
+          }
+        }
+      }
+  }
+
+  int cell_x(double x) const { return std::clamp(static_cast<int>((x - x0) / cell), 0, nx - 1); }
+  int cell_y(double y) const { return std::clamp(static_cast<int>((y - y0) / cell), 0, ny - 1); }
+
+  double operator()(double x, double y) const {
+    const int i = cell_x(x), j = cell_y(y);
+    double h = std::numeric_limits<double>::infinity();
+    for (int b = std::max(0, j - 1); b <= std::min(ny - 1, j + 1); ++b)
+      for (int a = std::max(0, i - 1); a <= std::min(nx - 1, i + 1); ++a) {
+        const int site = best[static_cast<std::size_t>(b) * nx + a];
+        if (site >= 0) h = std::min(h, value(site, x, y));
+      }
+    return h;
+  }
 };
 
 BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSizeParams& params)
@@ -99,7 +168,7 @@ BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSize
   const double size_per_lfs = 0.98 * k / (2.0 * std::expm1(n * k / 4.0));
   lfs_.resize(samples_.size(), std::numeric_limits<double>::infinity());
   size_.resize(samples_.size(), params.max_size_m);
-  std::vector<Site> sites;
+  std::vector<Site>& sites = impl_->sites;
   sites.reserve(samples_.size());
   for (std::size_t i = 0; i < samples_.size(); ++i) {
     if (!medial.empty()) {
@@ -107,27 +176,20 @@ BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSize
       lfs_[i] = std::sqrt(search.begin()->second);
       size_[i] = std::min(params.max_size_m, size_per_lfs * lfs_[i]);
     }
-    // Apollonius distance |x - p| - w with w = -h/K gives (h + K |x - p|) / K.
-    sites.emplace_back(pts[i], -size_[i] / params.gradation);
+    sites.push_back({samples_[i].x, samples_[i].y, size_[i]});
   }
   // The medial points are sites too, with the size of the feature they sit in, so that
   // the size stays small across a whole channel and not only along its banks.
   for (std::size_t m = 0; m < medial.size(); ++m) {
     const double h = std::min(params.max_size_m, size_per_lfs * medial_radius[m]);
-    if (h < params.max_size_m) sites.emplace_back(medial[m], -h / params.gradation);
+    if (h < params.max_size_m) sites.push_back({medial[m].x(), medial[m].y(), h});
   }
   impl_->gradation = params.gradation;
-  impl_->ag.insert(sites.begin(), sites.end());
+  impl_->build(0.5 * params.lambda_m);
 }
 
 BoundaryFeatureSize::~BoundaryFeatureSize() = default;
 
-double BoundaryFeatureSize::operator()(const Point2& x) const {
-  const K::Point_2 q(x.x, x.y);
-  impl_->hint = impl_->hint == Apollonius::Vertex_handle() ? impl_->ag.nearest_neighbor(q)
-                                                           : impl_->ag.nearest_neighbor(q, impl_->hint);
-  const Site& s = impl_->hint->site();
-  return impl_->gradation * (std::sqrt(CGAL::squared_distance(q, s.point())) - s.weight());
-}
+double BoundaryFeatureSize::operator()(const Point2& x) const { return (*impl_)(x.x, x.y); }
 
 }  // namespace isoquad

@@ -7,7 +7,8 @@
 // circle of radius at least lambda. Features narrower than 2 lambda (a kink of the
 // polyline, a creek below the resolution) are ignored; a channel of width w >= 2 lambda
 // has its centreline at w/2 from each bank. Sizes are sampled ON the boundary and
-// extended inside as h(x) = min_i(h_i + K |x - p_i|), exactly, with an Apollonius graph.
+// extended inside as h(x) = min_i(h_i + K |x - p_i|) (the sites of the cells around x,
+// from a grid transform of nearest sites).
 #pragma once
 
 #include <memory>
@@ -32,7 +33,7 @@ class BoundaryFeatureSize {
   BoundaryFeatureSize(const BoundaryFeatureSize&) = delete;
   BoundaryFeatureSize& operator=(const BoundaryFeatureSize&) = delete;
 
-  // h(x) = min_i(h_i + K |x - p_i|), metres. Not thread-safe (keeps a search hint).
+  // h(x) = min_i(h_i + K |x - p_i|), metres.
   double operator()(const Point2& x) const;
 
   const std::vector<Point2>& samples() const { return samples_; }

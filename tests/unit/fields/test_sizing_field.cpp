@@ -5,6 +5,7 @@
 #include <gdal_priv.h>
 
 #include <cmath>
+#include <limits>
 
 #include "core/error.h"
 #include "fields/feature_size.h"
@@ -105,11 +106,13 @@ TEST(SizingField, GradationMakesEveryEdgeLipschitz) {
 }
 
 TEST(SizingField, AutomaticSizingPutsCellsAcrossAThinRectangle) {
-  for (double cells : {2.0, 4.0}) {
+  for (double cells : {2.0, 4.0})
+    for (double gradation : {1.0, 0.2}) {
     const double width = 1000.0;
     const Domain d = rectangle(20000, width);
     SizingParams p;
     p.cells_across = cells;
+    p.gradation = gradation;
     p.hmax_m = 5000;
     p.hmin_m = 20;
     SizingOracle oracle(d, p);
@@ -117,8 +120,8 @@ TEST(SizingField, AutomaticSizingPutsCellsAcrossAThinRectangle) {
     double across = 0.0;
     const int n = 2000;
     for (int i = 0; i < n; ++i) across += (width / n) / oracle({10000, (i + 0.5) * width / n});
-    EXPECT_GE(across, cells) << cells;
-    EXPECT_LE(across, 2.5 * cells) << cells;
+    EXPECT_GE(across, cells) << cells << " " << gradation;
+    EXPECT_LE(across, 2.5 * cells) << cells << " " << gradation;
   }
 }
 
@@ -130,6 +133,7 @@ TEST(SizingField, AutomaticSizingIsLipschitzAndBounded) {
   SizingParams p;
   p.hmax_m = 2000;
   p.hmin_m = 50;
+  p.gradation = 1.0;  // steep, so that hmax is reached inside the square
   SizingOracle oracle(d, p);
   EXPECT_GT(oracle.summary().num_boundary_samples, 100u);
   const BackgroundMesh mesh = mesh_for(d, oracle);
@@ -199,4 +203,28 @@ TEST(SizingField, BadSourcesAreRejected) {
   const Error r = error_of([&] { SizingOracle o2(d, p); });
   EXPECT_EQ(r.error_class(), ErrorClass::input);
   EXPECT_NE(std::string(r.what()).find("/no/such/raster.tif"), std::string::npos);
+}
+
+TEST(FeatureSize, ConeExtensionIsTheMinimumOverTheSites) {
+  // A channel 1000 m wide: both banks and the centre line are sites. For every K the
+  // field is no larger than the best boundary site (up to the grid's K times a cell) and
+  // symmetric across the channel; with K < 1 a wrong search once returned the far bank.
+  const Domain d = rectangle(20000, 1000);
+  for (double k : {1.0, 0.5, 0.2}) {
+    FeatureSizeParams fp;
+    fp.lambda_m = 20;
+    fp.gradation = k;
+    fp.max_size_m = 5000;
+    const BoundaryFeatureSize fs(d, fp);
+    for (double x : {3000.0, 10000.0, 15500.0})
+      for (double y : {10.0, 130.0, 260.0, 500.0}) {
+        double bound = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < fs.samples().size(); ++i)
+          bound = std::min(bound, fs.sample_size_m()[i] +
+                                      k * std::hypot(fs.samples()[i].x - x, fs.samples()[i].y - y));
+        const double h = fs({x, y});
+        EXPECT_LE(h, bound + k * 2 * fp.lambda_m) << k << " " << x << " " << y;
+        EXPECT_NEAR(h, fs({x, 1000 - y}), 0.01 * h) << k << " " << x << " " << y;
+      }
+  }
 }
