@@ -34,7 +34,7 @@ struct SizingParams {
   double cells_across = 2.0;  // --cells-across: elements across a narrow channel
   double hmin_m = 0.0;        // --hmin (0: none, or the automatic default)
   double hmax_m = 0.0;        // --hmax (0: none, or the automatic default)
-  double gradation = 1.0;     // --gradation K: |h(x) - h(y)| <= K |x - y|
+  double gradation = 0.2;     // --gradation K: |h(x) - h(y)| <= K |x - y|
 };
 
 // The resolved parameters and what the summary reports.
