@@ -769,7 +769,7 @@ bool ButterflyRemover::reparameterize(const Butterfly& b, const std::vector<int>
     }
 
     // A generator now outside its tile moves to the tile's triangle nearest its
-    // rho-weighted centroid (rho = h^-4), as relocation does (2.3).
+    // centroid, as relocation does (2.3).
     for (int k = 0; k < 4; ++k) {
       const int tile = tiles[k];
       if (tile >= static_cast<int>(tiling_.generator.size())) continue;
@@ -783,8 +783,7 @@ bool ButterflyRemover::reparameterize(const Butterfly& b, const std::vector<int>
         const Point2 &p0 = p[tr[0]], &p1 = p[tr[1]], &p2 = p[tr[2]];
         const double area =
             0.5 * std::abs((p1.x - p0.x) * (p2.y - p0.y) - (p1.y - p0.y) * (p2.x - p0.x));
-        const double h = (size_.size_m[tr[0]] + size_.size_m[tr[1]] + size_.size_m[tr[2]]) / 3.0;
-        const double w = area / (h * h * h * h);
+        const double w = area;  // rho = 1, as relocation (tile_geometry.h)
         const Point2 centroid{(p0.x + p1.x + p2.x) / 3.0, (p0.y + p1.y + p2.y) / 3.0};
         weight += w;
         cx += w * centroid.x;

@@ -15,7 +15,6 @@ TriangleGeometry triangle_geometry(const BackgroundMesh& mesh, const SizingField
   g.size_m.resize(num_faces);
   g.weight.resize(num_faces);
   g.mass.resize(num_faces);
-  double hmin = std::numeric_limits<double>::infinity();
   for (int f = 0; f < num_faces; ++f) {
     const auto& t = mesh.triangles[f];
     const Point2 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
@@ -23,12 +22,9 @@ TriangleGeometry triangle_geometry(const BackgroundMesh& mesh, const SizingField
     g.cy[f] = (a.y + b.y + c.y) / 3.0;
     g.area_m2[f] = 0.5 * ((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
     g.size_m[f] = (size.size_m[t[0]] + size.size_m[t[1]] + size.size_m[t[2]]) / 3.0;
-    hmin = std::min(hmin, g.size_m[f]);
   }
-  g.weight_unit_m = num_faces > 0 ? hmin : 1.0;
   for (int f = 0; f < num_faces; ++f) {
-    const double r = g.weight_unit_m / g.size_m[f];
-    g.weight[f] = g.area_m2[f] * (r * r) * (r * r);
+    g.weight[f] = g.area_m2[f];
     g.mass[f] = g.area_m2[f] / (4.0 * g.size_m[f] * g.size_m[f]);
   }
   return g;
@@ -104,8 +100,6 @@ double tiling_energy(const BackgroundMesh& mesh, const TriangleGeometry& geom,
     cu[t] = std::cos(a);
     su[t] = std::sin(a);
   }
-  // rho in metres: weight is in units of hmin^-4.
-  const double unit = std::pow(geom.weight_unit_m, -4.0);
   double h = 0.0;
   for (int f = 0; f < geom.num_triangles(); ++f) {
     const int t = tiling.label[f];
@@ -114,7 +108,7 @@ double tiling_energy(const BackgroundMesh& mesh, const TriangleGeometry& geom,
     const double d = std::max(std::abs(dx * cu[t] + dy * su[t]), std::abs(dy * cu[t] - dx * su[t]));
     h += geom.weight[f] * d;
   }
-  return h * unit;
+  return h;
 }
 
 int fix_generators(const TriangleGeometry& geom, Tiling& tiling) {
