@@ -3,6 +3,7 @@
 #include <chrono>
 
 #include "core/error.h"
+#include "tiling/corner_barriers.h"
 #include "tiling/init_tiling.h"
 #include "tiling/relax_tiling.h"
 #include "tiling/repair_tiling.h"
@@ -38,7 +39,8 @@ TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
                           const Progress& progress) {
   validate(mesh, size, cross, params);
   using Clock = std::chrono::steady_clock;
-  const TriangleGeometry geom = triangle_geometry(mesh, size);
+  TriangleGeometry geom = triangle_geometry(mesh, size);
+  geom.barrier = corner_barriers(mesh, size, params.barriers);
   RepairParams repair;
   repair.graph = params.graph;
   TilingResult result;

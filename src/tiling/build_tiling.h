@@ -12,11 +12,12 @@
 #include "mesh/background_mesh.h"
 #include "tiling/meta_graph.h"
 #include "tiling/relax_tiling.h"
+#include "tiling/corner_barriers.h"
 #include "tiling/tiling.h"
 
 namespace isoquad {
 
-enum class TilingStep { init, relax, conform, butterfly };
+enum class TilingStep { init, relax, conform, butterfly, none };
 
 struct TilingParams {
   int relax_iters = 50;         // --relax-iters: cap on L-infinity Lloyd iterations
@@ -30,7 +31,8 @@ struct TilingParams {
   // h. The paper's 0.5 is relative to the sizing field the tiling sees, the tile size 2h.
   double butterfly_max = 1.0;
   MetaGraphParams graph;
-  TilingStep stop_after = TilingStep::butterfly;  // --stop-after
+  CornerBarrierParams barriers;  // --corner-barrier
+  TilingStep stop_after = TilingStep::none;  // --stop-after; none: the whole job
 };
 
 // What one step did, for the report (--report) and the summary.

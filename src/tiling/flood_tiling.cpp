@@ -71,8 +71,10 @@ void LinfFlood::run(std::vector<int>& label) {
     const int tile = best_tile_[f];
     label[f] = tile;
     ++num_flooded_;
-    for (int g : mesh_.neighbours[f])
-      if (g >= 0 && label[g] < 0) offer(tile, g);
+    for (int i = 0; i < 3; ++i) {
+      const int g = mesh_.neighbours[f][i];
+      if (g >= 0 && label[g] < 0 && !geom_.crosses_barrier(f, i)) offer(tile, g);
+    }
   }
 }
 
@@ -165,8 +167,10 @@ void LinfFlood::reflood(const std::vector<int>& generator, std::vector<int>& lab
   }
   // The tiles around the region compete for it from its rim.
   for (int f : region_)
-    for (int g : mesh_.neighbours[f])
-      if (g >= 0 && label[g] >= 0) offer(label[g], f);
+    for (int i = 0; i < 3; ++i) {
+      const int g = mesh_.neighbours[f][i];
+      if (g >= 0 && label[g] >= 0 && !geom_.crosses_barrier(f, i)) offer(label[g], f);
+    }
   generator_ = generator;
   run(label);
   for (int f : region_) changed[label[f]] = 1;

@@ -51,7 +51,7 @@ class Merger {
         const double len = std::hypot(b.x - a.x, b.y - a.y);
         perimeter_[f] += len;
         const int g = mesh.neighbours[f][i];
-        if (g >= 0) adjacent_[f].push_back({g, len});
+        if (g >= 0 && !geom.crosses_barrier(f, i)) adjacent_[f].push_back({g, len});
       }
     }
   }
