@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,8 @@
 #include "core/error.h"
 #include "mesh/boundary_corners.h"
 #include "support/test_support.h"
+#include "tiling/corner_barriers.h"
+#include "tiling/flood_tiling.h"
 #include "tiling/meta_graph.h"
 #include "unit/mesh/test_domains.h"
 
@@ -97,6 +100,68 @@ TEST(Tiling, ReflexCornerIsSharedByTwoTiles) {
         EXPECT_GE(r.graph.vertex_num_tiles[m], 2);
       }
   EXPECT_EQ(reflex_corners, 1);
+}
+
+TEST(Tiling, CornerBarrierSeparatesTheSidesOfAReflexCorner) {
+  FieldsResult f = fields_on(l_domain(1000.0), 60.0, true);
+  TriangleGeometry geom = triangle_geometry(f.mesh, f.size);
+  geom.barrier = corner_barriers(f.mesh, f.size, CornerBarrierParams());
+  const int num_faces = geom.num_triangles();
+  // Both triangles of a barrier edge carry it; the edges form one path from the corner
+  // (1000, 1000) down the bisector, about h = 60 m long, off the boundary.
+  int num_edges = 0;
+  double reach = 0.0;
+  for (int t = 0; t < num_faces; ++t)
+    for (int i = 0; i < 3; ++i) {
+      if (!geom.crosses_barrier(t, i)) continue;
+      ++num_edges;
+      const int n = f.mesh.neighbours[t][i];
+      ASSERT_GE(n, 0);
+      int back = -1;
+      for (int j = 0; j < 3; ++j)
+        if (f.mesh.neighbours[n][j] == t) back = j;
+      ASSERT_GE(back, 0);
+      EXPECT_TRUE(geom.crosses_barrier(n, back));
+      for (int k : {1, 2}) {
+        const Point2& p = f.mesh.points[f.mesh.triangles[t][(i + k) % 3]];
+        EXPECT_LE(p.x, 1000.0 + 1e-9);
+        EXPECT_LE(p.y, 1000.0 + 1e-9);
+        EXPECT_NEAR(p.x - 1000.0, p.y - 1000.0, 30.0);  // near the bisector
+        reach = std::max(reach, std::hypot(p.x - 1000.0, p.y - 1000.0));
+      }
+    }
+  EXPECT_GT(num_edges, 0);
+  EXPECT_GT(reach, 40.0);
+  EXPECT_LT(reach, 100.0);
+  // Two generators on either side of the corner, the first nearer: the flood labels
+  // every triangle (the barrier cuts nothing off) and never crosses the barrier, so the
+  // corner is shared; without it the first tile takes the corner's both sides.
+  auto nearest = [&](double x, double y) {
+    int best = 0;
+    for (int t = 1; t < num_faces; ++t)
+      if (std::hypot(geom.cx[t] - x, geom.cy[t] - y) < std::hypot(geom.cx[best] - x, geom.cy[best] - y))
+        best = t;
+    return best;
+  };
+  const std::vector<int> generators{nearest(1080.0, 900.0), nearest(860.0, 1040.0)};
+  int corner = -1;
+  for (std::size_t v = 0; v < f.mesh.points.size(); ++v)
+    if (f.mesh.points[v].x == 1000.0 && f.mesh.points[v].y == 1000.0) corner = static_cast<int>(v);
+  ASSERT_GE(corner, 0);
+  auto tiles_at_corner = [&](const TriangleGeometry& g) {
+    LinfFlood flood(f.mesh, g, f.cross);
+    std::vector<int> label;
+    flood.flood(generators, label);
+    for (int l : label) EXPECT_GE(l, 0);
+    std::set<int> tiles;
+    for (int t = 0; t < num_faces; ++t)
+      for (int v : f.mesh.triangles[t])
+        if (v == corner) tiles.insert(label[t]);
+    return tiles.size();
+  };
+  EXPECT_EQ(tiles_at_corner(geom), 2u);
+  geom.barrier.clear();
+  EXPECT_EQ(tiles_at_corner(geom), 1u);
 }
 
 TEST(Tiling, SameInputGivesSameLabels) {
