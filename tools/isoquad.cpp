@@ -193,7 +193,7 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
       ->check(CLI::PositiveNumber)
       ->group(g);
   cmd->add_option("--gradation", f.sizing.gradation,
-                  "K: sizes change by at most K metres per metre (default 1; smaller is smoother)")
+                  "K: sizes change by at most K metres per metre (default 0.2: a tile 2h wide then spans a 40% change of h; larger grades faster with worse quads)")
       ->check(CLI::PositiveNumber)
       ->group(g);
   const char* c = "Cross field";
@@ -320,7 +320,7 @@ struct MeshArgs {
   std::vector<std::string> output_formats;
   std::string msh_version = "4.1";
   std::string output_crs;
-  std::string stop_after = "butterfly";
+  std::string stop_after;  // empty: the whole job
   std::string conform_rule = "lattice";
   double conform_shift = -1.0;  // by rule when not given
 };
@@ -346,6 +346,11 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "1: the paper's 0.5 of the tile size 2h)")
       ->check(CLI::NonNegativeNumber)
       ->group(g);
+  cmd->add_option("--corner-barrier", m.mesh.tiling.barriers.length_h,
+                  "Length, in h, of the edge paths from reflex boundary corners that no tile "
+                  "floods across, so that tiles meet at the corner (default 1; 0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->group(g);
   cmd->add_option("--conform-rule", m.conform_rule,
                   "How conforming relaxation shifts a tile: lattice (default; towards the rows and "
                   "columns of its neighbours along the cross field), longest-away (the paper: along "
@@ -362,6 +367,11 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
       ->check(CLI::IsMember({"init", "relax", "conform", "butterfly"}))
       ->group(g);
   cmd->add_option("--smooth-iters", m.mesh.smooth.iterations, "Laplacian smoothing sweeps (default 10)")
+      ->check(CLI::NonNegativeNumber)
+      ->group("Quads");
+  cmd->add_option("--aligned-iters", m.mesh.smooth.aligned_iterations,
+                  "Field-aligned smoothing sweeps after the Laplacian ones: edges pulled to "
+                  "length h along the cross field (default 20; 0: none)")
       ->check(CLI::NonNegativeNumber)
       ->group("Quads");
   cmd->add_option("--output-format", m.output_formats,
@@ -443,7 +453,7 @@ std::string joined_command_line(int argc, char** argv) {
 
 int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& command_line) {
   finish_front_end_args(a);
-  const bool tiling_only = m.stop_after != "butterfly";
+  const bool tiling_only = !m.stop_after.empty();
   const std::vector<MeshOutput> outputs = mesh_outputs(a, m);
   MeshWriteOptions write_options;
   write_options.msh_version = m.msh_version;
@@ -472,7 +482,8 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
   options.tiling.stop_after = m.stop_after == "init"      ? TilingStep::init
                               : m.stop_after == "relax"   ? TilingStep::relax
                               : m.stop_after == "conform" ? TilingStep::conform
-                                                          : TilingStep::butterfly;
+                              : m.stop_after == "butterfly" ? TilingStep::butterfly
+                                                          : TilingStep::none;
   const auto t0 = std::chrono::steady_clock::now();
   MeshResult r = build_mesh(options, Progress(make_progress(a.quiet)));
   // Every output of the run (mesh files, plot, report) is moved into place only when all

@@ -47,7 +47,7 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
                             progress.slice(0.45, 0.9));
     r.fields.times.push_back({"tiling", seconds_since(t0)});
     r.memory.push_back({"tiling", peak_memory_mb()});
-    if (o.tiling.stop_after != TilingStep::butterfly) return r;
+    if (o.tiling.stop_after != TilingStep::none) return r;
 
     progress.report("subdivide", 0.9);
     t0 = std::chrono::steady_clock::now();
@@ -55,7 +55,7 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
     r.fields.times.push_back({"subdivision", seconds_since(t0)});
     progress.report("smooth", 0.93);
     t0 = std::chrono::steady_clock::now();
-    r.smooth = smooth_quads(r.fields.mesh, r.quads, o.smooth);
+    r.smooth = smooth_quads(r.fields.mesh, r.quads, o.smooth, &r.fields.size, &r.fields.cross);
     r.fields.times.push_back({"smoothing", seconds_since(t0)});
     r.memory.push_back({"quads", peak_memory_mb()});
     r.attempts = attempt + 1;
@@ -153,6 +153,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("share_quads", s.stats.share_quads)
         .array("tile_num_meta_vertices_histogram", s.stats.tile_num_vertices_histogram)
         .array("interior_degree_histogram", s.stats.interior_degree_histogram)
+        .value("num_degree3_pairs", s.stats.num_degree3_pairs)
         .value("num_irregular_interior", s.stats.num_irregular_interior)
         .value("iterations", s.iterations)
         .value("energy", s.energy)

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "mesh/locate.h"
+
 namespace isoquad {
 
 namespace {
@@ -254,9 +256,117 @@ int flip_nonconvex(QuadMesh& m, double min_convexity) {
   return flips;
 }
 
+// The field-aligned sweeps (SmoothParams::aligned_iterations).
+class AlignedSmoother {
+ public:
+  AlignedSmoother(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
+                  const SizingField& size, const CrossField& cross, const SmoothParams& params)
+      : bg_(bg), m_(m), t_(t), size_(size), cross_(cross), params_(params), locator_(bg) {}
+
+  void run() {
+    const int nv = static_cast<int>(m_.points.size());
+    h_.resize(nv);
+    theta_.resize(nv);
+    for (int it = 0; it < params_.aligned_iterations; ++it) {
+      for (int v = 0; v < nv; ++v) {
+        const Location loc = locator_.locate(m_.points[v]);
+        h_[v] = loc.triangle >= 0 ? size_.at(bg_, loc.triangle, loc.bary) : 0.0;
+        theta_[v] = loc.triangle >= 0 ? cross_angle_at(bg_, cross_, loc.triangle, loc.bary) : 0.0;
+      }
+      for (int v = 0; v < nv; ++v) {
+        if (m_.fixed[v]) continue;
+        if (m_.chain[v] >= 0) slide_boundary(v);
+        else move_interior(v);
+      }
+    }
+  }
+
+ private:
+  // A regular vertex: its four neighbours in angular order take the four axes of the
+  // cross at v in the rotation that fits them best; each predicts v one edge length
+  // (the mean h of the edge's ends) back along its axis. Other vertices: Laplacian.
+  void move_interior(int v) {
+    const std::vector<int>& nb = t_.neighbours[v];
+    const Point2 p = m_.points[v];
+    Point2 target{0, 0};
+    if (nb.size() != 4 || !(h_[v] > 0.0)) {
+      if (nb.empty()) return;
+      for (int w : nb) target.x += m_.points[w].x, target.y += m_.points[w].y;
+      target.x /= nb.size();
+      target.y /= nb.size();
+    } else {
+      std::array<std::pair<double, int>, 4> around;
+      for (int j = 0; j < 4; ++j)
+        around[j] = {std::atan2(m_.points[nb[j]].y - p.y, m_.points[nb[j]].x - p.x), nb[j]};
+      std::sort(around.begin(), around.end());
+      int best_rotation = 0;
+      double best_cost = std::numeric_limits<double>::infinity();
+      for (int r = 0; r < 4; ++r) {
+        double cost = 0;
+        for (int j = 0; j < 4; ++j)
+          cost += std::abs(std::remainder(around[j].first - theta_[v] - (r + j) * M_PI / 2, 2 * M_PI));
+        if (cost < best_cost) best_cost = cost, best_rotation = r;
+      }
+      for (int j = 0; j < 4; ++j) {
+        const int w = around[j].second;
+        const double a = theta_[v] + (best_rotation + j) * M_PI / 2;
+        const double h = h_[w] > 0.0 ? 0.5 * (h_[v] + h_[w]) : h_[v];
+        target.x += m_.points[w].x - h * std::cos(a);
+        target.y += m_.points[w].y - h * std::sin(a);
+      }
+      target.x /= 4;
+      target.y /= 4;
+    }
+    const double s = params_.aligned_step;
+    try_move(m_, t_, v, {p.x + s * (target.x - p.x), p.y + s * (target.y - p.y)}, m_.arc_m[v],
+             params_.min_convexity);
+  }
+
+  // A boundary vertex with one interior neighbour w slides halfway between the foot of
+  // w on the boundary (an orthogonal inward edge) and the midpoint of its boundary
+  // neighbours.
+  void slide_boundary(int v) {
+    const auto& bn = t_.boundary_neighbours[v];
+    if (bn[0] < 0 || bn[1] < 0) return;
+    const int c = m_.chain[v];
+    if (m_.chain[bn[0]] != c || m_.chain[bn[1]] != c) return;
+    const double len = bg_.chains[c].length_m;
+    const double d0 = arc_delta(m_.arc_m[v], m_.arc_m[bn[0]], len);
+    const double d1 = arc_delta(m_.arc_m[v], m_.arc_m[bn[1]], len);
+    if (d0 * d1 >= 0) return;
+    const int ahead = d0 > 0 ? bn[0] : bn[1], behind = d0 > 0 ? bn[1] : bn[0];
+    double shift = 0.5 * (d0 + d1);
+    int inner = -1;
+    for (int w : t_.neighbours[v])
+      if (w != bn[0] && w != bn[1]) inner = inner < 0 ? w : -2;
+    if (inner >= 0) {
+      const Point2 &pa = m_.points[ahead], &pb = m_.points[behind], &p = m_.points[v];
+      const double tx = pa.x - pb.x, ty = pa.y - pb.y, tl = std::hypot(tx, ty);
+      if (tl > 0.0) {
+        double foot = ((m_.points[inner].x - p.x) * tx + (m_.points[inner].y - p.y) * ty) / tl;
+        const double limit = 0.5 * std::min(std::abs(d0), std::abs(d1));
+        foot = std::max(-limit, std::min(limit, foot));
+        shift = 0.5 * (shift + foot);
+      }
+    }
+    const double arc = m_.arc_m[v] + params_.aligned_step * shift;
+    try_move(m_, t_, v, chain_point(bg_, bg_.chains[c], arc), arc, params_.min_convexity);
+  }
+
+  const BackgroundMesh& bg_;
+  QuadMesh& m_;
+  const Topology& t_;
+  const SizingField& size_;
+  const CrossField& cross_;
+  const SmoothParams& params_;
+  TriangleLocator locator_;
+  std::vector<double> h_, theta_;
+};
+
 }  // namespace
 
-SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params) {
+SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
+                         const SizingField* size, const CrossField* cross) {
   SmoothStats stats;
   const Topology t = topology(m);
   const int nq = static_cast<int>(m.quads.size());
@@ -284,6 +394,9 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
       try_move(m, t, v, {c.x / k, c.y / k}, m.arc_m[v], params.min_convexity);
     }
   }
+
+  if (size && cross && params.aligned_iterations > 0)
+    AlignedSmoother(bg, m, t, *size, *cross, params).run();
 
   // A few sweeps that lift the flattest quads (angles near 0 or 180 degrees) as far as
   // they can; only the pass below must succeed.

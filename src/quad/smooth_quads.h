@@ -4,6 +4,8 @@
 // still not strictly convex.
 #pragma once
 
+#include "fields/cross_field.h"
+#include "fields/sizing_field.h"
 #include "mesh/background_mesh.h"
 #include "quad/quad_mesh.h"
 
@@ -18,6 +20,12 @@ struct SmoothParams {
   // turn; 0.26 ~ 15 degrees) get `lift_iterations` sweeps of the same search.
   double lift_convexity = 0.26;
   int lift_iterations = 10;             // rounds of quad edge flips when untangling is not enough
+  // Field-aligned sweeps after the Laplacian ones (when the fields are given): every
+  // regular interior vertex moves towards where its four neighbours want it, one size
+  // h away along the cross field axis that each edge follows; boundary vertices slide
+  // to make their inward edge orthogonal to the boundary. 0 disables them.
+  int aligned_iterations = 20;
+  double aligned_step = 0.5;  // fraction of the way to the target per sweep
 };
 
 struct SmoothStats {
@@ -29,7 +37,9 @@ struct SmoothStats {
 
 // Smooths in place. Does not throw; the caller decides what a remaining non-convex quad
 // means (the pipeline stops with Error(internal)).
+// With `size` and `cross`, the field-aligned sweeps run too.
 SmoothStats smooth_quads(const BackgroundMesh& background, QuadMesh& mesh,
-                         const SmoothParams& params);
+                         const SmoothParams& params, const SizingField* size = nullptr,
+                         const CrossField* cross = nullptr);
 
 }  // namespace isoquad

@@ -175,6 +175,13 @@ TilingStats tiling_stats(const MetaGraph& graph) {
     ++s.interior_degree_histogram[d];
     if (d != 4) ++s.num_irregular_interior;
   }
+  auto interior_degree3 = [&](int v) {
+    const int m = graph.meta_index[v];
+    return m >= 0 && !graph.vertex_on_boundary[m] && graph.vertex_num_tiles[m] == 3;
+  };
+  for (const MetaEdge& e : graph.edges)
+    if (!e.on_boundary() && interior_degree3(e.path.front()) && interior_degree3(e.path.back()))
+      ++s.num_degree3_pairs;
   return s;
 }
 

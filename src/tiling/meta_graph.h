@@ -65,6 +65,9 @@ struct TilingStats {
   // [d] = interior meta-vertices incident to d tiles (boundary ones are not counted)
   std::vector<int> interior_degree_histogram;
   int num_irregular_interior = 0;  // interior meta-vertices with degree != 4
+  // Interior meta-edges joining two interior meta-vertices of 3 tiles each: the
+  // butterfly inner edges of any length (2.5).
+  int num_degree3_pairs = 0;
 };
 TilingStats tiling_stats(const MetaGraph& graph);
 

@@ -126,3 +126,41 @@ TEST(SmoothQuads, UntanglesAndKeepsTheBoundaryOnTheBoundary) {
   // Smoothing spreads the bottom vertices evenly again.
   EXPECT_NEAR(m.points[5].x, 5 * kSide / kN, 0.05 * kSide / kN);
 }
+
+TEST(SmoothQuads, AlignedSweepsFollowTheSizeField) {
+  // h = 70 m on the left, 130 m on the right, axis-aligned cross: the uniform grid's
+  // columns move right, so that quads on the left shrink and on the right grow, and stay
+  // aligned and convex. Laplacian smoothing alone keeps the uniform grid.
+  const BackgroundMesh bg = square_background();
+  SizingField size;
+  for (const Point2& p : bg.points) size.size_m.push_back(p.x < kSide / 2 ? 70.0 : 130.0);
+  const CrossField cross = constant_cross_field(bg, 0.0);
+  // Mean quad area of the three columns at either side.
+  auto half_areas = [&](const QuadMesh& m) {
+    double left = 0, right = 0;
+    for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
+      const int column = q % kN;
+      if (column < 3) left += quad_area(m, q) / (3 * kN);
+      if (column >= kN - 3) right += quad_area(m, q) / (3 * kN);
+    }
+    return std::make_pair(left, right);
+  };
+  QuadMesh plain = grid(), aligned = grid();
+  SmoothParams params;
+  params.aligned_iterations = 0;
+  smooth_quads(bg, plain, params);
+  params.aligned_iterations = 40;
+  const SmoothStats st = smooth_quads(bg, aligned, params, &size, &cross);
+  EXPECT_EQ(st.num_nonconvex_after, 0);
+  const auto [plain_left, plain_right] = half_areas(plain);
+  const auto [left, right] = half_areas(aligned);
+  EXPECT_NEAR(plain_left, plain_right, 0.01 * plain_right);
+  EXPECT_LT(left, 0.85 * right);  // measured 0.79; 10 columns must still fill the square
+  const QualitySummary before = measure_quality(plain, bg, size, cross);
+  const QualitySummary after = measure_quality(aligned, bg, size, cross);
+  EXPECT_GT(after.share_size_08_125, before.share_size_08_125);
+  EXPECT_LT(after.orientation_mean_deg, 3.0);
+  EXPECT_GT(after.share_angles_75_105, 0.95);
+  for (std::size_t i = 0; i < aligned.points.size(); ++i)
+    if (aligned.chain[i] >= 0) EXPECT_LT(distance_to_square_boundary(aligned.points[i]), 1e-6) << i;
+}
