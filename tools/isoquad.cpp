@@ -343,7 +343,7 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
       ->group(g);
   cmd->add_option("--butterfly-max", m.mesh.tiling.butterfly_max,
                   "Remove butterflies whose inner meta-edge is shorter than this times h (default "
-                  "1: the paper's 0.5 of the tile size 2h)")
+                  "3; the paper's 0.5 of the tile size 2h is 1)")
       ->check(CLI::NonNegativeNumber)
       ->group(g);
   cmd->add_option("--corner-barrier", m.mesh.tiling.barriers.length_h,

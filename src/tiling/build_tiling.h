@@ -28,8 +28,11 @@ struct TilingParams {
   ConformShiftRule conform_rule = ConformShiftRule::lattice;
   double conform_shift = 0.5;
   // --butterfly-max: remove butterflies whose inner meta-edge is shorter than this times
-  // h. The paper's 0.5 is relative to the sizing field the tiling sees, the tile size 2h.
-  double butterfly_max = 1.0;
+  // h. The paper's 0.5 is relative to the tile size 2h, i.e. 1 here; longer butterflies
+  // still pass the checks of 2.5 (never more irregular meta-vertices) and removing them
+  // helps every measure: France at about 4,500 quads, 1 -> 3 gives quadrangle tiles
+  // 50% -> 57%, angles in range 66% -> 68%, regular interior vertices 77% -> 83%.
+  double butterfly_max = 3.0;
   MetaGraphParams graph;
   CornerBarrierParams barriers;  // --corner-barrier
   TilingStep stop_after = TilingStep::none;  // --stop-after; none: the whole job
