@@ -54,7 +54,8 @@ struct BoundaryFeatureSize::Impl {
 
   double value(int site, double x, double y) const {
     const Site& s = sites[site];
-    return s.h + gradation * std::hypot(x - s.x, y - s.y);
+    const double dx = x - s.x, dy = y - s.y;
+    return s.h + gradation * std::sqrt(dx * dx + dy * dy);
   }
 
   void build(double min_cell) {

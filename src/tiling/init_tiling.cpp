@@ -1,7 +1,9 @@
 #include "tiling/init_tiling.h"
 
 #include <cmath>
+#include <algorithm>
 #include <cstdint>
+#include <limits>
 #include <queue>
 #include <vector>
 
@@ -14,11 +16,13 @@ struct Adjacent {
   double length_m;  // shared boundary length
 };
 
-// A candidate merge; valid while both tiles are alive and unchanged since it was pushed.
+// A candidate merge a < b, pushed as the best merge of `owner` (a or b); valid while
+// both tiles are alive and unchanged since it was pushed.
 struct Candidate {
   double score;
   int a, b;
   std::uint32_t stamp_a, stamp_b;
+  int owner;
 };
 
 // Highest score first; ties by the smaller pair, so the order is deterministic.
@@ -62,31 +66,61 @@ class Merger {
     return (area_[a] + area_[b]) / (p * p);
   }
 
-  // Merges phase: pops candidates by `score(a, b, shared)` while `allowed(a, b)`, until
-  // `done()`. Returns the number of merges.
+  // Merges phase: merges the pair of highest `score(a, b, shared)` among those
+  // `allowed(a, b)`, again and again until `done()`. Returns the number of merges.
+  //
+  // The queue holds one entry per tile, its best merge when pushed, rather than one per
+  // adjacent pair (a heap of all pairs took most of the time). A merge changes only the
+  // pairs of the survivor r: r's best is pushed afresh, and a neighbour's pair with r when
+  // it beats the score the neighbour last pushed. Every other entry stays an upper bound
+  // of its owner's best; a stale one (its partner changed, or grew too heavy) is replaced
+  // by the owner's recomputed best when it reaches the top. So each merge is still the
+  // best pair overall, ties going to the smaller pair.
   template <class Score, class Allowed, class Done>
   int merge_all(Score score, Allowed allowed, Done done) {
     std::priority_queue<Candidate, std::vector<Candidate>, LowerPriority> queue;
-    auto push = [&](int a, const Adjacent& adj) {
-      const int b = adj.tile;
-      if (!allowed(a, b)) return;
-      const int lo = std::min(a, b), hi = std::max(a, b);
-      queue.push({score(a, b, adj.length_m), lo, hi, stamp_[lo], stamp_[hi]});
+    const LowerPriority lower;
+    std::vector<double> pushed(alive_.size(), -std::numeric_limits<double>::infinity());
+    auto candidate = [&](int owner, const Adjacent& adj) {
+      const int lo = std::min(owner, adj.tile), hi = std::max(owner, adj.tile);
+      return Candidate{score(owner, adj.tile, adj.length_m), lo, hi, stamp_[lo], stamp_[hi], owner};
     };
-    for (int a = 0; a < static_cast<int>(alive_.size()); ++a) {
-      if (!alive_[a]) continue;
-      for (const Adjacent& adj : adjacent_[a])
-        if (adj.tile > a) push(a, adj);
-    }
+    auto push_best = [&](int t) {
+      bool found = false;
+      Candidate best{};
+      for (const Adjacent& adj : adjacent_[t]) {
+        if (!allowed(t, adj.tile)) continue;
+        const Candidate c = candidate(t, adj);
+        if (!found || lower(best, c)) best = c, found = true;
+      }
+      pushed[t] = found ? best.score : -std::numeric_limits<double>::infinity();
+      if (found) queue.push(best);
+    };
+    for (int t = 0; t < static_cast<int>(alive_.size()); ++t)
+      if (alive_[t]) push_best(t);
     int num_merges = 0;
     while (!queue.empty() && !done()) {
       const Candidate c = queue.top();
       queue.pop();
-      if (!alive_[c.a] || !alive_[c.b] || stamp_[c.a] != c.stamp_a || stamp_[c.b] != c.stamp_b)
+      const std::uint32_t owner_stamp = c.owner == c.a ? c.stamp_a : c.stamp_b;
+      if (!alive_[c.owner] || stamp_[c.owner] != owner_stamp) continue;  // superseded
+      if (!alive_[c.a] || !alive_[c.b] || stamp_[c.a] != c.stamp_a || stamp_[c.b] != c.stamp_b ||
+          !allowed(c.a, c.b)) {
+        push_best(c.owner);
         continue;
+      }
       const int r = merge(c.a, c.b);
       ++num_merges;
-      for (const Adjacent& adj : adjacent_[r]) push(r, adj);
+      push_best(r);
+      for (const Adjacent& adj : adjacent_[r]) {
+        const int n = adj.tile;
+        if (!allowed(n, r)) continue;
+        const Candidate with_r = candidate(n, {r, adj.length_m});
+        if (with_r.score >= pushed[n]) {
+          pushed[n] = with_r.score;
+          queue.push(with_r);
+        }
+      }
     }
     return num_merges;
   }

@@ -125,26 +125,48 @@ double energy_of(const BackgroundMesh& mesh, const TriangleGeometry& geom,
   return tiling_energy(mesh, geom, cross, t);
 }
 
-// ConformShiftRule::lattice. out holds the tile centroids on entry.
-void lattice_targets(const BackgroundMesh& mesh, const TriangleGeometry& geom,
-                     const CrossField& cross, const MetaGraph& graph,
-                     const std::vector<int>& relocated, double pull, ConformTargets& out) {
-  const int num_tiles = static_cast<int>(relocated.size());
-  // Shared boundary length between adjacent tiles.
-  std::vector<std::vector<std::pair<int, double>>> adjacent(num_tiles);
-  auto add = [&](int a, int b, double len) {
-    for (auto& [t, l] : adjacent[a])
-      if (t == b) {
-        l += len;
-        return;
-      }
-    adjacent[a].push_back({b, len});
-  };
+// Shared boundary length between adjacent tiles, per tile.
+using TileAdjacency = std::vector<std::vector<std::pair<int, double>>>;
+
+void add_shared(TileAdjacency& adjacent, int a, int b, double len) {
+  for (auto& [t, l] : adjacent[a])
+    if (t == b) {
+      l += len;
+      return;
+    }
+  adjacent[a].push_back({b, len});
+}
+
+TileAdjacency adjacency_from_graph(const MetaGraph& graph, int num_tiles) {
+  TileAdjacency adjacent(num_tiles);
   for (const MetaEdge& e : graph.edges) {
     if (e.on_boundary() || e.tile_left == e.tile_right) continue;
-    add(e.tile_left, e.tile_right, e.length_m);
-    add(e.tile_right, e.tile_left, e.length_m);
+    add_shared(adjacent, e.tile_left, e.tile_right, e.length_m);
+    add_shared(adjacent, e.tile_right, e.tile_left, e.length_m);
   }
+  return adjacent;
+}
+
+// The same from the labels in one pass over the triangles, without a meta-graph.
+TileAdjacency adjacency_from_labels(const BackgroundMesh& mesh, const std::vector<int>& label,
+                                    int num_tiles) {
+  TileAdjacency adjacent(num_tiles);
+  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
+    for (int i = 0; i < 3; ++i) {
+      const int g = mesh.neighbours[f][i];
+      if (g < 0 || label[g] == label[f]) continue;
+      const Point2 &a = mesh.points[mesh.triangles[f][(i + 1) % 3]],
+                   &b = mesh.points[mesh.triangles[f][(i + 2) % 3]];
+      add_shared(adjacent, label[f], label[g], std::hypot(b.x - a.x, b.y - a.y));
+    }
+  return adjacent;
+}
+
+// ConformShiftRule::lattice. out holds the tile centroids on entry.
+void lattice_targets(const BackgroundMesh& mesh, const CrossField& cross,
+                     const TileAdjacency& adjacent, const std::vector<int>& relocated,
+                     double pull, ConformTargets& out) {
+  const int num_tiles = static_cast<int>(relocated.size());
   const std::vector<double> cx = out.x, cy = out.y;
   for (int t = 0; t < num_tiles; ++t) {
     if (relocated[t] < 0) continue;
@@ -175,7 +197,6 @@ void lattice_targets(const BackgroundMesh& mesh, const TriangleGeometry& geom,
     out.y[t] += move_u * uy + move_v * ux;
     out.shift_m[t] = std::hypot(move_u, move_v);
   }
-  (void)geom;
 }
 
 }  // namespace
@@ -227,9 +248,13 @@ RelaxResult relax_tiling(const BackgroundMesh& mesh, const TriangleGeometry& geo
   return r;
 }
 
-ConformTargets conform_targets(const BackgroundMesh& mesh, const TriangleGeometry& geom,
-                               const CrossField& cross, const Tiling& tiling,
-                               const MetaGraph& graph, const ConformParams& params) {
+namespace {
+
+// conform_targets; `graph` may be null for the lattice rule, which then reads the tile
+// adjacency from the labels.
+ConformTargets targets_of(const BackgroundMesh& mesh, const TriangleGeometry& geom,
+                          const CrossField& cross, const Tiling& tiling, const MetaGraph* graph,
+                          const ConformParams& params) {
   const int num_tiles = tiling.num_tiles();
   const TileCentroids c = tile_centroids(geom, tiling.label, num_tiles);
   const std::vector<int> relocated = nearest_triangles_in_tiles(geom, tiling.label, c.x, c.y);
@@ -238,21 +263,23 @@ ConformTargets conform_targets(const BackgroundMesh& mesh, const TriangleGeometr
   out.y = c.y;
   out.shift_m.assign(num_tiles, 0.0);
   if (params.rule == ConformShiftRule::lattice) {
-    lattice_targets(mesh, geom, cross, graph, relocated, params.shift, out);
+    const TileAdjacency adjacent = graph ? adjacency_from_graph(*graph, num_tiles)
+                                         : adjacency_from_labels(mesh, tiling.label, num_tiles);
+    lattice_targets(mesh, cross, adjacent, relocated, params.shift, out);
     return out;
   }
   std::vector<Point2> pos;
   std::vector<char> is_corner;
   std::vector<int> side_of;
   for (int t = 0; t < num_tiles; ++t) {
-    const TileCycle& cycle = graph.tiles[t];
+    const TileCycle& cycle = graph->tiles[t];
     const int p = static_cast<int>(cycle.vertices.size());
     // Quadrangles and triangles are not shifted (2.4).
     if (p <= 4 || relocated[t] < 0) continue;
     // The frame is the cross at the tile's relocated triangle (2.4).
     const double theta = frame_angle_at(mesh, cross, relocated[t]);
     pos.resize(p);
-    for (int i = 0; i < p; ++i) pos[i] = mesh.points[graph.vertices[cycle.vertices[i]]];
+    for (int i = 0; i < p; ++i) pos[i] = mesh.points[graph->vertices[cycle.vertices[i]]];
     const CornerChoice choice = choose_corners_and_axes(pos, theta);
     is_corner.assign(p, 0);
     side_of.assign(p, 0);
@@ -296,6 +323,14 @@ ConformTargets conform_targets(const BackgroundMesh& mesh, const TriangleGeometr
   return out;
 }
 
+}  // namespace
+
+ConformTargets conform_targets(const BackgroundMesh& mesh, const TriangleGeometry& geom,
+                               const CrossField& cross, const Tiling& tiling,
+                               const MetaGraph& graph, const ConformParams& params) {
+  return targets_of(mesh, geom, cross, tiling, &graph, params);
+}
+
 RelaxResult conform_tiling(const BackgroundMesh& mesh, const TriangleGeometry& geom,
                            const CrossField& cross, Tiling& tiling, const ConformParams& params,
                            const Progress& progress) {
@@ -313,8 +348,12 @@ RelaxResult conform_tiling(const BackgroundMesh& mesh, const TriangleGeometry& g
   history.add(current.generator);
   for (int it = 0; it < params.iters; ++it) {
     progress.report("conform", static_cast<double>(it) / params.iters);
-    const MetaGraph graph = build_meta_graph(mesh, current, params.graph);
-    const ConformTargets targets = conform_targets(mesh, geom, cross, current, graph, params);
+    // The lattice rule needs only the tile adjacency; the others the tiles' meta-vertices.
+    MetaGraph graph;
+    if (params.rule != ConformShiftRule::lattice) graph = build_meta_graph(mesh, current, params.graph);
+    const ConformTargets targets = targets_of(mesh, geom, cross, current,
+                                              params.rule == ConformShiftRule::lattice ? nullptr : &graph,
+                                              params);
     std::vector<int> next =
         nearest_triangles_in_tiles(geom, current.label, targets.x, targets.y);
     for (int t = 0; t < num_tiles; ++t)
