@@ -48,8 +48,7 @@ TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
 
   // Every step ends with the invariants restored, its meta-graph and its report.
   auto finish = [&](const char* step, Clock::time_point start, int iterations) {
-    repair_tiling(mesh, geom, tiling, repair);
-    result.graph = build_meta_graph(mesh, tiling, params.graph);
+    repair_tiling(mesh, geom, tiling, repair, &result.graph);
     TilingStepReport r;
     r.step = step;
     r.stats = tiling_stats(result.graph);

@@ -187,7 +187,9 @@ class ButterflyRemover {
         boundary_meta_(mesh.points.size(), 0),
         vertex_scratch_(mesh.points.size(), -1),
         local_of_(mesh.points.size(), -1),
-        region_of_(mesh.triangles.size(), -1) {}
+        region_of_(mesh.triangles.size(), -1),
+        face_mark_(mesh.triangles.size(), 0),
+        vertex_mark_(mesh.points.size(), 0) {}
 
   ButterflyStats run();
 
@@ -223,6 +225,10 @@ class ButterflyRemover {
   std::vector<int> vertex_scratch_;  // #V, -1 outside any call
   std::vector<int> local_of_;        // #V, -1 outside reparameterize
   std::vector<int> region_of_;       // #F, -1 outside reparameterize
+  // Visit marks: an element is marked when its entry equals the current round.
+  mutable std::vector<int> face_mark_;  // #F
+  mutable std::vector<int> vertex_mark_;  // #V
+  mutable int face_round_ = 0, vertex_round_ = 0;
 };
 
 std::vector<int> ButterflyRemover::tiles_at(int v) const {
@@ -363,13 +369,17 @@ std::vector<int> ButterflyRemover::collect_region(const Butterfly& b) const {
     return std::find(b.tiles.begin(), b.tiles.end(), label) != b.tiles.end();
   };
   std::vector<int> region;
-  std::unordered_set<int> seen;
+  const int round = ++face_round_;
+  auto add = [&](int f) {
+    if (face_mark_[f] == round) return;
+    face_mark_[f] = round;
+    region.push_back(f);
+  };
   for (int v : {b.inner_b, b.inner_d})
-    for (const int* f = fan_begin(v); f != fan_end(v); ++f)
-      if (seen.insert(*f).second) region.push_back(*f);
+    for (const int* f = fan_begin(v); f != fan_end(v); ++f) add(*f);
   for (std::size_t k = 0; k < region.size(); ++k)
     for (int g : mesh_.neighbours[region[k]])
-      if (g >= 0 && in_butterfly(g) && seen.insert(g).second) region.push_back(g);
+      if (g >= 0 && in_butterfly(g)) add(g);
   std::sort(region.begin(), region.end());
   return region;
 }
@@ -399,7 +409,6 @@ std::optional<DiskBoundary> ButterflyRemover::disk_boundary(
   std::vector<int> touched;
   std::vector<std::array<int, 3>> edges;  // from, to, inner triangle
   bool manifold = true;
-  std::unordered_set<int> members(triangles.begin(), triangles.end());
   for (int f : triangles) {
     const auto& t = mesh_.triangles[f];
     for (int i = 0; i < 3; ++i) {
@@ -427,21 +436,29 @@ std::optional<DiskBoundary> ButterflyRemover::disk_boundary(
   if (!result) return std::nullopt;
 
   // Edge-connected, and Euler characteristic 1.
+  const int round = ++face_round_;
   std::vector<int> stack{triangles.front()};
-  std::unordered_set<int> reached{triangles.front()};
+  face_mark_[triangles.front()] = round;
+  std::size_t reached = 1;
   while (!stack.empty()) {
     const int f = stack.back();
     stack.pop_back();
     for (int g : mesh_.neighbours[f])
-      if (g >= 0 && members.count(g) && reached.insert(g).second) stack.push_back(g);
+      if (g >= 0 && face_mark_[g] != round && inside(g)) {
+        face_mark_[g] = round;
+        ++reached;
+        stack.push_back(g);
+      }
   }
-  if (reached.size() != triangles.size()) return std::nullopt;
-  std::unordered_set<int> vertices;
+  if (reached != triangles.size()) return std::nullopt;
+  const int vround = ++vertex_round_;
+  long num_vertices = 0;
   for (int f : triangles)
-    for (int v : mesh_.triangles[f]) vertices.insert(v);
+    for (int v : mesh_.triangles[f])
+      if (vertex_mark_[v] != vround) vertex_mark_[v] = vround, ++num_vertices;
   const long num_faces = static_cast<long>(triangles.size());
   const long num_edges = (3 * num_faces + static_cast<long>(edges.size())) / 2;
-  if (static_cast<long>(vertices.size()) - num_edges + num_faces != 1) return std::nullopt;
+  if (num_vertices - num_edges + num_faces != 1) return std::nullopt;
   return result;
 }
 

@@ -98,7 +98,7 @@ class Repairer {
     changed_.assign(tiling.num_tiles(), 0);
   }
 
-  RepairStats run() {
+  RepairStats run(MetaGraph* graph_out) {
     for (stats_.rounds = 0; stats_.rounds < params_.max_rounds; ++stats_.rounds) {
       touched_.assign(tiling_.num_tiles(), 0);
       if (fix_fragments() > 0) continue;
@@ -106,13 +106,17 @@ class Repairer {
       if (fix_holes(b) > 0) continue;
       if (fix_pinches(b) > 0) continue;
       const MetaGraph graph = build_meta_graph(mesh_, tiling_, params_.graph);
-      if (fix_small_tiles(b, graph) > 0) continue;
-      if (fix_reflex_corners() > 0) continue;
+      // Tiles around every vertex; both fixes below read it, the first changes nothing
+      // unless it fixes something (and the round ends).
+      const std::vector<int> sectors = count_vertex_sectors(mesh_, label_);
+      if (fix_small_tiles(b, graph, sectors) > 0) continue;
+      if (fix_reflex_corners(sectors) > 0) continue;
       break;
     }
     compact();
-    const std::string problem =
-        check_tiling(mesh_, tiling_, build_meta_graph(mesh_, tiling_, params_.graph));
+    MetaGraph graph = build_meta_graph(mesh_, tiling_, params_.graph);
+    const std::string problem = check_tiling(mesh_, tiling_, graph);
+    if (graph_out) *graph_out = std::move(graph);
     if (!problem.empty())
       throw Error(ErrorClass::meshing, "tiling",
                   "cannot restore the tiling invariants after " + std::to_string(stats_.rounds) +
@@ -421,9 +425,9 @@ class Repairer {
 
   // Tiles with fewer than 3 meta-vertices join the neighbour they share the longest
   // boundary with, unless that would leave a reflex corner in a single tile.
-  int fix_small_tiles(const TileBoundaries& b, const MetaGraph& graph) {
+  int fix_small_tiles(const TileBoundaries& b, const MetaGraph& graph,
+                      const std::vector<int>& sectors) {
     int fixes = 0;
-    const std::vector<int> sectors = count_vertex_sectors(mesh_, label_);
     SharedLengths shared;
     std::vector<int> forbidden;
     for (int t = 0; t < tiling_.num_tiles(); ++t) {
@@ -500,9 +504,8 @@ class Repairer {
 
   // A reflex corner in fewer tiles than it needs: the tile with the widest sector there
   // is split by rays from the corner into equal angles.
-  int fix_reflex_corners() {
+  int fix_reflex_corners(const std::vector<int>& sectors) {
     int fixes = 0;
-    const std::vector<int> sectors = count_vertex_sectors(mesh_, label_);
     for (const BoundaryChain& chain : mesh_.chains) {
       for (std::size_t k = 0; k < chain.vertices.size(); ++k) {
         const int v = chain.vertices[k];
@@ -655,14 +658,14 @@ class Repairer {
 }  // namespace
 
 RepairStats repair_tiling(BackgroundMesh& mesh, const TriangleGeometry& geom,
-                          Tiling& tiling, const RepairParams& params) {
+                          Tiling& tiling, const RepairParams& params, MetaGraph* graph) {
   if (tiling.label.size() != mesh.triangles.size())
     throw Error(ErrorClass::internal, "tiling", "repair: the labelling does not match the mesh");
   for (int t : tiling.label)
     if (t < 0 || t >= tiling.num_tiles())
       throw Error(ErrorClass::internal, "tiling", "repair: a triangle has no tile");
   Repairer repairer(mesh, geom, tiling, params);
-  return repairer.run();
+  return repairer.run(graph);
 }
 
 }  // namespace isoquad

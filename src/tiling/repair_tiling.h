@@ -45,8 +45,10 @@ struct RepairStats {
 // check_tiling passes. Tile ids are renumbered when tiles disappear (surviving tiles keep
 // their order); tiles whose triangles changed get the relocated generator (2.3), others
 // keep theirs. Throws Error(meshing) when the invariants still fail after max_rounds.
-// The mesh's corner tags may be cleared (RepairParams::max_corner_splits).
+// The mesh's corner tags may be cleared (RepairParams::max_corner_splits). With `graph`,
+// also gives the meta-graph of the repaired tiling (built for the final check anyway).
 RepairStats repair_tiling(BackgroundMesh& mesh, const TriangleGeometry& geom,
-                          Tiling& tiling, const RepairParams& params = RepairParams());
+                          Tiling& tiling, const RepairParams& params = RepairParams(),
+                          MetaGraph* graph = nullptr);
 
 }  // namespace isoquad
