@@ -10,8 +10,12 @@ metrics for both meshes here, independently of isoquad's own report:
   sqrt(area)/H median and share in [0.8,1.25], orientation deviation from isoquad's
   boundary-aligned cross field (mean, p90), regular interior vertices, and wall time.
 
-Usage: tools/compare_gmsh.py INPUT --size H [--isoquad build/isoquad] [--workdir DIR]
-       [--simplify M] [extra isoquad options after --]
+With --auto instead of --size, both follow isoquad's automatic sizing field (pass its
+options after --, e.g. -- --hmax 32000): Gmsh reads it as a background mesh view, and
+sqrt(area)/h is measured against it at the quad centroids.
+
+Usage: tools/compare_gmsh.py INPUT (--size H | --auto) [--isoquad build/isoquad]
+       [--workdir DIR] [--simplify M] [extra isoquad options after --]
 Needs Debian's gmsh, python3-meshio, python3-gdal, python3-scipy (tools/install-deps.sh).
 """
 import argparse
@@ -37,8 +41,9 @@ def run(cmd):
     return elapsed, proc.stdout
 
 
-def domain_to_geo(gpkg, geo_path, size):
-    """Writes every ring of the domain layer as Gmsh points/lines/plane surfaces."""
+def domain_to_geo(gpkg, geo_path, size, background=None):
+    """Writes every ring of the domain layer as Gmsh points/lines/plane surfaces; with
+    `background` (a .pos view of h), sizes come from that view instead of `size`."""
     ds = ogr.Open(gpkg)
     layer = ds.GetLayerByName("domain")
     lines, point_id, line_id, loop_id, surfaces = [], 0, 0, 0, []
@@ -51,7 +56,7 @@ def domain_to_geo(gpkg, geo_path, size):
             first = point_id + 1
             for x, y, *_ in pts:
                 point_id += 1
-                lines.append(f"Point({point_id}) = {{{x!r}, {y!r}, 0, {size!r}}};")
+                lines.append(f"Point({point_id}) = {{{x!r}, {y!r}, 0, {size or 1.0!r}}};")
             ids = list(range(first, point_id + 1))
             seg_ids = []
             for i, a in enumerate(ids):
@@ -70,21 +75,38 @@ def domain_to_geo(gpkg, geo_path, size):
         "Mesh.CrossFieldClosestPoint = 0;",
         "Mesh.RecombineAll = 1;",
         "Mesh.RecombinationAlgorithm = 3;",
-        f"Mesh.MeshSizeMin = {size!r};",
-        f"Mesh.MeshSizeMax = {size!r};",
         "Mesh.MeshSizeExtendFromBoundary = 0;",
         "Mesh.MeshSizeFromPoints = 0;",
+        "Mesh.MeshSizeFromCurvature = 0;",
     ]
+    if background:
+        lines += [f'Merge "{background}";', "Field[1] = PostView;", "Field[1].ViewIndex = 0;",
+                  "Background Field = 1;"]
+    else:
+        lines += [f"Mesh.MeshSizeMin = {size!r};", f"Mesh.MeshSizeMax = {size!r};"]
     with open(geo_path, "w") as f:
         f.write("\n".join(lines) + "\n")
 
 
-def cross_at(fields_vtu):
-    """Nearest-vertex lookup of isoquad's cross angle (radians)."""
+def field_at(fields_vtu, name, scale=1.0):
+    """Nearest-vertex lookup of one of isoquad's fields (cross_angle in radians)."""
     f = meshio.read(fields_vtu)
     tree = cKDTree(f.points[:, :2])
-    angle = np.radians(f.point_data["cross_angle"])
-    return lambda pts: angle[tree.query(pts)[1]]
+    values = f.point_data[name] * scale
+    return lambda pts: values[tree.query(pts)[1]]
+
+
+def fields_to_pos(fields_vtu, pos_path, factor):
+    """isoquad's size field on its background triangles as a Gmsh scalar view, times
+    `factor`."""
+    f = meshio.read(fields_vtu)
+    p, h = f.points, f.point_data["size"] * factor
+    with open(pos_path, "w") as out:
+        out.write('View "h" {\n')
+        for a, b, c in f.cells_dict["triangle"]:
+            out.write(f"ST({p[a,0]!r},{p[a,1]!r},0,{p[b,0]!r},{p[b,1]!r},0,{p[c,0]!r},{p[c,1]!r},0)"
+                      f"{{{h[a]!r},{h[b]!r},{h[c]!r}}};\n")
+        out.write("};\n")
 
 
 def metrics(points, quads, triangles, size, cross):
@@ -101,7 +123,7 @@ def metrics(points, quads, triangles, size, cross):
     edge = np.roll(q, -1, axis=1) - q
     turn = edge[..., 0] * np.roll(edge, -1, axis=1)[..., 1] - edge[..., 1] * np.roll(edge, -1, axis=1)[..., 0]
     nonconvex = int(np.sum(~np.all(turn > 0, axis=1)))
-    ratio = np.sqrt(np.abs(area)) / size
+    ratio = np.sqrt(np.abs(area)) / size(q.mean(axis=1))
     theta = cross(q.mean(axis=1))
     phi = np.arctan2(edge[..., 1], edge[..., 0])
     d = np.mod(phi - theta[:, None] + math.pi / 4, math.pi / 2) - math.pi / 4
@@ -120,8 +142,8 @@ def metrics(points, quads, triangles, size, cross):
         "non-convex quads": nonconvex,
         "angles in [75,105]": f"{100 * np.mean((ang >= 75) & (ang <= 105)):.1f}%",
         "min / max angle": f"{ang.min():.1f} / {ang.max():.1f}",
-        "sqrt(area)/H median": f"{np.median(ratio):.3f}",
-        "sqrt(area)/H in [0.8,1.25]": f"{100 * np.mean((ratio >= 0.8) & (ratio <= 1.25)):.1f}%",
+        "sqrt(area)/h median": f"{np.median(ratio):.3f}",
+        "sqrt(area)/h in [0.8,1.25]": f"{100 * np.mean((ratio >= 0.8) & (ratio <= 1.25)):.1f}%",
         "orientation dev. mean / p90": f"{dev.mean():.1f} / {np.percentile(dev, 90):.1f} deg",
         "regular interior vertices": f"{100 * np.mean(degree[interior] == 4):.1f}%",
     }
@@ -130,35 +152,58 @@ def metrics(points, quads, triangles, size, cross):
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("input")
-    ap.add_argument("--size", type=float, required=True, help="uniform element size H, metres")
+    mode = ap.add_mutually_exclusive_group(required=True)
+    mode.add_argument("--size", type=float, help="uniform element size H, metres")
+    mode.add_argument("--auto", action="store_true", help="isoquad's automatic sizing for both")
     ap.add_argument("--isoquad", default=os.path.join(os.path.dirname(__file__), "..", "build", "isoquad"))
     ap.add_argument("--simplify", type=float, help="boundary simplification (default H/4)")
     ap.add_argument("--workdir")
-    ap.add_argument("extra", nargs="*", help="further isoquad options (after --)")
-    a = ap.parse_args()
+    argv = sys.argv[1:]
+    extra = argv[argv.index("--") + 1:] if "--" in argv else []
+    a = ap.parse_args(argv[:argv.index("--")] if "--" in argv else argv)
+    a.extra = extra
     work = a.workdir or tempfile.mkdtemp(prefix="isoquad-vs-gmsh-")
     os.makedirs(work, exist_ok=True)
-    simplify = a.simplify if a.simplify is not None else a.size / 4
-    common = [a.input, "--size", repr(a.size), "--simplify", repr(simplify), "--overwrite", "-q"] + a.extra
+    common = [a.input, "--overwrite", "-q"] + a.extra
+    if a.size:
+        simplify = a.simplify if a.simplify is not None else a.size / 4
+        common += ["--size", repr(a.size), "--simplify", repr(simplify)]
+    elif a.simplify is not None:
+        common += ["--simplify", repr(a.simplify)]
     domain = os.path.join(work, "domain.gpkg")
-    run([a.isoquad, "domain", *common, "-o", domain])
+    # `isoquad domain` takes no sizing options.
+    sizing = {"--hmax", "--hmin", "--gradation", "--cells-across", "--size-expr", "--size-raster"}
+    domain_args, skip = [], False
+    for arg in common:
+        if skip:
+            skip = False
+        elif arg in sizing:
+            skip = True
+        else:
+            domain_args.append(arg)
+    run([a.isoquad, "domain", *domain_args, "-o", domain])
     fields = os.path.join(work, "fields.vtu")
     run([a.isoquad, "fields", *common, "-o", fields])
-    cross = cross_at(fields)
+    cross = field_at(fields, "cross_angle", math.pi / 180)
+    size = field_at(fields, "size") if a.auto else (lambda pts: np.full(len(pts), a.size))
 
     iq_vtu = os.path.join(work, "isoquad.vtu")
     t_iq, _ = run([a.isoquad, "mesh", *common, "-o", iq_vtu])
     iq = meshio.read(iq_vtu)
-    iq_metrics = metrics(iq.points, iq.cells_dict["quad"], 0, a.size, cross)
+    iq_metrics = metrics(iq.points, iq.cells_dict["quad"], 0, size, cross)
 
     geo = os.path.join(work, "domain.geo")
-    domain_to_geo(domain, geo, a.size)
+    background = None
+    if a.auto:
+        background = os.path.join(work, "size.pos")
+        fields_to_pos(fields, background, 1.0)
+    domain_to_geo(domain, geo, a.size, background)
     msh = os.path.join(work, "gmsh.msh")
     t_gm, _ = run(["gmsh", geo, "-2", "-format", "msh22", "-o", msh, "-v", "1"])
     gm = meshio.read(msh)
     gm_quads = gm.cells_dict.get("quad", np.zeros((0, 4), int))
     gm_tris = len(gm.cells_dict.get("triangle", []))
-    gm_metrics = metrics(gm.points, gm_quads, gm_tris, a.size, cross)
+    gm_metrics = metrics(gm.points, gm_quads, gm_tris, size, cross)
 
     rows = list(iq_metrics.keys()) + ["seconds (read to write)"]
     iq_metrics["seconds (read to write)"] = f"{t_iq:.2f}"
