@@ -70,9 +70,10 @@ TilingResult check_every_step(FieldsResult& f, double domain_area_m2, double siz
 TEST(Tiling, SquareWithAxisAlignedCrossEndsMostlyQuadrangles) {
   FieldsResult f = fields_on(square_domain(1000.0), 50.0, true);
   const TilingResult r = check_every_step(f, 1.0e6, 50.0);
-  // Measured: relax 8%, conform 17%, butterflies 72% tiles with 4 meta-vertices.
+  // Measured: relax 10%, conform 18%, butterflies 79% tiles with 4 meta-vertices (the
+  // issue asks 90%).
   EXPECT_GT(step(r, "conform").stats.share_quads, step(r, "relax").stats.share_quads);
-  EXPECT_GE(step(r, "butterfly").stats.share_quads, 0.65);
+  EXPECT_GE(step(r, "butterfly").stats.share_quads, 0.74);
   EXPECT_LE(step(r, "butterfly").stats.num_irregular_interior,
             step(r, "conform").stats.num_irregular_interior);
 }
