@@ -1,7 +1,7 @@
 #include "tiling/init_tiling.h"
 
-#include <cmath>
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <queue>
