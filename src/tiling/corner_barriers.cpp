@@ -1,6 +1,7 @@
 #include "tiling/corner_barriers.h"
 
 #include <cmath>
+#include <utility>
 
 namespace isoquad {
 
