@@ -169,6 +169,23 @@ TEST(CliMesh, TilingStepNeedsSomethingToShowIt) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("m.gpkg")));
 }
 
+TEST(CliMesh, StopAfterButterflyReportsTheTilingAndWritesNoMesh) {
+  TempDir dir;
+  const std::string report = dir.file("tiles.json"), png = dir.file("tiles.png");
+  const CliResult r = run_cli({"mesh", golden_input("square"), "--dst-crs", "EPSG:3857", "--size",
+                               "50", "--cross-angle", "0", "-o", dir.file("m.gpkg"),
+                               "--stop-after", "butterfly", "--report", report, "--plot", png, "-q"},
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("m.gpkg")));
+  EXPECT_TRUE(std::filesystem::exists(png));
+  // The report has the four tiling steps and no quad quality.
+  const std::string json = read_file(report);
+  for (const char* step : {"\"init\"", "\"relax\"", "\"conform\"", "\"butterfly\""})
+    EXPECT_NE(json.find(step), std::string::npos) << step;
+  EXPECT_EQ(json.find("\"num_quads\""), std::string::npos);
+}
+
 TEST(CliMesh, SameInputGivesByteIdenticalOutput) {
   TempDir dir;
   std::string bytes[2];
