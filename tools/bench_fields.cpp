@@ -25,7 +25,9 @@ const Domain& france_domain() {
   static const FieldsResult front = [] {
     FieldsResult r;
     FieldsOptions o = france_options();
-    o.front.target_size_for_area = [](double) { return 1450.0; };
+    // The simplification the mesh job applies: its automatic hmin, hmax / 10.
+    const double hmin = o.sizing.hmax_m / 10.0;
+    o.front.target_size_for_area = [hmin](double) { return hmin; };
     r.front = build_planar_domain(o.front);
     return r;
   }();
