@@ -17,7 +17,7 @@ using namespace isoquad;
 FieldsOptions france_options() {
   FieldsOptions o;
   o.front.read.path = std::string(ISOQUAD_SOURCE_DIR) + "/shapefiles/france.shp";
-  o.sizing.hmax_m = 32000.0;  // about 4,500 quads with the default gradation 0.2
+  o.sizing.hmax_m = 30000.0;  // about 4,500 quads with the default gradation 0.2
   return o;
 }
 

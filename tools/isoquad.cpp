@@ -322,11 +322,17 @@ struct MeshArgs {
   std::string output_crs;
   std::string stop_after;  // empty: the whole job
   std::string conform_rule = "lattice";
-  double conform_shift = -1.0;  // by rule when not given
+  std::string init = "front";
 };
 
 void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
   const char* g = "Tiling (paper, sections 2.2 to 2.5)";
+  cmd->add_option("--init", m.init,
+                  "How tiles start: front (default; seeds one tile apart along the cross field, "
+                  "row by row from the boundary inwards) or merge (the paper: triangles merged by "
+                  "compactness)")
+      ->check(CLI::IsMember({"front", "merge"}))
+      ->group(g);
   cmd->add_option("--relax-iters", m.mesh.tiling.relax_iters,
                   "Cap on L-infinity relaxation iterations (default 50)")
       ->check(CLI::NonNegativeNumber)
@@ -335,10 +341,10 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "Conforming relaxation iterations (default 20)")
       ->check(CLI::NonNegativeNumber)
       ->group(g);
-  cmd->add_option("--conform-shift", m.conform_shift,
-                  "Generator shift: a fraction of the offset between neighbouring tiles (lattice; "
-                  "default 0.5) or of the projected meta-edge length (other rules; default 0.2, "
-                  "the paper's)")
+  cmd->add_option("--conform-shift", m.mesh.tiling.conform_shift,
+                  "Generator shift: a fraction of the offset between neighbouring tiles (lattice) "
+                  "or of the projected meta-edge length (the other rules) (default 0.2, the "
+                  "paper's)")
       ->check(CLI::Range(0.0, 1.0))
       ->group(g);
   cmd->add_option("--butterfly-max", m.mesh.tiling.butterfly_max,
@@ -476,9 +482,7 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
                                  : m.conform_rule == "longest-towards" ? ConformShiftRule::longest_towards_corner
                                  : m.conform_rule == "lattice" ? ConformShiftRule::lattice
                                                                      : ConformShiftRule::close_shortest;
-  options.tiling.conform_shift =
-      m.conform_shift >= 0.0 ? m.conform_shift
-                             : options.tiling.conform_rule == ConformShiftRule::lattice ? 0.5 : 0.2;
+  options.tiling.init = m.init == "merge" ? TilingInit::merge : TilingInit::front;
   options.tiling.stop_after = m.stop_after == "init"      ? TilingStep::init
                               : m.stop_after == "relax"   ? TilingStep::relax
                               : m.stop_after == "conform" ? TilingStep::conform

@@ -77,6 +77,7 @@ Location TriangleLocator::locate(const Point2& p) const {
     if (best_violation == 0.0) break;
     if (best.triangle >= 0 && ring >= 1) break;
   }
+  best.inside = best.triangle >= 0 && best_violation == 0.0;
   if (best.triangle >= 0 && best_violation > 0) {
     for (double& w : best.bary) w = std::max(0.0, w);
     const double s = best.bary[0] + best.bary[1] + best.bary[2];

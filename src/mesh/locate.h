@@ -14,6 +14,7 @@ namespace isoquad {
 struct Location {
   int triangle = -1;                 // -1 when the point is outside the mesh
   std::array<double, 3> bary{0, 0, 0};  // weights of triangles[triangle][0..2]
+  bool inside = false;               // the point is in the triangle (not clamped)
 };
 
 class TriangleLocator {

@@ -7,6 +7,7 @@
 #include "tiling/init_tiling.h"
 #include "tiling/relax_tiling.h"
 #include "tiling/repair_tiling.h"
+#include "tiling/seed_tiling.h"
 #include "tiling/tile_geometry.h"
 #ifdef ISOQUAD_HAVE_BUTTERFLIES
 #include "tiling/butterflies.h"
@@ -59,10 +60,11 @@ TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
     return &result.steps.back();
   };
 
-  // 2.2: merging by compactness.
+  // 2.2: merging by compactness, or frontal seeding.
   auto start = Clock::now();
   progress.report("tiling init", 0.0);
-  tiling = init_tiling(mesh, geom);
+  tiling = params.init == TilingInit::merge ? init_tiling(mesh, geom)
+                                            : seed_tiling(mesh, geom, size, cross, params.seed);
   finish("init", start, 0);
   if (params.stop_after == TilingStep::init) return result;
 

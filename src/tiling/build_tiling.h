@@ -13,20 +13,29 @@
 #include "tiling/meta_graph.h"
 #include "tiling/relax_tiling.h"
 #include "tiling/corner_barriers.h"
+#include "tiling/seed_tiling.h"
 #include "tiling/tiling.h"
 
 namespace isoquad {
 
 enum class TilingStep { init, relax, conform, butterfly, none };
 
+// How the tiling starts (--init): the paper's merging by compactness (2.2), or
+// generators seeded front by front along the cross field (seed_tiling.h).
+enum class TilingInit { merge, front };
+
 struct TilingParams {
+  TilingInit init = TilingInit::front;  // --init
+  SeedParams seed;                      // of TilingInit::front
   int relax_iters = 50;         // --relax-iters: cap on L-infinity Lloyd iterations
   int conform_iters = 20;       // --conform-iters
   // --conform-rule and --conform-shift: the shift is a fraction of the offset between
   // neighbouring tiles (lattice) or of the projected meta-edge length (the other rules;
-  // the paper uses 0.2 with longest_away_from_corner).
+  // the paper uses 0.2 with longest_away_from_corner). From seeded fronts, lattice with
+  // 0.2 gives France at about 4,500 quads 70% of angles in range and 76% of quads in
+  // the size range, against 68% and 68% with 0.5.
   ConformShiftRule conform_rule = ConformShiftRule::lattice;
-  double conform_shift = 0.5;
+  double conform_shift = 0.2;
   // --butterfly-max: remove butterflies whose inner meta-edge is shorter than this times
   // h. The paper's 0.5 is relative to the tile size 2h, i.e. 1 here; longer butterflies
   // still pass the checks of 2.5 (never more irregular meta-vertices) and removing them
