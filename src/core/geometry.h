@@ -1,6 +1,8 @@
 // Plain planar geometry shared by every stage: points, rings, polygons, domains.
 #pragma once
 
+#include <cmath>
+
 #include <string>
 #include <vector>
 
@@ -13,6 +15,11 @@ struct Point2 {
 
 inline bool operator==(const Point2& a, const Point2& b) { return a.x == b.x && a.y == b.y; }
 inline bool operator!=(const Point2& a, const Point2& b) { return !(a == b); }
+
+// |(x, y)| without std::hypot's overflow care, which costs several times more; for
+// metre coordinates in the hot loops (lengths, convexity, mean value weights).
+inline double length(double x, double y) { return std::sqrt(x * x + y * y); }
+inline double distance(const Point2& a, const Point2& b) { return length(b.x - a.x, b.y - a.y); }
 
 // A ring is stored open: the last point is NOT a copy of the first.
 using Ring = std::vector<Point2>;

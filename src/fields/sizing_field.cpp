@@ -188,7 +188,7 @@ void limit_gradient(const BackgroundMesh& mesh, double gradation, std::vector<do
     for (int k = start[u]; k < start[u + 1]; ++k) {
       const int v = adj[k];
       const Point2& pv = mesh.points[v];
-      const double bound = hu + gradation * std::hypot(pv.x - pu.x, pv.y - pu.y);
+      const double bound = hu + gradation * distance(pu, pv);
       if (bound < h[v]) {
         h[v] = bound;
         queue.push({bound, v});

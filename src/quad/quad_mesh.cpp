@@ -29,9 +29,9 @@ double quad_convexity(const Point2& a, const Point2& b, const Point2& c, const P
     const Point2& q = v[i];
     const Point2& r = v[(i + 1) % 4];
     const double ux = q.x - p.x, uy = q.y - p.y, wx = r.x - q.x, wy = r.y - q.y;
-    const double lu = std::hypot(ux, uy), lw = std::hypot(wx, wy);
-    if (lu == 0 || lw == 0) return -1.0;
-    worst = std::min(worst, (ux * wy - uy * wx) / (lu * lw));
+    const double l2 = (ux * ux + uy * uy) * (wx * wx + wy * wy);
+    if (l2 == 0) return -1.0;
+    worst = std::min(worst, (ux * wy - uy * wx) / std::sqrt(l2));
   }
   return worst;
 }

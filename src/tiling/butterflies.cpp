@@ -28,10 +28,6 @@ constexpr int kMaxRounds = 8;
 // Centre candidates tried, nearest to phi(v*) first, before giving a butterfly up.
 constexpr int kMaxCentreCandidates = 8;
 
-double distance(const Point2& a, const Point2& b) {
-  return std::hypot(b.x - a.x, b.y - a.y);
-}
-
 // A directed background edge out of a vertex with the tiles on its left and right
 // (-1 outside the domain).
 struct Spoke {

@@ -33,7 +33,7 @@ bool mean_value_parameterization(const std::vector<Point2>& positions,
       const int j = t[(k + 1) % 3], l = t[(k + 2) % 3];
       const double ax = positions[j].x - positions[i].x, ay = positions[j].y - positions[i].y;
       const double bx = positions[l].x - positions[i].x, by = positions[l].y - positions[i].y;
-      const double la = std::hypot(ax, ay), lb = std::hypot(bx, by);
+      const double la = length(ax, ay), lb = length(bx, by);
       // tan(a/2) = sin a / (1 + cos a) = |a x b| / (|a||b| + a.b): stable for small angles.
       const double tan_half = std::abs(ax * by - ay * bx) / (la * lb + ax * bx + ay * by);
       for (const auto& [other, length] : {std::pair<int, double>{j, la}, {l, lb}}) {
@@ -57,7 +57,7 @@ bool mean_value_parameterization(const std::vector<Point2>& positions,
   // small systems (its symbolic analysis dominated). LU remains the fallback.
   Eigen::MatrixXd solution(num_unknowns, 2);
   Eigen::BiCGSTAB<Eigen::SparseMatrix<double>, Eigen::DiagonalPreconditioner<double>> iterative;
-  iterative.setTolerance(1e-13);
+  iterative.setTolerance(1e-9);
   iterative.setMaxIterations(std::max(100, 2 * num_unknowns));
   iterative.compute(matrix);
   bool solved = iterative.info() == Eigen::Success;

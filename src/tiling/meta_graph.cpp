@@ -17,13 +17,18 @@ double edge_length_m(const BackgroundMesh& mesh, int a, int b) {
 
 MetaGraph build_meta_graph(const BackgroundMesh& mesh, const Tiling& tiling,
                            const MetaGraphParams& /*params*/) {
+  return build_meta_graph(mesh, tiling, count_vertex_sectors(mesh, tiling.label),
+                          walk_tile_boundaries(mesh, tiling.label, tiling.num_tiles()));
+}
+
+MetaGraph build_meta_graph(const BackgroundMesh& mesh, const Tiling& tiling,
+                           const std::vector<int>& sectors, const TileBoundaries& b) {
   const std::vector<int>& label = tiling.label;
   const int num_tiles = tiling.num_tiles();
   const int num_vertices = static_cast<int>(mesh.points.size());
   MetaGraph g;
 
   // Meta-vertices (2.1): >= 3 tiles inside, >= 2 on the boundary, or a boundary corner.
-  const std::vector<int> sectors = count_vertex_sectors(mesh, label);
   std::vector<char> is_corner(num_vertices, 0);
   for (const BoundaryChain& chain : mesh.chains)
     for (std::size_t k = 0; k < chain.vertices.size(); ++k)
@@ -42,7 +47,6 @@ MetaGraph build_meta_graph(const BackgroundMesh& mesh, const Tiling& tiling,
   // Meta-edges: the runs of each boundary cycle between meta-vertices. The twin run (the
   // same meta-edge seen from the tile on the other side) is found through the twin of its
   // first half-edge, which is the last half-edge of the run already stored.
-  const TileBoundaries b = walk_tile_boundaries(mesh, label, num_tiles);
   std::vector<int> edge_at(3 * mesh.triangles.size(), -1);
   g.tiles.assign(num_tiles, TileCycle());
   for (int c = 0; c < b.num_cycles(); ++c) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "mesh/background_mesh.h"
+#include "tiling/tile_boundary.h"
 #include "tiling/tiling.h"
 
 namespace isoquad {
@@ -50,6 +51,10 @@ struct MetaGraph {
 
 MetaGraph build_meta_graph(const BackgroundMesh& mesh, const Tiling& tiling,
                            const MetaGraphParams& params = MetaGraphParams());
+// The same from the labels' vertex sectors (count_vertex_sectors) and tile boundaries
+// (walk_tile_boundaries), for callers that have them already.
+MetaGraph build_meta_graph(const BackgroundMesh& mesh, const Tiling& tiling,
+                           const std::vector<int>& sectors, const TileBoundaries& b);
 
 // The invariants that every tiling step keeps (checked in tests and debug builds):
 // every triangle labelled, every tile non-empty, connected and a topological disk (one

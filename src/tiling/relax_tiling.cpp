@@ -157,7 +157,7 @@ TileAdjacency adjacency_from_labels(const BackgroundMesh& mesh, const std::vecto
       if (g < 0 || label[g] == label[f]) continue;
       const Point2 &a = mesh.points[mesh.triangles[f][(i + 1) % 3]],
                    &b = mesh.points[mesh.triangles[f][(i + 2) % 3]];
-      add_shared(adjacent, label[f], label[g], std::hypot(b.x - a.x, b.y - a.y));
+      add_shared(adjacent, label[f], label[g], distance(a, b));
     }
   return adjacent;
 }

@@ -99,22 +99,24 @@ class Repairer {
   }
 
   RepairStats run(MetaGraph* graph_out) {
+    MetaGraph graph;
+    bool clean = false;  // the last round found nothing to fix: `graph` is current
     for (stats_.rounds = 0; stats_.rounds < params_.max_rounds; ++stats_.rounds) {
       touched_.assign(tiling_.num_tiles(), 0);
       if (fix_fragments() > 0) continue;
       const TileBoundaries b = walk_tile_boundaries(mesh_, label_, tiling_.num_tiles());
       if (fix_holes(b) > 0) continue;
       if (fix_pinches(b) > 0) continue;
-      const MetaGraph graph = build_meta_graph(mesh_, tiling_, params_.graph);
       // Tiles around every vertex; both fixes below read it, the first changes nothing
       // unless it fixes something (and the round ends).
       const std::vector<int> sectors = count_vertex_sectors(mesh_, label_);
+      graph = build_meta_graph(mesh_, tiling_, sectors, b);
       if (fix_small_tiles(b, graph, sectors) > 0) continue;
       if (fix_reflex_corners(sectors) > 0) continue;
+      clean = true;
       break;
     }
-    compact();
-    MetaGraph graph = build_meta_graph(mesh_, tiling_, params_.graph);
+    if (compact() || !clean) graph = build_meta_graph(mesh_, tiling_, params_.graph);
     const std::string problem = check_tiling(mesh_, tiling_, graph);
     if (graph_out) *graph_out = std::move(graph);
     if (!problem.empty())
@@ -619,10 +621,12 @@ class Repairer {
 
   // Drops empty tiles (keeping the order of the others) and relocates the generators of
   // the tiles that changed.
-  void compact() {
+  // Drops empty tiles (renumbering the others); true if there were any.
+  bool compact() {
     const int num_tiles = tiling_.num_tiles();
     std::vector<int> count(num_tiles, 0);
     for (int t : label_) ++count[t];
+    const bool renumber = std::find(count.begin(), count.end(), 0) != count.end();
     std::vector<int> id(num_tiles, -1);
     std::vector<int> generator;
     std::vector<char> changed;
@@ -631,9 +635,11 @@ class Repairer {
       id[t] = static_cast<int>(generator.size());
       generator.push_back(changed_[t] ? -1 : tiling_.generator[t]);
     }
-    for (int& t : label_) t = id[t];
+    if (renumber)
+      for (int& t : label_) t = id[t];
     tiling_.generator.swap(generator);
     fix_generators(geom_, tiling_);
+    return renumber;
   }
 
   const BackgroundMesh& mesh_;

@@ -77,8 +77,6 @@ inline Point2 centroid(const BackgroundMesh& m, int f) {
           (m.points[t[0]].y + m.points[t[1]].y + m.points[t[2]].y) / 3.0};
 }
 
-inline double distance(const Point2& a, const Point2& b) { return std::hypot(b.x - a.x, b.y - a.y); }
-
 // Distance from p to segment [a, b].
 inline double distance_to_segment(const Point2& p, const Point2& a, const Point2& b) {
   const double dx = b.x - a.x, dy = b.y - a.y;
