@@ -34,13 +34,13 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
 
   // The tiling and quad stages, retried when smoothing cannot make every quad convex:
   // such failures come from a few badly shaped tiles, and a different tiling rarely has
-  // them at the same place. Attempts 1 and 3 add a conforming iteration, attempts 2 and
-  // 3 start from the other initialization (fronts or merging), which moves every tile.
-  // The attempts are a fixed sequence, so the output stays deterministic.
+  // them at the same place. Attempts 1 and 3 start from the other initialization
+  // (fronts or merging), which moves every tile; attempts 2 and 3 add a conforming
+  // iteration. The attempts are a fixed sequence, so the output stays deterministic.
   for (int attempt = 0;; ++attempt) {
     MeshOptions o = options;
-    o.tiling.conform_iters += attempt % 2;
-    if (attempt >= 2)
+    o.tiling.conform_iters += attempt / 2;
+    if (attempt % 2 == 1)
       o.tiling.init = o.tiling.init == TilingInit::front ? TilingInit::merge : TilingInit::front;
     auto t0 = std::chrono::steady_clock::now();
     CornerParams corners;

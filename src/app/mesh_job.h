@@ -19,8 +19,8 @@ struct MeshOptions {
   TilingParams tiling;
   SubdivideParams subdivide;
   SmoothParams smooth;
-  // Tiling attempts (build_mesh: a conforming iteration more or less, then the other
-  // initialization) before giving up on a quad that smoothing cannot make convex.
+  // Tiling attempts (build_mesh: the other initialization, then a conforming iteration
+  // more) before giving up on a quad that smoothing cannot make convex.
   int max_attempts = 4;
 };
 
