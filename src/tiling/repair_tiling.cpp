@@ -620,8 +620,7 @@ class Repairer {
   }
 
   // Drops empty tiles (keeping the order of the others) and relocates the generators of
-  // the tiles that changed.
-  // Drops empty tiles (renumbering the others); true if there were any.
+  // the tiles that changed. True if there were empty tiles (labels renumbered).
   bool compact() {
     const int num_tiles = tiling_.num_tiles();
     std::vector<int> count(num_tiles, 0);
@@ -629,7 +628,6 @@ class Repairer {
     const bool renumber = std::find(count.begin(), count.end(), 0) != count.end();
     std::vector<int> id(num_tiles, -1);
     std::vector<int> generator;
-    std::vector<char> changed;
     for (int t = 0; t < num_tiles; ++t) {
       if (count[t] == 0) continue;
       id[t] = static_cast<int>(generator.size());
