@@ -284,7 +284,8 @@ class AlignedSmoother {
  private:
   // A regular vertex: its four neighbours in angular order take the four axes of the
   // cross at v in the rotation that fits them best; each predicts v one edge length
-  // (the mean h of the edge's ends) back along its axis. Other vertices: Laplacian.
+  // back along its axis (the mean h of the edge's ends, blended with the current mean
+  // edge length by aligned_keep_length). Other vertices: Laplacian.
   void move_interior(int v) {
     const std::vector<int>& nb = t_.neighbours[v];
     const Point2 p = m_.points[v];
@@ -307,10 +308,14 @@ class AlignedSmoother {
           cost += std::abs(std::remainder(around[j].first - theta_[v] - (r + j) * M_PI / 2, 2 * M_PI));
         if (cost < best_cost) best_cost = cost, best_rotation = r;
       }
+      const double keep = params_.aligned_keep_length;
+      double mean_length = 0;
+      for (int w : nb) mean_length += 0.25 * distance(p, m_.points[w]);
       for (int j = 0; j < 4; ++j) {
         const int w = around[j].second;
         const double a = theta_[v] + (best_rotation + j) * M_PI / 2;
-        const double h = h_[w] > 0.0 ? 0.5 * (h_[v] + h_[w]) : h_[v];
+        const double h_edge = h_[w] > 0.0 ? 0.5 * (h_[v] + h_[w]) : h_[v];
+        const double h = (1 - keep) * h_edge + keep * mean_length;
         target.x += m_.points[w].x - h * std::cos(a);
         target.y += m_.points[w].y - h * std::sin(a);
       }

@@ -26,6 +26,12 @@ struct SmoothParams {
   // to make their inward edge orthogonal to the boundary. 0 disables them.
   int aligned_iterations = 20;
   double aligned_step = 0.5;  // fraction of the way to the target per sweep
+  // The edge length an aligned sweep aims at: this share of the vertex's current mean
+  // edge length, the rest h. The tiling has sized the quads already; where the size and
+  // cross fields are not compatible (graded sizes), pulling every edge to exactly h
+  // squeezes angles. France automatic at about 4,500 quads: 0 / 0.5 / 1 give 69.4 /
+  // 71.7 / 72.5% of angles in [75,105] and 76.2 / 76.3 / 75.2% of sizes in range.
+  double aligned_keep_length = 0.5;
 };
 
 struct SmoothStats {

@@ -150,12 +150,18 @@ TEST(SmoothQuads, AlignedSweepsFollowTheSizeField) {
   params.aligned_iterations = 0;
   smooth_quads(bg, plain, params);
   params.aligned_iterations = 40;
+  QuadMesh blended = grid();
+  smooth_quads(bg, blended, params, &size, &cross);  // the default keeps half the length
+  params.aligned_keep_length = 0.0;                  // edges pulled to h alone
   const SmoothStats st = smooth_quads(bg, aligned, params, &size, &cross);
   EXPECT_EQ(st.num_nonconvex_after, 0);
   const auto [plain_left, plain_right] = half_areas(plain);
   const auto [left, right] = half_areas(aligned);
   EXPECT_NEAR(plain_left, plain_right, 0.01 * plain_right);
   EXPECT_LT(left, 0.85 * right);  // measured 0.79; 10 columns must still fill the square
+  const auto [blended_left, blended_right] = half_areas(blended);
+  EXPECT_LT(blended_left, 0.98 * blended_right);  // measured 0.95: the same way, less far
+  EXPECT_GT(blended_left, left);
   const QualitySummary before = measure_quality(plain, bg, size, cross);
   const QualitySummary after = measure_quality(aligned, bg, size, cross);
   EXPECT_GT(after.share_size_08_125, before.share_size_08_125);
