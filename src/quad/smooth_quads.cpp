@@ -368,6 +368,81 @@ class AlignedSmoother {
   std::vector<double> h_, theta_;
 };
 
+// Sum of (angle - 90 deg)^2, in rad^2, over the corners of the quads around v, plus
+// area_weight (log(area / area0))^2 per quad; infinite when one of them is not more
+// convex than min_convexity.
+double corner_energy(const QuadMesh& m, const Topology& t, int v, double min_convexity,
+                     const std::vector<double>& area0, double area_weight) {
+  double e = 0;
+  for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
+    const int q = t.quad_items[k];
+    if (quad_convexity(m, q) <= min_convexity) return std::numeric_limits<double>::infinity();
+    if (area_weight > 0) {
+      const double r = std::log(quad_area(m, q) / area0[q]);
+      e += area_weight * r * r;
+    }
+    const auto& c = m.quads[q];
+    for (int i = 0; i < 4; ++i) {
+      const Point2 &p = m.points[c[(i + 3) % 4]], &o = m.points[c[i]], &n = m.points[c[(i + 1) % 4]];
+      const double ax = p.x - o.x, ay = p.y - o.y, bx = n.x - o.x, by = n.y - o.y;
+      // The interior angle of a convex counter-clockwise quad: the turn from b to a.
+      const double a = std::atan2(bx * ay - by * ax, ax * bx + ay * by) - 0.5 * M_PI;
+      e += a * a;
+    }
+  }
+  return e;
+}
+
+// Angle sweeps: every free vertex takes the best of its candidate moves (interior: eight
+// directions; boundary: both ways along its chain, staying between its boundary
+// neighbours), each angle_step of its shortest edge long, if that lowers corner_energy
+// against the areas at the start of the sweeps; convexity never drops below
+// min_convexity.
+void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
+                  const SmoothParams& params) {
+  const int nv = static_cast<int>(m.points.size());
+  std::vector<double> area0(m.quads.size());
+  for (std::size_t q = 0; q < m.quads.size(); ++q) area0[q] = quad_area(m, static_cast<int>(q));
+  for (int it = 0; it < params.angle_iterations; ++it)
+    for (int v = 0; v < nv; ++v) {
+      if (m.fixed[v] || t.neighbours[v].empty()) continue;
+      const Point2 start = m.points[v];
+      const double start_arc = m.arc_m[v];
+      double shortest = std::numeric_limits<double>::infinity();
+      for (int w : t.neighbours[v]) shortest = std::min(shortest, distance(start, m.points[w]));
+      const double step = params.angle_step * shortest;
+      double best = corner_energy(m, t, v, params.min_convexity, area0, params.angle_area_weight);
+      if (!std::isfinite(best)) continue;
+      Point2 best_point = start;
+      double best_arc = start_arc;
+      auto consider = [&](const Point2& p, double arc) {
+        m.points[v] = p;
+        m.arc_m[v] = arc;
+        const double e = corner_energy(m, t, v, params.min_convexity, area0, params.angle_area_weight);
+        if (e < best) best = e, best_point = p, best_arc = arc;
+      };
+      const int c = m.chain[v];
+      if (c < 0) {
+        for (int k = 0; k < 8; ++k)
+          consider({start.x + step * std::cos(k * M_PI / 4), start.y + step * std::sin(k * M_PI / 4)},
+                   start_arc);
+      } else {
+        // Along the boundary, between the boundary neighbours of the same chain.
+        const auto& bn = t.boundary_neighbours[v];
+        if (bn[0] < 0 || bn[1] < 0 || m.chain[bn[0]] != c || m.chain[bn[1]] != c) continue;
+        const double len = bg.chains[c].length_m;
+        const double d0 = arc_delta(start_arc, m.arc_m[bn[0]], len);
+        const double d1 = arc_delta(start_arc, m.arc_m[bn[1]], len);
+        if (d0 * d1 >= 0) continue;
+        for (double d : {-step, step})
+          if (std::abs(d) < 0.5 * std::min(std::abs(d0), std::abs(d1)))
+            consider(chain_point(bg, bg.chains[c], start_arc + d), start_arc + d);
+      }
+      m.points[v] = best_point;
+      m.arc_m[v] = best_arc;
+    }
+}
+
 }  // namespace
 
 SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
@@ -402,6 +477,7 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
 
   if (size && cross && params.aligned_iterations > 0)
     AlignedSmoother(bg, m, t, *size, *cross, params).run();
+  angle_sweeps(bg, m, t, params);
 
   // A few sweeps that lift the flattest quads (angles near 0 or 180 degrees) as far as
   // they can; only the pass below must succeed.

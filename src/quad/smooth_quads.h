@@ -32,6 +32,16 @@ struct SmoothParams {
   // squeezes angles. France automatic at about 4,500 quads: 0 / 0.5 / 1 give 69.4 /
   // 71.7 / 72.5% of angles in [75,105] and 76.2 / 76.3 / 75.2% of sizes in range.
   double aligned_keep_length = 0.5;
+  // Angle sweeps, after the aligned ones: each free vertex (boundary vertices along the
+  // boundary) takes the best of its moves of angle_step times its shortest edge when
+  // that brings its quads' corners nearer 90 degrees (sum of squares), with
+  // angle_area_weight (log(area / area before the sweeps))^2 per quad against the
+  // sizes drifting. 0 disables them. France automatic at about 4,500 quads: angles in
+  // [75,105] 71.4% -> 77.1%, sizes in [0.8,1.25] 75.9% -> 74.5%, orientation unchanged;
+  // 5 sweeps do nearly all of it (10: +0.3 points).
+  int angle_iterations = 5;
+  double angle_step = 0.1;
+  double angle_area_weight = 1.0;
 };
 
 struct SmoothStats {
