@@ -396,12 +396,34 @@ double corner_energy(const QuadMesh& m, const Topology& t, int v, double min_con
 // Angle sweeps: every free vertex takes the best of its candidate moves (interior: eight
 // directions; boundary: both ways along its chain, staying between its boundary
 // neighbours), each angle_step of its shortest edge long (0.3 of that in the second
-// half of the sweeps), if that lowers corner_energy
-// against the areas at the start of the sweeps; convexity never drops below
+// half of the sweeps), if that lowers corner_energy (against the areas at the start of
+// the sweeps) plus the orientation term of its edges; convexity never drops below
 // min_convexity.
 void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
-                  const SmoothParams& params) {
+                  const SmoothParams& params, const CrossField* cross) {
   const int nv = static_cast<int>(m.points.size());
+  // The cross at every vertex where the sweeps start.
+  const double ow = params.angle_orientation_weight;
+  std::vector<double> theta;
+  if (cross && ow > 0) {
+    const TriangleLocator locator(bg);
+    theta.resize(nv);
+    for (int v = 0; v < nv; ++v) {
+      const Location loc = locator.locate(m.points[v]);
+      theta[v] = loc.triangle >= 0 ? cross_angle_at(bg, *cross, loc.triangle, loc.bary) : 0.0;
+    }
+  }
+  // ow (rotation from the nearest cross axis)^2 over the edges at v.
+  auto orient = [&](int v) {
+    double e = 0;
+    if (theta.empty()) return e;
+    for (int w : t.neighbours[v]) {
+      const double phi = std::atan2(m.points[w].y - m.points[v].y, m.points[w].x - m.points[v].x);
+      const double r = cross_rotation_rad(theta[v], phi);
+      e += ow * r * r;
+    }
+    return e;
+  };
   std::vector<double> area0(m.quads.size());
   for (std::size_t q = 0; q < m.quads.size(); ++q) area0[q] = quad_area(m, static_cast<int>(q));
   for (int it = 0; it < params.angle_iterations; ++it)
@@ -413,14 +435,14 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
       for (int w : t.neighbours[v]) shortest = std::min(shortest, distance(start, m.points[w]));
       // The second half of the sweeps refines with steps 0.3 as long.
       const double step = (2 * it < params.angle_iterations ? 1.0 : 0.3) * params.angle_step * shortest;
-      double best = corner_energy(m, t, v, params.min_convexity, area0, params.angle_area_weight);
+      double best = corner_energy(m, t, v, params.min_convexity, area0, params.angle_area_weight) + orient(v);
       if (!std::isfinite(best)) continue;
       Point2 best_point = start;
       double best_arc = start_arc;
       auto consider = [&](const Point2& p, double arc) {
         m.points[v] = p;
         m.arc_m[v] = arc;
-        const double e = corner_energy(m, t, v, params.min_convexity, area0, params.angle_area_weight);
+        const double e = corner_energy(m, t, v, params.min_convexity, area0, params.angle_area_weight) + orient(v);
         if (e < best) best = e, best_point = p, best_arc = arc;
       };
       const int c = m.chain[v];
@@ -479,7 +501,7 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
 
   if (size && cross && params.aligned_iterations > 0)
     AlignedSmoother(bg, m, t, *size, *cross, params).run();
-  angle_sweeps(bg, m, t, params);
+  angle_sweeps(bg, m, t, params, cross);
 
   // A few sweeps that lift the flattest quads (angles near 0 or 180 degrees) as far as
   // they can; only the pass below must succeed.
