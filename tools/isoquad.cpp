@@ -380,6 +380,11 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "length h along the cross field (default 20; 0: none)")
       ->check(CLI::NonNegativeNumber)
       ->group("Quads");
+  cmd->add_option("--angle-iters", m.mesh.smooth.angle_iterations,
+                  "Angle sweeps last: vertices take small moves that bring corners nearer 90 "
+                  "degrees and edges nearer the cross field, keeping sizes (default 10; 0: none)")
+      ->check(CLI::NonNegativeNumber)
+      ->group("Quads");
   cmd->add_option("--output-format", m.output_formats,
                   "gpkg, vtu, vtk, msh, gr3 or nc: once for every -o, or once per -o in order "
                   "(default: by extension)")
