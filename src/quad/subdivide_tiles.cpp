@@ -1,6 +1,8 @@
 #include "quad/subdivide_tiles.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "core/error.h"
 
@@ -86,9 +88,14 @@ QuadMesh subdivide_tiles(const BackgroundMesh& bg, const Tiling& tiling, const M
     of_meta_edge[e] = add_point(mid, chain, arc, false);
   }
 
-  // Tile centres (area-weighted centroid of their triangles) and the quads.
+  // Tile centres: the area-weighted centroid of the tile's triangles, unless a quad of
+  // the tile would then be flat or folded (the centroid of a bent tile may lie outside
+  // it or see a side at a grazing angle); then the triangle centroid of the tile that
+  // makes its flattest quad the most convex. Convexity as quad_convexity (sine of the
+  // sharpest turn).
   const int nt = tiling.num_tiles();
   std::vector<double> area(nt, 0.0), cx(nt, 0.0), cy(nt, 0.0);
+  std::vector<int> tile_start(nt + 1, 0), tile_faces(bg.triangles.size());
   for (std::size_t f = 0; f < bg.triangles.size(); ++f) {
     const auto& t = bg.triangles[f];
     const Point2 &a = bg.points[t[0]], &b = bg.points[t[1]], &c = bg.points[t[2]];
@@ -97,12 +104,37 @@ QuadMesh subdivide_tiles(const BackgroundMesh& bg, const Tiling& tiling, const M
     area[tile] += ar;
     cx[tile] += ar * (a.x + b.x + c.x) / 3;
     cy[tile] += ar * (a.y + b.y + c.y) / 3;
+    ++tile_start[tile + 1];
   }
+  for (int tile = 0; tile < nt; ++tile) tile_start[tile + 1] += tile_start[tile];
+  std::vector<int> fill(tile_start.begin(), tile_start.end() - 1);
+  for (std::size_t f = 0; f < bg.triangles.size(); ++f)
+    tile_faces[fill[tiling.label[f]]++] = static_cast<int>(f);
+
   for (int tile = 0; tile < nt; ++tile) {
     const TileCycle& cyc = graph.tiles[tile];
     const int k = static_cast<int>(cyc.edges.size());
     if (k < 3) throw Error(ErrorClass::internal, "subdivide", "a tile has fewer than 3 meta-edges");
-    const int centre = add_point({cx[tile] / area[tile], cy[tile] / area[tile]}, -1, 0, false);
+    auto flattest = [&](const Point2& c) {
+      double worst = 1.0;
+      for (int i = 0; i < k; ++i)
+        worst = std::min(worst, quad_convexity(c, qm.points[of_meta_edge[cyc.edges[(i + k - 1) % k]]],
+                                               qm.points[of_meta_vertex[cyc.vertices[i]]],
+                                               qm.points[of_meta_edge[cyc.edges[i]]]));
+      return worst;
+    };
+    Point2 best{cx[tile] / area[tile], cy[tile] / area[tile]};
+    double best_convexity = flattest(best);
+    if (best_convexity < params.centre_min_convexity) {
+      for (int j = tile_start[tile]; j < tile_start[tile + 1]; ++j) {
+        const auto& t = bg.triangles[tile_faces[j]];
+        const Point2 c{(bg.points[t[0]].x + bg.points[t[1]].x + bg.points[t[2]].x) / 3,
+                       (bg.points[t[0]].y + bg.points[t[1]].y + bg.points[t[2]].y) / 3};
+        const double convexity = flattest(c);
+        if (convexity > best_convexity) best_convexity = convexity, best = c;
+      }
+    }
+    const int centre = add_point(best, -1, 0, false);
     for (int i = 0; i < k; ++i) {
       const int prev_edge = cyc.edges[(i + k - 1) % k];
       qm.quads.push_back({centre, of_meta_edge[prev_edge], of_meta_vertex[cyc.vertices[i]],

@@ -14,6 +14,10 @@ namespace isoquad {
 struct SubdivideParams {
   // Boundary meta-vertices whose |turning angle| exceeds this are fixed domain corners.
   double corner_angle_deg = 45.0;
+  // A tile whose quads around its centroid have a corner turning by less than this
+  // (quad_convexity, the sine of the sharpest turn; 0.26 ~ 15 degrees) gets the triangle
+  // centroid that makes its flattest quad the most convex as centre instead.
+  double centre_min_convexity = 0.26;
 };
 
 QuadMesh subdivide_tiles(const BackgroundMesh& background, const Tiling& tiling,
