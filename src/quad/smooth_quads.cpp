@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <memory>
 
 #include "mesh/locate.h"
 
@@ -369,8 +370,8 @@ class AlignedSmoother {
 };
 
 // Sum of (angle - 90 deg)^2, in rad^2, over the corners of the quads around v, plus
-// area_weight (log(area / area0))^2 per quad; infinite when one of them is not more
-// convex than min_convexity.
+// area_weight (log(area / area0))^2 per quad (area0: the target area); infinite when
+// one of them is not more convex than min_convexity.
 double corner_energy(const QuadMesh& m, const Topology& t, int v, double min_convexity,
                      const std::vector<double>& area0, double area_weight) {
   double e = 0;
@@ -396,11 +397,11 @@ double corner_energy(const QuadMesh& m, const Topology& t, int v, double min_con
 // Angle sweeps: every free vertex takes the best of its candidate moves (interior: eight
 // directions; boundary: both ways along its chain, staying between its boundary
 // neighbours), each angle_step of its shortest edge long (0.3 of that in the second
-// half of the sweeps), if that lowers corner_energy (against the areas at the start of
-// the sweeps) plus the orientation term of its edges; convexity never drops below
+// half of the sweeps), if that lowers corner_energy (target areas h^2 with a sizing
+// field) plus the orientation term of its edges; convexity never drops below
 // min_convexity.
 void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
-                  const SmoothParams& params, const CrossField* cross) {
+                  const SmoothParams& params, const CrossField* cross, const SizingField* size) {
   const int nv = static_cast<int>(m.points.size());
   // The cross at every vertex where the sweeps start.
   const double ow = params.angle_orientation_weight;
@@ -424,8 +425,20 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
     }
     return e;
   };
+  // Target areas: h^2 at the quad centroids where the sweeps start (the sizing field),
+  // else the areas there.
   std::vector<double> area0(m.quads.size());
-  for (std::size_t q = 0; q < m.quads.size(); ++q) area0[q] = quad_area(m, static_cast<int>(q));
+  std::unique_ptr<TriangleLocator> locator;
+  if (size) locator = std::make_unique<TriangleLocator>(bg);
+  for (std::size_t q = 0; q < m.quads.size(); ++q) {
+    area0[q] = quad_area(m, static_cast<int>(q));
+    if (!locator) continue;
+    Point2 c{0, 0};
+    for (int v : m.quads[q]) c.x += 0.25 * m.points[v].x, c.y += 0.25 * m.points[v].y;
+    const Location loc = locator->locate(c);
+    const double h = loc.triangle >= 0 ? size->at(bg, loc.triangle, loc.bary) : 0.0;
+    if (h > 0) area0[q] = h * h;
+  }
   for (int it = 0; it < params.angle_iterations; ++it)
     for (int v = 0; v < nv; ++v) {
       if (m.fixed[v] || t.neighbours[v].empty()) continue;
@@ -501,7 +514,7 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
 
   if (size && cross && params.aligned_iterations > 0)
     AlignedSmoother(bg, m, t, *size, *cross, params).run();
-  angle_sweeps(bg, m, t, params, cross);
+  angle_sweeps(bg, m, t, params, cross, size);
 
   // A few sweeps that lift the flattest quads (angles near 0 or 180 degrees) as far as
   // they can; only the pass below must succeed.
