@@ -403,21 +403,34 @@ double corner_energy(const QuadMesh& m, const Topology& t, int v, double min_con
 void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
                   const SmoothParams& params, const CrossField* cross, const SizingField* size) {
   const int nv = static_cast<int>(m.points.size());
-  // The cross at every vertex where the sweeps start.
   const double ow = params.angle_orientation_weight;
+  std::unique_ptr<TriangleLocator> locator;
+  if ((cross && ow > 0) || size) locator = std::make_unique<TriangleLocator>(bg);
+  // The cross at every vertex where the sweeps start.
   std::vector<double> theta;
   if (cross && ow > 0) {
-    const TriangleLocator locator(bg);
     theta.resize(nv);
     for (int v = 0; v < nv; ++v) {
-      const Location loc = locator.locate(m.points[v]);
+      const Location loc = locator->locate(m.points[v]);
       theta[v] = loc.triangle >= 0 ? cross_angle_at(bg, *cross, loc.triangle, loc.bary) : 0.0;
     }
   }
-  // ow (rotation from the nearest cross axis)^2 over the edges at v.
-  auto orient = [&](int v) {
-    double e = 0;
-    if (theta.empty()) return e;
+  // Target areas: h^2 at the quad centroids where the sweeps start (the sizing field),
+  // else the areas there.
+  std::vector<double> area0(m.quads.size());
+  for (std::size_t q = 0; q < m.quads.size(); ++q) {
+    area0[q] = quad_area(m, static_cast<int>(q));
+    if (!size) continue;
+    Point2 c{0, 0};
+    for (int v : m.quads[q]) c.x += 0.25 * m.points[v].x, c.y += 0.25 * m.points[v].y;
+    const Location loc = locator->locate(c);
+    const double h = loc.triangle >= 0 ? size->at(bg, loc.triangle, loc.bary) : 0.0;
+    if (h > 0) area0[q] = h * h;
+  }
+  // corner_energy plus ow (rotation from the nearest cross axis)^2 over the edges at v.
+  auto energy = [&](int v) {
+    double e = corner_energy(m, t, v, params.min_convexity, area0, params.angle_area_weight);
+    if (theta.empty() || !std::isfinite(e)) return e;
     for (int w : t.neighbours[v]) {
       const double phi = std::atan2(m.points[w].y - m.points[v].y, m.points[w].x - m.points[v].x);
       const double r = cross_rotation_rad(theta[v], phi);
@@ -425,20 +438,6 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
     }
     return e;
   };
-  // Target areas: h^2 at the quad centroids where the sweeps start (the sizing field),
-  // else the areas there.
-  std::vector<double> area0(m.quads.size());
-  std::unique_ptr<TriangleLocator> locator;
-  if (size) locator = std::make_unique<TriangleLocator>(bg);
-  for (std::size_t q = 0; q < m.quads.size(); ++q) {
-    area0[q] = quad_area(m, static_cast<int>(q));
-    if (!locator) continue;
-    Point2 c{0, 0};
-    for (int v : m.quads[q]) c.x += 0.25 * m.points[v].x, c.y += 0.25 * m.points[v].y;
-    const Location loc = locator->locate(c);
-    const double h = loc.triangle >= 0 ? size->at(bg, loc.triangle, loc.bary) : 0.0;
-    if (h > 0) area0[q] = h * h;
-  }
   for (int it = 0; it < params.angle_iterations; ++it)
     for (int v = 0; v < nv; ++v) {
       if (m.fixed[v] || t.neighbours[v].empty()) continue;
@@ -448,14 +447,14 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
       for (int w : t.neighbours[v]) shortest = std::min(shortest, distance(start, m.points[w]));
       // The second half of the sweeps refines with steps 0.3 as long.
       const double step = (2 * it < params.angle_iterations ? 1.0 : 0.3) * params.angle_step * shortest;
-      double best = corner_energy(m, t, v, params.min_convexity, area0, params.angle_area_weight) + orient(v);
+      double best = energy(v);
       if (!std::isfinite(best)) continue;
       Point2 best_point = start;
       double best_arc = start_arc;
       auto consider = [&](const Point2& p, double arc) {
         m.points[v] = p;
         m.arc_m[v] = arc;
-        const double e = corner_energy(m, t, v, params.min_convexity, area0, params.angle_area_weight) + orient(v);
+        const double e = energy(v);
         if (e < best) best = e, best_point = p, best_arc = arc;
       };
       const int c = m.chain[v];
