@@ -135,6 +135,12 @@ GeosGeometry GeosContext::unary_union(const GeosGeometry& g) {
   return check(GEOSUnaryUnion_r(state_->handle, static_cast<GEOSGeometry*>(g.get())), "union");
 }
 
+GeosGeometry GeosContext::union_of(const GeosGeometry& a, const GeosGeometry& b) {
+  return check(GEOSUnion_r(state_->handle, static_cast<GEOSGeometry*>(a.get()),
+                           static_cast<GEOSGeometry*>(b.get())),
+               "union");
+}
+
 GeosGeometry GeosContext::intersection(const GeosGeometry& a, const GeosGeometry& b) {
   return check(GEOSIntersection_r(state_->handle, static_cast<GEOSGeometry*>(a.get()),
                                   static_cast<GEOSGeometry*>(b.get())),
@@ -145,6 +151,12 @@ GeosGeometry GeosContext::difference(const GeosGeometry& a, const GeosGeometry& 
   return check(GEOSDifference_r(state_->handle, static_cast<GEOSGeometry*>(a.get()),
                                 static_cast<GEOSGeometry*>(b.get())),
                "difference");
+}
+
+GeosGeometry GeosContext::buffer_mitre(const GeosGeometry& g, double distance, double mitre_limit) {
+  return check(GEOSBufferWithStyle_r(state_->handle, static_cast<GEOSGeometry*>(g.get()), distance,
+                                     8, GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_MITRE, mitre_limit),
+               "buffer");
 }
 
 namespace {

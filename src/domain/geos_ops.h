@@ -49,8 +49,12 @@ class GeosContext {
   // GEOS's MakeValid (structure method), keeping only the polygonal part.
   GeosGeometry make_valid(const GeosGeometry& g);
   GeosGeometry unary_union(const GeosGeometry& g);
+  GeosGeometry union_of(const GeosGeometry& a, const GeosGeometry& b);
   GeosGeometry intersection(const GeosGeometry& a, const GeosGeometry& b);
   GeosGeometry difference(const GeosGeometry& a, const GeosGeometry& b);
+  // Offset by `distance` (negative: inwards) with mitred joins, so that corners keep
+  // their place (down to mitre_limit, in multiples of |distance|) instead of rounding.
+  GeosGeometry buffer_mitre(const GeosGeometry& g, double distance, double mitre_limit);
   // The polygons of a (multi)polygon or collection, each with its rings, open.
   std::vector<Polygon> polygons(const GeosGeometry& g);
   double area(const GeosGeometry& g);

@@ -1,0 +1,43 @@
+// Removing features narrower than the mesh can follow: a morphological opening then a
+// closing of the domain by a disc of diameter min_width (GEOS offsets with mitred joins,
+// so corners wider than the mitre limit keep their place). The opening takes off spikes
+// of the domain narrower than min_width, the closing fills its notches and slits
+// narrower than min_width; pieces that would change the topology stay (see below).
+//
+// Why: tiles are two element sizes wide. A slit of water a few hundred metres wide cut
+// into land meshed at kilometres is a part of the boundary that tiles on both of its
+// banks reach round, and the quads of such a tile fold across it. The automatic sizing
+// already ignores channels narrower than about 2 hmin (feature_size.h); removing them
+// from the domain keeps the geometry consistent with the sizes.
+#pragma once
+
+#include <cstddef>
+
+#include "core/geometry.h"
+
+namespace isoquad {
+
+struct NarrowParams {
+  double min_width_m = 0.0;  // 0: off
+  double mitre_limit = 5.0;  // corners sharper than 2 asin(1 / limit) (23 deg) are bevelled
+};
+
+struct NarrowResult {
+  double area_removed_m2 = 0.0;  // by the opening (spikes, isthmuses)
+  double area_added_m2 = 0.0;    // by the closing (notches, slits, narrow gaps)
+  std::size_t num_pieces = 0;       // pieces removed or filled in
+  std::size_t num_pieces_kept = 0;  // pieces left as they were: they would change the topology
+  std::size_t num_components_before = 0;
+  std::size_t num_components_after = 0;
+  bool changed = false;  // false: the domain is left exactly as it was
+};
+
+// Changes `domain` only when some feature is narrower than min_width (a piece of more
+// than (min_width / 100)^2 area changes), and never its topology: a piece whose removal
+// or filling would cut an isthmus, join two components, or open or close a hole (in a
+// water domain, flood a land bridge or close a strait round an island) is left as it
+// is. The result is oriented and sorted by area (rings are then cleaned and simplified
+// by the callers as any other input). Throws Error(input) when nothing is left.
+NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params);
+
+}  // namespace isoquad

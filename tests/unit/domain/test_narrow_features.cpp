@@ -1,0 +1,129 @@
+// Features narrower than the minimum width: slits filled, spikes removed, isthmuses cut,
+// and everything wider kept where it was.
+#include "domain/narrow_features.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+
+using namespace isoquad;
+
+namespace {
+
+Domain one_polygon(Ring outer, std::vector<Ring> holes = {}) {
+  Domain d;
+  Polygon p;
+  p.outer = std::move(outer);
+  p.holes = std::move(holes);
+  orient_polygon(p);
+  d.polygons.push_back(std::move(p));
+  return d;
+}
+
+// Distance from p to the nearest boundary segment of the domain.
+double distance_to_boundary(const Domain& d, const Point2& p) {
+  double best = 1e300;
+  auto ring = [&](const Ring& r) {
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const Point2 &a = r[i], &b = r[(i + 1) % r.size()];
+      const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
+      const double t = std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / l2, 0.0, 1.0);
+      best = std::min(best, std::hypot(a.x + t * dx - p.x, a.y + t * dy - p.y));
+    }
+  };
+  for (const Polygon& poly : d.polygons) {
+    ring(poly.outer);
+    for (const Ring& h : poly.holes) ring(h);
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST(NarrowFeatures, ASquareIsLeftExactlyAsItWas) {
+  Domain d = one_polygon({{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}});
+  const Domain before = d;
+  const NarrowResult r = remove_narrow_features(d, {100.0});
+  EXPECT_FALSE(r.changed);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_EQ(d.polygons[0].outer.size(), before.polygons[0].outer.size());
+  for (std::size_t i = 0; i < d.polygons[0].outer.size(); ++i) {
+    EXPECT_EQ(d.polygons[0].outer[i].x, before.polygons[0].outer[i].x);
+    EXPECT_EQ(d.polygons[0].outer[i].y, before.polygons[0].outer[i].y);
+  }
+}
+
+TEST(NarrowFeatures, ASlitNarrowerThanTheWidthIsFilledAndAWideBayKept) {
+  // A square with a 20 m wide slit cut 400 m deep from the bottom side, and a 300 m wide
+  // bay 200 m deep from the top side.
+  Domain d = one_polygon({{0, 0},     {490, 0},    {490, 400},  {510, 400},  {510, 0},
+                          {1000, 0},  {1000, 1000}, {650, 1000}, {650, 800}, {350, 800},
+                          {350, 1000}, {0, 1000}});
+  const double before = area(d);
+  const NarrowResult r = remove_narrow_features(d, {100.0});
+  EXPECT_TRUE(r.changed);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  // The slit (20 x 400 m) is filled, the bay (300 x 200 m) is not.
+  EXPECT_NEAR(r.area_added_m2, 20.0 * 400.0, 0.05 * 20.0 * 400.0);
+  EXPECT_LT(r.area_removed_m2, 1.0);
+  EXPECT_NEAR(area(d), before + 20.0 * 400.0, 0.05 * 20.0 * 400.0);
+  // The slit's middle is now well inside; the bay's corners are still on the boundary.
+  EXPECT_GT(distance_to_boundary(d, {500, 200}), 150.0);
+  for (const Point2 p : {Point2{350, 800}, Point2{650, 800}, Point2{0, 0}, Point2{1000, 1000}})
+    EXPECT_LT(distance_to_boundary(d, p), 1e-6) << p.x << " " << p.y;
+}
+
+TEST(NarrowFeatures, ASpikeIsRemovedButAnIsthmusKept) {
+  // Two 400 m squares joined by a 30 m wide, 200 m long neck, and a 20 m wide spike
+  // 300 m long on the left square's left side.
+  Domain d = one_polygon({{0, 0},     {400, 0},    {400, 185},  {600, 185}, {600, 0},
+                          {1000, 0},  {1000, 400}, {600, 400},  {600, 215}, {400, 215},
+                          {400, 400}, {0, 400},    {0, 210},    {-300, 210}, {-300, 190},
+                          {0, 190}});
+  const double before = area(d);
+  const NarrowResult r = remove_narrow_features(d, {100.0});
+  EXPECT_TRUE(r.changed);
+  // Cutting the neck would make two components: it stays.
+  EXPECT_EQ(r.num_pieces, 1u);
+  EXPECT_EQ(r.num_pieces_kept, 1u);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_NEAR(r.area_removed_m2, 300.0 * 20.0, 50.0);
+  EXPECT_NEAR(area(d), before - 300.0 * 20.0, 50.0);
+  EXPECT_LT(distance_to_boundary(d, {500, 185}), 1e-6);
+  EXPECT_LT(distance_to_boundary(d, {500, 215}), 1e-6);
+}
+
+TEST(NarrowFeatures, ComponentsAndHolesKeepTheirTopology) {
+  // Two squares 20 m apart stay two; an island 20 m off the shore of a water domain (a
+  // hole near the outer ring) stays a hole, with its strait.
+  Domain d = one_polygon({{0, 0}, {400, 0}, {400, 400}, {0, 400}});
+  d.polygons.push_back(one_polygon({{420, 0}, {800, 0}, {800, 400}, {420, 400}}).polygons[0]);
+  EXPECT_FALSE(remove_narrow_features(d, {100.0}).changed);
+  EXPECT_EQ(d.polygons.size(), 2u);
+
+  Domain sea = one_polygon({{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}},
+                           {{{20, 300}, {300, 300}, {300, 600}, {20, 600}}});
+  const NarrowResult r = remove_narrow_features(sea, {100.0});
+  EXPECT_FALSE(r.changed);
+  EXPECT_EQ(r.num_pieces_kept, 1u);
+  ASSERT_EQ(sea.polygons.size(), 1u);
+  EXPECT_EQ(sea.polygons[0].holes.size(), 1u);
+}
+
+TEST(NarrowFeatures, NothingLeftIsAnInputError) {
+  Domain d = one_polygon({{0, 0}, {1000, 0}, {1000, 30}, {0, 30}});
+  try {
+    remove_narrow_features(d, {100.0});
+    FAIL() << "a domain narrower than the width everywhere was accepted";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::input);
+  }
+}
+
+TEST(NarrowFeatures, ZeroWidthIsOff) {
+  Domain d = one_polygon({{0, 0}, {1000, 0}, {1000, 30}, {0, 30}});
+  EXPECT_FALSE(remove_narrow_features(d, {0.0}).changed);
+  EXPECT_EQ(d.polygons.size(), 1u);
+}
