@@ -53,6 +53,7 @@ struct CommonArgs {
   std::string domain_kind = "land";
   double simplify_m = -1.0;
   double min_island_area_m2 = -1.0;
+  double min_width_m = -1.0;
   std::string report_path;
   bool overwrite = false;
   bool quiet = false;
@@ -94,15 +95,20 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
       ->group("Cleaning");
   cmd->add_option("--size", a.fe.target_size_m,
                   "Element size in metres: a constant size for meshing; sets the defaults of "
-                  "--simplify (size/4) and --min-island-area (size^2)")
+                  "--simplify (size/4), --min-island-area (size^2) and --min-width (size/4)")
       ->check(CLI::PositiveNumber)
       ->group("Cleaning");
   cmd->add_option("--simplify", a.simplify_m,
-                  "Topology-preserving simplification tolerance in metres (default: --size/4, or off)")
+                  "Topology-preserving simplification tolerance in metres (default: a quarter of --size or, in fields and mesh, of the automatic hmin; otherwise off)")
       ->check(CLI::NonNegativeNumber)
       ->group("Cleaning");
   cmd->add_option("--min-island-area", a.min_island_area_m2,
-                  "Drop islands and holes smaller than this, in m2 (default: --size^2, or 0)")
+                  "Drop islands and holes smaller than this, in m2 (default: the square of --size or, in fields and mesh, of the automatic hmin; otherwise 0)")
+      ->check(CLI::NonNegativeNumber)
+      ->group("Cleaning");
+  cmd->add_option("--min-width", a.min_width_m,
+                  "Fill notches and gaps, and remove spikes and isthmuses, narrower than this, in m "
+                  "(default: a quarter of --size or, in fields and mesh, of the automatic hmin; otherwise off)")
       ->check(CLI::NonNegativeNumber)
       ->group("Cleaning");
   cmd->add_option("--report", a.report_path, "Write the summary as JSON to this file")->group("Output");
@@ -243,6 +249,7 @@ void finish_front_end_args(CommonArgs& a) {
   a.fe.kind = a.domain_kind == "water" ? DomainKind::water : DomainKind::land;
   if (a.simplify_m >= 0) a.fe.simplify_m = a.simplify_m;
   if (a.min_island_area_m2 >= 0) a.fe.min_island_area_m2 = a.min_island_area_m2;
+  if (a.min_width_m >= 0) a.fe.min_width_m = a.min_width_m;
 }
 
 void write_text_atomically(const std::string& path, const std::string& text, bool overwrite) {

@@ -90,6 +90,21 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   const SimplifyResult sr = simplify_domain(result.domain, simp);
   s.num_vertices_before = sr.num_vertices_before;
   s.num_vertices_after = sr.num_vertices_after;
+
+  progress.report("narrow features", 0.9);
+  NarrowParams np;
+  np.min_width_m = options.min_width_m.value_or(h > 0 ? 0.25 * h : 0.0);
+  if (np.min_width_m < 0) throw Error(ErrorClass::usage, "narrow features", "--min-width must not be negative");
+  s.min_width_m = np.min_width_m;
+  s.narrow = remove_narrow_features(result.domain, np);
+  if (s.narrow.changed) {
+    // The opening may have cut off small pieces, and the offsets leave vertices closer
+    // together than the simplification would: both are cleaned as before.
+    const CleanResult again = clean_domain(result.domain, cp);
+    s.dropped.num_islands_dropped += again.num_islands_dropped;
+    s.dropped.num_holes_dropped += again.num_holes_dropped;
+    s.num_vertices_after = simplify_domain(result.domain, simp).num_vertices_after;
+  }
   if (const std::size_t pinches = count_pinch_points(result.domain); pinches > 0) {
     // Rings touching at a point (valid for GEOS, not for the mesher): cut apart there.
     const double r = simp.tolerance_m > 0 ? simp.tolerance_m : 1e-4 * std::sqrt(area(result.domain));

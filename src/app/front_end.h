@@ -10,6 +10,7 @@
 #include "core/geometry.h"
 #include "core/progress.h"
 #include "domain/clean_domain.h"
+#include "domain/narrow_features.h"
 #include "domain/project_domain.h"
 #include "domain/select_domain.h"
 #include "domain/simplify_domain.h"
@@ -30,6 +31,7 @@ struct FrontEndOptions {
   std::function<double(double area_m2)> target_size_for_area;
   std::optional<double> simplify_m;          // default: target_size_m / 4, or off
   std::optional<double> min_island_area_m2;  // default: target_size_m^2, or 0
+  std::optional<double> min_width_m;         // default: target_size_m / 4, or off
 };
 
 // What the front end did, for the summary and the report.
@@ -57,6 +59,8 @@ struct DomainSummary {
   double target_size_m = 0.0;  // 0: unknown
   double simplify_m = 0.0;
   double min_island_area_m2 = 0.0;
+  double min_width_m = 0.0;
+  NarrowResult narrow;
   CleanResult dropped;
   std::vector<std::string> warnings;
 };

@@ -33,6 +33,15 @@ std::string format_domain_summary(const DomainSummary& s) {
   if (s.dropped.num_components_dropped)
     os << ", " << s.dropped.num_components_dropped << " component(s) by --largest";
   os << "\n";
+  if (s.narrow.changed || s.narrow.num_pieces_kept) {
+    os << "narrow:       " << s.narrow.num_pieces << " feature(s) under " << num(s.min_width_m)
+       << " m wide changed: " << num(s.narrow.area_removed_m2 / 1e6, 4) << " km2 removed, "
+       << num(s.narrow.area_added_m2 / 1e6, 4) << " km2 filled in";
+    if (s.narrow.num_pieces_kept)
+      os << "; " << s.narrow.num_pieces_kept
+         << " kept (changing them would cut or join components or holes)";
+    os << "\n";
+  }
   if (s.num_repaired || s.num_rings_closed || s.num_rings_dropped || s.num_points_removed)
     os << "repairs:      " << s.num_repaired << " invalid polygon(s) fixed, " << s.num_rings_closed
        << " ring(s) closed, " << s.num_rings_dropped << " degenerate ring(s) dropped, "
@@ -58,6 +67,11 @@ void add_domain_summary(JsonWriter& j, const DomainSummary& s) {
       .value("perimeter_m", s.perimeter_m)
       .value("simplify_m", s.simplify_m)
       .value("min_island_area_m2", s.min_island_area_m2)
+      .value("min_width_m", s.min_width_m)
+      .value("narrow_area_removed_m2", s.narrow.area_removed_m2)
+      .value("narrow_area_added_m2", s.narrow.area_added_m2)
+      .value("narrow_num_changed", s.narrow.num_pieces)
+      .value("narrow_num_kept", s.narrow.num_pieces_kept)
       .value("num_islands_dropped", s.dropped.num_islands_dropped)
       .value("num_holes_dropped", s.dropped.num_holes_dropped)
       .value("num_components_dropped", s.dropped.num_components_dropped)
