@@ -359,6 +359,12 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "3; the paper's 0.5 of the tile size 2h is 1)")
       ->check(CLI::NonNegativeNumber)
       ->group(g);
+  cmd->add_option("--resplit-rounds", m.mesh.tiling.resplit_rounds,
+                  "After the butterflies, rounds of re-splitting two adjacent tiles whose union "
+                  "has six meta-vertices into two quadrangles, when that leaves fewer irregular "
+                  "vertices (default 10; 0: none, as the paper)")
+      ->check(CLI::NonNegativeNumber)
+      ->group(g);
   cmd->add_option("--corner-barrier", m.mesh.tiling.barriers.length_h,
                   "Length, in h, of the edge paths from reflex boundary corners that no tile "
                   "floods across, so that tiles meet at the corner (default 1; 0: none)")
@@ -376,8 +382,8 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
       ->check(CLI::Range(0.0, 180.0))
       ->group(g);
   cmd->add_option("--stop-after", m.stop_after,
-                  "Stop after a tiling step and plot the tiles: init, relax, conform or butterfly")
-      ->check(CLI::IsMember({"init", "relax", "conform", "butterfly"}))
+                  "Stop after a tiling step and plot the tiles: init, relax, conform, butterfly or resplit")
+      ->check(CLI::IsMember({"init", "relax", "conform", "butterfly", "resplit"}))
       ->group(g);
   cmd->add_option("--smooth-iters", m.mesh.smooth.iterations, "Laplacian smoothing sweeps (default 10)")
       ->check(CLI::NonNegativeNumber)
@@ -499,6 +505,7 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
                               : m.stop_after == "relax"   ? TilingStep::relax
                               : m.stop_after == "conform" ? TilingStep::conform
                               : m.stop_after == "butterfly" ? TilingStep::butterfly
+                              : m.stop_after == "resplit" ? TilingStep::resplit
                                                           : TilingStep::none;
   const auto t0 = std::chrono::steady_clock::now();
   MeshResult r = build_mesh(options, Progress(make_progress(a.quiet)));

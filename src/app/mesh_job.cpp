@@ -98,6 +98,8 @@ std::string format_mesh_summary(const MeshResult& r) {
                   s.step == "butterfly"
                       ? (", " + std::to_string(s.butterflies_removed) + "/" +
                          std::to_string(s.butterflies_found) + " butterflies removed").c_str()
+                  : s.step == "resplit"
+                      ? (", " + std::to_string(s.pairs_resplit) + " pairs re-split").c_str()
                       : "",
                   s.seconds);
     os << buf;
@@ -162,6 +164,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("energy", s.energy)
         .value("butterflies_found", s.butterflies_found)
         .value("butterflies_removed", s.butterflies_removed)
+        .value("pairs_resplit", s.pairs_resplit)
         .value("seconds", s.seconds)
         .end_object();
   }

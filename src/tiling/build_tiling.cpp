@@ -7,6 +7,7 @@
 #include "tiling/init_tiling.h"
 #include "tiling/relax_tiling.h"
 #include "tiling/repair_tiling.h"
+#include "tiling/resplit_pairs.h"
 #include "tiling/seed_tiling.h"
 #include "tiling/tile_geometry.h"
 #ifdef ISOQUAD_HAVE_BUTTERFLIES
@@ -100,6 +101,20 @@ TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
   r->butterflies_found = removed.found;
   r->butterflies_removed = removed.removed;
 #endif
+  if (params.stop_after == TilingStep::butterfly) return result;
+
+  // After 2.5: pairs of tiles whose union has six meta-vertices, re-split into two
+  // quadrangles when that leaves fewer irregular vertices.
+  if (params.resplit_rounds > 0) {
+    start = Clock::now();
+    progress.report("tiling pairs", 0.95);
+    ResplitParams resplit;
+    resplit.max_rounds = params.resplit_rounds;
+    resplit.graph = params.graph;
+    const ResplitStats pairs = resplit_pairs(mesh, tiling, resplit);
+    TilingStepReport* rr = finish("resplit", start, pairs.rounds);
+    rr->pairs_resplit = pairs.resplit;
+  }
   progress.report("tiling", 1.0);
   return result;
 }

@@ -1,6 +1,7 @@
 // The tiling stages of the paper in order: initialization by merging (2.2), discrete
-// L-infinity relaxation along the cross field (2.3), conforming relaxation (2.4) and
-// butterfly removal by local parameterization (2.5).
+// L-infinity relaxation along the cross field (2.3), conforming relaxation (2.4),
+// butterfly removal by local parameterization (2.5), then re-splitting pairs of tiles
+// into two quadrangles (resplit_pairs.h, not in the paper).
 #pragma once
 
 #include <string>
@@ -18,7 +19,7 @@
 
 namespace isoquad {
 
-enum class TilingStep { init, relax, conform, butterfly, none };
+enum class TilingStep { init, relax, conform, butterfly, resplit, none };
 
 // How the tiling starts (--init): the paper's merging by compactness (2.2), or
 // generators seeded front by front along the cross field (seed_tiling.h).
@@ -42,6 +43,9 @@ struct TilingParams {
   // helps every measure: France at about 4,500 quads, 1 -> 3 gives quadrangle tiles
   // 50% -> 57%, angles in range 66% -> 68%, regular interior vertices 77% -> 83%.
   double butterfly_max = 3.0;
+  // --resplit-rounds: rounds of re-splitting pairs of tiles into two quadrangles after
+  // the butterflies (resplit_pairs.h; 0: none).
+  int resplit_rounds = 10;
   MetaGraphParams graph;
   CornerBarrierParams barriers;  // --corner-barrier
   TilingStep stop_after = TilingStep::none;  // --stop-after; none: the whole job
@@ -49,12 +53,13 @@ struct TilingParams {
 
 // What one step did, for the report (--report) and the summary.
 struct TilingStepReport {
-  std::string step;  // "init", "relax", "conform", "butterfly"
+  std::string step;  // "init", "relax", "conform", "butterfly", "resplit"
   TilingStats stats;
   int iterations = 0;
   double energy = 0.0;  // the step's objective (relaxation: the discrete energy H)
   int butterflies_found = 0;
   int butterflies_removed = 0;
+  int pairs_resplit = 0;  // the resplit step: pairs of tiles re-split into two quadrangles
   double seconds = 0.0;
 };
 

@@ -51,7 +51,8 @@ const TilingStepReport& step(const TilingResult& r, const std::string& name) {
 TilingResult check_every_step(FieldsResult& f, double domain_area_m2, double size_m,
                               TilingInit init = TilingInit::front) {
   TilingResult full;
-  for (TilingStep s : {TilingStep::init, TilingStep::relax, TilingStep::conform, TilingStep::butterfly}) {
+  for (TilingStep s : {TilingStep::init, TilingStep::relax, TilingStep::conform, TilingStep::butterfly,
+                       TilingStep::resplit}) {
     TilingParams p;
     p.init = init;
     p.stop_after = s;
@@ -243,7 +244,8 @@ TEST(Tiling, CoastlineWithIslandsKeepsInvariants) {
   o.sizing.hmax_m = 3000.0;
   FieldsResult f = build_fields(o);
   tag_corners(f.mesh, f.size, CornerParams());
-  for (TilingStep s : {TilingStep::init, TilingStep::relax, TilingStep::conform, TilingStep::butterfly}) {
+  for (TilingStep s : {TilingStep::init, TilingStep::relax, TilingStep::conform, TilingStep::butterfly,
+                       TilingStep::resplit}) {
     TilingParams p;
     p.stop_after = s;
     const TilingResult r = build_tiling(f.mesh, f.size, f.cross, p);
