@@ -360,8 +360,8 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
       ->check(CLI::NonNegativeNumber)
       ->group(g);
   cmd->add_option("--resplit-rounds", m.mesh.tiling.resplit_rounds,
-                  "After the butterflies, rounds of re-splitting two adjacent tiles whose union "
-                  "has six meta-vertices into two quadrangles, when that leaves fewer irregular "
+                  "After the butterflies, rounds of re-splitting two adjacent tiles into a quadrangle "
+                  "and the rest (two quadrangles when their union has six meta-vertices), when that leaves fewer irregular "
                   "vertices (default 10; 0: none, as the paper)")
       ->check(CLI::NonNegativeNumber)
       ->group(g);

@@ -103,8 +103,8 @@ TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
 #endif
   if (params.stop_after == TilingStep::butterfly) return result;
 
-  // After 2.5: pairs of tiles whose union has six meta-vertices, re-split into two
-  // quadrangles when that leaves fewer irregular vertices.
+  // After 2.5: pairs of tiles re-split into a quadrangle and the rest when that leaves
+  // fewer irregular vertices.
   if (params.resplit_rounds > 0) {
     start = Clock::now();
     progress.report("tiling pairs", 0.95);

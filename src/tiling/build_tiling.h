@@ -43,7 +43,7 @@ struct TilingParams {
   // helps every measure: France at about 4,500 quads, 1 -> 3 gives quadrangle tiles
   // 50% -> 57%, angles in range 66% -> 68%, regular interior vertices 77% -> 83%.
   double butterfly_max = 3.0;
-  // --resplit-rounds: rounds of re-splitting pairs of tiles into two quadrangles after
+  // --resplit-rounds: rounds of re-splitting pairs of tiles into a quadrangle and the rest after
   // the butterflies (resplit_pairs.h; 0: none).
   int resplit_rounds = 10;
   MetaGraphParams graph;

@@ -58,6 +58,21 @@ double corner_deviation_deg(const std::array<Point2, 4>& q) {
   return worst;
 }
 
+// Whether every corner of the polygon (counter-clockwise) has an interior angle between
+// 10 and 200 degrees: the tile left beside the quadrangle is not folded, though a corner
+// may be flat (a T-junction).
+bool corners_open(const std::vector<Point2>& poly) {
+  const std::size_t n = poly.size();
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point2 &p = poly[(i + n - 1) % n], &c = poly[i], &nx = poly[(i + 1) % n];
+    const double ux = nx.x - c.x, uy = nx.y - c.y, vx = p.x - c.x, vy = p.y - c.y;
+    double a = std::atan2(ux * vy - uy * vx, ux * vx + uy * vy) * 180.0 / M_PI;
+    if (a < 0.0) a += 360.0;
+    if (a < 10.0 || a > 200.0) return false;
+  }
+  return true;
+}
+
 struct Candidate {
   int gain = 0;
   double deviation = 0.0;
@@ -157,7 +172,8 @@ class Resplitter {
       cycle.push_back(m);
     }
     for (int s = 2; s < nr; ++s) cycle.push_back(cr.vertices[(j + s) % nr]);
-    if (cycle.size() != 6) return std::nullopt;
+    const int n = static_cast<int>(cycle.size());
+    if (n < params_.min_union_vertices || n > params_.max_union_vertices) return std::nullopt;
     {
       std::vector<int> sorted = cycle;
       std::sort(sorted.begin(), sorted.end());
@@ -174,7 +190,7 @@ class Resplitter {
     }
     int tiles_before = std::abs(static_cast<int>(cl.vertices.size()) - 4) +
                        std::abs(static_cast<int>(cr.vertices.size()) - 4);
-    int tiles_after = 0;
+    int tiles_after = std::abs(n - 2 - 4);  // the split leaves a quadrangle and an (n-2)-gon
     for (const auto& [t, d] : tile_delta) {
       const int k = static_cast<int>(graph_.tiles[t].vertices.size());
       tiles_before += std::abs(k - 4);
@@ -183,8 +199,9 @@ class Resplitter {
     }
 
     std::optional<Candidate> best;
-    for (int k = 0; k < 3; ++k) {
-      const int x = cycle[k], y = cycle[k + 3];
+    // Split k: a quadrangle on cycle[k..k+3], the rest on cycle[k+3..k+n].
+    for (int k = 0; k < (n == 6 ? 3 : n); ++k) {
+      const int x = cycle[k], y = cycle[(k + 3) % n];
       std::map<int, int> delta{{p, -1}, {q, -1}};
       ++delta[x];
       ++delta[y];
@@ -196,12 +213,18 @@ class Resplitter {
       }
       const int gain = before - after;
       if (gain <= 0 || (best && gain < best->gain)) continue;
-      std::array<Point2, 4> qa, qb;
-      for (int s = 0; s < 4; ++s) {
-        qa[s] = mesh_.points[graph_.vertices[cycle[(k + s) % 6]]];
-        qb[s] = mesh_.points[graph_.vertices[cycle[(k + 3 + s) % 6]]];
+      std::array<Point2, 4> quad;
+      for (int s = 0; s < 4; ++s) quad[s] = mesh_.points[graph_.vertices[cycle[(k + s) % n]]];
+      std::vector<Point2> rest;
+      for (int s = 3; s <= n; ++s) rest.push_back(mesh_.points[graph_.vertices[cycle[(k + s) % n]]]);
+      double dev = corner_deviation_deg(quad);
+      if (n == 6) {
+        std::array<Point2, 4> other;
+        std::copy(rest.begin(), rest.end(), other.begin());
+        dev = std::max(dev, corner_deviation_deg(other));
+      } else if (!corners_open(rest)) {
+        continue;
       }
-      const double dev = std::max(corner_deviation_deg(qa), corner_deviation_deg(qb));
       if (dev > params_.max_corner_deviation_deg) continue;
       if (best && gain == best->gain && dev >= best->deviation) continue;
       Candidate c;
