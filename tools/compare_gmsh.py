@@ -11,7 +11,7 @@ metrics for both meshes here, independently of isoquad's own report:
   boundary-aligned cross field (mean, p90), regular interior vertices, and wall time.
 
 With --auto instead of --size, both follow isoquad's automatic sizing field (pass its
-options after --, e.g. -- --hmax 30000): Gmsh reads it as a background mesh view, and
+options after --, e.g. -- --hmax 28000): Gmsh reads it as a background mesh view, and
 sqrt(area)/h is measured against it at the quad centroids.
 
 Usage: tools/compare_gmsh.py INPUT (--size H | --auto) [--isoquad build/isoquad]

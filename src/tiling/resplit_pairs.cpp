@@ -73,6 +73,63 @@ bool corners_open(const std::vector<Point2>& poly) {
   return true;
 }
 
+// Convexity of the quadrilateral a b c d (counter-clockwise): the smallest sine of its
+// four turning angles, negative when a corner turns the wrong way.
+double convexity(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
+  const std::array<Point2, 4> q{a, b, c, d};
+  double worst = 1.0;
+  for (int i = 0; i < 4; ++i) {
+    const Point2 &p = q[(i + 3) % 4], &o = q[i], &n = q[(i + 1) % 4];
+    const double ux = o.x - p.x, uy = o.y - p.y, vx = n.x - o.x, vy = n.y - o.y;
+    const double lu = std::hypot(ux, uy), lv = std::hypot(vx, vy);
+    if (!(lu > 0 && lv > 0)) return -1.0;
+    worst = std::min(worst, (ux * vy - uy * vx) / (lu * lv));
+  }
+  return worst;
+}
+
+// The point at half the arc length of a polyline.
+Point2 arc_midpoint(const std::vector<Point2>& line) {
+  double total = 0.0;
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) total += distance(line[i], line[i + 1]);
+  double left = 0.5 * total;
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+    const double l = distance(line[i], line[i + 1]);
+    if (l >= left && l > 0) {
+      const double t = left / l;
+      return {line[i].x + t * (line[i + 1].x - line[i].x), line[i].y + t * (line[i + 1].y - line[i].y)};
+    }
+    left -= l;
+  }
+  return line.back();
+}
+
+// The worst convexity of the quads that barycentric subdivision would make of a tile
+// with the given sides (polylines from corner to corner, counter-clockwise, each side
+// starting where the previous one ends): corner, midpoint of its outgoing side, area
+// centroid, midpoint of its incoming side.
+double subdivision_convexity(const std::vector<std::vector<Point2>>& sides) {
+  double area = 0.0, cx = 0.0, cy = 0.0;
+  for (const auto& side : sides)
+    for (std::size_t i = 0; i + 1 < side.size(); ++i) {
+      const Point2 &a = side[i], &b = side[i + 1];
+      const double w = a.x * b.y - b.x * a.y;
+      area += w;
+      cx += (a.x + b.x) * w;
+      cy += (a.y + b.y) * w;
+    }
+  if (!(area > 0)) return -1.0;
+  const Point2 centre{cx / (3.0 * area), cy / (3.0 * area)};
+  double worst = 1.0;
+  const std::size_t k = sides.size();
+  for (std::size_t i = 0; i < k; ++i) {
+    const std::vector<Point2>& in = sides[(i + k - 1) % k];
+    const std::vector<Point2>& out = sides[i];
+    worst = std::min(worst, convexity(out.front(), arc_midpoint(out), centre, arc_midpoint(in)));
+  }
+  return worst;
+}
+
 struct Candidate {
   int gain = 0;
   double deviation = 0.0;
@@ -80,6 +137,7 @@ struct Candidate {
   int tile_a = -1, tile_b = -1;
   std::vector<int> side_a;       // triangles of the first new tile (tile_a)
   std::vector<int> side_b;       // triangles of the second (tile_b)
+  std::vector<int> path;         // the cut, background vertices from y to x
   std::vector<int> meta_locked;  // meta-vertices whose tile count or tiles change
   std::vector<int> tiles_locked; // tiles whose meta-vertex count changes
 };
@@ -180,6 +238,37 @@ class Resplitter {
       if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) return std::nullopt;
     }
 
+    // The union's boundary as background vertices (same walk), and where each of its
+    // meta-vertices is on it.
+    std::vector<int> loop;
+    auto append = [&](const TileCycle& t, int k) {
+      const MetaEdge& me2 = graph_.edges[t.edges[k]];
+      std::vector<int> path = me2.path;
+      if (!t.forward[k]) std::reverse(path.begin(), path.end());
+      loop.insert(loop.end(), path.begin(), path.end() - 1);  // the end starts the next
+    };
+    for (int s = 1; s < nl; ++s) append(cl, (i + s) % nl);
+    for (int s = 1; s < nr; ++s) append(cr, (j + s) % nr);
+    std::vector<int> at(n, -1);
+    for (int s = 0; s < static_cast<int>(loop.size()); ++s)
+      for (int k = 0; k < n; ++k)
+        if (loop[s] == graph_.vertices[cycle[k]]) {
+          if (at[k] >= 0) return std::nullopt;  // the union's boundary touches itself
+          at[k] = s;
+        }
+    for (int k = 0; k < n; ++k)
+      if (at[k] < 0) return std::nullopt;
+    // Corner-to-corner sides of the union's boundary, from cycle[k] to cycle[k + 1].
+    auto union_side = [&](int k) {
+      std::vector<Point2> side;
+      const int from = at[k], to = at[(k + 1) % n], len = static_cast<int>(loop.size());
+      for (int s = from;; s = (s + 1) % len) {
+        side.push_back(mesh_.points[loop[s]]);
+        if (s == to) break;
+      }
+      return side;
+    };
+
     // Tiles that lose a meta-vertex: the others at p or q when those drop out.
     std::map<int, int> tile_delta;
     for (int m : {p, q}) {
@@ -234,6 +323,17 @@ class Resplitter {
       c.tile_a = L;
       c.tile_b = R;
       if (!split(L, R, graph_.vertices[x], graph_.vertices[y], c)) continue;
+      // The quads the subdivision would make of both new tiles must be convex.
+      std::vector<Point2> cut;  // from x to y
+      for (auto it = c.path.rbegin(); it != c.path.rend(); ++it) cut.push_back(mesh_.points[*it]);
+      std::vector<std::vector<Point2>> first, second;
+      for (int s = 0; s < 3; ++s) first.push_back(union_side((k + s) % n));
+      first.push_back(std::vector<Point2>(cut.rbegin(), cut.rend()));
+      for (int s = 3; s < n; ++s) second.push_back(union_side((k + s) % n));
+      second.push_back(cut);
+      if (std::min(subdivision_convexity(first), subdivision_convexity(second)) <
+          params_.min_subdivision_convexity)
+        continue;
       c.meta_locked = cycle;
       c.meta_locked.push_back(p);
       c.meta_locked.push_back(q);
@@ -291,7 +391,8 @@ class Resplitter {
       }
     }
     if (!found) return false;
-    std::vector<int> path;
+    std::vector<int>& path = c.path;
+    path.clear();
     for (int v = y; v >= 0; v = prev_[v]) path.push_back(v);
     std::vector<std::pair<int, int>> cut;
     for (std::size_t k = 0; k + 1 < path.size(); ++k)

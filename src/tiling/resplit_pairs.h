@@ -31,6 +31,12 @@ struct ResplitParams {
   int min_union_vertices = 5;
   int max_union_vertices = 8;
   double max_area_ratio = 3.0;
+  // The quads that barycentric subdivision would make of each new tile (around its
+  // area centroid) must have convexity (the smallest sine of their turns) at least this:
+  // -0.6 lets smoothing straighten mildly bent quads and turns away tiles bent round a
+  // coastal spike, which folded Corsica's quickstart mesh. France automatic: 0.1 keeps
+  // 68% quadrangle tiles, -0.6 73%, no check 74%.
+  double min_subdivision_convexity = -0.6;
   int max_rounds = 10;  // rounds of candidates, one meta-graph build each
   MetaGraphParams graph;
 };

@@ -442,7 +442,7 @@ TEST(ButterfliesOnRealTilings, SquareWithConstantSizeAndAxisAlignedCross) {
 TEST(ButterfliesOnRealTilings, France) {
   FieldsOptions o;
   o.front.read.path = sample("france.shp");
-  o.sizing.hmax_m = 30000.0;  // about 4,500 quads
+  o.sizing.hmax_m = 28000.0;  // about 4,500 quads
   FieldsResult f = build_fields(o);
   const TilingResult r = build_tiling(f.mesh, f.size, f.cross, TilingParams());
   std::printf("France: %zu background triangles\n", f.mesh.triangles.size());

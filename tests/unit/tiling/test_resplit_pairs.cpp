@@ -66,13 +66,31 @@ TEST(ResplitPairs, CorsicaKeepsInvariantsAndLosesIrregularVertices) {
               "%.1f%%; interior irregularity %d -> %d\n",
               stats.resplit, stats.rounds, 100 * sb.share_quads, 100 * sa.share_quads, ib, ia);
   EXPECT_EQ(sa.num_tiles, sb.num_tiles);
-  // Measured: 67 pairs, 62% -> 75%, irregularity 384 -> 252.
+  // Measured: 64 pairs, 62% -> 75%, irregularity 384 -> 259.
   EXPECT_GT(stats.resplit, 20);
   // Every re-split leaves a quadrangle, most of them two; a tile next to it may lose a
   // meta-vertex that the union removed.
   EXPECT_GE(sa.share_quads, sb.share_quads + 0.5 * stats.resplit / sb.num_tiles);
   // Each re-split lowers the irregularity, inside or on the boundary; most of it inside.
   EXPECT_LE(ia, ib - stats.resplit / 2);
+}
+
+TEST(ResplitPairs, SplitsWhoseQuadsWouldNotBeConvexAreRefused) {
+  // No quad can have convexity above 1 (the sine of a turn): every split is refused.
+  Case c = corsica();
+  Tiling tiling = c.tiling.tiling;
+  ResplitParams p;
+  p.min_subdivision_convexity = 1.01;
+  EXPECT_EQ(resplit_pairs(c.fields.mesh, tiling, p).resplit, 0);
+  EXPECT_EQ(tiling.label, c.tiling.tiling.label);
+  // Demanding strictly convex quads around the centroid keeps fewer splits than the
+  // default, which leaves mildly bent ones to smoothing.
+  Tiling strict = c.tiling.tiling, loose = c.tiling.tiling;
+  p.min_subdivision_convexity = 0.2;
+  const int num_strict = resplit_pairs(c.fields.mesh, strict, p).resplit;
+  const int num_loose = resplit_pairs(c.fields.mesh, loose, ResplitParams()).resplit;
+  EXPECT_LT(num_strict, num_loose);
+  EXPECT_GT(num_strict, 0);
 }
 
 TEST(ResplitPairs, NothingToDoOnAQuadrangleLattice) {
