@@ -54,6 +54,9 @@ Location TriangleLocator::locate(const Point2& p) const {
   const int cj = std::clamp(static_cast<int>((p.y - y0_) / cell_), 0, ny_ - 1);
   Location best;
   double best_violation = std::numeric_limits<double>::infinity();
+  // A point on an edge or a vertex can come out of the barycentric computation a
+  // rounding error outside both triangles: that is inside.
+  constexpr double kOnEdge = 1e-12;
   // Search rings of cells until a containing triangle is found, or the nearest one
   // once a ring adds nothing better.
   for (int ring = 0; ring < std::max(nx_, ny_); ++ring) {
@@ -74,10 +77,10 @@ Location TriangleLocator::locate(const Point2& p) const {
           }
         }
       }
-    if (best_violation == 0.0) break;
+    if (best_violation <= kOnEdge) break;
     if (best.triangle >= 0 && ring >= 1) break;
   }
-  best.inside = best.triangle >= 0 && best_violation == 0.0;
+  best.inside = best.triangle >= 0 && best_violation <= kOnEdge;
   if (best.triangle >= 0 && best_violation > 0) {
     for (double& w : best.bary) w = std::max(0.0, w);
     const double s = best.bary[0] + best.bary[1] + best.bary[2];

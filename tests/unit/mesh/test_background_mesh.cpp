@@ -11,6 +11,7 @@
 #include <utility>
 
 #include "core/error.h"
+#include "mesh/locate.h"
 #include "unit/mesh/test_domains.h"
 
 #include "app/front_end.h"
@@ -346,4 +347,25 @@ TEST(BackgroundMesh, RealSample) {
   for (int f = 0; f < static_cast<int>(m.triangles.size()); ++f)
     if (smallest_angle_deg(m, f) < 20.0) ++num_small;
   EXPECT_LT(num_small, static_cast<int>(m.triangles.size() / 100));
+}
+
+TEST(TriangleLocator, PointsOnEdgesAndVerticesAreInside) {
+  // Lattice points of a square land exactly on vertices and edges of its mesh; rounding
+  // in the barycentric coordinates must not put them outside every triangle.
+  const BackgroundMesh m = build_background_mesh(square_domain(1000.0), uniform(25.0));
+  const TriangleLocator locator(m);
+  int outside = 0;
+  for (const Point2& p : m.points) outside += !locator.locate(p).inside;
+  for (const auto& t : m.triangles)
+    for (int i = 0; i < 3; ++i) {
+      const Point2 &a = m.points[t[i]], &b = m.points[t[(i + 1) % 3]];
+      outside += !locator.locate({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}).inside;
+    }
+  for (int i = 0; i <= 20; ++i)
+    for (int j = 0; j <= 20; ++j) outside += !locator.locate({50.0 * i, 50.0 * j}).inside;
+  EXPECT_EQ(outside, 0);
+  // Outside the square: clamped to the nearest triangle, and said to be outside.
+  const Location far = locator.locate({1000.5, 500.0});
+  EXPECT_FALSE(far.inside);
+  EXPECT_GE(far.triangle, 0);
 }
