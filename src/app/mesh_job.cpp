@@ -36,10 +36,13 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
   // such failures come from a few badly shaped tiles, and a different tiling rarely has
   // them at the same place. Attempts 1 and 3 start from the other initialization
   // (fronts or merging), which moves every tile; attempts 2 and 3 add a conforming
-  // iteration. The attempts are a fixed sequence, so the output stays deterministic.
+  // iteration and leave pairs of tiles as they are (no re-splitting: its tiles, cut
+  // along shortest paths, are the likelier to be bent at a sharp reflex corner). The
+  // attempts are a fixed sequence, so the output stays deterministic.
   for (int attempt = 0;; ++attempt) {
     MeshOptions o = options;
     o.tiling.conform_iters += attempt / 2;
+    if (attempt >= 2) o.tiling.resplit_rounds = 0;
     if (attempt % 2 == 1)
       o.tiling.init = o.tiling.init == TilingInit::front ? TilingInit::merge : TilingInit::front;
     auto t0 = std::chrono::steady_clock::now();
