@@ -156,7 +156,7 @@ struct FieldArgs {
   std::string cross = "boundary";
   double cross_angle_deg = std::numeric_limits<double>::quiet_NaN();
   std::string cross_raster;
-  double background_factor = 0.2;
+  double background_factor = 0.25;
   std::string plot_path;
 };
 
@@ -212,7 +212,7 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
                   "GDAL raster of cross angles in degrees (counter-clockwise from the x axis)")
       ->group(c);
   cmd->add_option("--background-factor", f.background_factor,
-                  "Background triangles are at most this fraction of the tile size 2h (default 0.2)")
+                  "Background triangles are at most this fraction of the tile size 2h (default 0.25)")
       ->check(CLI::Range(0.001, 1.0))
       ->group("Background mesh");
   cmd->add_option("--plot", f.plot_path, "Also draw a PNG")->group("Output");

@@ -107,11 +107,14 @@ TEST(Tiling, FrontsSeedTheSquareOnItsLattice) {
   EXPECT_EQ(stats.num_boundary, 36);
   EXPECT_EQ(stats.num_interior, 64);
   EXPECT_EQ(stats.num_filled, 0);
+  // A triangle's centroid is within 0.6 of its longest edge of any point in it; edges
+  // are at most background_factor times the tile size 100 m.
+  const double tolerance = 0.6 * FieldsOptions().background_factor;
   std::set<std::pair<int, int>> cells;
   for (int g : t.generator) {
     const double i = (geom.cx[g] - 50.0) / 100.0, j = (geom.cy[g] - 50.0) / 100.0;
-    EXPECT_NEAR(i, std::round(i), 0.1) << geom.cx[g];
-    EXPECT_NEAR(j, std::round(j), 0.1) << geom.cy[g];
+    EXPECT_NEAR(i, std::round(i), tolerance) << geom.cx[g];
+    EXPECT_NEAR(j, std::round(j), tolerance) << geom.cy[g];
     cells.insert({static_cast<int>(std::lround(i)), static_cast<int>(std::lround(j))});
   }
   EXPECT_EQ(cells.size(), 100u);
