@@ -542,4 +542,17 @@ void validate_background_mesh(const BackgroundMesh& mesh) {
     fail("boundary edges that belong to no chain");
 }
 
+VertexTriangles vertex_triangles(const BackgroundMesh& mesh) {
+  VertexTriangles vt;
+  vt.offset.assign(mesh.points.size() + 1, 0);
+  for (const auto& t : mesh.triangles)
+    for (int v : t) ++vt.offset[v + 1];
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) vt.offset[v + 1] += vt.offset[v];
+  vt.triangles.resize(vt.offset.back());
+  std::vector<int> fill(vt.offset.begin(), vt.offset.end() - 1);
+  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
+    for (int v : mesh.triangles[f]) vt.triangles[fill[v]++] = f;
+  return vt;
+}
+
 }  // namespace isoquad

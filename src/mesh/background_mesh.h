@@ -75,6 +75,14 @@ struct BackgroundMesh {
 // the result fails validation (a bug).
 BackgroundMesh build_background_mesh(const Domain& domain, const BackgroundMeshParams& params);
 
+// Incident triangles of every background vertex, as compressed rows: those of vertex v
+// are triangles[offset[v]] .. triangles[offset[v + 1] - 1], in increasing id order.
+struct VertexTriangles {
+  std::vector<int> offset;  // #V + 1
+  std::vector<int> triangles;
+};
+VertexTriangles vertex_triangles(const BackgroundMesh& mesh);
+
 // Throws Error(internal) unless every triangle is counter-clockwise with positive area,
 // neighbours are symmetric, and the boundary edges (neighbour -1) are exactly the chain
 // edges, each oriented with the domain on its left.

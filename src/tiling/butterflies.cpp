@@ -137,25 +137,6 @@ std::optional<std::array<int, 4>> choose_arc_corners(
   return best;
 }
 
-// Incident triangles of every background vertex, as compressed rows.
-struct VertexTriangles {
-  std::vector<int> offset;  // #V + 1
-  std::vector<int> triangles;
-};
-
-VertexTriangles vertex_triangles(const BackgroundMesh& mesh) {
-  VertexTriangles vt;
-  vt.offset.assign(mesh.points.size() + 1, 0);
-  for (const auto& t : mesh.triangles)
-    for (int v : t) ++vt.offset[v + 1];
-  for (std::size_t v = 0; v < mesh.points.size(); ++v) vt.offset[v + 1] += vt.offset[v];
-  vt.triangles.resize(vt.offset.back());
-  std::vector<int> fill(vt.offset.begin(), vt.offset.end() - 1);
-  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
-    for (int v : mesh.triangles[f]) vt.triangles[fill[v]++] = f;
-  return vt;
-}
-
 int local_corner(const std::array<int, 3>& t, int v) {
   return t[0] == v ? 0 : t[1] == v ? 1 : 2;
 }

@@ -18,25 +18,6 @@ namespace isoquad {
 
 namespace {
 
-// Incident triangles of every background vertex, as compressed rows.
-struct VertexTriangles {
-  std::vector<int> begin;  // #V + 1
-  std::vector<int> triangles;
-};
-
-VertexTriangles incident_triangles(const BackgroundMesh& mesh) {
-  VertexTriangles vt;
-  vt.begin.assign(mesh.points.size() + 1, 0);
-  for (const auto& t : mesh.triangles)
-    for (int v : t) ++vt.begin[v + 1];
-  for (std::size_t v = 0; v < mesh.points.size(); ++v) vt.begin[v + 1] += vt.begin[v];
-  vt.triangles.resize(vt.begin.back());
-  std::vector<int> fill(vt.begin.begin(), vt.begin.end() - 1);
-  for (int f = 0; f < static_cast<int>(mesh.triangles.size()); ++f)
-    for (int v : mesh.triangles[f]) vt.triangles[fill[v]++] = f;
-  return vt;
-}
-
 double triangle_area(const BackgroundMesh& mesh, int f) {
   const auto& t = mesh.triangles[f];
   const Point2 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
@@ -145,7 +126,7 @@ struct Candidate {
 class Resplitter {
  public:
   Resplitter(const BackgroundMesh& mesh, Tiling& tiling, const ResplitParams& params)
-      : mesh_(mesh), tiling_(tiling), params_(params), vt_(incident_triangles(mesh)),
+      : mesh_(mesh), tiling_(tiling), params_(params), vt_(vertex_triangles(mesh)),
         on_boundary_(boundary_vertex_flags(mesh)), turning_(vertex_turning_angles_deg(mesh)) {
     is_corner_.assign(mesh.points.size(), 0);
     for (const BoundaryChain& c : mesh.chains)
@@ -349,7 +330,7 @@ class Resplitter {
   // Whether background vertex v is strictly inside the union of tiles a and b.
   bool strictly_inside(int v, int a, int b) const {
     if (on_boundary_[v]) return false;
-    for (int k = vt_.begin[v]; k < vt_.begin[v + 1]; ++k)
+    for (int k = vt_.offset[v]; k < vt_.offset[v + 1]; ++k)
       if (!in_union(vt_.triangles[k], a, b)) return false;
     return true;
   }
@@ -378,7 +359,7 @@ class Resplitter {
         break;
       }
       if (u != x && !strictly_inside(u, a, b)) continue;
-      for (int k = vt_.begin[u]; k < vt_.begin[u + 1]; ++k) {
+      for (int k = vt_.offset[u]; k < vt_.offset[u + 1]; ++k) {
         const int f = vt_.triangles[k];
         if (!in_union(f, a, b)) continue;
         for (int w : mesh_.triangles[f]) {
@@ -402,85 +383,64 @@ class Resplitter {
       return std::binary_search(cut.begin(), cut.end(), std::make_pair(std::min(u, v), std::max(u, v)));
     };
 
-    std::vector<int> all;
-    collect_union(a, b, all);
+    const std::vector<int> all = collect_union(a, b);
 
     // Flood one side from a triangle at the first path edge.
     const int u0 = path[0], u1 = path[1];
     int seed = -1;
-    for (int k = vt_.begin[u0]; k < vt_.begin[u0 + 1] && seed < 0; ++k) {
+    for (int k = vt_.offset[u0]; k < vt_.offset[u0 + 1] && seed < 0; ++k) {
       const int f = vt_.triangles[k];
       const auto& t = mesh_.triangles[f];
       if (in_union(f, a, b) && std::find(t.begin(), t.end(), u1) != t.end()) seed = f;
     }
     if (seed < 0) return false;
-    std::vector<int> side = {seed};
-    const int tag = ++stamp_;
-    mark_[seed] = tag;
-    for (std::size_t k = 0; k < side.size(); ++k) {
-      const int f = side[k];
-      for (int s = 0; s < 3; ++s) {
-        const int g = mesh_.neighbours[f][s];
-        if (g < 0 || mark_[g] == tag || !in_union(g, a, b)) continue;
-        if (is_cut(mesh_.triangles[f][(s + 1) % 3], mesh_.triangles[f][(s + 2) % 3])) continue;
-        mark_[g] = tag;
-        side.push_back(g);
-      }
-    }
+    const std::vector<int> side = flood(seed, a, b, is_cut);
     // The rest of the union, which must be one piece as well.
+    const int side_tag = stamp_;
     std::vector<int> other;
     for (int f : all)
-      if (mark_[f] != tag) other.push_back(f);
+      if (mark_[f] != side_tag) other.push_back(f);
     if (side.empty() || other.empty()) return false;
-    {
-      const int tag2 = ++stamp_;
-      std::vector<int> reach = {other.front()};
-      mark_[other.front()] = tag2;
-      for (std::size_t k = 0; k < reach.size(); ++k) {
-        const int f = reach[k];
-        for (int s = 0; s < 3; ++s) {
-          const int g = mesh_.neighbours[f][s];
-          if (g < 0 || mark_[g] == tag2 || mark_[g] == tag || !in_union(g, a, b)) continue;
-          if (is_cut(mesh_.triangles[f][(s + 1) % 3], mesh_.triangles[f][(s + 2) % 3])) continue;
-          mark_[g] = tag2;
-          reach.push_back(g);
-        }
-      }
-      if (reach.size() != other.size()) return false;
-    }
+    if (flood(other.front(), a, b, is_cut).size() != other.size()) return false;
     double area_side = 0.0, area_other = 0.0;
     for (int f : side) area_side += triangle_area(mesh_, f);
     for (int f : other) area_other += triangle_area(mesh_, f);
     if (area_side > params_.max_area_ratio * area_other ||
         area_other > params_.max_area_ratio * area_side)
       return false;
-    c.side_a = std::move(side);
+    c.side_a = side;
     c.side_b = std::move(other);
     return true;
   }
 
-  // Every triangle of tiles a and b, flooded from one of a's (tiles are connected; the
-  // union of two adjacent tiles is too).
-  void collect_union(int a, int b, std::vector<int>& out) const {
+  // The triangles of the union of tiles a and b reachable from `seed` without crossing
+  // an edge for which is_cut(u, v) holds, marked with a fresh stamp_.
+  template <class IsCut>
+  std::vector<int> flood(int seed, int a, int b, const IsCut& is_cut) const {
     const int tag = ++stamp_;
-    int start = -1;
-    // Start from a's generator when it still belongs to a, else search.
-    const int g = tiling_.generator[a];
-    if (g >= 0 && tiling_.label[g] == a) start = g;
-    for (int f = 0; start < 0 && f < static_cast<int>(mesh_.triangles.size()); ++f)
-      if (tiling_.label[f] == a) start = f;
-    if (start < 0) return;
-    out = {start};
-    mark_[start] = tag;
+    std::vector<int> out = {seed};
+    mark_[seed] = tag;
     for (std::size_t k = 0; k < out.size(); ++k) {
       const int f = out[k];
       for (int s = 0; s < 3; ++s) {
-        const int h = mesh_.neighbours[f][s];
-        if (h < 0 || mark_[h] == tag || !in_union(h, a, b)) continue;
-        mark_[h] = tag;
-        out.push_back(h);
+        const int g = mesh_.neighbours[f][s];
+        if (g < 0 || mark_[g] == tag || !in_union(g, a, b)) continue;
+        if (is_cut(mesh_.triangles[f][(s + 1) % 3], mesh_.triangles[f][(s + 2) % 3])) continue;
+        mark_[g] = tag;
+        out.push_back(g);
       }
     }
+    return out;
+  }
+
+  // Every triangle of tiles a and b (tiles are connected; two adjacent ones too).
+  std::vector<int> collect_union(int a, int b) const {
+    int start = tiling_.generator[a];
+    if (start < 0 || tiling_.label[start] != a) start = -1;
+    for (int f = 0; start < 0 && f < static_cast<int>(mesh_.triangles.size()); ++f)
+      if (tiling_.label[f] == a) start = f;
+    if (start < 0) return {};
+    return flood(start, a, b, [](int, int) { return false; });
   }
 
   void apply(const Candidate& c) {

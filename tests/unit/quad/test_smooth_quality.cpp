@@ -167,8 +167,11 @@ TEST(SmoothQuads, AlignedSweepsFollowTheSizeField) {
   EXPECT_GT(after.share_size_08_125, before.share_size_08_125);
   EXPECT_LT(after.orientation_mean_deg, 3.0);
   EXPECT_GT(after.share_angles_75_105, 0.95);
-  for (std::size_t i = 0; i < aligned.points.size(); ++i)
-    if (aligned.chain[i] >= 0) EXPECT_LT(distance_to_square_boundary(aligned.points[i]), 1e-6) << i;
+  for (std::size_t i = 0; i < aligned.points.size(); ++i) {
+    if (aligned.chain[i] >= 0) {
+      EXPECT_LT(distance_to_square_boundary(aligned.points[i]), 1e-6) << i;
+    }
+  }
 }
 
 TEST(SmoothQuads, AngleSweepsStraightenAPerturbedGrid) {
@@ -202,8 +205,11 @@ TEST(SmoothQuads, AngleSweepsStraightenAPerturbedGrid) {
   EXPECT_EQ(st.num_nonconvex_after, 0);
   EXPECT_GT(before, 10.0);
   EXPECT_LT(mean_deviation(), 0.5 * before);
-  for (std::size_t i = 0; i < m.points.size(); ++i)
-    if (m.chain[i] >= 0) EXPECT_LT(distance_to_square_boundary(m.points[i]), 1e-6) << i;
+  for (std::size_t i = 0; i < m.points.size(); ++i) {
+    if (m.chain[i] >= 0) {
+      EXPECT_LT(distance_to_square_boundary(m.points[i]), 1e-6) << i;
+    }
+  }
 }
 
 TEST(SmoothQuads, AngleSweepsTurnEdgesTowardsTheCross) {

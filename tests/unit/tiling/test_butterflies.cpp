@@ -24,6 +24,7 @@
 #include "tiling/meta_graph.h"
 #include "tiling/tiling.h"
 #include "unit/mesh/test_domains.h"
+#include "unit/tiling/tiling_fixtures.h"
 
 using namespace isoquad;
 using namespace isoquad::test;
@@ -425,13 +426,7 @@ void expect_butterfly_step_improves(const BackgroundMesh& mesh, const TilingResu
 }  // namespace
 
 TEST(ButterfliesOnRealTilings, SquareWithConstantSizeAndAxisAlignedCross) {
-  FieldsOptions o;
-  o.sizing.automatic = false;
-  o.sizing.constant_m = 2.5;
-  o.cross.source = CrossSource::constant;
-  o.cross.angle_deg = 0.0;
-  FieldsResult f;
-  build_fields_on_domain(square_domain(100.0), o, f);
+  FieldsResult f = fields_on(square_domain(100.0), 2.5, true);
   const TilingResult r = build_tiling(f.mesh, f.size, f.cross, TilingParams());
   expect_butterfly_step_improves(f.mesh, r);
   // The paper's uniform-sizing case (2.6: about 75% quadrangles before subdivision).

@@ -14,6 +14,7 @@
 #include "tiling/build_tiling.h"
 #include "tiling/meta_graph.h"
 #include "unit/mesh/test_domains.h"
+#include "unit/tiling/tiling_fixtures.h"
 
 using namespace isoquad;
 using namespace isoquad::test;
@@ -96,13 +97,7 @@ TEST(ResplitPairs, SplitsWhoseQuadsWouldNotBeConvexAreRefused) {
 TEST(ResplitPairs, NothingToDoOnAQuadrangleLattice) {
   // The square with constant size and axis-aligned cross: every tile is a quadrangle
   // after the butterflies, so no pair may change.
-  FieldsOptions o;
-  o.sizing.automatic = false;
-  o.sizing.constant_m = 2.5;
-  o.cross.source = CrossSource::constant;
-  o.cross.angle_deg = 0.0;
-  FieldsResult f;
-  build_fields_on_domain(square_domain(100.0), o, f);
+  FieldsResult f = fields_on(square_domain(100.0), 2.5, true);
   TilingParams p;
   p.stop_after = TilingStep::butterfly;
   const TilingResult r = build_tiling(f.mesh, f.size, f.cross, p);

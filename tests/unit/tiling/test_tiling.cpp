@@ -20,25 +20,12 @@
 #include "tiling/meta_graph.h"
 #include "tiling/seed_tiling.h"
 #include "unit/mesh/test_domains.h"
+#include "unit/tiling/tiling_fixtures.h"
 
 using namespace isoquad;
 using namespace isoquad::test;
 
 namespace {
-
-FieldsResult fields_on(const Domain& domain, double size_m, bool axis_cross) {
-  FieldsOptions o;
-  o.sizing.automatic = false;
-  o.sizing.constant_m = size_m;
-  if (axis_cross) {
-    o.cross.source = CrossSource::constant;
-    o.cross.angle_deg = 0.0;
-  }
-  FieldsResult f;
-  build_fields_on_domain(domain, o, f);
-  tag_corners(f.mesh, f.size, CornerParams());
-  return f;
-}
 
 const TilingStepReport& step(const TilingResult& r, const std::string& name) {
   for (const TilingStepReport& s : r.steps)
