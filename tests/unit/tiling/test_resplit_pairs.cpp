@@ -94,7 +94,7 @@ TEST(ResplitPairs, SplitsWhoseQuadsWouldNotBeConvexAreRefused) {
   EXPECT_GT(num_strict, 0);
 }
 
-TEST(ResplitPairs, NothingToDoOnAQuadrangleLattice) {
+TEST(ResplitPairs, LeavesAQuadrangleLatticeAlone) {
   // The square with constant size and axis-aligned cross: every tile is a quadrangle
   // after the butterflies, so no pair may change.
   FieldsResult f = fields_on(square_domain(100.0), 2.5, true);
