@@ -146,9 +146,12 @@ std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const
       return "tile " + std::to_string(b.cycle_tile[c]) + " is not a disk: it touches itself at " +
              format_point(mesh.points[b.cycle_pinch[c]]);
   for (int t = 0; t < num_tiles; ++t)
-    if (graph.tiles[t].vertices.size() < 3)
-      return "tile " + std::to_string(t) + " has " +
+    if (graph.tiles[t].vertices.size() < 3) {
+      const int c = b.tile_outer_cycle[t];
+      const Point2& at = mesh.points[halfedge_from(mesh, b.halfedges[b.cycle_begin[c]])];
+      return "tile " + std::to_string(t) + " near " + format_point(at) + " has " +
              std::to_string(graph.tiles[t].vertices.size()) + " meta-vertices (at least 3 needed)";
+    }
 
   // A corner (a meta-vertex of a single tile) that is reflex would give a non-convex quad.
   const std::vector<double> turning = vertex_turning_angles_deg(mesh);

@@ -448,7 +448,7 @@ class Repairer {
             if (label_[vertex_faces_[q]] != t) forbidden.push_back(label_[vertex_faces_[q]]);
       }
       if (shared.empty()) {
-        fixes += split_isolated(t, b) ? 1 : 0;
+        fixes += (tag_island_corners(t, b) || split_isolated(t, b)) ? 1 : 0;
         continue;
       }
       auto allowed = [&](int x) {
@@ -465,8 +465,60 @@ class Repairer {
     return fixes;
   }
 
-  // A tile alone in its mesh component with fewer than 3 meta-vertices (a small island
-  // without corners): three tiles grown from three points evenly spaced along its
+  // A tile alone in its mesh component with fewer than 3 meta-vertices (an island about
+  // one tile large, with fewer than 3 corners): its most convex boundary vertices, at
+  // least an eighth of the perimeter from each other and from its corners, become corners
+  // until it has four (at least three), so that it subdivides into four (three) quads
+  // around its centroid, about the size asked for. Only vertices turning left by at
+  // least 10 degrees qualify (the quads' angles there are 180 minus the turn).
+  bool tag_island_corners(int tile, const TileBoundaries& b) {
+    const int c = b.tile_outer_cycle[tile];
+    const int begin = b.cycle_begin[c], n = b.cycle_begin[c + 1] - begin;
+    struct Candidate {
+      double turn;
+      double arc;
+      int vertex;
+    };
+    std::vector<Candidate> cands, chosen;  // chosen starts with the corners it has
+    double arc = 0.0;
+    for (int k = 0; k < n; ++k) {
+      const int h = b.halfedges[begin + k];
+      const int v = halfedge_from(mesh_, h);
+      if (halfedge_across(mesh_, h) >= 0) return false;  // not alone after all
+      const int chain = mesh_.boundary_chain_of_vertex[v];
+      if (chain >= 0) {
+        const BoundaryChain& ch = tags_.chains[chain];
+        const std::size_t at = std::find(ch.vertices.begin(), ch.vertices.end(), v) - ch.vertices.begin();
+        const double turn = ch.turning_angle_deg[at];
+        if (ch.is_corner[at])
+          chosen.push_back({turn, arc, -1});
+        else if (turn >= 10.0)
+          cands.push_back({turn, arc, v});
+      }
+      arc += edge_length_m(h);
+    }
+    const double perimeter = arc;
+    std::stable_sort(cands.begin(), cands.end(),
+                     [](const Candidate& x, const Candidate& y) { return x.turn > y.turn; });
+    for (const Candidate& x : cands) {
+      bool apart = true;
+      for (const Candidate& y : chosen) {
+        const double d = std::abs(x.arc - y.arc);
+        apart = apart && std::min(d, perimeter - d) >= perimeter / 8.0;
+      }
+      if (apart) chosen.push_back(x);
+      if (chosen.size() == 4) break;
+    }
+    if (chosen.size() < 3) return false;
+    for (const Candidate& x : chosen)
+      if (x.vertex >= 0) promote_corner(x.vertex, x.turn);
+    touched_[tile] = 1;
+    ++stats_.corners_added;
+    return true;
+  }
+
+  // A tile alone in its mesh component with fewer than 3 meta-vertices whose boundary
+  // has not three such corners: three tiles grown from three points evenly spaced along its
   // boundary, which meet at one interior meta-vertex.
   bool split_isolated(int tile, const TileBoundaries& b) {
     const int c = b.tile_outer_cycle[tile];
@@ -604,6 +656,17 @@ class Repairer {
     for (int f : members)
       if (label_[f] == part_tile[light]) relabel(f, into);
     touched_[into] = 1;
+  }
+
+  // Tags v as a corner that turns by turn_deg (> 0: convex).
+  void promote_corner(int v, double turn_deg) {
+    for (BoundaryChain& chain : tags_.chains)
+      for (std::size_t k = 0; k < chain.vertices.size(); ++k)
+        if (chain.vertices[k] == v) {
+          chain.is_corner[k] = 1;
+          chain.corner_turning_deg[k] = turn_deg;
+        }
+    turning_deg_[v] = turn_deg;
   }
 
   // Clears the corner tag of v: the tiles keep undoing its splits (a narrow spike or

@@ -34,6 +34,7 @@ struct RepairStats {
   int small_tiles_merged = 0;  // tiles with fewer than 3 meta-vertices
   int tiles_split = 0;         // tiles split (at reflex corners, or isolated small tiles)
   int corners_demoted = 0;     // reflex corners whose tag was cleared (see RepairParams)
+  int corners_added = 0;       // islands of about one tile given four corners
   int rounds = 0;
   int total() const {
     return fragments_merged + enclosed_merged + rings_cut + pinches_split + small_tiles_merged +

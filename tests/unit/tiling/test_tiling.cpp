@@ -129,6 +129,32 @@ TEST(Tiling, FrontsSeedEveryComponent) {
   EXPECT_EQ(check_tiling(f.mesh, r.tiling, r.graph), "");
 }
 
+TEST(Tiling, IslandSmallerThanATileGetsCorners) {
+  // A small island of New Zealand (Natural Earth 1:50m, metres from its centroid in the
+  // automatic projection): 3 km2, without corners, meshed at h = 11.4 km far from a
+  // large square. Its single tile had 2 meta-vertices; splitting it in three found no
+  // triple point, the parts merged back, and the repairs gave up after 200 rounds. Its
+  // most convex vertices now become corners.
+  Domain d = square_domain(100000.0);
+  Polygon island;
+  island.outer = {{-12.9, -828.4}, {320.1, -2028.8}, {736.6, -1857.4}, {820.0, -485.6},
+                  {94.3, 935.5},   {-1048.0, 2185.1}, {-1059.9, 1989.1}, {-738.6, 592.6}};
+  for (Point2& p : island.outer) p.x += 150000.0, p.y += 50000.0;
+  orient_polygon(island);
+  d.polygons.push_back(island);
+  FieldsResult f = fields_on(d, 11445.0, false);
+  const TilingResult r = build_tiling(f.mesh, f.size, f.cross, TilingParams());
+  ASSERT_EQ(check_tiling(f.mesh, r.tiling, r.graph), "");
+  const TriangleGeometry geom = triangle_geometry(f.mesh, f.size);
+  std::set<int> island_tiles;
+  for (std::size_t k = 0; k < r.tiling.label.size(); ++k)
+    if (geom.cx[k] > 120000.0) island_tiles.insert(r.tiling.label[k]);
+  ASSERT_EQ(island_tiles.size(), 1u);
+  const std::size_t corners = r.graph.tiles[*island_tiles.begin()].vertices.size();
+  EXPECT_GE(corners, 3u);
+  EXPECT_LE(corners, 4u);
+}
+
 TEST(Tiling, AnnulusKeepsInvariantsAndNoTileWrapsTheHole) {
   FieldsResult f = fields_on(annulus_domain(1000.0, 400.0, 96), 60.0, false);
   const double area = M_PI * (1000.0 * 1000.0 - 400.0 * 400.0);
