@@ -56,8 +56,15 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options,
   // Refinement evaluates the size many times, at scattered points: it reads a quadtree
   // cache (cells at most half the local size; bilinear values there are close to the
   // graded field, which changes by at most K times the cell side) instead of the sources.
+  std::vector<std::array<double, 4>> components;
+  for (const Polygon& poly : domain.polygons) {
+    std::array<double, 4> b{poly.outer[0].x, poly.outer[0].y, poly.outer[0].x, poly.outer[0].y};
+    for (const Point2& p : poly.outer)
+      b = {std::min(b[0], p.x), std::min(b[1], p.y), std::max(b[2], p.x), std::max(b[3], p.y)};
+    components.push_back(b);
+  }
   const SizeCache cache(bounding_box(domain), [&oracle](const Point2& p) { return oracle(p); },
-                        0.5);
+                        0.5, 18, std::move(components));
   bp.max_edge_m = [&cache, factor](const Point2& p) { return factor * cache(p); };
   r.mesh = build_background_mesh(domain, bp);
   r.num_size_cache_leaves = cache.num_leaves();

@@ -2,13 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace isoquad {
 
 SizeCache::SizeCache(const std::array<double, 4>& box,
                      const std::function<double(const Point2&)>& size, double cell_ratio,
-                     int max_depth)
-    : cell_ratio_(cell_ratio), max_depth_(max_depth) {
+                     int max_depth, std::vector<std::array<double, 4>> regions)
+    : regions_(std::move(regions)), cell_ratio_(cell_ratio), max_depth_(max_depth) {
   side_ = std::max(box[2] - box[0], box[3] - box[1]);
   side_ = side_ > 0 ? side_ * (1 + 1e-9) : 1.0;
   x0_ = box[0];
@@ -36,7 +37,7 @@ void SizeCache::build(int node, int depth, long long i0, long long j0, long long
   nodes_[node].corner = c;
   const double cell = side_ * static_cast<double>(span) / static_cast<double>(resolution_);
   const double smallest = *std::min_element(c.begin(), c.end());
-  if (depth >= max_depth_ || cell <= cell_ratio_ * smallest) {
+  if (depth >= max_depth_ || cell <= cell_ratio_ * smallest || !overlaps_region(i0, j0, span)) {
     ++num_leaves_;
     return;
   }
@@ -48,6 +49,15 @@ void SizeCache::build(int node, int depth, long long i0, long long j0, long long
   build(first + 1, depth + 1, i0 + half, j0, half, size);
   build(first + 2, depth + 1, i0, j0 + half, half, size);
   build(first + 3, depth + 1, i0 + half, j0 + half, half, size);
+}
+
+bool SizeCache::overlaps_region(long long i0, long long j0, long long span) const {
+  if (regions_.empty()) return true;
+  const double s = side_ / static_cast<double>(resolution_);
+  const double x0 = x0_ + i0 * s, y0 = y0_ + j0 * s, x1 = x0 + span * s, y1 = y0 + span * s;
+  for (const auto& r : regions_)
+    if (x0 <= r[2] && r[0] <= x1 && y0 <= r[3] && r[1] <= y1) return true;
+  return false;
 }
 
 double SizeCache::operator()(const Point2& p) const {

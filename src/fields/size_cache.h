@@ -17,9 +17,13 @@ namespace isoquad {
 class SizeCache {
  public:
   // Covers `box` (xmin, ymin, xmax, ymax). A cell of side s is split while
-  // s > cell_ratio * (smallest corner value), up to max_depth levels.
+  // s > cell_ratio * (smallest corner value), up to max_depth levels, and, when `regions`
+  // (boxes) are given, only while it overlaps one of them: a domain of islands far apart
+  // needs no fine cells over the sea between them (the Netherlands with its Caribbean
+  // islands: 1.5 million cells, 2 GB, 8 s without).
   SizeCache(const std::array<double, 4>& box, const std::function<double(const Point2&)>& size,
-            double cell_ratio = 0.5, int max_depth = 18);
+            double cell_ratio = 0.5, int max_depth = 18,
+            std::vector<std::array<double, 4>> regions = {});
 
   // Bilinear interpolation in the leaf containing p (clamped to the box).
   double operator()(const Point2& p) const;
@@ -36,6 +40,9 @@ class SizeCache {
   void build(int node, int depth, long long i0, long long j0, long long span,
              const std::function<double(const Point2&)>& size);
 
+  bool overlaps_region(long long i0, long long j0, long long span) const;
+
+  std::vector<std::array<double, 4>> regions_;
   double x0_ = 0, y0_ = 0, side_ = 1;
   double cell_ratio_ = 0.5;
   int max_depth_ = 18;

@@ -18,6 +18,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <iterator>
 #include <map>
@@ -196,11 +197,26 @@ void seed_interior(Ct& ct, const Domain& domain, const BackgroundMeshParams& par
   // x, 0.87 d apart along y, every other row shifted by d / 2) whose edges are at most
   // 0.95 e: nearly equilateral triangles at close to the ideal density. Large leaves
   // keep the rounding of d small.
+  // Component boxes: cells over none of them (the sea between islands far apart) are
+  // neither split nor filled.
+  std::vector<std::array<double, 4>> boxes;
+  for (const Polygon& poly : domain.polygons) {
+    std::array<double, 4> b{1e300, 1e300, -1e300, -1e300};
+    for (const Point2& p : poly.outer)
+      b = {std::min(b[0], p.x), std::min(b[1], p.y), std::max(b[2], p.x), std::max(b[3], p.y)};
+    boxes.push_back(b);
+  }
+  auto overlaps_domain = [&boxes](double x0, double y0, double side) {
+    for (const auto& b : boxes)
+      if (x0 <= b[2] && b[0] <= x0 + side && y0 <= b[3] && b[1] <= y0 + side) return true;
+    return false;
+  };
   std::vector<Cell> stack{{xmin, ymin, std::max(xmax - xmin, ymax - ymin), 0}};
   std::vector<std::pair<K::Point_2, double>> leaves;  // (point, lattice spacing)
   while (!stack.empty()) {
     const Cell c = stack.back();
     stack.pop_back();
+    if (!overlaps_domain(c.x, c.y, c.side)) continue;
     const double e = size({c.x + 0.5 * c.side, c.y + 0.5 * c.side});
     if (!(e > 0.0))  // also catches NaN
       throw Error(ErrorClass::meshing, kStage,

@@ -20,9 +20,17 @@ TriangleLocator::TriangleLocator(const BackgroundMesh& mesh) : mesh_(&mesh) {
     xmin = std::min(xmin, p.x), ymin = std::min(ymin, p.y), xmax = std::max(xmax, p.x),
     ymax = std::max(ymax, p.y);
   const std::size_t nf = mesh.triangles.size();
-  // About two triangles per cell.
-  const double area = std::max((xmax - xmin) * (ymax - ymin), 1e-300);
-  cell_ = std::max(std::sqrt(2.0 * area / std::max<std::size_t>(nf, 1)), 1e-12);
+  // About two triangles per cell where there are triangles: cells sized by the
+  // triangles' own area, not the bounding box's (islands far apart leave it mostly
+  // empty), but no more than 16 cells per triangle in all.
+  double covered = 0.0;
+  for (const auto& t : mesh.triangles) {
+    const Point2 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
+    covered += 0.5 * std::abs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+  }
+  const double box = std::max((xmax - xmin) * (ymax - ymin), 1e-300);
+  const double n = static_cast<double>(std::max<std::size_t>(nf, 1));
+  cell_ = std::max({std::sqrt(2.0 * covered / n), std::sqrt(box / (16.0 * n)), 1e-12});
   x0_ = xmin;
   y0_ = ymin;
   nx_ = std::max(1, static_cast<int>(std::ceil((xmax - xmin) / cell_)) + 1);

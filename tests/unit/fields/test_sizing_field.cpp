@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "fields/feature_size.h"
+#include "fields/size_cache.h"
 #include "gis/crs.h"
 #include "gis/gdal_env.h"
 #include "mesh/background_mesh.h"
@@ -226,5 +227,20 @@ TEST(FeatureSize, ConeExtensionIsTheMinimumOverTheSites) {
         EXPECT_LE(h, bound + k * 2 * fp.lambda_m) << k << " " << x << " " << y;
         EXPECT_NEAR(h, fs({x, 1000 - y}), 0.01 * h) << k << " " << x << " " << y;
       }
+  }
+}
+
+TEST(SizeCache, RefinesOnlyOverTheRegionsItIsGiven) {
+  // Two islands 100 km apart with sizes of 1 km everywhere: without regions the cache
+  // refines the whole square over the sea between them; with their boxes only around
+  // the islands.
+  const std::array<double, 4> box{0.0, 0.0, 1.0e5, 1.0e4};
+  const auto size = [](const Point2&) { return 1000.0; };
+  const SizeCache everywhere(box, size, 0.5, 18);
+  const SizeCache islands(box, size, 0.5, 18, {{0.0, 0.0, 1.0e4, 1.0e4}, {9.0e4, 0.0, 1.0e5, 1.0e4}});
+  EXPECT_LT(islands.num_leaves() * 10, everywhere.num_leaves());
+  for (const Point2 p : {Point2{5000.0, 5000.0}, Point2{95000.0, 2500.0}}) {
+    EXPECT_NEAR(islands(p), 1000.0, 1e-9);
+    EXPECT_NEAR(everywhere(p), 1000.0, 1e-9);
   }
 }
