@@ -10,10 +10,39 @@ namespace isoquad {
 
 namespace {
 
+// Whether a geographic source straddles the antimeridian: its longitudes span more than
+// 180 degrees, as choose_local_projection decides.
+bool straddles_antimeridian(const SourceData& source) {
+  double lo = 1e300, hi = -1e300;
+  for (const SourcePolygon& sp : source.polygons)
+    for (const Ring& r : sp.rings)
+      for (const Point2& p : r) lo = std::min(lo, p.x), hi = std::max(hi, p.x);
+  return hi - lo > 180.0;
+}
+
+// Its longitudes moved into [0, 360): a ring that crosses the antimeridian (179.9 then
+// -179.9) is then valid, and the parts of an island cut there join.
+void unwrap_antimeridian(SourceData& source) {
+  auto shift = [](Ring& r) {
+    for (Point2& p : r)
+      if (p.x < 0.0) p.x += 360.0;
+  };
+  for (SourcePolygon& sp : source.polygons)
+    for (Ring& r : sp.rings) shift(r);
+  if (source.bbox_ring) shift(*source.bbox_ring);
+}
+
 }  // namespace
 
-SelectResult select_domain(const SourceData& source, const SelectParams& params) {
+SelectResult select_domain(const SourceData& input, const SelectParams& params) {
   const std::string file = "'" + params.source_name + "'";
+  SourceData unwrapped;
+  const bool unwrap = input.crs.geographic && straddles_antimeridian(input);
+  if (unwrap) {
+    unwrapped = input;
+    unwrap_antimeridian(unwrapped);
+  }
+  const SourceData& source = unwrap ? unwrapped : input;
   if (params.kind == DomainKind::water && !source.bbox_ring)
     throw Error(ErrorClass::usage, "domain",
                 "--domain water needs --bbox: the water domain is the bbox minus the polygons");

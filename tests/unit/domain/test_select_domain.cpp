@@ -110,3 +110,31 @@ TEST(SelectDomain, SelfIntersectionIsReportedWithItsLocationOrRepaired) {
   ASSERT_EQ(r.polygons.size(), 2u);  // the bow-tie becomes two triangles
   EXPECT_DOUBLE_EQ(area(r.polygons[0]) + area(r.polygons[1]), 50.0);
 }
+
+TEST(SelectDomain, GeographicPolygonsAcrossTheAntimeridianAreUnwrapped) {
+  // An island whose ring crosses the antimeridian (179.5 -> -179.5: invalid as written),
+  // and one cut at +-180 into two parts (as Natural Earth cuts Fiji): valid, one
+  // component each, in longitudes [0, 360).
+  SourceData d;
+  d.crs = parse_crs("EPSG:4326", "test");
+  SourcePolygon crossing;
+  crossing.fid = 0;
+  crossing.rings = {{{179.5, -17.0}, {-179.5, -17.0}, {-179.5, -16.0}, {179.5, -16.0}}};
+  SourcePolygon west, east;
+  west.fid = east.fid = 1;
+  east.part = 1;
+  west.rings = {square(179.0, -20.0, 1.0)};   // 179 .. 180
+  east.rings = {square(-180.0, -20.0, 0.5)};  // -180 .. -179.5, 0.5 high
+  d.polygons = {crossing, west, east};
+  const SelectResult r = select_domain(d, params(DomainKind::land));
+  ASSERT_EQ(r.polygons.size(), 2u);
+  EXPECT_NEAR(area(r.polygons[0]), 1.25, 1e-9);  // the cut island, joined
+  EXPECT_NEAR(area(r.polygons[1]), 1.0, 1e-9);  // the crossing one, 1 x 1 degree
+  for (const Polygon& p : r.polygons)
+    for (const Point2& q : p.outer) {
+      EXPECT_GE(q.x, 179.0);
+      EXPECT_LE(q.x, 180.5);
+    }
+  // Without repair, nothing was invalid.
+  EXPECT_EQ(r.num_repaired, 0u);
+}
