@@ -153,6 +153,13 @@ GeosGeometry GeosContext::difference(const GeosGeometry& a, const GeosGeometry& 
                "difference");
 }
 
+GeosGeometry GeosContext::clip_by_rect(const GeosGeometry& g, double xmin, double ymin,
+                                       double xmax, double ymax) {
+  return check(GEOSClipByRect_r(state_->handle, static_cast<GEOSGeometry*>(g.get()), xmin, ymin,
+                                xmax, ymax),
+               "clip");
+}
+
 GeosGeometry GeosContext::buffer_mitre(const GeosGeometry& g, double distance, double mitre_limit) {
   return check(GEOSBufferWithStyle_r(state_->handle, static_cast<GEOSGeometry*>(g.get()), distance,
                                      8, GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_MITRE, mitre_limit),

@@ -55,6 +55,10 @@ class GeosContext {
   // Offset by `distance` (negative: inwards) with mitred joins, so that corners keep
   // their place (down to mitre_limit, in multiples of |distance|) instead of rounding.
   GeosGeometry buffer_mitre(const GeosGeometry& g, double distance, double mitre_limit);
+  // The part of g inside the rectangle (xmin, ymin, xmax, ymax); fast, possibly invalid
+  // along the cut, which is fine for intersection tests.
+  GeosGeometry clip_by_rect(const GeosGeometry& g, double xmin, double ymin, double xmax,
+                            double ymax);
   // The polygons of a (multi)polygon or collection, each with its rings, open.
   std::vector<Polygon> polygons(const GeosGeometry& g);
   double area(const GeosGeometry& g);

@@ -71,40 +71,70 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     result.num_pieces = removed.size() + added.size();
   } else {
     // Some piece would cut an isthmus, join components or open or close a hole (in a
-    // water domain: flood a narrow land bridge). The pieces are applied one by one and
-    // those that change the topology are left out, so the domain keeps its components
-    // and holes: connections are the user's to change (--min-width 0 turns this off).
+    // water domain: flood a narrow land bridge); those are left out, so the domain keeps
+    // its components and holes: connections are the user's to change (--min-width 0
+    // turns this off). A piece is a disk; joined to the domain along k separate arcs it
+    // changes the Euler characteristic (components - holes) by 1 - k, and along one arc
+    // it changes nothing (the union retracts onto the domain). So a piece keeps the
+    // topology when it touches the rest of the domain in exactly one place: counted
+    // locally, in a thin band round the piece clipped to its box.
+    const double eps = 1e-3 * params.min_width_m;
+    auto contacts = [&](const GeosGeometry& piece, const Polygon& p, bool removed_piece) {
+      double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+      for (const Point2& q : p.outer)
+        x0 = std::min(x0, q.x), y0 = std::min(y0, q.y), x1 = std::max(x1, q.x), y1 = std::max(y1, q.y);
+      const double m = 4 * eps;
+      GeosGeometry near = geos.clip_by_rect(original, x0 - m, y0 - m, x1 + m, y1 + m);
+      if (removed_piece) near = geos.difference(near, piece);
+      const GeosGeometry band = geos.buffer_mitre(piece, eps, params.mitre_limit);
+      return geos.polygons(geos.unary_union(geos.intersection(band, near))).size();
+    };
+    std::vector<GeosGeometry> cut, fill;
+    auto sort_out = [&](const std::vector<Polygon>& list, bool removed_piece, double& area,
+                        std::vector<GeosGeometry>& keep) {
+      for (const Polygon& p : list) {
+        GeosGeometry piece = to_geos(geos, p);
+        if (contacts(piece, p, removed_piece) != 1) {
+          ++result.num_pieces_kept;
+          continue;
+        }
+        area += std::abs(signed_area(p.outer));
+        ++result.num_pieces;
+        keep.push_back(std::move(piece));
+      }
+    };
+    sort_out(removed, true, result.area_removed_m2, cut);
+    sort_out(added, false, result.area_added_m2, fill);
+    if (result.num_pieces == 0) {
+      result.area_removed_m2 = result.area_added_m2 = 0.0;
+      return result;
+    }
     GeosGeometry current = geos.multipolygon({});
     {
       std::vector<GeosGeometry> again;
       for (const Polygon& p : domain.polygons) again.push_back(to_geos(geos, p));
       current = geos.multipolygon(std::move(again));
     }
-    auto apply = [&](const std::vector<Polygon>& list, bool add, double& area) {
-      for (const Polygon& p : list) {
-        const GeosGeometry piece = to_geos(geos, p);
-        GeosGeometry next = add ? geos.union_of(current, piece) : geos.difference(current, piece);
-        if (topology(geos.polygons(next)) != original_topology) {
-          ++result.num_pieces_kept;
-          continue;
-        }
-        current = std::move(next);
-        area += std::abs(signed_area(p.outer));
-        ++result.num_pieces;
-      }
-    };
-    apply(removed, false, result.area_removed_m2);
-    apply(added, true, result.area_added_m2);
-    if (result.num_pieces == 0) return result;
+    if (!cut.empty()) current = geos.difference(current, geos.unary_union(geos.multipolygon(std::move(cut))));
+    if (!fill.empty()) current = geos.union_of(current, geos.unary_union(geos.multipolygon(std::move(fill))));
     // A piece's sides lie on the original boundary up to rounding, so the overlays can
-    // leave slivers and zero-width spikes or cracks along them: an opening then a
-    // closing far below the width removes those.
-    const double eps = 1e-3 * params.min_width_m;
-    current = geos.buffer_mitre(geos.buffer_mitre(current, -eps, params.mitre_limit), eps,
-                                params.mitre_limit);
-    current = geos.buffer_mitre(geos.buffer_mitre(current, eps, params.mitre_limit), -eps,
-                                params.mitre_limit);
-    polygons = geos.polygons(current);
+    // leave slivers and near-zero-width spikes or cracks along them: an opening then a
+    // closing far below the width removes those, component by component (a closing of
+    // the whole would join components a few eps apart).
+    polygons.clear();
+    for (const Polygon& part : geos.polygons(current)) {
+      GeosGeometry g = to_geos(geos, part);
+      g = geos.buffer_mitre(geos.buffer_mitre(g, -eps, params.mitre_limit), eps, params.mitre_limit);
+      g = geos.buffer_mitre(geos.buffer_mitre(g, eps, params.mitre_limit), -eps, params.mitre_limit);
+      for (Polygon& q : geos.polygons(g)) polygons.push_back(std::move(q));
+    }
+    // Pieces next to each other could still change it together: then nothing changes.
+    if (topology(polygons) != original_topology) {
+      result.num_pieces_kept += result.num_pieces;
+      result.num_pieces = 0;
+      result.area_removed_m2 = result.area_added_m2 = 0.0;
+      return result;
+    }
   }
   for (Polygon& p : polygons) orient_polygon(p);
   sort_by_area(polygons);
