@@ -20,6 +20,9 @@ namespace isoquad {
 struct NarrowParams {
   double min_width_m = 0.0;  // 0: off
   double mitre_limit = 5.0;  // corners sharper than 2 asin(1 / limit) (23 deg) are bevelled
+  // Up to this many candidate pieces, each is checked by applying it to the whole domain;
+  // beyond, by counting where it touches the rest of the domain (see the .cpp).
+  std::size_t max_sequential_pieces = 100;
 };
 
 struct NarrowResult {

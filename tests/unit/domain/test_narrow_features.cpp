@@ -127,3 +127,31 @@ TEST(NarrowFeatures, ZeroWidthIsOff) {
   EXPECT_FALSE(remove_narrow_features(d, {0.0}).changed);
   EXPECT_EQ(d.polygons.size(), 1u);
 }
+
+TEST(NarrowFeatures, ManyPiecesAreCheckedByTheirContactsWithTheSameResult) {
+  // The spike and the neck, and the island near the shore, with the per-piece check by
+  // contacts (used beyond max_sequential_pieces): the same decisions.
+  NarrowParams local;
+  local.min_width_m = 100.0;
+  local.max_sequential_pieces = 0;
+  Domain d = one_polygon({{0, 0},     {400, 0},    {400, 185},  {600, 185}, {600, 0},
+                          {1000, 0},  {1000, 400}, {600, 400},  {600, 215}, {400, 215},
+                          {400, 400}, {0, 400},    {0, 210},    {-300, 210}, {-300, 190},
+                          {0, 190}});
+  const NarrowResult r = remove_narrow_features(d, local);
+  EXPECT_EQ(r.num_pieces, 1u);
+  EXPECT_EQ(r.num_pieces_kept, 1u);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_NEAR(r.area_removed_m2, 300.0 * 20.0, 50.0);
+
+  Domain sea = one_polygon({{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}},
+                           {{{20, 300}, {300, 300}, {300, 600}, {20, 600}}});
+  EXPECT_FALSE(remove_narrow_features(sea, local).changed);
+  EXPECT_EQ(sea.polygons[0].holes.size(), 1u);
+
+  Domain slit = one_polygon({{0, 0},     {490, 0},    {490, 400},  {510, 400},  {510, 0},
+                             {1000, 0},  {1000, 1000}, {0, 1000}});
+  const NarrowResult s = remove_narrow_features(slit, local);
+  EXPECT_TRUE(s.changed);
+  EXPECT_NEAR(s.area_added_m2, 20.0 * 400.0, 0.05 * 20.0 * 400.0);
+}
