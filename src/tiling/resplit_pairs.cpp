@@ -113,6 +113,7 @@ double subdivision_convexity(const std::vector<std::vector<Point2>>& sides) {
 
 struct Candidate {
   int gain = 0;
+  int quad_gain = 0;  // quadrangle tiles gained
   double deviation = 0.0;
   int edge = -1;
   int tile_a = -1, tile_b = -1;
@@ -150,6 +151,7 @@ class Resplitter {
     if (num_candidates) *num_candidates = static_cast<int>(cands.size());
     std::stable_sort(cands.begin(), cands.end(), [](const Candidate& a, const Candidate& b) {
       if (a.gain != b.gain) return a.gain > b.gain;
+      if (a.quad_gain != b.quad_gain) return a.quad_gain > b.quad_gain;
       return a.deviation < b.deviation;
     });
     std::vector<char> tile_used(graph_.tiles.size(), 0), meta_used(graph_.vertices.size(), 0);
@@ -261,10 +263,14 @@ class Resplitter {
     int tiles_before = std::abs(static_cast<int>(cl.vertices.size()) - 4) +
                        std::abs(static_cast<int>(cr.vertices.size()) - 4);
     int tiles_after = std::abs(n - 2 - 4);  // the split leaves a quadrangle and an (n-2)-gon
+    int quads_before = (cl.vertices.size() == 4) + (cr.vertices.size() == 4);
+    int quads_after = 1 + (n == 6);
     for (const auto& [t, d] : tile_delta) {
       const int k = static_cast<int>(graph_.tiles[t].vertices.size());
       tiles_before += std::abs(k - 4);
       tiles_after += std::abs(k + d - 4);
+      quads_before += k == 4;
+      quads_after += k + d == 4;
       if (k + d < 3) return std::nullopt;
     }
 
@@ -282,7 +288,10 @@ class Resplitter {
         after += vertex_cost(m, t + d);
       }
       const int gain = before - after;
-      if (gain <= 0 || (best && gain < best->gain)) continue;
+      const int quad_gain = quads_after - quads_before;
+      // Equal irregularity: taken when it leaves more quadrangle tiles.
+      if (gain < 0 || (gain == 0 && (!params_.quads_on_ties || quad_gain <= 0))) continue;
+      if (best && (gain < best->gain || (gain == best->gain && quad_gain < best->quad_gain))) continue;
       std::array<Point2, 4> quad;
       for (int s = 0; s < 4; ++s) quad[s] = mesh_.points[graph_.vertices[cycle[(k + s) % n]]];
       std::vector<Point2> rest;
@@ -296,9 +305,10 @@ class Resplitter {
         continue;
       }
       if (dev > params_.max_corner_deviation_deg) continue;
-      if (best && gain == best->gain && dev >= best->deviation) continue;
+      if (best && gain == best->gain && quad_gain == best->quad_gain && dev >= best->deviation) continue;
       Candidate c;
       c.gain = gain;
+      c.quad_gain = quad_gain;
       c.deviation = dev;
       c.edge = e;
       c.tile_a = L;
