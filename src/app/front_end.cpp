@@ -96,14 +96,24 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   np.min_width_m = options.min_width_m.value_or(h > 0 ? 0.25 * h : 0.0);
   if (np.min_width_m < 0) throw Error(ErrorClass::usage, "narrow features", "--min-width must not be negative");
   s.min_width_m = np.min_width_m;
-  s.narrow = remove_narrow_features(result.domain, np);
-  if (s.narrow.changed) {
-    // The opening may have cut off small pieces, and the offsets leave vertices closer
-    // together than the simplification would: both are cleaned as before.
+  // The opening may cut off small pieces, and the offsets leave vertices closer together
+  // than the simplification would: both are cleaned as before. Simplifying again can
+  // make a new narrow feature (a bay filled up to its mouth simplifies to a thin wedge:
+  // the Rade de Brest at 15 km), so the three steps repeat while the narrow-feature
+  // step changes more than min_width^2 of area (slivers the offsets alone move are far
+  // smaller), a few rounds at most.
+  constexpr int kNarrowRounds = 3;
+  for (int round = 0; round < kNarrowRounds; ++round) {
+    const NarrowResult n = remove_narrow_features(result.domain, np);
+    if (round == 0) s.narrow = n;
+    else s.narrow.add(n);
+    if (!n.changed) break;
+    const double moved = n.area_removed_m2 + n.area_added_m2;
     const CleanResult again = clean_domain(result.domain, cp);
     s.dropped.num_islands_dropped += again.num_islands_dropped;
     s.dropped.num_holes_dropped += again.num_holes_dropped;
     s.num_vertices_after = simplify_domain(result.domain, simp).num_vertices_after;
+    if (moved < np.min_width_m * np.min_width_m) break;
   }
   if (const std::size_t pinches = count_pinch_points(result.domain); pinches > 0) {
     // Rings touching at a point (valid for GEOS, not for the mesher): cut apart there.

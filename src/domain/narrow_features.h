@@ -33,6 +33,16 @@ struct NarrowResult {
   std::size_t num_components_before = 0;
   std::size_t num_components_after = 0;
   bool changed = false;  // false: the domain is left exactly as it was
+
+  // Adds a later round on the domain this one left.
+  void add(const NarrowResult& later) {
+    area_removed_m2 += later.area_removed_m2;
+    area_added_m2 += later.area_added_m2;
+    num_pieces += later.num_pieces;
+    num_pieces_kept = later.num_pieces_kept;
+    num_components_after = later.num_components_after;
+    changed = changed || later.changed;
+  }
 };
 
 // Changes `domain` only when some feature is narrower than min_width (a piece of more

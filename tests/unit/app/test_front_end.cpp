@@ -7,6 +7,7 @@
 #include <ogrsf_frmts.h>
 
 #include "core/error.h"
+#include "domain/narrow_features.h"
 #include "gis/crs.h"
 #include "gis/gdal_env.h"
 #include "support/geodesic.h"
@@ -158,4 +159,21 @@ TEST(FrontEnd, GeographicDstCrsIsRejected) {
     EXPECT_EQ(e.error_class(), ErrorClass::crs);
     EXPECT_NE(std::string(e.what()).find("not a projected CRS"), std::string::npos);
   }
+}
+
+TEST(FrontEnd, NoNarrowFeatureIsLeftAfterTheLastSimplification) {
+  // At 15 km the Rade de Brest, filled up to its mouth, simplified to a wedge 2.6 km
+  // wide and 21 km long that no quad could follow: the narrow-feature step runs again
+  // on what the simplification leaves.
+  FrontEndOptions o = france(0.0);
+  o.simplify_m.reset();
+  o.target_size_m = 15000.0;
+  const FrontEndResult r = build_planar_domain(o);
+  EXPECT_GT(r.summary.narrow.num_pieces, 0u);
+  Domain again = r.domain;
+  NarrowParams np;
+  np.min_width_m = r.summary.min_width_m;
+  // What the offsets alone move is far less than one square of the width.
+  const NarrowResult n = remove_narrow_features(again, np);
+  EXPECT_LT(n.area_removed_m2 + n.area_added_m2, 0.1 * np.min_width_m * np.min_width_m);
 }
