@@ -156,6 +156,7 @@ struct FieldArgs {
   std::string cross = "boundary";
   double cross_angle_deg = std::numeric_limits<double>::quiet_NaN();
   std::string cross_raster;
+  double cross_conformal = CrossParams{}.conformal;
   double background_factor = 0.25;
   std::string plot_path;
 };
@@ -211,6 +212,10 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
   cmd->add_option("--cross-raster", f.cross_raster,
                   "GDAL raster of cross angles in degrees (counter-clockwise from the x axis)")
       ->group(c);
+  cmd->add_option("--cross-conformal", f.cross_conformal,
+                  "F: the boundary field turns, inside, by F times the rotation a conformal grid with the sizes has (its singularities go where sizes grade); 0: the smoothest field, as the paper (default 0.5)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->group(c);
   cmd->add_option("--background-factor", f.background_factor,
                   "Background triangles are at most this fraction of the tile size 2h (default 0.25)")
       ->check(CLI::Range(0.001, 1.0))
@@ -235,6 +240,7 @@ FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {
     o.cross.source = CrossSource::raster;
     o.cross.raster_path = f.cross_raster;
   }
+  o.cross.conformal = f.cross_conformal;
   o.background_factor = f.background_factor;
   return o;
 }

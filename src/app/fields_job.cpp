@@ -76,13 +76,15 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options,
 
   progress.report("cross", 0.8);
   switch (options.cross.source) {
-    case CrossSource::boundary: r.cross = boundary_aligned_cross_field(r.mesh); break;
+    case CrossSource::boundary:
+      r.cross = boundary_aligned_cross_field(r.mesh, r.size.size_m, options.cross.conformal);
+      break;
     case CrossSource::constant: r.cross = constant_cross_field(r.mesh, options.cross.angle_deg); break;
     case CrossSource::raster: {
       const CrsInfo crs{domain.crs_wkt, domain.crs_name, false, true, 1.0};
       RasterField raster(options.cross.raster_path, "--cross-raster", crs);
       // Where the raster has no data, the boundary-aligned field fills in.
-      r.cross = boundary_aligned_cross_field(r.mesh);
+      r.cross = boundary_aligned_cross_field(r.mesh, r.size.size_m, options.cross.conformal);
       for (std::size_t v = 0; v < r.mesh.points.size(); ++v) {
         const double deg = raster.sample(r.mesh.points[v]);
         if (std::isnan(deg)) continue;

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -49,7 +50,8 @@ CrossField constant_cross_field(const BackgroundMesh& mesh, double angle_deg) {
   return field;
 }
 
-CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh) {
+CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
+                                        const std::vector<double>& size_m, double conformal) {
   const int num_vertices = static_cast<int>(mesh.points.size());
 
   // Boundary data: sum of exp(4 i phi) over the two boundary edges of each chain vertex.
@@ -92,49 +94,96 @@ CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh) {
     // from each incident triangle. Interior edges of a Delaunay mesh have a
     // non-negative sum, but constrained (boundary-side) edges can be opposite an obtuse
     // angle; clamping to a small positive weight keeps the matrix an M-matrix, so the
-    // solution obeys a maximum principle (no overshoot, |u| <= 1) and stays SPD.
+    // solution obeys a maximum principle (no overshoot, |u| <= 1) and stays SPD. The
+    // rotations make the matrix complex Hermitian; it is solved in its real form, twice
+    // the size: [B -C; C B] for A = B + iC, on (Re u, Im u).
     const int num_triangles = static_cast<int>(mesh.triangles.size());
-    std::vector<std::vector<std::pair<int, double>>> adjacency(num_vertices);
+    struct EdgeEntry { int b; double w, omega; };
+    std::vector<std::vector<EdgeEntry>> adjacency(num_vertices);
+    // Constant sizes ask for no rotation: the field is then exactly the smoothest one.
+    const bool connect = conformal != 0.0 && size_m.size() == mesh.points.size() &&
+                         std::adjacent_find(size_m.begin(), size_m.end(),
+                                            std::not_equal_to<>()) != size_m.end();
     for (int f = 0; f < num_triangles; ++f) {
       const auto& t = mesh.triangles[f];
+      double gx = 0.0, gy = 0.0;  // gradient of log h in the triangle
+      if (connect) {
+        const Point2 &p0 = mesh.points[t[0]], &p1 = mesh.points[t[1]], &p2 = mesh.points[t[2]];
+        const double l0 = std::log(size_m[t[0]]), l1 = std::log(size_m[t[1]]) - l0,
+                     l2 = std::log(size_m[t[2]]) - l0;
+        const double ax = p1.x - p0.x, ay = p1.y - p0.y, bx = p2.x - p0.x, by = p2.y - p0.y;
+        const double det = ax * by - ay * bx;
+        if (det != 0.0) {
+          gx = (l1 * by - l2 * ay) / det;
+          gy = (ax * l2 - bx * l1) / det;
+        }
+      }
       for (int i = 0; i < 3; ++i) {
         const int a = t[(i + 1) % 3], b = t[(i + 2) % 3];
         const double w =
             0.5 * cotangent(mesh.points[t[i]], mesh.points[a], mesh.points[b]);
-        // Accumulate on the lower id so each undirected edge has one entry.
-        adjacency[std::min(a, b)].emplace_back(std::max(a, b), w);
+        // Rotation of a conformal grid from lo to hi: the integral of J grad log h.
+        const int lo = std::min(a, b), hi = std::max(a, b);
+        const double ex = mesh.points[hi].x - mesh.points[lo].x, ey = mesh.points[hi].y - mesh.points[lo].y;
+        const double omega = conformal * (gx * ey - gy * ex);
+        adjacency[lo].push_back({hi, w, omega});
       }
     }
     constexpr double kMinWeight = 1e-3;
+    // Without rotations the real and imaginary parts decouple: one n x n matrix, two
+    // right-hand sides.
+    const int n = num_unknowns;
     std::vector<Eigen::Triplet<double>> triplets;
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(num_unknowns, 2);
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(connect ? 2 * n : n, connect ? 1 : 2);
+    auto rhs_re = [&](int i) -> double& { return rhs(i, 0); };
+    auto rhs_im = [&](int i) -> double& { return connect ? rhs(n + i, 0) : rhs(i, 1); };
     std::vector<double> diagonal(num_unknowns, 0.0);
     for (int a = 0; a < num_vertices; ++a) {
       auto& edges = adjacency[a];
       std::sort(edges.begin(), edges.end(),
-                [](const auto& x, const auto& y) { return x.first < y.first; });
+                [](const EdgeEntry& x, const EdgeEntry& y) { return x.b < y.b; });
       for (std::size_t k = 0; k < edges.size();) {
-        const int b = edges[k].first;
-        double w = 0.0;
-        for (; k < edges.size() && edges[k].first == b; ++k) w += edges[k].second;
+        const int b = edges[k].b;
+        double w = 0.0, omega = 0.0;
+        int count = 0;
+        for (; k < edges.size() && edges[k].b == b; ++k, ++count) {
+          w += edges[k].w;
+          omega += edges[k].omega;
+        }
+        omega /= count;
         w = std::max(w, kMinWeight);
+        // u_b ~ r u_a, r = exp(4 i omega): the Hermitian matrix has -w conj(r) at (a, b).
+        const double rc = std::cos(4.0 * omega), rs = std::sin(4.0 * omega);
         const int ia = unknown[a], ib = unknown[b];
         if (ia >= 0) diagonal[ia] += w;
         if (ib >= 0) diagonal[ib] += w;
         if (ia >= 0 && ib >= 0) {
-          triplets.emplace_back(ia, ib, -w);
-          triplets.emplace_back(ib, ia, -w);
+          // Real form [B -C; C B] of A = B + iC: B_ab = -w rc, C_ab = w rs, C_ba = -w rs.
+          triplets.emplace_back(ia, ib, -w * rc);
+          triplets.emplace_back(ib, ia, -w * rc);
+          if (!connect) continue;
+          triplets.emplace_back(n + ia, n + ib, -w * rc);
+          triplets.emplace_back(n + ib, n + ia, -w * rc);
+          triplets.emplace_back(ia, n + ib, -w * rs);
+          triplets.emplace_back(n + ia, ib, w * rs);
+          triplets.emplace_back(ib, n + ia, w * rs);
+          triplets.emplace_back(n + ib, ia, -w * rs);
         } else if (ia >= 0) {
-          rhs(ia, 0) += w * uc[b];
-          rhs(ia, 1) += w * us[b];
+          // w conj(r) u_b
+          rhs_re(ia) += w * (rc * uc[b] + rs * us[b]);
+          rhs_im(ia) += w * (rc * us[b] - rs * uc[b]);
         } else if (ib >= 0) {
-          rhs(ib, 0) += w * uc[a];
-          rhs(ib, 1) += w * us[a];
+          // w r u_a
+          rhs_re(ib) += w * (rc * uc[a] - rs * us[a]);
+          rhs_im(ib) += w * (rc * us[a] + rs * uc[a]);
         }
       }
     }
-    for (int i = 0; i < num_unknowns; ++i) triplets.emplace_back(i, i, diagonal[i]);
-    Eigen::SparseMatrix<double> laplacian(num_unknowns, num_unknowns);
+    for (int i = 0; i < num_unknowns; ++i) {
+      triplets.emplace_back(i, i, diagonal[i]);
+      if (connect) triplets.emplace_back(n + i, n + i, diagonal[i]);
+    }
+    Eigen::SparseMatrix<double> laplacian(rhs.rows(), rhs.rows());
     laplacian.setFromTriplets(triplets.begin(), triplets.end());
 
     // CHOLMOD's supernodal factorisation: several times faster than Eigen's simplicial
@@ -149,7 +198,7 @@ CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh) {
     for (int v = 0; v < num_vertices; ++v) {
       if (unknown[v] < 0) continue;
       uc[v] = u(unknown[v], 0);
-      us[v] = u(unknown[v], 1);
+      us[v] = connect ? u(n + unknown[v], 0) : u(unknown[v], 1);
     }
   }
 

@@ -18,10 +18,20 @@ struct CrossField {
 // The smoothest cross field tangent to the boundary (the paper's reference [13]):
 // u = exp(4 i theta); boundary vertices are fixed to the normalised sum of
 // exp(4 i phi) over their two boundary edges (phi = edge direction), interior vertices
-// minimise the cotan-weighted sum of |u_i - u_j|^2 over edges (one sparse Cholesky
-// factorisation, two right-hand sides). A boundary vertex whose two edges meet at 45 deg
+// minimise the cotan-weighted sum of |u_j - exp(4 i omega_ij) u_i|^2 over edges (one
+// sparse Cholesky factorisation). A boundary vertex whose two edges meet at 45 deg
 // (mod 90) has no preferred cross and is left free.
-CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh);
+//
+// omega_ij is the rotation the field is asked to make along edge ij: 0 gives the
+// smoothest field; with sizes (size_m, #V) it is `conformal` times the integral of
+// J grad log h (J: rotation by +90 degrees) along the edge, the rotation of a
+// conformal grid whose cells have size h (log h + i theta is holomorphic). Where no
+// smooth field follows it (the Laplacian of log h is large, or the boundary holds the
+// field against it, as along a coast with sizes growing inland), the minimiser places
+// singularities: where a quad mesh that follows the sizes needs its irregular vertices.
+CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
+                                        const std::vector<double>& size_m = {},
+                                        double conformal = 0.0);
 
 // The same cross at every vertex; angle_deg is any angle, reduced modulo 90 degrees.
 CrossField constant_cross_field(const BackgroundMesh& mesh, double angle_deg);

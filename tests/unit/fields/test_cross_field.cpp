@@ -161,3 +161,30 @@ TEST(CrossField, LShapeIsAlignedWithTheAxes) {
   const CrossField field = boundary_aligned_cross_field(m);
   for (double a : field.angle_rad) EXPECT_LT(std::abs(cross_rotation_rad(0.0, a)), 1 * kDeg);
 }
+
+TEST(CrossField, ConformalRotationPutsSingularitiesWhereTheSizesGrade) {
+  // A square, axis-aligned on its sides, with sizes that grade by a factor of e^2
+  // towards a bump at (700, 600): log h = -2 exp(-r^2 / 150^2). Without the rotation
+  // the field is the constant axis-aligned one; with it, singularities appear, all near
+  // the bump (where the Laplacian of log h is large), of total index 0 (the square's
+  // field has none), and the field away from the bump stays aligned with the sides.
+  const BackgroundMesh m = mesh_of(square_domain(1000.0), 20.0);
+  std::vector<double> bump(m.points.size());
+  for (std::size_t v = 0; v < m.points.size(); ++v) {
+    const double dx = m.points[v].x - 700.0, dy = m.points[v].y - 600.0;
+    bump[v] = 100.0 * std::exp(-2.0 * std::exp(-(dx * dx + dy * dy) / (150.0 * 150.0)));
+  }
+  EXPECT_TRUE(cross_field_singularities(m, boundary_aligned_cross_field(m, bump, 0.0)).empty());
+
+  const CrossField field = boundary_aligned_cross_field(m, bump, 1.0);
+  const std::vector<Singularity> s = cross_field_singularities(m, field);
+  EXPECT_GE(s.size(), 2u);
+  EXPECT_EQ(total_index_quarters(s), 0);
+  for (const Singularity& x : s)
+    EXPECT_LT(distance(x.position, {700.0, 600.0}), 300.0) << x.position.x << " " << x.position.y;
+  double worst_far = 0.0;
+  for (std::size_t v = 0; v < m.points.size(); ++v)
+    if (distance(m.points[v], {700.0, 600.0}) > 500.0)
+      worst_far = std::max(worst_far, std::abs(cross_rotation_rad(0.0, field.angle_rad[v])) / kDeg);
+  EXPECT_LT(worst_far, 10.0);
+}
