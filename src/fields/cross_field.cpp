@@ -6,7 +6,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <functional>
+#include <type_traits>
 #include <string>
 #include <vector>
 
@@ -94,9 +96,8 @@ CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
     // from each incident triangle. Interior edges of a Delaunay mesh have a
     // non-negative sum, but constrained (boundary-side) edges can be opposite an obtuse
     // angle; clamping to a small positive weight keeps the matrix an M-matrix, so the
-    // solution obeys a maximum principle (no overshoot, |u| <= 1) and stays SPD. The
-    // rotations make the matrix complex Hermitian; it is solved in its real form, twice
-    // the size: [B -C; C B] for A = B + iC, on (Re u, Im u).
+    // solution obeys a maximum principle (no overshoot, |u| <= 1) and stays SPD (with
+    // rotations, Hermitian positive definite).
     const int num_triangles = static_cast<int>(mesh.triangles.size());
     struct EdgeEntry { int b; double w, omega; };
     std::vector<std::vector<EdgeEntry>> adjacency(num_vertices);
@@ -130,13 +131,11 @@ CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
       }
     }
     constexpr double kMinWeight = 1e-3;
-    // Without rotations the real and imaginary parts decouple: one n x n matrix, two
-    // right-hand sides.
-    const int n = num_unknowns;
-    std::vector<Eigen::Triplet<double>> triplets;
-    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(connect ? 2 * n : n, connect ? 1 : 2);
-    auto rhs_re = [&](int i) -> double& { return rhs(i, 0); };
-    auto rhs_im = [&](int i) -> double& { return connect ? rhs(n + i, 0) : rhs(i, 1); };
+    // Without rotations the matrix is real and the real and imaginary parts decouple:
+    // one real factorisation, two right-hand sides. With them, a complex Hermitian one.
+    using Complex = std::complex<double>;
+    std::vector<Eigen::Triplet<Complex>> triplets;
+    Eigen::VectorXcd rhs = Eigen::VectorXcd::Zero(num_unknowns);
     std::vector<double> diagonal(num_unknowns, 0.0);
     for (int a = 0; a < num_vertices; ++a) {
       auto& edges = adjacency[a];
@@ -152,53 +151,62 @@ CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
         }
         omega /= count;
         w = std::max(w, kMinWeight);
-        // u_b ~ r u_a, r = exp(4 i omega): the Hermitian matrix has -w conj(r) at (a, b).
-        const double rc = std::cos(4.0 * omega), rs = std::sin(4.0 * omega);
+        // u_b ~ r u_a with r = exp(4 i omega): the energy w |u_b - r u_a|^2 puts
+        // -w conj(r) at (a, b) and -w r at (b, a).
+        const Complex r = std::polar(1.0, 4.0 * omega);
+        const Complex ua(uc[a], us[a]), ub(uc[b], us[b]);
         const int ia = unknown[a], ib = unknown[b];
         if (ia >= 0) diagonal[ia] += w;
         if (ib >= 0) diagonal[ib] += w;
         if (ia >= 0 && ib >= 0) {
-          // Real form [B -C; C B] of A = B + iC: B_ab = -w rc, C_ab = w rs, C_ba = -w rs.
-          triplets.emplace_back(ia, ib, -w * rc);
-          triplets.emplace_back(ib, ia, -w * rc);
-          if (!connect) continue;
-          triplets.emplace_back(n + ia, n + ib, -w * rc);
-          triplets.emplace_back(n + ib, n + ia, -w * rc);
-          triplets.emplace_back(ia, n + ib, -w * rs);
-          triplets.emplace_back(n + ia, ib, w * rs);
-          triplets.emplace_back(ib, n + ia, w * rs);
-          triplets.emplace_back(n + ib, ia, -w * rs);
+          triplets.emplace_back(ia, ib, -w * std::conj(r));
+          triplets.emplace_back(ib, ia, -w * r);
         } else if (ia >= 0) {
-          // w conj(r) u_b
-          rhs_re(ia) += w * (rc * uc[b] + rs * us[b]);
-          rhs_im(ia) += w * (rc * us[b] - rs * uc[b]);
+          rhs(ia) += w * std::conj(r) * ub;
         } else if (ib >= 0) {
-          // w r u_a
-          rhs_re(ib) += w * (rc * uc[a] - rs * us[a]);
-          rhs_im(ib) += w * (rc * us[a] + rs * uc[a]);
+          rhs(ib) += w * r * ua;
         }
       }
     }
-    for (int i = 0; i < num_unknowns; ++i) {
-      triplets.emplace_back(i, i, diagonal[i]);
-      if (connect) triplets.emplace_back(n + i, n + i, diagonal[i]);
-    }
-    Eigen::SparseMatrix<double> laplacian(rhs.rows(), rhs.rows());
-    laplacian.setFromTriplets(triplets.begin(), triplets.end());
+    for (int i = 0; i < num_unknowns; ++i) triplets.emplace_back(i, i, diagonal[i]);
 
     // CHOLMOD's supernodal factorisation: several times faster than Eigen's simplicial
     // one on meshes of a few hundred thousand vertices.
-    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver(laplacian);
-    if (solver.info() != Eigen::Success)
-      throw Error(ErrorClass::meshing, kStage,
-                  "the Laplacian could not be factorised (a mesh component without boundary?)");
-    const Eigen::MatrixXd u = solver.solve(rhs);
-    if (solver.info() != Eigen::Success)
-      throw Error(ErrorClass::meshing, kStage, "the cross field solve failed");
-    for (int v = 0; v < num_vertices; ++v) {
-      if (unknown[v] < 0) continue;
-      uc[v] = u(unknown[v], 0);
-      us[v] = connect ? u(n + unknown[v], 0) : u(unknown[v], 1);
+    auto solve = [&](const auto& matrix, const auto& right) {
+      using Matrix = std::decay_t<decltype(matrix)>;
+      Eigen::CholmodSupernodalLLT<Matrix> solver(matrix);
+      if (solver.info() != Eigen::Success)
+        throw Error(ErrorClass::meshing, kStage,
+                    "the Laplacian could not be factorised (a mesh component without boundary?)");
+      auto u = solver.solve(right).eval();
+      if (solver.info() != Eigen::Success)
+        throw Error(ErrorClass::meshing, kStage, "the cross field solve failed");
+      return u;
+    };
+    if (connect) {
+      Eigen::SparseMatrix<Complex> laplacian(num_unknowns, num_unknowns);
+      laplacian.setFromTriplets(triplets.begin(), triplets.end());
+      const Eigen::VectorXcd u = solve(laplacian, rhs);
+      for (int v = 0; v < num_vertices; ++v) {
+        if (unknown[v] < 0) continue;
+        uc[v] = u(unknown[v]).real();
+        us[v] = u(unknown[v]).imag();
+      }
+    } else {
+      std::vector<Eigen::Triplet<double>> real;
+      real.reserve(triplets.size());
+      for (const auto& t : triplets) real.emplace_back(t.row(), t.col(), t.value().real());
+      Eigen::SparseMatrix<double> laplacian(num_unknowns, num_unknowns);
+      laplacian.setFromTriplets(real.begin(), real.end());
+      Eigen::MatrixXd parts(num_unknowns, 2);
+      parts.col(0) = rhs.real();
+      parts.col(1) = rhs.imag();
+      const Eigen::MatrixXd u = solve(laplacian, parts);
+      for (int v = 0; v < num_vertices; ++v) {
+        if (unknown[v] < 0) continue;
+        uc[v] = u(unknown[v], 0);
+        us[v] = u(unknown[v], 1);
+      }
     }
   }
 
