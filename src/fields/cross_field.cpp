@@ -217,7 +217,7 @@ CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
       Eigen::VectorXcd z = real_solve(residual);
       Eigen::VectorXcd direction = z;
       double rz = residual.dot(z).real();
-      constexpr int kMaxIterations = 500;
+      constexpr int kMaxIterations = 200;
       for (int it = 0; it < kMaxIterations && residual.norm() > target; ++it) {
         const Eigen::VectorXcd image = hermitian * direction;
         const double alpha = rz / direction.dot(image).real();
@@ -228,10 +228,13 @@ CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
         direction = z + (rz_next / rz) * direction;
         rz = rz_next;
       }
-      if (residual.norm() > target)
-        throw Error(ErrorClass::meshing, kStage,
-                    "the cross field solve did not converge in " +
-                        std::to_string(kMaxIterations) + " iterations");
+      if (residual.norm() > target) {
+        // Rotations too strong for the preconditioner: factorise the complex matrix.
+        Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<Complex>> complex_solver(hermitian);
+        if (complex_solver.info() == Eigen::Success) u = complex_solver.solve(rhs);
+        if (complex_solver.info() != Eigen::Success)
+          throw Error(ErrorClass::meshing, kStage, "the cross field solve failed");
+      }
     }
     for (int v = 0; v < num_vertices; ++v) {
       if (unknown[v] < 0) continue;
