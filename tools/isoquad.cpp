@@ -205,7 +205,7 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
       ->group(g);
   const char* c = "Cross field";
   cmd->add_option("--cross", f.cross,
-                  "boundary (default): smoothest cross field tangent to the boundary")
+                  "boundary (default): cross field tangent to the boundary, smoothest inside up to the rotation --cross-conformal asks for")
       ->check(CLI::IsMember({"boundary"}))
       ->group(c);
   cmd->add_option("--cross-angle", f.cross_angle_deg, "Constant cross angle in degrees")->group(c);
