@@ -113,12 +113,12 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     polygons = geos.polygons(current);
   } else {
     // Many pieces (the whole-domain checks above would cost pieces x domain size: 33 s
-    // on Canada at 1:10m): a piece without holes is a disk (one with holes is kept); joined
-    // to the domain along k separate arcs it
-    // changes the Euler characteristic (components - holes) by 1 - k, and along one arc
-    // it changes nothing (the union retracts onto the domain). So a piece keeps the
-    // topology when it touches the rest of the domain in exactly one place: counted
-    // locally, in a thin band round the piece clipped to its box.
+    // on Canada at 1:10m): a piece without holes is a disk (one with holes is kept);
+    // joined to the domain along k separate arcs it changes the Euler characteristic
+    // (components - holes) by 1 - k, and along one arc it changes nothing (the union
+    // retracts onto the domain). So a piece keeps the topology when it touches the rest
+    // of the domain in exactly one place: counted locally, in a thin band round the
+    // piece clipped to its box.
     const double eps = 1e-3 * params.min_width_m;
     auto contacts = [&](const GeosGeometry& piece, const Polygon& p, bool removed_piece) {
       double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
@@ -142,8 +142,7 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     std::vector<Piece> accepted;
     auto sort_out = [&](const std::vector<Polygon>& list, bool removed_piece) {
       for (const Polygon& p : list) {
-        GeosGeometry piece = to_geos(geos, p);
-        if (!p.holes.empty() || contacts(piece, p, removed_piece) != 1) {
+        if (!p.holes.empty() || contacts(to_geos(geos, p), p, removed_piece) != 1) {
           ++result.num_pieces_kept;
           continue;
         }
@@ -157,6 +156,7 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     };
     sort_out(removed, true);
     sort_out(added, false);
+    if (accepted.empty()) return result;
     // The domain with the chosen pieces cut out or filled in.
     auto overlay = [&](const std::vector<bool>& chosen) {
       std::vector<GeosGeometry> cut, fill, again;
@@ -193,7 +193,7 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     const auto coarse_topology = topology(domain.polygons, tiny);
     std::vector<bool> chosen(accepted.size(), true);
     polygons = overlay(chosen);
-    if (!accepted.empty() && topology(polygons, tiny) != coarse_topology) {
+    if (topology(polygons, tiny) != coarse_topology) {
       std::vector<std::size_t> order(accepted.size());
       for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
       std::sort(order.begin(), order.end(),
