@@ -8,7 +8,6 @@
 #include <cmath>
 #include <complex>
 #include <functional>
-#include <type_traits>
 #include <string>
 #include <vector>
 
