@@ -573,8 +573,7 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
                 << " land edges\n";
     }
     if (!f.plot_path.empty()) std::cout << "plot:         " << f.plot_path << "\n";
-    std::printf("time:         %.3f s, peak memory %.0f MB\n", seconds,
-                r.memory.empty() ? 0.0 : r.memory.back().peak_mb);
+    std::printf("time:         %.3f s, peak memory %.0f MB\n", seconds, process_peak_mb());
     for (const std::string& w : r.fields.front.summary.warnings)
       std::cerr << "isoquad: warning: " << w << "\n";
   }

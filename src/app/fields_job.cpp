@@ -1,7 +1,6 @@
 #include "app/fields_job.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -14,20 +13,6 @@
 namespace isoquad {
 
 namespace {
-
-class Timer {
- public:
-  explicit Timer(std::vector<StageTime>& out) : out_(out), t0_(std::chrono::steady_clock::now()) {}
-  void lap(const std::string& stage) {
-    const auto now = std::chrono::steady_clock::now();
-    out_.push_back({stage, std::chrono::duration<double>(now - t0_).count()});
-    t0_ = now;
-  }
-
- private:
-  std::vector<StageTime>& out_;
-  std::chrono::steady_clock::time_point t0_;
-};
 
 // The default scale of the automatic sizing (see SizingOracle): hmax gives about 2000
 // quads over the domain, hmin is a tenth of it.
@@ -44,7 +29,7 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options,
                             FieldsResult& r, const Progress& progress) {
   if (!(options.background_factor > 0 && options.background_factor <= 1))
     throw Error(ErrorClass::usage, "background", "--background-factor must be in (0, 1]");
-  Timer timer(r.times);
+  StageClock timer(r.times);
   progress.report("sizing", 0.0);
   SizingOracle oracle(domain, options.sizing);
   r.sizing = oracle.summary();
@@ -105,9 +90,9 @@ FieldsResult build_fields(const FieldsOptions& options, const Progress& progress
   const SizingParams sizing = options.sizing;
   if (front.target_size_m <= 0)
     front.target_size_for_area = [sizing](double a) { return default_hmin_for_area(sizing, a); };
-  const auto t0 = std::chrono::steady_clock::now();
+  StageClock clock(r.times);
   r.front = build_planar_domain(front, progress.slice(0.0, 0.2));
-  r.times.push_back({"front end", std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count()});
+  clock.lap("front end");
   build_fields_on_domain(r.front.domain, options, r, progress.slice(0.2, 1.0));
   return r;
 }
@@ -142,7 +127,7 @@ std::string format_fields_summary(const FieldsResult& r) {
   os << buf;
   os << "times:       ";
   for (const StageTime& t : r.times) {
-    std::snprintf(buf, sizeof buf, " %s %.3f s;", t.stage.c_str(), t.seconds);
+    std::snprintf(buf, sizeof buf, " %s %.3f s %.0f MB;", t.stage.c_str(), t.seconds, t.peak_mb);
     os << buf;
   }
   os << "\n";

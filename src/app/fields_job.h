@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/front_end.h"
+#include "core/stage_clock.h"
 #include "fields/cross_field.h"
 #include "fields/sizing_field.h"
 #include "mesh/background_mesh.h"
@@ -38,11 +39,6 @@ struct FieldsOptions {
   // of pairs, 0.25 too (within a point on every sample but the square, which keeps 98%
   // quadrangle tiles instead of 100%), in 70% of the time of 0.2.
   double background_factor = 0.25;
-};
-
-struct StageTime {
-  std::string stage;
-  double seconds = 0.0;
 };
 
 struct FieldsResult {

@@ -1,8 +1,5 @@
 #include "app/mesh_job.h"
 
-#include <sys/resource.h>
-
-#include <chrono>
 #include <cstdio>
 #include <sstream>
 
@@ -13,24 +10,9 @@
 
 namespace isoquad {
 
-namespace {
-
-double peak_memory_mb() {
-  rusage usage{};
-  getrusage(RUSAGE_SELF, &usage);
-  return usage.ru_maxrss / 1024.0;  // kilobytes on Linux
-}
-
-double seconds_since(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-}  // namespace
-
 MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
   MeshResult r;
   r.fields = build_fields(options.fields, progress.slice(0.0, 0.45));
-  r.memory.push_back({"fields", peak_memory_mb()});
 
   // The tiling and quad stages, retried when smoothing cannot make every quad convex:
   // such failures come from a few badly shaped tiles, and a different tiling rarely has
@@ -45,25 +27,21 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
     if (attempt >= 2) o.tiling.resplit_rounds = 0;
     if (attempt % 2 == 1)
       o.tiling.init = o.tiling.init == TilingInit::front ? TilingInit::merge : TilingInit::front;
-    auto t0 = std::chrono::steady_clock::now();
+    StageClock clock(r.fields.times);
     CornerParams corners;
     corners.corner_angle_deg = o.tiling.graph.corner_angle_deg;
     tag_corners(r.fields.mesh, r.fields.size, corners);  // the repairs may clear some
     r.tiling = build_tiling(r.fields.mesh, r.fields.size, r.fields.cross, o.tiling,
                             progress.slice(0.45, 0.9));
-    r.fields.times.push_back({"tiling", seconds_since(t0)});
-    r.memory.push_back({"tiling", peak_memory_mb()});
+    clock.lap("tiling");
     if (o.tiling.stop_after != TilingStep::none) return r;
 
     progress.report("subdivide", 0.9);
-    t0 = std::chrono::steady_clock::now();
     r.quads = subdivide_tiles(r.fields.mesh, r.tiling.tiling, r.tiling.graph, o.subdivide);
-    r.fields.times.push_back({"subdivision", seconds_since(t0)});
+    clock.lap("subdivision");
     progress.report("smooth", 0.93);
-    t0 = std::chrono::steady_clock::now();
     r.smooth = smooth_quads(r.fields.mesh, r.quads, o.smooth, &r.fields.size, &r.fields.cross);
-    r.fields.times.push_back({"smoothing", seconds_since(t0)});
-    r.memory.push_back({"quads", peak_memory_mb()});
+    clock.lap("smoothing");
     r.attempts = attempt + 1;
     if (r.smooth.num_nonconvex_after == 0) break;
     std::string where;
@@ -80,9 +58,9 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
     progress.report("retry: " + problem, 0.45);
   }
   progress.report("quality", 0.97);
-  const auto t0 = std::chrono::steady_clock::now();
+  StageClock clock(r.fields.times);
   r.quality = measure_quality(r.quads, r.fields.mesh, r.fields.size, r.fields.cross, &r.metrics);
-  r.fields.times.push_back({"quality", seconds_since(t0)});
+  clock.lap("quality");
   if (r.quality.num_nonconvex > 0)
     throw Error(ErrorClass::internal, "quality",
                 std::to_string(r.quality.num_nonconvex) + " quad(s) are not strictly convex");
@@ -208,12 +186,13 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
   }
   j.begin_array("stages");
   for (const StageTime& t : r.fields.times)
-    j.begin_object().value("stage", t.stage).value("seconds", t.seconds).end_object();
+    j.begin_object()
+        .value("stage", t.stage)
+        .value("seconds", t.seconds)
+        .value("peak_mb", t.peak_mb)
+        .end_object();
   j.end_array();
-  j.begin_array("peak_memory");
-  for (const StageMemory& m : r.memory)
-    j.begin_object().value("after", m.stage).value("megabytes", m.peak_mb).end_object();
-  j.end_array();
+  j.value("peak_memory_mb", process_peak_mb());  // the whole process so far
   j.end_object();
   return j.str();
 }

@@ -24,11 +24,6 @@ struct MeshOptions {
   int max_attempts = 4;
 };
 
-struct StageMemory {
-  std::string stage;
-  double peak_mb = 0.0;  // process peak resident memory after the stage
-};
-
 struct MeshResult {
   FieldsResult fields;
   TilingResult tiling;
@@ -37,7 +32,6 @@ struct MeshResult {
   QuadMetrics metrics;
   QualitySummary quality;
   SmoothStats smooth;
-  std::vector<StageMemory> memory;
   int attempts = 0;                        // tiling attempts made (see MeshOptions)
   std::vector<std::string> retry_reasons;  // why each earlier attempt was discarded
 };

@@ -98,7 +98,13 @@ TEST(CliMesh, SquareGivesConvexQuadsCoveringTheSquare) {
         if (d > 1e-6 * 50 && d < 12.5) ++off;
       }
   EXPECT_EQ(off, 0);
-  EXPECT_NE(read_file(report).find("\"tiling\""), std::string::npos);
+  const std::string json = read_file(report);
+  EXPECT_NE(json.find("\"tiling\""), std::string::npos);
+  // Seconds and peak memory for every stage, and the process peak.
+  for (const char* stage : {"front end", "background mesh", "cross field", "tiling", "smoothing"})
+    EXPECT_NE(json.find("\"stage\": \"" + std::string(stage) + "\""), std::string::npos) << stage;
+  EXPECT_NE(json.find("\"peak_mb\""), std::string::npos);
+  EXPECT_NE(json.find("\"peak_memory_mb\""), std::string::npos);
 }
 
 TEST(CliMesh, AnnulusKeepsItsHoleAndLoadsInMeshio) {

@@ -1,0 +1,100 @@
+#include "core/stage_clock.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <condition_variable>
+#include <cstdio>
+#include <mutex>
+#include <thread>
+
+namespace isoquad {
+
+namespace {
+
+// Resident memory now, in bytes (second field of /proc/self/statm); -1 where there is
+// no such file.
+long long resident_bytes() {
+  std::FILE* f = std::fopen("/proc/self/statm", "r");
+  if (!f) return -1;
+  long long size = 0, resident = -1;
+  if (std::fscanf(f, "%lld %lld", &size, &resident) != 2) resident = -1;
+  std::fclose(f);
+  return resident < 0 ? -1 : resident * static_cast<long long>(sysconf(_SC_PAGESIZE));
+}
+
+// Samples the resident memory every few milliseconds on a thread of its own and keeps the
+// highest value since the last restart. The kernel's own high-water mark could be reset
+// instead (/proc/self/clear_refs), but that also lowers the peak that getrusage and
+// time(1) report for the whole process.
+class ResidentSampler {
+ public:
+  static ResidentSampler& instance() {
+    static ResidentSampler sampler;
+    return sampler;
+  }
+  bool works() const { return works_; }
+  void restart() { stage_max_ = resident_bytes(); }
+  // The highest sample since the last restart, and the resident memory now.
+  long long stage_max() {
+    const long long now = resident_bytes();
+    long long seen = stage_max_.load();
+    while (now > seen && !stage_max_.compare_exchange_weak(seen, now)) {
+    }
+    return std::max(seen, now);
+  }
+
+ private:
+  ResidentSampler() : works_(resident_bytes() > 0) {
+    if (works_) thread_ = std::thread([this] { run(); });
+  }
+  ~ResidentSampler() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      stop_ = true;
+    }
+    wake_.notify_all();
+    if (thread_.joinable()) thread_.join();
+  }
+  void run() {
+    std::unique_lock<std::mutex> lock(mutex_);
+    while (!wake_.wait_for(lock, std::chrono::milliseconds(5), [this] { return stop_; })) stage_max();
+  }
+
+  const bool works_;
+  std::atomic<long long> stage_max_{0};
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;
+  std::thread thread_;
+};
+
+}  // namespace
+
+double process_peak_mb() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return usage.ru_maxrss / 1024.0;  // kilobytes on Linux
+}
+
+bool stage_peaks_supported() { return ResidentSampler::instance().works(); }
+
+StageClock::StageClock(std::vector<StageTime>& out) : out_(out) { start(); }
+
+void StageClock::start() {
+  if (stage_peaks_supported()) ResidentSampler::instance().restart();
+  t0_ = std::chrono::steady_clock::now();
+}
+
+void StageClock::lap(const std::string& stage) {
+  const auto now = std::chrono::steady_clock::now();
+  const double peak = stage_peaks_supported()
+                          ? ResidentSampler::instance().stage_max() / (1024.0 * 1024.0)
+                          : process_peak_mb();
+  out_.push_back({stage, std::chrono::duration<double>(now - t0_).count(), peak});
+  start();
+}
+
+}  // namespace isoquad

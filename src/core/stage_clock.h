@@ -1,0 +1,37 @@
+// Seconds and peak resident memory of each stage of a job.
+#pragma once
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+namespace isoquad {
+
+struct StageTime {
+  std::string stage;
+  double seconds = 0.0;
+  // The stage's own peak resident memory, in MB: the highest of samples taken every 5 ms
+  // from the stage's start (/proc/self/statm). Where that file is missing, the process
+  // peak so far.
+  double peak_mb = 0.0;
+};
+
+// The process's peak resident memory since it started, in MB.
+double process_peak_mb();
+
+// True when stages get their own peaks (resident memory can be sampled here).
+bool stage_peaks_supported();
+
+// Starts a stage at construction and at every lap; lap() appends the stage just ended.
+class StageClock {
+ public:
+  explicit StageClock(std::vector<StageTime>& out);
+  void lap(const std::string& stage);
+
+ private:
+  void start();
+  std::vector<StageTime>& out_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
+}  // namespace isoquad
