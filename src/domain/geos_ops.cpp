@@ -92,6 +92,18 @@ GeosGeometry GeosContext::multipolygon(std::vector<GeosGeometry> parts) {
                "multipolygon");
 }
 
+GeosGeometry GeosContext::collection(std::vector<GeosGeometry> parts) {
+  std::vector<GEOSGeometry*> gs;
+  for (GeosGeometry& p : parts) gs.push_back(static_cast<GEOSGeometry*>(p.release()));
+  return check(GEOSGeom_createCollection_r(state_->handle, GEOS_GEOMETRYCOLLECTION, gs.data(),
+                                           static_cast<unsigned>(gs.size())),
+               "collection");
+}
+
+bool GeosContext::is_empty(const GeosGeometry& g) {
+  return GEOSisEmpty_r(state_->handle, static_cast<GEOSGeometry*>(g.get())) == 1;
+}
+
 GeosValidity GeosContext::validity(const GeosGeometry& g) {
   GeosValidity v;
   char* reason = nullptr;

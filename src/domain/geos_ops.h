@@ -45,6 +45,9 @@ class GeosContext {
   // Rings as given (open); orientation does not matter to GEOS.
   GeosGeometry polygon(const std::vector<Ring>& rings);
   GeosGeometry multipolygon(std::vector<GeosGeometry> parts);
+  // Any geometries (polygons, multipolygons) as one collection, e.g. to union them.
+  GeosGeometry collection(std::vector<GeosGeometry> parts);
+  bool is_empty(const GeosGeometry& g);
   GeosValidity validity(const GeosGeometry& g);
   // GEOS's MakeValid (structure method), keeping only the polygonal part.
   GeosGeometry make_valid(const GeosGeometry& g);

@@ -1,6 +1,9 @@
 #include "domain/select_domain.h"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
+#include <optional>
 #include <sstream>
 
 #include "core/error.h"
@@ -10,26 +13,64 @@ namespace isoquad {
 
 namespace {
 
-// Whether a geographic source straddles the antimeridian: its longitudes span more than
-// 180 degrees, as choose_local_projection decides.
-bool straddles_antimeridian(const SourceData& source) {
-  double lo = 1e300, hi = -1e300;
-  for (const SourcePolygon& sp : source.polygons)
-    for (const Ring& r : sp.rings)
-      for (const Point2& p : r) lo = std::min(lo, p.x), hi = std::max(hi, p.x);
-  return hi - lo > 180.0;
+// Whether moving the negative longitudes of these rings by 360 degrees keeps them
+// whole: no edge crosses the prime meridian (from a negative longitude to one >= 0,
+// less than 180 degrees apart), which the move would stretch around the globe. An
+// island whose ring crosses the antimeridian (179.9 then -179.9) moves whole and joins;
+// a landmass across Greenwich (Natural Earth's Eurasia, which also reaches +-180) does
+// not move.
+bool shifts_whole(const std::vector<Ring>& rings) {
+  bool negative = false;
+  for (const Ring& r : rings)
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const Point2 &a = r[i], &b = r[(i + 1) % r.size()];
+      negative = negative || a.x < 0.0;
+      if ((a.x < 0.0) != (b.x < 0.0) && std::abs(b.x - a.x) < 180.0) return false;
+    }
+  return negative;
 }
 
-// Its longitudes moved into [0, 360): a ring that crosses the antimeridian (179.9 then
-// -179.9) is then valid, and the parts of an island cut there join.
+// Whether a geographic source is better read with longitudes in [0, 360): it straddles
+// the antimeridian (its longitudes span more than 180 degrees, as
+// choose_local_projection decides) and moving the polygons that shift whole narrows it.
+bool unwrap_narrows(const SourceData& source) {
+  double lo = 1e300, hi = -1e300, shifted_lo = 1e300, shifted_hi = -1e300;
+  for (const SourcePolygon& sp : source.polygons) {
+    const double shift = shifts_whole(sp.rings) ? 360.0 : 0.0;
+    for (const Ring& r : sp.rings)
+      for (const Point2& p : r) {
+        lo = std::min(lo, p.x), hi = std::max(hi, p.x);
+        const double x = p.x < 0.0 ? p.x + shift : p.x;
+        shifted_lo = std::min(shifted_lo, x), shifted_hi = std::max(shifted_hi, x);
+      }
+  }
+  return hi - lo > 180.0 && shifted_hi - shifted_lo < hi - lo - 1e-9;
+}
+
+void shift_negative(Ring& r) {
+  for (Point2& p : r)
+    if (p.x < 0.0) p.x += 360.0;
+}
+
+// Longitudes moved into [0, 360) where that keeps a polygon whole: a ring that crosses
+// the antimeridian (179.9 then -179.9) is then valid, and the parts of an island cut
+// there join.
 void unwrap_antimeridian(SourceData& source) {
-  auto shift = [](Ring& r) {
-    for (Point2& p : r)
-      if (p.x < 0.0) p.x += 360.0;
-  };
   for (SourcePolygon& sp : source.polygons)
-    for (Ring& r : sp.rings) shift(r);
-  if (source.bbox_ring) shift(*source.bbox_ring);
+    if (shifts_whole(sp.rings))
+      for (Ring& r : sp.rings) shift_negative(r);
+  if (source.bbox_ring && shifts_whole({*source.bbox_ring})) shift_negative(*source.bbox_ring);
+}
+
+// The rectangle read within when there is a bbox: its ring's envelope widened by a
+// hundredth, so that nothing cut along it reaches the bbox itself.
+std::optional<std::array<double, 4>> read_rectangle(const SourceData& source) {
+  if (!source.bbox_ring || source.bbox_ring->empty()) return std::nullopt;
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const Point2& p : *source.bbox_ring)
+    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  const double m = 0.01 * std::max(x1 - x0, y1 - y0);
+  return std::array<double, 4>{x0 - m, y0 - m, x1 + m, y1 + m};
 }
 
 }  // namespace
@@ -37,7 +78,7 @@ void unwrap_antimeridian(SourceData& source) {
 SelectResult select_domain(const SourceData& input, const SelectParams& params) {
   const std::string file = "'" + params.source_name + "'";
   SourceData unwrapped;
-  const bool unwrap = input.crs.geographic && straddles_antimeridian(input);
+  const bool unwrap = input.crs.geographic && unwrap_narrows(input);
   if (unwrap) {
     unwrapped = input;
     unwrap_antimeridian(unwrapped);
@@ -50,9 +91,30 @@ SelectResult select_domain(const SourceData& input, const SelectParams& params) 
   SelectResult result;
   GeosContext geos;
   std::vector<GeosGeometry> parts;
+  // With a bbox, each polygon is first cut to the bbox's rectangle: only what lies
+  // there is checked (an invalid ring far away does not matter) and repaired, and the
+  // rest costs nothing more.
+  const auto rect = read_rectangle(source);
+  std::optional<GeosGeometry> rect_polygon;
+  if (rect)
+    rect_polygon = geos.polygon({{{(*rect)[0], (*rect)[1]}, {(*rect)[2], (*rect)[1]},
+                                  {(*rect)[2], (*rect)[3]}, {(*rect)[0], (*rect)[3]}}});
   for (const SourcePolygon& sp : source.polygons) {
     GeosGeometry g = geos.polygon(sp.rings);
-    const GeosValidity v = geos.validity(g);
+    GeosValidity v;
+    if (rect) {
+      GeosGeometry cut = geos.clip_by_rect(g, (*rect)[0], (*rect)[1], (*rect)[2], (*rect)[3]);
+      if (geos.is_empty(cut)) continue;
+      v = geos.validity(cut);
+      if (!v.valid && geos.validity(g).valid) {
+        // The fast cut of a valid polygon can be invalid along the rectangle.
+        cut = geos.intersection(g, *rect_polygon);
+        v = geos.validity(cut);
+      }
+      g = std::move(cut);
+    } else {
+      v = geos.validity(g);
+    }
     if (!v.valid) {
       if (!params.repair)
         throw Error(ErrorClass::input, "domain",
@@ -66,7 +128,7 @@ SelectResult select_domain(const SourceData& input, const SelectParams& params) 
     parts.push_back(std::move(g));
   }
 
-  GeosGeometry merged = geos.unary_union(geos.multipolygon(std::move(parts)));
+  GeosGeometry merged = geos.unary_union(geos.collection(std::move(parts)));
   GeosGeometry domain;
   if (source.bbox_ring) {
     GeosGeometry box = geos.polygon({*source.bbox_ring});

@@ -148,6 +148,8 @@ class Reader {
                                     " in " + out_.crs.name + ")");
     }
     layer_->SetSpatialFilterRect(xmin, ymin, xmax, ymax);
+    filter_.MinX = xmin, filter_.MinY = ymin, filter_.MaxX = xmax, filter_.MaxY = ymax;
+    has_filter_ = true;
     out_.bbox_ring = std::move(ring);
   }
 
@@ -210,6 +212,13 @@ class Reader {
   }
 
   void add_polygon(long long fid, int part, const OGRPolygon& poly) {
+    // The bbox filter selects whole features; a part of a multipolygon (the land of the
+    // world as one feature) that misses the bbox is not read, nor checked.
+    if (has_filter_) {
+      OGREnvelope e;
+      poly.getEnvelope(&e);
+      if (!e.Intersects(filter_)) return;
+    }
     SourcePolygon sp;
     sp.fid = fid;
     sp.part = part;
@@ -296,6 +305,8 @@ class Reader {
   }
 
   const ReadParams& p_;
+  OGREnvelope filter_;  // the bbox's extent in the source CRS, when has_filter_
+  bool has_filter_ = false;
   std::unique_ptr<GDALDataset, DatasetCloser> ds_;
   OGRLayer* layer_ = nullptr;
   std::size_t part_count_ = 0;

@@ -138,3 +138,79 @@ TEST(SelectDomain, GeographicPolygonsAcrossTheAntimeridianAreUnwrapped) {
   // Without repair, nothing was invalid.
   EXPECT_EQ(r.num_repaired, 0u);
 }
+
+namespace {
+
+// A landmass around the globe as Natural Earth draws Eurasia: one ring from -180 to
+// 180 (through Greenwich) whose south coast runs along latitude 30, with a bay 5 degrees
+// deep between longitudes 20 and 30; and an island in that bay.
+SourceData world_with_bay() {
+  SourceData d;
+  d.crs = parse_crs("EPSG:4326", "test");
+  SourcePolygon land;
+  land.fid = 0;
+  land.rings = {{{-180, 30}, {-90, 30}, {-10, 30}, {10, 30}, {20, 30}, {20, 35}, {30, 35},
+                 {30, 30}, {90, 30}, {180, 30}, {180, 70}, {90, 70}, {10, 70}, {-10, 70},
+                 {-90, 70}, {-180, 70}}};
+  SourcePolygon island;
+  island.fid = 0;
+  island.part = 1;
+  island.rings = {square(24, 32, 1)};
+  d.polygons = {land, island};
+  return d;
+}
+
+Ring box_ring(double x0, double y0, double x1, double y1) {
+  return {{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}};
+}
+
+}  // namespace
+
+TEST(SelectDomain, ALandmassAroundTheGlobeIsNotUnwrapped) {
+  // Shifting its negative longitudes by 360 would wrap the ring back across Greenwich
+  // and cut seams through the water at every latitude where the coast crosses it.
+  SourceData d = world_with_bay();
+  d.bbox_ring = box_ring(18, 28, 32, 40);
+  const SelectResult r = select_domain(d, params(DomainKind::water));
+  ASSERT_EQ(r.polygons.size(), 1u);
+  // The bbox (14 x 12) minus the land in it: 14 x 2 below 30, the bay 10 x 5 with the
+  // island (1 x 1) as a hole.
+  EXPECT_NEAR(area(r.polygons[0]), 14 * 2 + 10 * 5 - 1, 1e-6);
+  EXPECT_EQ(r.polygons[0].holes.size(), 1u);
+  for (const Point2& q : r.polygons[0].outer) {
+    EXPECT_GE(q.x, 18 - 1e-9);
+    EXPECT_LE(q.x, 32 + 1e-9);
+  }
+}
+
+TEST(SelectDomain, WithABboxOnlyWhatLiesNearItIsChecked) {
+  // The landmass is invalid far from the bbox (a bow-tie in its north coast near
+  // longitude 100): the bbox's water is still read without --repair.
+  SourceData d = world_with_bay();
+  Ring& ring = d.polygons[0].rings[0];
+  ring = {{-180, 30}, {-90, 30}, {-10, 30}, {10, 30}, {20, 30}, {20, 35}, {30, 35},
+          {30, 30}, {90, 30}, {180, 30}, {180, 70}, {101, 70}, {100, 60}, {99, 70},
+          {101, 65}, {10, 70}, {-10, 70}, {-90, 70}, {-180, 70}};
+  d.bbox_ring = box_ring(18, 28, 32, 40);
+  const SelectResult r = select_domain(d, params(DomainKind::water));
+  EXPECT_EQ(r.num_repaired, 0u);
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_NEAR(area(r.polygons[0]), 14 * 2 + 10 * 5 - 1, 1e-6);
+  // Where the bbox covers the invalid place, it is reported there.
+  d.bbox_ring = box_ring(95, 50, 105, 75);
+  try {
+    select_domain(d, params(DomainKind::water));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::input);
+    EXPECT_NE(std::string(e.what()).find("feature 0"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SelectDomain, WaterWithNoLandInTheBboxIsTheBbox) {
+  SourceData d = world_with_bay();
+  d.bbox_ring = box_ring(0, -10, 10, 0);  // open sea
+  const SelectResult r = select_domain(d, params(DomainKind::water));
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_NEAR(area(r.polygons[0]), 100.0, 1e-9);
+}

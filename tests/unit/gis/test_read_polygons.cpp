@@ -132,3 +132,22 @@ TEST(ReadPolygons, DensifiedBoxHasItsCornersInOrder) {
   EXPECT_EQ(r[12], (Point2{0, 2}));
   EXPECT_DOUBLE_EQ(signed_area(r), 8.0);
 }
+
+TEST(ReadPolygons, ABboxReadsOnlyThePartsOfAMultipolygonThatReachIt) {
+  // One feature (as a world land file): a square near (-2.5, 47.5) and, far away, a
+  // degenerate part (three points on a line) that would need --repair.
+  TempDir dir;
+  const std::string path = dir.file("world.geojson");
+  write_file(path,
+             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+             R"("geometry":{"type":"MultiPolygon","coordinates":[)"
+             R"([[[-3,47],[-2,47],[-2,48],[-3,48],[-3,47]]],)"
+             R"([[[100,10],[101,10],[102,10],[100,10]]]]}}]})");
+  ReadParams p = params(path);
+  expect_error(p, ErrorClass::input, "degenerate");
+  p.bbox = std::array<double, 4>{-4, 46, -1, 49};
+  const SourceData d = read_polygons(p);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_EQ(d.polygons[0].part, 0);
+  EXPECT_EQ(d.num_rings_dropped, 0u);
+}
