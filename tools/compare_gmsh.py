@@ -8,7 +8,8 @@ metrics for both meshes here, independently of isoquad's own report:
 
   angles in [75,105], min and max angle, non-convex quads, triangles left,
   sqrt(area)/H median and share in [0.8,1.25], orientation deviation from isoquad's
-  boundary-aligned cross field (mean, p90), regular interior vertices, and wall time.
+  boundary-aligned cross field (mean, p90), regular interior vertices, wall time and
+  peak memory (each process's own, from wait4).
 
 With --auto instead of --size, both follow isoquad's automatic sizing field (pass its
 options after --, e.g. -- --hmax 28000): Gmsh reads it as a background mesh view, and
@@ -33,12 +34,17 @@ from scipy.spatial import cKDTree
 
 
 def run(cmd):
+    """Runs cmd; returns its wall time in seconds and its peak resident memory in MB (the
+    kernel's account of that process, read with wait4)."""
     t0 = time.perf_counter()
-    proc = subprocess.run(cmd, capture_output=True, text=True)
+    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+    err = proc.stderr.read()
+    _, status, usage = os.wait4(proc.pid, 0)
     elapsed = time.perf_counter() - t0
+    proc.returncode = os.waitstatus_to_exitcode(status)
     if proc.returncode != 0:
-        sys.exit(f"compare_gmsh: {' '.join(cmd)} failed ({proc.returncode}):\n{proc.stderr}")
-    return elapsed, proc.stdout
+        sys.exit(f"compare_gmsh: {' '.join(cmd)} failed ({proc.returncode}):\n{err}")
+    return elapsed, usage.ru_maxrss / 1024.0
 
 
 def domain_to_geo(gpkg, geo_path, size, background=None):
@@ -188,7 +194,7 @@ def main():
     size = field_at(fields, "size") if a.auto else (lambda pts: np.full(len(pts), a.size))
 
     iq_vtu = os.path.join(work, "isoquad.vtu")
-    t_iq, _ = run([a.isoquad, "mesh", *common, "-o", iq_vtu])
+    t_iq, mem_iq = run([a.isoquad, "mesh", *common, "-o", iq_vtu])
     iq = meshio.read(iq_vtu)
     iq_metrics = metrics(iq.points, iq.cells_dict["quad"], 0, size, cross)
 
@@ -199,15 +205,17 @@ def main():
         fields_to_pos(fields, background, 1.0)
     domain_to_geo(domain, geo, a.size, background)
     msh = os.path.join(work, "gmsh.msh")
-    t_gm, _ = run(["gmsh", geo, "-2", "-format", "msh22", "-o", msh, "-v", "1"])
+    t_gm, mem_gm = run(["gmsh", geo, "-2", "-format", "msh22", "-o", msh, "-v", "1"])
     gm = meshio.read(msh)
     gm_quads = gm.cells_dict.get("quad", np.zeros((0, 4), int))
     gm_tris = len(gm.cells_dict.get("triangle", []))
     gm_metrics = metrics(gm.points, gm_quads, gm_tris, size, cross)
 
-    rows = list(iq_metrics.keys()) + ["seconds (read to write)"]
+    rows = list(iq_metrics.keys()) + ["seconds (read to write)", "peak memory (MB)"]
     iq_metrics["seconds (read to write)"] = f"{t_iq:.2f}"
     gm_metrics["seconds (read to write)"] = f"{t_gm:.2f}"
+    iq_metrics["peak memory (MB)"] = f"{mem_iq:.0f}"
+    gm_metrics["peak memory (MB)"] = f"{mem_gm:.0f}"
     w = max(len(r) for r in rows)
     print(f"{'':{w}}  {'isoquad':>16}  {'gmsh 4.8':>16}")
     for r in rows:
