@@ -84,20 +84,20 @@ GeosGeometry GeosContext::polygon(const std::vector<Ring>& rings) {
   return check(poly, "polygon");
 }
 
-GeosGeometry GeosContext::multipolygon(std::vector<GeosGeometry> parts) {
+GeosGeometry GeosContext::gather(std::vector<GeosGeometry> parts, int type, const char* what) {
   std::vector<GEOSGeometry*> gs;
   for (GeosGeometry& p : parts) gs.push_back(static_cast<GEOSGeometry*>(p.release()));
-  return check(GEOSGeom_createCollection_r(state_->handle, GEOS_MULTIPOLYGON, gs.data(),
+  return check(GEOSGeom_createCollection_r(state_->handle, type, gs.data(),
                                            static_cast<unsigned>(gs.size())),
-               "multipolygon");
+               what);
+}
+
+GeosGeometry GeosContext::multipolygon(std::vector<GeosGeometry> parts) {
+  return gather(std::move(parts), GEOS_MULTIPOLYGON, "multipolygon");
 }
 
 GeosGeometry GeosContext::collection(std::vector<GeosGeometry> parts) {
-  std::vector<GEOSGeometry*> gs;
-  for (GeosGeometry& p : parts) gs.push_back(static_cast<GEOSGeometry*>(p.release()));
-  return check(GEOSGeom_createCollection_r(state_->handle, GEOS_GEOMETRYCOLLECTION, gs.data(),
-                                           static_cast<unsigned>(gs.size())),
-               "collection");
+  return gather(std::move(parts), GEOS_GEOMETRYCOLLECTION, "collection");
 }
 
 bool GeosContext::is_empty(const GeosGeometry& g) {

@@ -68,6 +68,8 @@ class GeosContext {
 
  private:
   GeosGeometry check(void* g, const char* what);
+  // A GEOS collection of the given type (GEOS_MULTIPOLYGON...) owning the parts.
+  GeosGeometry gather(std::vector<GeosGeometry> parts, int type, const char* what);
   std::unique_ptr<GeosState> state_;
 };
 
