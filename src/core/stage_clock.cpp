@@ -60,7 +60,8 @@ class ResidentSampler {
   }
   void run() {
     std::unique_lock<std::mutex> lock(mutex_);
-    while (!wake_.wait_for(lock, std::chrono::milliseconds(5), [this] { return stop_; })) stage_max();
+    while (!wake_.wait_for(lock, std::chrono::milliseconds(5), [this] { return stop_; }))
+      stage_max();
   }
 
   const bool works_;
@@ -79,9 +80,13 @@ double process_peak_mb() {
   return usage.ru_maxrss / 1024.0;  // kilobytes on Linux
 }
 
-bool stage_peaks_supported() { return ResidentSampler::instance().works(); }
+bool stage_peaks_supported() {
+  return ResidentSampler::instance().works();
+}
 
-StageClock::StageClock(std::vector<StageTime>& out) : out_(out) { start(); }
+StageClock::StageClock(std::vector<StageTime>& out) : out_(out) {
+  start();
+}
 
 void StageClock::start() {
   if (stage_peaks_supported()) ResidentSampler::instance().restart();

@@ -2,7 +2,6 @@
 
 #include <geos_c.h>
 
-
 #include "core/error.h"
 
 namespace isoquad {
@@ -13,7 +12,6 @@ struct GeosState {
 };
 
 namespace {
-
 
 void error_handler_r(const char* message, void* userdata) {
   static_cast<GeosState*>(userdata)->last_error = message ? message : "";
@@ -51,7 +49,9 @@ GeosContext::GeosContext() : state_(std::make_unique<GeosState>()) {
   GEOSContext_setNoticeMessageHandler_r(state_->handle, nullptr, nullptr);
 }
 
-GeosContext::~GeosContext() { GEOS_finish_r(state_->handle); }
+GeosContext::~GeosContext() {
+  GEOS_finish_r(state_->handle);
+}
 
 GeosGeometry GeosContext::check(void* g, const char* what) {
   if (!g)
@@ -79,8 +79,8 @@ GeosGeometry GeosContext::polygon(const std::vector<Ring>& rings) {
   }
   if (lrs.empty()) return check(GEOSGeom_createEmptyPolygon_r(h), "empty polygon");
   GEOSGeometry* shell = lrs[0];
-  GEOSGeometry* poly = GEOSGeom_createPolygon_r(h, shell, lrs.data() + 1,
-                                                static_cast<unsigned>(lrs.size() - 1));
+  GEOSGeometry* poly =
+      GEOSGeom_createPolygon_r(h, shell, lrs.data() + 1, static_cast<unsigned>(lrs.size() - 1));
   return check(poly, "polygon");
 }
 
@@ -102,6 +102,18 @@ GeosGeometry GeosContext::collection(std::vector<GeosGeometry> parts) {
 
 bool GeosContext::is_empty(const GeosGeometry& g) {
   return GEOSisEmpty_r(state_->handle, static_cast<GEOSGeometry*>(g.get())) == 1;
+}
+
+GeosGeometry GeosContext::translated(const GeosGeometry& g, double dx) {
+  std::vector<GeosGeometry> parts;
+  for (Polygon& p : polygons(g)) {
+    std::vector<Ring> rings{std::move(p.outer)};
+    for (Ring& h : p.holes) rings.push_back(std::move(h));
+    for (Ring& r : rings)
+      for (Point2& q : r) q.x += dx;
+    parts.push_back(polygon(rings));
+  }
+  return multipolygon(std::move(parts));
 }
 
 GeosValidity GeosContext::validity(const GeosGeometry& g) {
@@ -165,11 +177,11 @@ GeosGeometry GeosContext::difference(const GeosGeometry& a, const GeosGeometry& 
                "difference");
 }
 
-GeosGeometry GeosContext::clip_by_rect(const GeosGeometry& g, double xmin, double ymin,
-                                       double xmax, double ymax) {
-  return check(GEOSClipByRect_r(state_->handle, static_cast<GEOSGeometry*>(g.get()), xmin, ymin,
-                                xmax, ymax),
-               "clip");
+GeosGeometry GeosContext::clip_by_rect(const GeosGeometry& g, double xmin, double ymin, double xmax,
+                                       double ymax) {
+  return check(
+      GEOSClipByRect_r(state_->handle, static_cast<GEOSGeometry*>(g.get()), xmin, ymin, xmax, ymax),
+      "clip");
 }
 
 GeosGeometry GeosContext::buffer_mitre(const GeosGeometry& g, double distance, double mitre_limit) {

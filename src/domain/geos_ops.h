@@ -48,6 +48,8 @@ class GeosContext {
   // Any geometries (polygons, multipolygons) as one collection, e.g. to union them.
   GeosGeometry collection(std::vector<GeosGeometry> parts);
   bool is_empty(const GeosGeometry& g);
+  // The polygons of g moved by dx along x.
+  GeosGeometry translated(const GeosGeometry& g, double dx);
   GeosValidity validity(const GeosGeometry& g);
   // GEOS's MakeValid (structure method), keeping only the polygonal part.
   GeosGeometry make_valid(const GeosGeometry& g);

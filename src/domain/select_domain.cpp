@@ -47,6 +47,15 @@ bool unwrap_narrows(const SourceData& source) {
   return hi - lo > 180.0 && shifted_hi - shifted_lo < hi - lo - 1e-9;
 }
 
+// Whether a ring of these crosses the antimeridian as written: an edge more than 180
+// degrees long (179.9 then -179.9), which is meant the short way round.
+bool crosses_antimeridian(const std::vector<Ring>& rings) {
+  for (const Ring& r : rings)
+    for (std::size_t i = 0; i < r.size(); ++i)
+      if (std::abs(r[(i + 1) % r.size()].x - r[i].x) > 180.0) return true;
+  return false;
+}
+
 void shift_negative(Ring& r) {
   for (Point2& p : r)
     if (p.x < 0.0) p.x += 360.0;
@@ -60,6 +69,25 @@ void unwrap_antimeridian(SourceData& source) {
     if (shifts_whole(sp.rings))
       for (Ring& r : sp.rings) shift_negative(r);
   if (source.bbox_ring && shifts_whole({*source.bbox_ring})) shift_negative(*source.bbox_ring);
+}
+
+// A polygon whose ring crosses the antimeridian, in a source that stays in [-180, 180]
+// (a world file): moved into [0, 360), where it is whole, then cut at 180 and the part
+// beyond moved back, as the source draws the rest.
+std::vector<GeosGeometry> split_at_antimeridian(GeosContext& geos, std::vector<Ring> rings) {
+  for (Ring& r : rings) shift_negative(r);
+  const GeosGeometry whole = geos.polygon(rings);
+  const bool valid = geos.validity(whole).valid;
+  auto cut = [&](double x0, double x1) {
+    return valid ? geos.intersection(whole,
+                                     geos.polygon({{{x0, -91}, {x1, -91}, {x1, 91}, {x0, 91}}}))
+                 : geos.clip_by_rect(whole, x0, -91, x1, 91);
+  };
+  std::vector<GeosGeometry> pieces;
+  GeosGeometry west = cut(-181, 180), east = cut(180, 541);
+  if (!geos.is_empty(west)) pieces.push_back(std::move(west));
+  if (!geos.is_empty(east)) pieces.push_back(geos.translated(east, -360.0));
+  return pieces;
 }
 
 // The rectangle read within when there is a bbox: its ring's envelope widened by a
@@ -97,35 +125,44 @@ SelectResult select_domain(const SourceData& input, const SelectParams& params) 
   const auto rect = read_rectangle(source);
   std::optional<GeosGeometry> rect_polygon;
   if (rect)
-    rect_polygon = geos.polygon({{{(*rect)[0], (*rect)[1]}, {(*rect)[2], (*rect)[1]},
-                                  {(*rect)[2], (*rect)[3]}, {(*rect)[0], (*rect)[3]}}});
+    rect_polygon = geos.polygon({{{(*rect)[0], (*rect)[1]},
+                                  {(*rect)[2], (*rect)[1]},
+                                  {(*rect)[2], (*rect)[3]},
+                                  {(*rect)[0], (*rect)[3]}}});
   for (const SourcePolygon& sp : source.polygons) {
-    GeosGeometry g = geos.polygon(sp.rings);
-    GeosValidity v;
-    if (rect) {
-      GeosGeometry cut = geos.clip_by_rect(g, (*rect)[0], (*rect)[1], (*rect)[2], (*rect)[3]);
-      if (geos.is_empty(cut)) continue;
-      v = geos.validity(cut);
-      if (!v.valid && geos.validity(g).valid) {
-        // The fast cut of a valid polygon can be invalid along the rectangle.
-        cut = geos.intersection(g, *rect_polygon);
+    std::vector<GeosGeometry> pieces;
+    if (input.crs.geographic && !unwrap && crosses_antimeridian(sp.rings) && shifts_whole(sp.rings))
+      pieces = split_at_antimeridian(geos, sp.rings);
+    else
+      pieces.push_back(geos.polygon(sp.rings));
+    for (GeosGeometry& piece : pieces) {
+      GeosGeometry g = std::move(piece);
+      GeosValidity v;
+      if (rect) {
+        GeosGeometry cut = geos.clip_by_rect(g, (*rect)[0], (*rect)[1], (*rect)[2], (*rect)[3]);
+        if (geos.is_empty(cut)) continue;
         v = geos.validity(cut);
+        if (!v.valid && geos.validity(g).valid) {
+          // The fast cut of a valid polygon can be invalid along the rectangle.
+          cut = geos.intersection(g, *rect_polygon);
+          v = geos.validity(cut);
+        }
+        g = std::move(cut);
+      } else {
+        v = geos.validity(g);
       }
-      g = std::move(cut);
-    } else {
-      v = geos.validity(g);
+      if (!v.valid) {
+        if (!params.repair)
+          throw Error(ErrorClass::input, "domain",
+                      file + ": feature " + std::to_string(sp.fid) +
+                          (sp.part ? " part " + std::to_string(sp.part) : std::string()) +
+                          " is invalid: " + v.reason + " at or near " + format_point(v.location) +
+                          "; use --repair to fix it");
+        g = geos.make_valid(g);
+        ++result.num_repaired;
+      }
+      parts.push_back(std::move(g));
     }
-    if (!v.valid) {
-      if (!params.repair)
-        throw Error(ErrorClass::input, "domain",
-                    file + ": feature " + std::to_string(sp.fid) +
-                        (sp.part ? " part " + std::to_string(sp.part) : std::string()) +
-                        " is invalid: " + v.reason + " at or near " + format_point(v.location) +
-                        "; use --repair to fix it");
-      g = geos.make_valid(g);
-      ++result.num_repaired;
-    }
-    parts.push_back(std::move(g));
   }
 
   GeosGeometry merged = geos.unary_union(geos.collection(std::move(parts)));
@@ -142,9 +179,9 @@ SelectResult select_domain(const SourceData& input, const SelectParams& params) 
   for (Polygon& p : result.polygons) {
     remove_duplicates_and_spikes(p.outer);
     for (Ring& h : p.holes) remove_duplicates_and_spikes(h);
-    p.holes.erase(std::remove_if(p.holes.begin(), p.holes.end(),
-                                 [](const Ring& h) { return h.size() < 3; }),
-                  p.holes.end());
+    p.holes.erase(
+        std::remove_if(p.holes.begin(), p.holes.end(), [](const Ring& h) { return h.size() < 3; }),
+        p.holes.end());
     orient_polygon(p);
   }
   result.polygons.erase(std::remove_if(result.polygons.begin(), result.polygons.end(),

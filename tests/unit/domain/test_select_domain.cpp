@@ -214,3 +214,27 @@ TEST(SelectDomain, WaterWithNoLandInTheBboxIsTheBbox) {
   ASSERT_EQ(r.polygons.size(), 1u);
   EXPECT_NEAR(area(r.polygons[0]), 100.0, 1e-9);
 }
+
+TEST(SelectDomain, AnIslandAcrossTheAntimeridianInAWorldFileIsCutThere) {
+  // The world stays in [-180, 180] (its Eurasia cannot move); an island whose ring
+  // crosses the antimeridian as written (179.5 -> -179.5, 1 degree high) would run
+  // around the globe: it is cut at 180 instead, half on each side.
+  SourceData d = world_with_bay();
+  SourcePolygon island;
+  island.fid = 1;
+  island.rings = {{{179.5, -17.0}, {-179.5, -17.0}, {-179.5, -16.0}, {179.5, -16.0}}};
+  d.polygons.push_back(island);
+  d.bbox_ring = box_ring(178, -19, 180, -15);
+  SelectResult r = select_domain(d, params(DomainKind::water));
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_NEAR(area(r.polygons[0]), 2 * 4 - 0.5, 1e-9);
+  d.bbox_ring = box_ring(-180, -19, -178, -15);
+  r = select_domain(d, params(DomainKind::water));
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_NEAR(area(r.polygons[0]), 2 * 4 - 0.5, 1e-9);
+  // Elsewhere in the bbox's latitudes, no band of land.
+  d.bbox_ring = box_ring(10, -19, 12, -15);
+  r = select_domain(d, params(DomainKind::water));
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_NEAR(area(r.polygons[0]), 8.0, 1e-9);
+}
