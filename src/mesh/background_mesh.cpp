@@ -1,6 +1,12 @@
 // The only CGAL translation unit of the meshing stages: CGAL headers dominate compile
 // time, and keeping CGAL types out of the header lets every later stage work on flat
 // arrays.
+//
+// CGAL's checks stay on here in Release builds: its 2D mesher has known failures on
+// some inputs (an assertion in Refine_edges.h when a vertex lies very close to a
+// constrained edge, CGAL issue 781) that without them are a segmentation fault; with
+// them, an exception this stage reports.
+#define CGAL_DEBUG
 #include "mesh/background_mesh.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
@@ -385,13 +391,22 @@ BackgroundMesh build_background_mesh(const Domain& domain, const BackgroundMeshP
   const double sine = std::sin(params.min_angle_deg * kPi / 180.0);
   const SizeAndAngleCriteria criteria(&params.max_edge_m, sine * sine);
   CGAL::Delaunay_mesher_2<Ct, SizeAndAngleCriteria> mesher(ct, criteria);
-  mesher.init(/*domain_specified=*/true);
-  // One point at a time, so that a runaway refinement is stopped.
-  while (mesher.step_by_step_refine_mesh()) {
-    if (ct.number_of_vertices() > params.max_num_vertices)
-      throw Error(ErrorClass::meshing, kStage,
-                  "refinement exceeded " + std::to_string(params.max_num_vertices) +
-                      " vertices; simplify the domain or coarsen the sizing");
+  try {
+    mesher.init(/*domain_specified=*/true);
+    // One point at a time, so that a runaway refinement is stopped.
+    while (mesher.step_by_step_refine_mesh()) {
+      if (ct.number_of_vertices() > params.max_num_vertices)
+        throw Error(ErrorClass::meshing, kStage,
+                    "refinement exceeded " + std::to_string(params.max_num_vertices) +
+                        " vertices; simplify the domain or coarsen the sizing");
+    }
+  } catch (const CGAL::Failure_exception& e) {
+    throw Error(ErrorClass::meshing, kStage,
+                "CGAL's Delaunay refinement failed after " +
+                    std::to_string(ct.number_of_vertices()) + " vertices (" + e.expression() +
+                    " in " + e.filename() + ":" + std::to_string(e.line_number()) +
+                    "): a known CGAL failure where a boundary vertex lies very close to "
+                    "another boundary segment; a larger --min-width or --simplify avoids it");
   }
 
   // --- Flat arrays, vertices and triangles in Hilbert curve order: later stages walk
