@@ -13,24 +13,85 @@ namespace isoquad {
 
 namespace {
 
+struct RingVertex {
+  int ring = 0;
+  int index = 0;
+};
+
+// Vertices that touch another part of the domain's rings: a vertex used twice (by two
+// rings, or twice by one ring), or within a few centimetres of a segment it does not end
+// (GEOS output often has such near-touches, off by rounding: the triangulation then takes
+// them as separate and CGAL's refinement can fail between them). One point per place.
 std::vector<Point2> pinch_points(const Domain& domain) {
-  std::vector<std::pair<double, double>> points;
+  std::vector<const Ring*> rings;
   for (const Polygon& p : domain.polygons) {
-    for (const Point2& q : p.outer) points.push_back({q.x, q.y});
-    for (const Ring& h : p.holes)
-      for (const Point2& q : h) points.push_back({q.x, q.y});
+    rings.push_back(&p.outer);
+    for (const Ring& h : p.holes) rings.push_back(&h);
   }
-  std::sort(points.begin(), points.end());
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  std::size_t num_segments = 0;
+  for (const Ring* r : rings) {
+    num_segments += r->size();
+    for (const Point2& q : *r)
+      x0 = std::min(x0, q.x), y0 = std::min(y0, q.y), x1 = std::max(x1, q.x),
+      y1 = std::max(y1, q.y);
+  }
+  if (num_segments == 0) return {};
+  const double extent = std::max(x1 - x0, y1 - y0);
+  const double tol = 1e-7 * extent;
+  // Segments in a uniform grid of about one segment per cell, each in every cell its
+  // box (widened by tol) meets.
+  const int n = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(num_segments))));
+  const double cell = std::max(extent / n, tol);
+  const int nx = static_cast<int>((x1 - x0) / cell) + 1,
+            ny = static_cast<int>((y1 - y0) / cell) + 1;
+  auto cx = [&](double x) { return std::clamp(static_cast<int>((x - x0) / cell), 0, nx - 1); };
+  auto cy = [&](double y) { return std::clamp(static_cast<int>((y - y0) / cell), 0, ny - 1); };
+  std::vector<std::vector<RingVertex>> grid(static_cast<std::size_t>(nx) * ny);
+  for (int ri = 0; ri < static_cast<int>(rings.size()); ++ri) {
+    const Ring& r = *rings[ri];
+    for (int i = 0; i < static_cast<int>(r.size()); ++i) {
+      const Point2 &a = r[i], &b = r[(i + 1) % r.size()];
+      for (int gx = cx(std::min(a.x, b.x) - tol); gx <= cx(std::max(a.x, b.x) + tol); ++gx)
+        for (int gy = cy(std::min(a.y, b.y) - tol); gy <= cy(std::max(a.y, b.y) + tol); ++gy)
+          grid[static_cast<std::size_t>(gy) * nx + gx].push_back({ri, i});
+    }
+  }
   std::vector<Point2> out;
-  for (std::size_t i = 1; i < points.size(); ++i)
-    if (points[i] == points[i - 1] && (i < 2 || points[i - 1] != points[i - 2]))
-      out.push_back({points[i].first, points[i].second});
+  for (int ri = 0; ri < static_cast<int>(rings.size()); ++ri) {
+    const Ring& r = *rings[ri];
+    const int m = static_cast<int>(r.size());
+    for (int i = 0; i < m; ++i) {
+      const Point2& q = r[i];
+      bool touches = false;
+      for (const RingVertex& s : grid[static_cast<std::size_t>(cy(q.y)) * nx + cx(q.x)]) {
+        // The two segments that end at q do not count.
+        if (s.ring == ri && (s.index == i || s.index == (i + m - 1) % m)) continue;
+        const Ring& sr = *rings[s.ring];
+        const Point2 &a = sr[s.index], &b = sr[(s.index + 1) % sr.size()];
+        const double dx = b.x - a.x, dy = b.y - a.y, len2 = dx * dx + dy * dy;
+        const double t =
+            len2 > 0 ? std::clamp(((q.x - a.x) * dx + (q.y - a.y) * dy) / len2, 0.0, 1.0) : 0.0;
+        if (std::hypot(q.x - a.x - t * dx, q.y - a.y - t * dy) <= tol) {
+          touches = true;
+          break;
+        }
+      }
+      if (!touches) continue;
+      // One point per place: the places found so far are few.
+      bool known = false;
+      for (const Point2& p : out) known = known || std::hypot(p.x - q.x, p.y - q.y) <= 2 * tol;
+      if (!known) out.push_back(q);
+    }
+  }
   return out;
 }
 
 }  // namespace
 
-std::size_t count_pinch_points(const Domain& domain) { return pinch_points(domain).size(); }
+std::size_t count_pinch_points(const Domain& domain) {
+  return pinch_points(domain).size();
+}
 
 void separate_rings(Domain& domain, double r_m) {
   const std::vector<Point2> pinches = pinch_points(domain);

@@ -291,3 +291,22 @@ TEST(CliMesh, OutputOptionsDoNotChangeTheMesh) {
   }
   EXPECT_EQ(reports[0], reports[1]);
 }
+
+TEST(CliMesh, RingsTouchingWithinRoundingAreCutApart) {
+  // A water domain around Fiji as an earlier selection produced it (metres, in the local
+  // projection below): five places where rings touch off by 1e-11 to 1e-10 m. Taken as
+  // separate, CGAL's refinement failed between them (a segmentation fault in Release).
+  TempDir dir;
+  const std::string proj =
+      "+proj=sterea +lat_0=-17.75 +lon_0=178.5 +k=0.9998059 +x_0=0 +y_0=0 +datum=WGS84 "
+      "+units=m +no_defs";
+  const CliResult r = run_cli({"mesh", source_dir() + "/tests/data/near_touching_rings.geojson",
+                               "--src-crs", proj, "--dst-crs", proj, "--simplify", "0",
+                               "--min-width", "0", "--min-island-area", "0", "--hmax", "20000",
+                               "-o", dir.file("mesh.gpkg")},
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("5 point(s) where rings touched were cut apart"), std::string::npos)
+      << r.err;
+  EXPECT_GT(check_convex_ccw(read_quads(dir.file("mesh.gpkg"))), 0.0);
+}

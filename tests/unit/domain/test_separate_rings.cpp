@@ -61,3 +61,21 @@ TEST(SeparateRings, OnlyTheNeighbourhoodOfThePinchChanges) {
   EXPECT_LT(before - area(d), M_PI * 25.0);
   EXPECT_GT(before - area(d), 0.0);
 }
+
+TEST(SeparateRings, NearTouchesCountAsTouches) {
+  // A hole whose vertex is a nanometre from the shell's bottom edge (GEOS output is
+  // often off by rounding like this), and two holes whose vertices are a nanometre apart.
+  Domain d;
+  d.polygons.push_back(square_with_holes({{{500, 1e-9}, {600, 300}, {400, 300}},
+                                          {{300, 500}, {500, 600}, {300, 600}},
+                                          {{500 + 1e-9, 600}, {700, 500}, {700, 600}}}));
+  EXPECT_EQ(count_pinch_points(d), 2u);
+  separate_rings(d, 5.0);
+  EXPECT_EQ(count_pinch_points(d), 0u);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_EQ(d.polygons[0].holes.size(), 1u);  // the first is a bay, the others one hole
+  // A vertex 1 m from another ring is left alone.
+  Domain far;
+  far.polygons.push_back(square_with_holes({{{500, 1}, {600, 300}, {400, 300}}}));
+  EXPECT_EQ(count_pinch_points(far), 0u);
+}
