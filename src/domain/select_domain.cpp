@@ -71,22 +71,55 @@ void unwrap_antimeridian(SourceData& source) {
   if (source.bbox_ring && shifts_whole({*source.bbox_ring})) shift_negative(*source.bbox_ring);
 }
 
-// A polygon whose ring crosses the antimeridian, in a source that stays in [-180, 180]
-// (a world file): moved into [0, 360), where it is whole, then cut at 180 and the part
-// beyond moved back, as the source draws the rest.
-std::vector<GeosGeometry> split_at_antimeridian(GeosContext& geos, std::vector<Ring> rings) {
-  for (Ring& r : rings) shift_negative(r);
+// The rings of a polygon drawn across the antimeridian made continuous: after an edge
+// more than 180 degrees long (meant the short way, across it), the following longitudes
+// move by 360; then each ring moves by whole turns so that it starts at or east of -180
+// (holes: of the outer ring's west end). False for a ring around a pole (the moves do
+// not cancel), which is left as drawn.
+bool unwrap_continuously(std::vector<Ring>& rings) {
+  double west = -180.0;
+  for (std::size_t k = 0; k < rings.size(); ++k) {
+    Ring& r = rings[k];
+    if (r.empty()) continue;
+    // Turns added to each vertex (in multiples of 360), applied in one addition below so
+    // that a vertex that ends where it was keeps its exact coordinate.
+    std::vector<double> turn(r.size(), 0.0);
+    for (std::size_t i = 1; i < r.size(); ++i) {
+      turn[i] = turn[i - 1];
+      if (r[i].x - r[i - 1].x > 180.0) turn[i] -= 360.0;
+      if (r[i - 1].x - r[i].x > 180.0) turn[i] += 360.0;
+    }
+    // The closing edge, from the last vertex back to the first, must undo the turns.
+    double closing = 0.0;
+    if (r.front().x - r.back().x > 180.0) closing = -360.0;
+    if (r.back().x - r.front().x > 180.0) closing = 360.0;
+    if (std::abs(turn.back() + closing) > 1.0) return false;
+    double lo = 1e300;
+    for (std::size_t i = 0; i < r.size(); ++i) lo = std::min(lo, r[i].x + turn[i]);
+    const double whole = 360.0 * std::ceil((west - lo) / 360.0 - 1e-12);
+    for (std::size_t i = 0; i < r.size(); ++i) r[i].x += turn[i] + whole;
+    if (k == 0) west = lo + whole;
+  }
+  return true;
+}
+
+// A polygon drawn across the antimeridian, in a source that stays in [-180, 180] (a world
+// file): made continuous, then cut to `window` (in [-180, 180]) and to the same window
+// 360 degrees east, whose part moves back. Exact cuts when the polygon is valid, else
+// the fast rectangle clip (the pieces are then checked and repaired like any polygon).
+std::vector<GeosGeometry> split_at_antimeridian(GeosContext& geos, const std::vector<Ring>& rings,
+                                                const std::array<double, 4>& window) {
   const GeosGeometry whole = geos.polygon(rings);
   const bool valid = geos.validity(whole).valid;
-  auto cut = [&](double x0, double x1) {
-    return valid ? geos.intersection(whole,
-                                     geos.polygon({{{x0, -91}, {x1, -91}, {x1, 91}, {x0, 91}}}))
-                 : geos.clip_by_rect(whole, x0, -91, x1, 91);
-  };
   std::vector<GeosGeometry> pieces;
-  GeosGeometry west = cut(-181, 180), east = cut(180, 541);
-  if (!geos.is_empty(west)) pieces.push_back(std::move(west));
-  if (!geos.is_empty(east)) pieces.push_back(geos.translated(east, -360.0));
+  for (const double shift : {0.0, 360.0}) {
+    const double x0 = window[0] + shift, y0 = window[1], x1 = window[2] + shift, y1 = window[3];
+    GeosGeometry piece =
+        valid ? geos.intersection(whole, geos.polygon({{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}}))
+              : geos.clip_by_rect(whole, x0, y0, x1, y1);
+    if (geos.is_empty(piece)) continue;
+    pieces.push_back(shift == 0.0 ? std::move(piece) : geos.translated(piece, -shift));
+  }
   return pieces;
 }
 
@@ -131,8 +164,11 @@ SelectResult select_domain(const SourceData& input, const SelectParams& params) 
                                   {(*rect)[0], (*rect)[3]}}});
   for (const SourcePolygon& sp : source.polygons) {
     std::vector<GeosGeometry> pieces;
-    if (input.crs.geographic && !unwrap && crosses_antimeridian(sp.rings) && shifts_whole(sp.rings))
-      pieces = split_at_antimeridian(geos, sp.rings);
+    std::vector<Ring> continuous = sp.rings;
+    if (input.crs.geographic && !unwrap && crosses_antimeridian(sp.rings) &&
+        unwrap_continuously(continuous))
+      pieces = split_at_antimeridian(
+          geos, continuous, rect ? *rect : std::array<double, 4>{-180.0, -90.0, 180.0, 90.0});
     else
       pieces.push_back(geos.polygon(sp.rings));
     for (GeosGeometry& piece : pieces) {

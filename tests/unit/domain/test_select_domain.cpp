@@ -238,3 +238,28 @@ TEST(SelectDomain, AnIslandAcrossTheAntimeridianInAWorldFileIsCutThere) {
   ASSERT_EQ(r.polygons.size(), 1u);
   EXPECT_NEAR(area(r.polygons[0]), 8.0, 1e-9);
 }
+
+TEST(SelectDomain, ALandmassAcrossBothMeridiansIsCutAtTheAntimeridian) {
+  // As Natural Earth's Eurasia: from -10 (west of Greenwich) to its tip 10 degrees past
+  // the antimeridian, drawn at -180..-170 and joined by two edges across the antimeridian
+  // (at latitudes 48..66 and 69..69.5 as drawn). Read as drawn, those edges run around
+  // the globe and make a band of land between them.
+  SourceData d;
+  d.crs = parse_crs("EPSG:4326", "test");
+  SourcePolygon land;
+  land.fid = 0;
+  land.rings = {{{-10, 30}, {80, 30}, {170, 30}, {-170, 66}, {-170, 69}, {170, 70}, {80, 70},
+                 {-10, 70}}};
+  d.polygons = {land};
+  // The tip, cut at the antimeridian: (-180, 48), (-170, 66), (-170, 69), (-180, 69.5).
+  d.bbox_ring = box_ring(-180, 40, -160, 75);
+  SelectResult r = select_domain(d, params(DomainKind::land));
+  ASSERT_EQ(r.polygons.size(), 1u);
+  const double tip = 0.5 * (10 * (66 - 48) + 10 * (69.5 - 69)) + 10 * (69 - 66);  // 122.5
+  EXPECT_NEAR(area(r.polygons[0]), tip, 1e-6);
+  // The Atlantic at those latitudes is water: no band.
+  d.bbox_ring = box_ring(-40, 60, -20, 68);
+  r = select_domain(d, params(DomainKind::water));
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_NEAR(area(r.polygons[0]), 160.0, 1e-9);
+}
