@@ -103,35 +103,42 @@ bool unwrap_continuously(std::vector<Ring>& rings) {
   return true;
 }
 
-// A polygon drawn across the antimeridian, in a source that stays in [-180, 180] (a world
-// file): made continuous, then cut to `window` (in [-180, 180]) and to the same window
-// 360 degrees east, whose part moves back. Exact cuts when the polygon is valid, else
-// the fast rectangle clip (the pieces are then checked and repaired like any polygon).
-std::vector<GeosGeometry> split_at_antimeridian(GeosContext& geos, const std::vector<Ring>& rings,
-                                                const std::array<double, 4>& window) {
-  const GeosGeometry whole = geos.polygon(rings);
-  const bool valid = geos.validity(whole).valid;
-  std::vector<GeosGeometry> pieces;
-  for (const double shift : {0.0, 360.0}) {
-    const double x0 = window[0] + shift, y0 = window[1], x1 = window[2] + shift, y1 = window[3];
-    GeosGeometry piece =
-        valid ? geos.intersection(whole, geos.polygon({{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}}))
-              : geos.clip_by_rect(whole, x0, y0, x1, y1);
-    if (geos.is_empty(piece)) continue;
-    pieces.push_back(shift == 0.0 ? std::move(piece) : geos.translated(piece, -shift));
+using Rectangle = std::array<double, 4>;  // xmin, ymin, xmax, ymax
+
+// Where a polygon's pieces are read: rectangles in the polygon's frame, and the shift in
+// x that takes a piece from there to the frame of the bbox.
+struct Window {
+  Rectangle rect;
+  double shift = 0.0;
+};
+
+// The windows of a polygon in a geographic source that stays in [-180, 180] (a world
+// file): the bbox's rectangle, and the same 360 degrees west and east, so that a bbox
+// across the antimeridian (176 to 182) reads the land drawn at -180..-178 too, and a
+// polygon made continuous across it (Chukotka at 180..191) lands in a bbox at
+// -180..-168. Without a bbox, a continuous polygon is cut at 180 and its part beyond
+// moves back.
+std::vector<Window> windows(const std::optional<Rectangle>& rect, bool continuous) {
+  if (rect) {
+    const Rectangle& r = *rect;
+    return {{r, 0.0},
+            {{r[0] - 360.0, r[1], r[2] - 360.0, r[3]}, 360.0},
+            {{r[0] + 360.0, r[1], r[2] + 360.0, r[3]}, -360.0}};
   }
-  return pieces;
+  if (continuous)
+    return {{{-180.0, -90.0, 180.0, 90.0}, 0.0}, {{180.0, -90.0, 540.0, 90.0}, -360.0}};
+  return {};
 }
 
 // The rectangle read within when there is a bbox: its ring's envelope widened by a
 // hundredth, so that nothing cut along it reaches the bbox itself.
-std::optional<std::array<double, 4>> read_rectangle(const SourceData& source) {
+std::optional<Rectangle> read_rectangle(const SourceData& source) {
   if (!source.bbox_ring || source.bbox_ring->empty()) return std::nullopt;
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
   for (const Point2& p : *source.bbox_ring)
     x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
   const double m = 0.01 * std::max(x1 - x0, y1 - y0);
-  return std::array<double, 4>{x0 - m, y0 - m, x1 + m, y1 + m};
+  return Rectangle{x0 - m, y0 - m, x1 + m, y1 + m};
 }
 
 }  // namespace
@@ -155,38 +162,32 @@ SelectResult select_domain(const SourceData& input, const SelectParams& params) 
   // With a bbox, each polygon is first cut to the bbox's rectangle: only what lies
   // there is checked (an invalid ring far away does not matter) and repaired, and the
   // rest costs nothing more.
-  const auto rect = read_rectangle(source);
-  std::optional<GeosGeometry> rect_polygon;
-  if (rect)
-    rect_polygon = geos.polygon({{{(*rect)[0], (*rect)[1]},
-                                  {(*rect)[2], (*rect)[1]},
-                                  {(*rect)[2], (*rect)[3]},
-                                  {(*rect)[0], (*rect)[3]}}});
+  const std::optional<Rectangle> rect = read_rectangle(source);
+  const bool world = input.crs.geographic && !unwrap;
   for (const SourcePolygon& sp : source.polygons) {
+    std::vector<Ring> rings = sp.rings;
+    const bool continuous = world && crosses_antimeridian(rings) && unwrap_continuously(rings);
+    std::vector<Window> ws = windows(rect, continuous);
+    if (!world && ws.size() > 1) ws.resize(1);
+    GeosGeometry whole = geos.polygon(continuous ? rings : sp.rings);
+    std::optional<bool> whole_valid;
     std::vector<GeosGeometry> pieces;
-    std::vector<Ring> continuous = sp.rings;
-    if (input.crs.geographic && !unwrap && crosses_antimeridian(sp.rings) &&
-        unwrap_continuously(continuous))
-      pieces = split_at_antimeridian(
-          geos, continuous, rect ? *rect : std::array<double, 4>{-180.0, -90.0, 180.0, 90.0});
-    else
-      pieces.push_back(geos.polygon(sp.rings));
-    for (GeosGeometry& piece : pieces) {
-      GeosGeometry g = std::move(piece);
-      GeosValidity v;
-      if (rect) {
-        GeosGeometry cut = geos.clip_by_rect(g, (*rect)[0], (*rect)[1], (*rect)[2], (*rect)[3]);
-        if (geos.is_empty(cut)) continue;
-        v = geos.validity(cut);
-        if (!v.valid && geos.validity(g).valid) {
-          // The fast cut of a valid polygon can be invalid along the rectangle.
-          cut = geos.intersection(g, *rect_polygon);
-          v = geos.validity(cut);
-        }
-        g = std::move(cut);
-      } else {
-        v = geos.validity(g);
+    if (ws.empty()) pieces.push_back(std::move(whole));
+    for (const Window& w : ws) {
+      const Rectangle& r = w.rect;
+      GeosGeometry cut = geos.clip_by_rect(whole, r[0], r[1], r[2], r[3]);
+      if (geos.is_empty(cut)) continue;
+      if (!geos.validity(cut).valid) {
+        // The fast cut of a valid polygon can be invalid along the rectangle.
+        if (!whole_valid) whole_valid = geos.validity(whole).valid;
+        if (*whole_valid)
+          cut = geos.intersection(
+              whole, geos.polygon({{{r[0], r[1]}, {r[2], r[1]}, {r[2], r[3]}, {r[0], r[3]}}}));
       }
+      pieces.push_back(w.shift == 0.0 ? std::move(cut) : geos.translated(cut, w.shift));
+    }
+    for (GeosGeometry& g : pieces) {
+      const GeosValidity v = geos.validity(g);
       if (!v.valid) {
         if (!params.repair)
           throw Error(ErrorClass::input, "domain",

@@ -4,10 +4,11 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <sys/stat.h>
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <sstream>
-#include <sys/stat.h>
 
 #include "core/error.h"
 #include "gis/gdal_env.h"
@@ -147,9 +148,27 @@ class Reader {
                                     fmt(ext.MinY) + "," + fmt(ext.MaxX) + "," + fmt(ext.MaxY) +
                                     " in " + out_.crs.name + ")");
     }
-    layer_->SetSpatialFilterRect(xmin, ymin, xmax, ymax);
-    filter_.MinX = xmin, filter_.MinY = ymin, filter_.MaxX = xmax, filter_.MaxY = ymax;
-    has_filter_ = true;
+    // In longitudes, a bbox across the antimeridian (176 to 182) also reads what the data
+    // draws 360 degrees away (-180 to -178).
+    std::vector<double> shifts{0.0};
+    if (out_.crs.geographic && xmax > 180.0) shifts.push_back(-360.0);
+    if (out_.crs.geographic && xmin < -180.0) shifts.push_back(360.0);
+    OGRMultiPolygon area;
+    for (double dx : shifts) {
+      OGREnvelope e;
+      e.MinX = xmin + dx, e.MinY = ymin, e.MaxX = xmax + dx, e.MaxY = ymax;
+      filters_.push_back(e);
+      OGRLinearRing r;
+      r.addPoint(e.MinX, e.MinY), r.addPoint(e.MaxX, e.MinY), r.addPoint(e.MaxX, e.MaxY);
+      r.addPoint(e.MinX, e.MaxY), r.addPoint(e.MinX, e.MinY);
+      OGRPolygon poly;
+      poly.addRing(&r);
+      area.addGeometry(&poly);
+    }
+    if (filters_.size() == 1)
+      layer_->SetSpatialFilterRect(xmin, ymin, xmax, ymax);
+    else
+      layer_->SetSpatialFilter(&area);
     out_.bbox_ring = std::move(ring);
   }
 
@@ -214,10 +233,12 @@ class Reader {
   void add_polygon(long long fid, int part, const OGRPolygon& poly) {
     // The bbox filter selects whole features; a part of a multipolygon (the land of the
     // world as one feature) that misses the bbox is not read, nor checked.
-    if (has_filter_) {
+    if (!filters_.empty()) {
       OGREnvelope e;
       poly.getEnvelope(&e);
-      if (!e.Intersects(filter_)) return;
+      if (std::none_of(filters_.begin(), filters_.end(),
+                       [&](const OGREnvelope& f) { return e.Intersects(f); }))
+        return;
     }
     SourcePolygon sp;
     sp.fid = fid;
@@ -305,8 +326,7 @@ class Reader {
   }
 
   const ReadParams& p_;
-  OGREnvelope filter_;  // the bbox's extent in the source CRS, when has_filter_
-  bool has_filter_ = false;
+  std::vector<OGREnvelope> filters_;  // the bbox's extent in the source CRS (and wrapped)
   std::unique_ptr<GDALDataset, DatasetCloser> ds_;
   OGRLayer* layer_ = nullptr;
   std::size_t part_count_ = 0;

@@ -263,3 +263,22 @@ TEST(SelectDomain, ALandmassAcrossBothMeridiansIsCutAtTheAntimeridian) {
   ASSERT_EQ(r.polygons.size(), 1u);
   EXPECT_NEAR(area(r.polygons[0]), 160.0, 1e-9);
 }
+
+TEST(SelectDomain, ABboxAcrossTheAntimeridianReadsBothSides) {
+  // A world file (which stays in [-180, 180]) with an island across the antimeridian
+  // (1 x 1 degree) and one drawn east of it at -179.5..-179 (0.5 x 1): a bbox from 178 to
+  // 182 holds both whole.
+  SourceData d = world_with_bay();
+  SourcePolygon across, east;
+  across.fid = 1;
+  across.rings = {{{179.5, -17.0}, {-179.5, -17.0}, {-179.5, -16.0}, {179.5, -16.0}}};
+  east.fid = 2;
+  east.rings = {{{-179.5, -19.0}, {-179.0, -19.0}, {-179.0, -18.0}, {-179.5, -18.0}}};
+  d.polygons.push_back(across);
+  d.polygons.push_back(east);
+  d.bbox_ring = box_ring(178, -20, 182, -15);
+  const SelectResult r = select_domain(d, params(DomainKind::water));
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_EQ(r.polygons[0].holes.size(), 2u);
+  EXPECT_NEAR(area(r.polygons[0]), 4 * 5 - 1.0 - 0.5, 1e-9);
+}

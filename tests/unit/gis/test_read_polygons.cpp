@@ -133,21 +133,47 @@ TEST(ReadPolygons, DensifiedBoxHasItsCornersInOrder) {
   EXPECT_DOUBLE_EQ(signed_area(r), 8.0);
 }
 
-TEST(ReadPolygons, ABboxReadsOnlyThePartsOfAMultipolygonThatReachIt) {
-  // One feature (as a world land file): a square near (-2.5, 47.5) and, far away, a
-  // degenerate part (three points on a line) that would need --repair.
-  TempDir dir;
+namespace {
+
+// A GeoJSON file of one MultiPolygon feature (as a world land file) with these parts,
+// each the coordinates of one polygon.
+std::string multipolygon_file(const TempDir& dir, const std::vector<std::string>& parts) {
+  std::string coords;
+  for (const std::string& part : parts) coords += (coords.empty() ? "" : ",") + part;
   const std::string path = dir.file("world.geojson");
-  write_file(path,
-             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
-             R"("geometry":{"type":"MultiPolygon","coordinates":[)"
-             R"([[[-3,47],[-2,47],[-2,48],[-3,48],[-3,47]]],)"
-             R"([[[100,10],[101,10],[102,10],[100,10]]]]}}]})");
-  ReadParams p = params(path);
+  write_file(path, R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+                   R"("geometry":{"type":"MultiPolygon","coordinates":[)" +
+                       coords + "]}}]}");
+  return path;
+}
+
+}  // namespace
+
+TEST(ReadPolygons, ABboxReadsOnlyThePartsOfAMultipolygonThatReachIt) {
+  // A square near (-2.5, 47.5) and, far away, a degenerate part (three points on a line)
+  // that would need --repair.
+  TempDir dir;
+  ReadParams p = params(multipolygon_file(dir, {"[[[-3,47],[-2,47],[-2,48],[-3,48],[-3,47]]]",
+                                                "[[[100,10],[101,10],[102,10],[100,10]]]"}));
   expect_error(p, ErrorClass::input, "degenerate");
   p.bbox = std::array<double, 4>{-4, 46, -1, 49};
   const SourceData d = read_polygons(p);
   ASSERT_EQ(d.polygons.size(), 1u);
   EXPECT_EQ(d.polygons[0].part, 0);
   EXPECT_EQ(d.num_rings_dropped, 0u);
+}
+
+TEST(ReadPolygons, ABboxAcrossTheAntimeridianReadsWhatLiesBeyondIt) {
+  // Longitudes 176 to 182: the part drawn at -179.5 (181.5 the other way round) is read,
+  // the one at -170 is not.
+  TempDir dir;
+  ReadParams p = params(
+      multipolygon_file(dir, {"[[[177,-18],[178,-18],[178,-17],[177,-17],[177,-18]]]",
+                              "[[[-179.5,-18],[-179,-18],[-179,-17],[-179.5,-17],[-179.5,-18]]]",
+                              "[[[-170,-18],[-169,-18],[-169,-17],[-170,-17],[-170,-18]]]"}));
+  p.bbox = std::array<double, 4>{176, -20, 182, -15};
+  const SourceData d = read_polygons(p);
+  ASSERT_EQ(d.polygons.size(), 2u);
+  EXPECT_EQ(d.polygons[0].part, 0);
+  EXPECT_EQ(d.polygons[1].part, 1);
 }
