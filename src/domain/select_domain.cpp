@@ -165,29 +165,37 @@ SelectResult select_domain(const SourceData& input, const SelectParams& params) 
   const std::optional<Rectangle> rect = read_rectangle(source);
   const bool world = input.crs.geographic && !unwrap;
   for (const SourcePolygon& sp : source.polygons) {
-    std::vector<Ring> rings = sp.rings;
-    const bool continuous = world && crosses_antimeridian(rings) && unwrap_continuously(rings);
+    std::vector<Ring> continuous_rings;
+    bool continuous = false;
+    if (world && crosses_antimeridian(sp.rings)) {
+      continuous_rings = sp.rings;
+      continuous = unwrap_continuously(continuous_rings);
+    }
     std::vector<Window> ws = windows(rect, continuous);
     if (!world && ws.size() > 1) ws.resize(1);
-    GeosGeometry whole = geos.polygon(continuous ? rings : sp.rings);
+    GeosGeometry whole = geos.polygon(continuous ? continuous_rings : sp.rings);
+    const bool clipped = !ws.empty();
+    if (!clipped) ws.push_back({{}, 0.0});  // the whole polygon
     std::optional<bool> whole_valid;
-    std::vector<GeosGeometry> pieces;
-    if (ws.empty()) pieces.push_back(std::move(whole));
     for (const Window& w : ws) {
       const Rectangle& r = w.rect;
-      GeosGeometry cut = geos.clip_by_rect(whole, r[0], r[1], r[2], r[3]);
-      if (geos.is_empty(cut)) continue;
-      if (!geos.validity(cut).valid) {
+      GeosGeometry g =
+          clipped ? geos.clip_by_rect(whole, r[0], r[1], r[2], r[3]) : std::move(whole);
+      if (geos.is_empty(g)) continue;
+      GeosValidity v = geos.validity(g);
+      if (!v.valid && clipped) {
         // The fast cut of a valid polygon can be invalid along the rectangle.
         if (!whole_valid) whole_valid = geos.validity(whole).valid;
-        if (*whole_valid)
-          cut = geos.intersection(
+        if (*whole_valid) {
+          g = geos.intersection(
               whole, geos.polygon({{{r[0], r[1]}, {r[2], r[1]}, {r[2], r[3]}, {r[0], r[3]}}}));
+          v = geos.validity(g);
+        }
       }
-      pieces.push_back(w.shift == 0.0 ? std::move(cut) : geos.translated(cut, w.shift));
-    }
-    for (GeosGeometry& g : pieces) {
-      const GeosValidity v = geos.validity(g);
+      if (w.shift != 0.0) {
+        g = geos.translated(g, w.shift);
+        v.location.x += w.shift;
+      }
       if (!v.valid) {
         if (!params.repair)
           throw Error(ErrorClass::input, "domain",
