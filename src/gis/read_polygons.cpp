@@ -139,15 +139,6 @@ class Reader {
     for (const Point2& q : ring)
       xmin = std::min(xmin, q.x), xmax = std::max(xmax, q.x), ymin = std::min(ymin, q.y),
       ymax = std::max(ymax, q.y);
-    OGREnvelope ext;
-    if (layer_->GetExtent(&ext, TRUE) == OGRERR_NONE) {
-      if (xmax < ext.MinX || xmin > ext.MaxX || ymax < ext.MinY || ymin > ext.MaxY)
-        fail(ErrorClass::input, "--bbox " + fmt(b[0]) + "," + fmt(b[1]) + "," + fmt(b[2]) + "," +
-                                    fmt(b[3]) + " misses the data of layer " +
-                                    quote(out_.layer_name) + " (extent " + fmt(ext.MinX) + "," +
-                                    fmt(ext.MinY) + "," + fmt(ext.MaxX) + "," + fmt(ext.MaxY) +
-                                    " in " + out_.crs.name + ")");
-    }
     // In longitudes, a bbox across the antimeridian (176 to 182) also reads what the data
     // draws 360 degrees away (-180 to -178).
     std::vector<double> shifts{0.0};
@@ -165,6 +156,15 @@ class Reader {
       poly.addRing(&r);
       area.addGeometry(&poly);
     }
+    OGREnvelope ext;
+    if (layer_->GetExtent(&ext, TRUE) == OGRERR_NONE &&
+        std::none_of(filters_.begin(), filters_.end(),
+                     [&](const OGREnvelope& f) { return f.Intersects(ext); }))
+      fail(ErrorClass::input, "--bbox " + fmt(b[0]) + "," + fmt(b[1]) + "," + fmt(b[2]) + "," +
+                                  fmt(b[3]) + " misses the data of layer " +
+                                  quote(out_.layer_name) + " (extent " + fmt(ext.MinX) + "," +
+                                  fmt(ext.MinY) + "," + fmt(ext.MaxX) + "," + fmt(ext.MaxY) +
+                                  " in " + out_.crs.name + ")");
     if (filters_.size() == 1)
       layer_->SetSpatialFilterRect(xmin, ymin, xmax, ymax);
     else

@@ -176,4 +176,9 @@ TEST(ReadPolygons, ABboxAcrossTheAntimeridianReadsWhatLiesBeyondIt) {
   ASSERT_EQ(d.polygons.size(), 2u);
   EXPECT_EQ(d.polygons[0].part, 0);
   EXPECT_EQ(d.polygons[1].part, 1);
+  // A bbox wholly past 180 does not miss the data drawn at -180..-178.
+  p.bbox = std::array<double, 4>{180.2, -20, 183, -15};
+  const SourceData beyond = read_polygons(p);
+  ASSERT_EQ(beyond.polygons.size(), 1u);
+  EXPECT_EQ(beyond.polygons[0].part, 1);
 }
