@@ -2,11 +2,10 @@
 // time, and keeping CGAL types out of the header lets every later stage work on flat
 // arrays.
 //
-// CGAL's checks stay on here in Release builds: its 2D mesher has known failures on
-// some inputs (an assertion in Refine_edges.h when a vertex lies very close to a
-// constrained edge, CGAL issue 781) that without them are a segmentation fault; with
-// them, an exception this stage reports.
-#define CGAL_DEBUG
+// CGAL's checks stay on in Release builds (CGAL_DEBUG, set in CMakeLists.txt): its 2D
+// mesher has known failures on some inputs (an assertion in Refine_edges.h when a vertex
+// lies very close to a constrained edge, CGAL issue 781) that without them are a
+// segmentation fault; with them, an exception this stage reports.
 #include "mesh/background_mesh.h"
 
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
