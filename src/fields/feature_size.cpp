@@ -150,6 +150,10 @@ BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSize
     const K::Point_2 &a = f->vertex(0)->point(), &b = f->vertex(1)->point(),
                      &c = f->vertex(2)->point();
     if (CGAL::orientation(a, b, c) == CGAL::COLLINEAR) continue;
+    // Not collinear, yet flat enough that the circumcentre's denominator rounds to zero
+    // (the centre is at infinity in doubles): no medial point there.
+    if (CGAL::determinant(b.x() - a.x(), b.y() - a.y(), c.x() - a.x(), c.y() - a.y()) == 0.0)
+      continue;
     if (enclosing_radius(a, b, c) >= params.lambda_m) {
       medial.push_back(CGAL::circumcenter(a, b, c));
       medial_radius.push_back(std::sqrt(CGAL::squared_radius(a, b, c)));

@@ -244,3 +244,19 @@ TEST(SizeCache, RefinesOnlyOverTheRegionsItIsGiven) {
     EXPECT_NEAR(everywhere(p), 1000.0, 1e-9);
   }
 }
+
+TEST(FeatureSize, NearlyFlatTrianglesOfTheSamplesAreSkipped) {
+  // Samples spaced along long slanted edges are collinear up to rounding: some of their
+  // Delaunay triangles are not collinear for the exact predicate, yet the circumcentre's
+  // denominator is zero in doubles. They give no medial point (CGAL's checks, on in
+  // Release, would stop on the division), and every size stays finite.
+  Domain d;
+  d.polygons.push_back({{{0, 0}, {98765.4321, 12345.6789}, {3210.987, 54321.123}}, {}});
+  orient_polygon(d.polygons[0]);
+  FeatureSizeParams fp;
+  fp.lambda_m = 7.3;
+  fp.max_size_m = 5000;
+  const BoundaryFeatureSize fs(d, fp);
+  for (double s : fs.sample_size_m()) EXPECT_TRUE(std::isfinite(s) && s > 0);
+  EXPECT_TRUE(std::isfinite(fs({30000, 15000})));
+}
