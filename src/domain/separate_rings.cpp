@@ -19,9 +19,11 @@ struct RingVertex {
 };
 
 // Vertices that touch another part of the domain's rings: a vertex used twice (by two
-// rings, or twice by one ring), or within a few centimetres of a segment it does not end
-// (GEOS output often has such near-touches, off by rounding: the triangulation then takes
-// them as separate and CGAL's refinement can fail between them). One point per place.
+// rings, or twice by one ring), or within 1e-9 of the domain's extent (a millimetre at
+// 1000 km) of a segment it does not end: GEOS output often has such near-touches, off by
+// rounding, which the triangulation takes as separate and between which CGAL's
+// refinement can fail (Fiji's water had five, 1e-11 m apart). Real narrow gaps are the
+// narrow-feature step's business. One point per place.
 std::vector<Point2> pinch_points(const Domain& domain) {
   std::vector<const Ring*> rings;
   for (const Polygon& p : domain.polygons) {
@@ -38,7 +40,7 @@ std::vector<Point2> pinch_points(const Domain& domain) {
   }
   if (num_segments == 0) return {};
   const double extent = std::max(x1 - x0, y1 - y0);
-  const double tol = 1e-7 * extent;
+  const double tol = 1e-9 * extent;
   // Segments in a uniform grid of about one segment per cell, each in every cell its
   // box (widened by tol) meets.
   const int n = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(num_segments))));

@@ -10,7 +10,7 @@
 namespace isoquad {
 
 // Places where the domain's rings touch: a vertex used twice (by two rings, or twice by
-// one ring), or within 1e-7 of the domain's extent of a segment it does not end.
+// one ring), or within 1e-9 of the domain's extent of a segment it does not end.
 std::size_t count_pinch_points(const Domain& domain);
 
 // Separates the rings at every pinch point by cutting a small octagon of radius r out of
