@@ -369,26 +369,32 @@ class AlignedSmoother {
   std::vector<double> h_, theta_;
 };
 
-// Sum of (angle - 90 deg)^2, in rad^2, over the corners of the quads around v, plus
-// area_weight (log(area / area0))^2 per quad (area0: the target area); infinite when
-// one of them is not more convex than min_convexity.
-double corner_energy(const QuadMesh& m, const Topology& t, int v, double min_convexity,
-                     const std::vector<double>& area0, double area_weight) {
+// The angle sweeps' energy at v: over the quads around v, the sum of (angle - 90 deg)^2
+// (rad^2) of the corners that a move of v changes (at v and at its two neighbours in the
+// quad; the fourth is constant), plus area_weight (log(area / area0))^2 per quad (area0:
+// the target area); infinite when one of those corners turns by less than min_convexity
+// (quad_convexity's measure; the caller has checked the fourth).
+double moving_corner_energy(const QuadMesh& m, const Topology& t, int v, double min_convexity,
+                            const std::vector<double>& area0, double area_weight) {
   double e = 0;
   for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
     const int q = t.quad_items[k];
-    if (quad_convexity(m, q) <= min_convexity) return std::numeric_limits<double>::infinity();
+    const auto& c = m.quads[q];
+    const int j = c[0] == v ? 0 : c[1] == v ? 1 : c[2] == v ? 2 : 3;
+    for (int d = 3; d <= 5; ++d) {
+      const int i = (j + d) % 4;
+      const Point2 &p = m.points[c[(i + 3) % 4]], &o = m.points[c[i]], &n = m.points[c[(i + 1) % 4]];
+      const double ax = p.x - o.x, ay = p.y - o.y, bx = n.x - o.x, by = n.y - o.y;
+      const double cross = bx * ay - by * ax, dot = ax * bx + ay * by;
+      // quad_convexity's measure at this corner: the sine of the turn between edges.
+      const double l2 = (ax * ax + ay * ay) * (bx * bx + by * by);
+      if (l2 == 0 || cross <= min_convexity * std::sqrt(l2)) return std::numeric_limits<double>::infinity();
+      const double a = std::atan2(cross, dot) - 0.5 * M_PI;
+      e += a * a;
+    }
     if (area_weight > 0) {
       const double r = std::log(quad_area(m, q) / area0[q]);
       e += area_weight * r * r;
-    }
-    const auto& c = m.quads[q];
-    for (int i = 0; i < 4; ++i) {
-      const Point2 &p = m.points[c[(i + 3) % 4]], &o = m.points[c[i]], &n = m.points[c[(i + 1) % 4]];
-      const double ax = p.x - o.x, ay = p.y - o.y, bx = n.x - o.x, by = n.y - o.y;
-      // The interior angle of a convex counter-clockwise quad: the turn from b to a.
-      const double a = std::atan2(bx * ay - by * ax, ax * bx + ay * by) - 0.5 * M_PI;
-      e += a * a;
     }
   }
   return e;
@@ -397,7 +403,7 @@ double corner_energy(const QuadMesh& m, const Topology& t, int v, double min_con
 // Angle sweeps: every free vertex takes the best of its candidate moves (interior: eight
 // directions; boundary: both ways along its chain, staying between its boundary
 // neighbours), each angle_step of its shortest edge long (0.3 of that in the second
-// half of the sweeps), if that lowers corner_energy (target areas h^2 with a sizing
+// half of the sweeps), if that lowers moving_corner_energy (target areas h^2 with a sizing
 // field) plus the orientation term of its edges; convexity never drops below
 // min_convexity.
 void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
@@ -427,9 +433,9 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
     const double h = loc.triangle >= 0 ? size->at(bg, loc.triangle, loc.bary) : 0.0;
     if (h > 0) area0[q] = h * h;
   }
-  // corner_energy plus ow (rotation from the nearest cross axis)^2 over the edges at v.
+  // moving_corner_energy plus ow (rotation from the nearest cross axis)^2 over the edges at v.
   auto energy = [&](int v) {
-    double e = corner_energy(m, t, v, params.min_convexity, area0, params.angle_area_weight);
+    double e = moving_corner_energy(m, t, v, params.min_convexity, area0, params.angle_area_weight);
     if (theta.empty() || !std::isfinite(e)) return e;
     for (int w : t.neighbours[v]) {
       const double phi = std::atan2(m.points[w].y - m.points[v].y, m.points[w].x - m.points[v].x);
@@ -447,6 +453,8 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
       for (int w : t.neighbours[v]) shortest = std::min(shortest, distance(start, m.points[w]));
       // The second half of the sweeps refines with steps 0.3 as long.
       const double step = (2 * it < params.angle_iterations ? 1.0 : 0.3) * params.angle_step * shortest;
+      // A vertex with a quad not convex enough (at any corner) stays where it is.
+      if (worst_convexity(m, t, v) <= params.min_convexity) continue;
       double best = energy(v);
       if (!std::isfinite(best)) continue;
       Point2 best_point = start;
