@@ -11,12 +11,16 @@ metrics for both meshes here, independently of isoquad's own report:
   boundary-aligned cross field (mean, p90), regular interior vertices, wall time and
   peak memory (each process's own, from wait4).
 
+Each program runs --repeat times (default 3), alternately, so that a slow spell of the
+machine falls on both: the table gives the median wall time with the range, and the
+ratio of the medians. isoquad's repeated outputs must be byte-identical.
+
 With --auto instead of --size, both follow isoquad's automatic sizing field (pass its
 options after --, e.g. -- --hmax 28000): Gmsh reads it as a background mesh view, and
 sqrt(area)/h is measured against it at the quad centroids.
 
 Usage: tools/compare_gmsh.py INPUT (--size H | --auto) [--isoquad build/isoquad]
-       [--workdir DIR] [--simplify M] [extra isoquad options after --]
+       [--workdir DIR] [--simplify M] [--repeat N] [extra isoquad options after --]
 Needs Debian's gmsh, python3-meshio, python3-gdal, python3-scipy (tools/install-deps.sh).
 """
 import argparse
@@ -164,10 +168,13 @@ def main():
     ap.add_argument("--isoquad", default=os.path.join(os.path.dirname(__file__), "..", "build", "isoquad"))
     ap.add_argument("--simplify", type=float, help="boundary simplification (default H/4)")
     ap.add_argument("--workdir")
+    ap.add_argument("--repeat", type=int, default=3, help="runs of each program (default 3)")
     argv = sys.argv[1:]
     extra = argv[argv.index("--") + 1:] if "--" in argv else []
     a = ap.parse_args(argv[:argv.index("--")] if "--" in argv else argv)
     a.extra = extra
+    if a.repeat < 1:
+        sys.exit("compare_gmsh: --repeat must be at least 1")
     work = a.workdir or tempfile.mkdtemp(prefix="isoquad-vs-gmsh-")
     os.makedirs(work, exist_ok=True)
     common = [a.input, "--overwrite", "-q"] + a.extra
@@ -193,27 +200,46 @@ def main():
     cross = field_at(fields, "cross_angle", math.pi / 180)
     size = field_at(fields, "size") if a.auto else (lambda pts: np.full(len(pts), a.size))
 
-    iq_vtu = os.path.join(work, "isoquad.vtu")
-    t_iq, mem_iq = run([a.isoquad, "mesh", *common, "-o", iq_vtu])
-    iq = meshio.read(iq_vtu)
-    iq_metrics = metrics(iq.points, iq.cells_dict["quad"], 0, size, cross)
-
     geo = os.path.join(work, "domain.geo")
     background = None
     if a.auto:
         background = os.path.join(work, "size.pos")
         fields_to_pos(fields, background, 1.0)
     domain_to_geo(domain, geo, a.size, background)
+
+    iq_vtu = os.path.join(work, "isoquad.vtu")
     msh = os.path.join(work, "gmsh.msh")
-    t_gm, mem_gm = run(["gmsh", geo, "-2", "-format", "msh22", "-o", msh, "-v", "1"])
+    times_iq, times_gm, mem_iq, mem_gm = [], [], 0.0, 0.0
+    for k in range(a.repeat):
+        out = iq_vtu if k == 0 else os.path.join(work, f"isoquad_{k}.vtu")
+        t, mem = run([a.isoquad, "mesh", *common, "-o", out])
+        times_iq.append(t)
+        mem_iq = max(mem_iq, mem)
+        if k > 0:
+            with open(iq_vtu, "rb") as first, open(out, "rb") as again:
+                if first.read() != again.read():
+                    sys.exit(f"compare_gmsh: isoquad's run {k + 1} wrote a different mesh ({out})")
+            os.remove(out)
+        t, mem = run(["gmsh", geo, "-2", "-format", "msh22", "-o", msh, "-v", "1"])
+        times_gm.append(t)
+        mem_gm = max(mem_gm, mem)
+    t_iq, t_gm = float(np.median(times_iq)), float(np.median(times_gm))
+
+    iq = meshio.read(iq_vtu)
+    iq_metrics = metrics(iq.points, iq.cells_dict["quad"], 0, size, cross)
     gm = meshio.read(msh)
     gm_quads = gm.cells_dict.get("quad", np.zeros((0, 4), int))
     gm_tris = len(gm.cells_dict.get("triangle", []))
     gm_metrics = metrics(gm.points, gm_quads, gm_tris, size, cross)
 
-    rows = list(iq_metrics.keys()) + ["seconds (read to write)", "peak memory (MB)"]
-    iq_metrics["seconds (read to write)"] = f"{t_iq:.2f}"
-    gm_metrics["seconds (read to write)"] = f"{t_gm:.2f}"
+    seconds = "seconds (read to write)" if a.repeat == 1 else f"seconds, median of {a.repeat}"
+    rows = list(iq_metrics.keys()) + [seconds, "peak memory (MB)"]
+    iq_metrics[seconds] = f"{t_iq:.2f}"
+    gm_metrics[seconds] = f"{t_gm:.2f}"
+    if a.repeat > 1:
+        rows.insert(-1, "seconds, range")
+        iq_metrics["seconds, range"] = f"{min(times_iq):.2f} - {max(times_iq):.2f}"
+        gm_metrics["seconds, range"] = f"{min(times_gm):.2f} - {max(times_gm):.2f}"
     iq_metrics["peak memory (MB)"] = f"{mem_iq:.0f}"
     gm_metrics["peak memory (MB)"] = f"{mem_gm:.0f}"
     w = max(len(r) for r in rows)
@@ -221,6 +247,8 @@ def main():
     for r in rows:
         print(f"{r:{w}}  {str(iq_metrics[r]):>16}  {str(gm_metrics[r]):>16}")
     print(f"{'time ratio gmsh / isoquad':{w}}  {t_gm / t_iq:>16.2f}")
+    if a.repeat > 1:
+        print(f"(isoquad's {a.repeat} runs wrote byte-identical meshes)")
     print(f"(files in {work})")
 
 
