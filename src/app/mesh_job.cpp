@@ -94,6 +94,13 @@ std::string format_mesh_summary(const MeshResult& r) {
   std::snprintf(buf, sizeof buf, "quads:        %zu quads, %zu vertices, %zu non-convex\n", q.num_quads,
                 q.num_vertices, q.num_nonconvex);
   os << buf;
+  if (r.smooth.num_flips > 0 || r.smooth.num_collapses > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "repaired:     %d quad edge flip(s), %d diagonal collapse(s) where smoothing "
+                  "alone left a quad non-convex\n",
+                  r.smooth.num_flips, r.smooth.num_collapses);
+    os << buf;
+  }
   std::snprintf(buf, sizeof buf, "angles:       %.1f%% in [75,105], min %.1f, max %.1f deg; eta mean %.3f, min %.3f\n",
                 100 * q.share_angles_75_105, q.min_angle_deg, q.max_angle_deg, q.eta_mean, q.eta_min);
   os << buf;
@@ -182,6 +189,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("num_nonconvex_before", r.smooth.num_nonconvex_before)
         .value("num_untangle_sweeps", r.smooth.num_untangle_sweeps)
         .value("num_flips", r.smooth.num_flips)
+        .value("num_collapses", r.smooth.num_collapses)
         .end_object();
   }
   j.begin_array("stages");

@@ -257,6 +257,92 @@ int flip_nonconvex(QuadMesh& m, double min_convexity) {
   return flips;
 }
 
+// Diagonal collapses: a quad still not more convex than min_convexity, with a diagonal
+// whose end c is inside the domain and movable, is removed by merging c into the other
+// end a (c's other quads take a; a keeps its place, on the boundary if it is there). Of
+// the possible merges the one along the shorter diagonal is made. Refused when another
+// quad holds both a and c, or when a corner on the other diagonal would be left in
+// fewer than 3 quads inside the domain (1 on the boundary). Quads around a merge are
+// not touched again in the same call. Vertices left without quads are dropped and the
+// ids renumbered. Returns the number of quads removed.
+int collapse_nonconvex(QuadMesh& m, double min_convexity) {
+  const int nv = static_cast<int>(m.points.size());
+  const int nq = static_cast<int>(m.quads.size());
+  std::vector<std::vector<int>> around(nv);
+  for (int q = 0; q < nq; ++q)
+    for (int v : m.quads[q]) around[v].push_back(q);
+  std::vector<char> removed(nq, 0), touched(nq, 0);
+  int collapses = 0;
+  for (int q = 0; q < nq; ++q) {
+    if (touched[q] || quad_convexity(m, q) > min_convexity) continue;
+    const auto& c4 = m.quads[q];
+    int best_keep = -1, best_drop = -1;
+    double best_length = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 4; ++i) {
+      const int a = c4[i], c = c4[(i + 2) % 4];
+      if (m.chain[c] >= 0 || m.fixed[c]) continue;
+      bool ok = true;
+      for (int k : {1, 3}) {
+        const int b = c4[(i + k) % 4];
+        const std::size_t need = m.chain[b] >= 0 ? 2 : 4;
+        if (around[b].size() < need) ok = false;
+      }
+      for (int o : around[c])
+        if (o != q && (touched[o] || std::find(m.quads[o].begin(), m.quads[o].end(), a) != m.quads[o].end()))
+          ok = false;
+      // The merged vertex's edges stay manifold and consistently oriented: no directed
+      // edge from or to it twice.
+      std::vector<std::pair<int, int>> directed;
+      for (int end : {a, c})
+        for (int o : around[end]) {
+          if (o == q) continue;
+          const auto& t = m.quads[o];
+          for (int j = 0; j < 4; ++j) {
+            const int from = t[j] == c ? a : t[j], to = t[(j + 1) % 4] == c ? a : t[(j + 1) % 4];
+            if (from == a || to == a) directed.push_back({from, to});
+          }
+        }
+      std::sort(directed.begin(), directed.end());
+      if (std::adjacent_find(directed.begin(), directed.end()) != directed.end()) ok = false;
+      const double length = distance(m.points[a], m.points[c]);
+      if (ok && length < best_length) best_length = length, best_keep = a, best_drop = c;
+    }
+    if (best_keep < 0) continue;
+    removed[q] = 1;
+    for (int o : around[best_drop]) {
+      touched[o] = 1;
+      for (int& v : m.quads[o])
+        if (v == best_drop) v = best_keep;
+    }
+    for (int v : c4)
+      for (int o : around[v]) touched[o] = 1;
+    ++collapses;
+  }
+  if (collapses == 0) return 0;
+  // Drop the removed quads and the vertices no quad uses any more.
+  std::vector<std::array<int, 4>> quads;
+  std::vector<int> id(nv, -1);
+  for (int q = 0; q < nq; ++q)
+    if (!removed[q]) {
+      quads.push_back(m.quads[q]);
+      for (int v : m.quads[q]) id[v] = 0;
+    }
+  QuadMesh out;
+  for (int v = 0; v < nv; ++v) {
+    if (id[v] < 0) continue;
+    id[v] = static_cast<int>(out.points.size());
+    out.points.push_back(m.points[v]);
+    out.chain.push_back(m.chain[v]);
+    out.arc_m.push_back(m.arc_m[v]);
+    out.fixed.push_back(m.fixed[v]);
+  }
+  for (auto& quad : quads)
+    for (int& v : quad) v = id[v];
+  out.quads = std::move(quads);
+  m = std::move(out);
+  return collapses;
+}
+
 // The field-aligned sweeps (SmoothParams::aligned_iterations).
 class AlignedSmoother {
  public:
@@ -493,10 +579,10 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
                          const SizingField* size, const CrossField* cross) {
   SmoothStats stats;
   const Topology t = topology(m);
-  const int nq = static_cast<int>(m.quads.size());
   auto count_nonconvex = [&] {
     int n = 0;
-    for (int q = 0; q < nq; ++q) n += quad_convexity(m, q) <= params.min_convexity;
+    for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
+      n += quad_convexity(m, q) <= params.min_convexity;
     return n;
   };
   stats.num_nonconvex_before = count_nonconvex();
@@ -537,6 +623,23 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
     if (flips == 0) break;
     stats.num_flips += flips;
     untangle(bg, m, topology(m), params, stats);
+  }
+  // Nor flips: remove the quad by a diagonal collapse, kept when the quads then left
+  // non-convex are fewer.
+  for (int round = 0; round < params.collapse_rounds; ++round) {
+    const int bad = count_nonconvex();
+    if (bad == 0) break;
+    QuadMesh before = m;
+    const SmoothStats stats_before = stats;
+    const int collapses = collapse_nonconvex(m, params.min_convexity);
+    if (collapses == 0) break;
+    untangle(bg, m, topology(m), params, stats);
+    if (count_nonconvex() >= bad) {
+      m = std::move(before);
+      stats = stats_before;
+      break;
+    }
+    stats.num_collapses += collapses;
   }
   stats.num_nonconvex_after = count_nonconvex();
   return stats;

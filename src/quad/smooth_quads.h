@@ -16,6 +16,9 @@ struct SmoothParams {
   int untangle_iterations = 200;   // sweeps of the convexity repair
   double min_convexity = 0.02;     // a quad is accepted when quad_convexity() > this (~1.1 deg)
   int flip_rounds = 5;
+  // Rounds of diagonal collapses when flips are not enough either (the last resort before
+  // the caller retries the tiling): see SmoothStats::num_collapses.
+  int collapse_rounds = 3;
   // Before the convexity repair, quads flatter than this (sine of the worst corner
   // turn; 0.26 ~ 15 degrees) get `lift_iterations` sweeps of the same search.
   double lift_convexity = 0.26;
@@ -54,6 +57,9 @@ struct SmoothStats {
   int num_nonconvex_after = 0;   // 0 unless the repair failed
   int num_untangle_sweeps = 0;
   int num_flips = 0;             // quad edge flips (local topology changes)
+  // Quads removed by merging the two ends of a diagonal (one of them inside the domain),
+  // which drops a vertex: the mesh's vertex ids are renumbered.
+  int num_collapses = 0;
 };
 
 // Smooths in place. Does not throw; the caller decides what a remaining non-convex quad

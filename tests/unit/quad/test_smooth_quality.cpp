@@ -127,6 +127,53 @@ TEST(SmoothQuads, UntanglesAndKeepsTheBoundaryOnTheBoundary) {
   EXPECT_NEAR(m.points[5].x, 5 * kSide / kN, 0.05 * kSide / kN);
 }
 
+TEST(SmoothQuads, ADoubletNoMoveCanFixIsRemovedByADiagonalCollapse) {
+  // One interior quad of the grid split along its diagonal by a vertex e in its middle
+  // into two quads that share two sides: e has two quads, one of its corners is at
+  // least 180 degrees wherever it goes, and flipping either shared side gives the same
+  // pair. Collapsing a diagonal of the bad quad merges e into a corner: the grid again.
+  const BackgroundMesh bg = square_background();
+  QuadMesh m = grid();
+  const int split = 4 * kN + 4;  // quad (a, b, c, d), interior
+  const auto [a, b, c, d] = m.quads[split];
+  const int e = static_cast<int>(m.points.size());
+  m.points.push_back({0.5 * (m.points[a].x + m.points[c].x), 0.5 * (m.points[a].y + m.points[c].y)});
+  m.chain.push_back(-1);
+  m.arc_m.push_back(0.0);
+  m.fixed.push_back(0);
+  m.quads[split] = {a, b, c, e};
+  m.quads.push_back({a, e, c, d});
+  SmoothParams params;
+  params.collapse_rounds = 0;
+  QuadMesh kept = m;
+  SmoothStats st = smooth_quads(bg, kept, params);
+  EXPECT_GT(st.num_nonconvex_after, 0);  // without collapses the doublet stays
+  EXPECT_EQ(st.num_collapses, 0);
+
+  params = SmoothParams();
+  st = smooth_quads(bg, m, params);
+  EXPECT_EQ(st.num_nonconvex_after, 0);
+  EXPECT_EQ(st.num_collapses, 1);
+  ASSERT_EQ(m.quads.size(), static_cast<std::size_t>(kN * kN));
+  ASSERT_EQ(m.points.size(), static_cast<std::size_t>((kN + 1) * (kN + 1)));
+  ASSERT_EQ(m.chain.size(), m.points.size());
+  ASSERT_EQ(m.arc_m.size(), m.points.size());
+  ASSERT_EQ(m.fixed.size(), m.points.size());
+  double area = 0;
+  std::vector<int> uses(m.points.size(), 0);
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
+    EXPECT_GT(quad_convexity(m, q), params.min_convexity) << q;
+    area += quad_area(m, q);
+    for (int v : m.quads[q]) ++uses[v];
+  }
+  EXPECT_NEAR(area, kSide * kSide, 1e-6 * kSide * kSide);
+  for (std::size_t v = 0; v < m.points.size(); ++v) {
+    EXPECT_GT(uses[v], 0) << v;
+    if (m.chain[v] >= 0) EXPECT_LT(distance_to_square_boundary(m.points[v]), 1e-6) << v;
+    else EXPECT_EQ(uses[v], 4) << v;  // every interior vertex regular again
+  }
+}
+
 TEST(SmoothQuads, AlignedSweepsFollowTheSizeField) {
   // h = 70 m on the left, 130 m on the right, axis-aligned cross: the uniform grid's
   // columns move right, so that quads on the left shrink and on the right grow, and stay
