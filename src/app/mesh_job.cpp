@@ -101,6 +101,11 @@ std::string format_mesh_summary(const MeshResult& r) {
                   r.smooth.num_flips, r.smooth.num_collapses);
     os << buf;
   }
+  if (r.smooth.num_sliver_collapses > 0) {
+    std::snprintf(buf, sizeof buf, "slivers:      %d flat quad(s) removed by diagonal collapses\n",
+                  r.smooth.num_sliver_collapses);
+    os << buf;
+  }
   std::snprintf(buf, sizeof buf, "angles:       %.1f%% in [75,105], min %.1f, max %.1f deg; eta mean %.3f, min %.3f\n",
                 100 * q.share_angles_75_105, q.min_angle_deg, q.max_angle_deg, q.eta_mean, q.eta_min);
   os << buf;
@@ -190,6 +195,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("num_untangle_sweeps", r.smooth.num_untangle_sweeps)
         .value("num_flips", r.smooth.num_flips)
         .value("num_collapses", r.smooth.num_collapses)
+        .value("num_sliver_collapses", r.smooth.num_sliver_collapses)
         .end_object();
   }
   j.begin_array("stages");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <memory>
 
@@ -257,15 +258,16 @@ int flip_nonconvex(QuadMesh& m, double min_convexity) {
   return flips;
 }
 
-// Diagonal collapses: a quad still not more convex than min_convexity, with a diagonal
-// whose end c is inside the domain and movable, is removed by merging c into the other
-// end a (c's other quads take a; a keeps its place, on the boundary if it is there). Of
-// the possible merges the one along the shorter diagonal is made. Refused when another
-// quad holds both a and c, or when a corner on the other diagonal would be left in
-// fewer than 3 quads inside the domain (1 on the boundary). Quads around a merge are
-// not touched again in the same call. Vertices left without quads are dropped and the
-// ids renumbered. Returns the number of quads removed.
-int collapse_nonconvex(QuadMesh& m, double min_convexity) {
+// Diagonal collapses: each quad `wanted` picks, with a diagonal whose end c is inside
+// the domain and movable, is removed by merging c into the other end a (c's other quads
+// take a; a keeps its place, on the boundary if it is there). Of the possible merges the
+// one along the shorter diagonal is made. Refused when another quad holds both a and c,
+// when an edge at the merged vertex would be used twice in the same direction, or when
+// a corner on the other diagonal would be left in fewer than 3 quads inside the domain
+// (1 on the boundary). Quads around a merge are not touched again in the same call.
+// Vertices left without quads are dropped and the ids renumbered. Returns the number
+// of quads removed.
+int collapse_quads(QuadMesh& m, const std::function<bool(int)>& wanted) {
   const int nv = static_cast<int>(m.points.size());
   const int nq = static_cast<int>(m.quads.size());
   std::vector<std::vector<int>> around(nv);
@@ -274,7 +276,7 @@ int collapse_nonconvex(QuadMesh& m, double min_convexity) {
   std::vector<char> removed(nq, 0), touched(nq, 0);
   int collapses = 0;
   for (int q = 0; q < nq; ++q) {
-    if (touched[q] || quad_convexity(m, q) > min_convexity) continue;
+    if (touched[q] || !wanted(q)) continue;
     const auto& c4 = m.quads[q];
     int best_keep = -1, best_drop = -1;
     double best_length = std::numeric_limits<double>::infinity();
@@ -573,6 +575,66 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
     }
 }
 
+// Slivers, once every quad is convex: quads still flatter than sliver_convexity, the
+// flattest first, each removed by a diagonal collapse when that (with the lift and
+// untangling sweeps after it) leaves every quad convex and either raises the flattest
+// quad's convexity or leaves fewer slivers without lowering it. At most sliver_tries
+// quads are tried; a collapse not kept is undone.
+void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
+                      const SmoothParams& lift, SmoothStats& stats) {
+  auto scan = [&](int& slivers, int& nonconvex, double& worst) {
+    slivers = nonconvex = 0;
+    worst = 1.0;
+    for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
+      const double c = quad_convexity(m, q);
+      slivers += c <= params.sliver_convexity;
+      nonconvex += c <= params.min_convexity;
+      worst = std::min(worst, c);
+    }
+  };
+  std::vector<Point2> tried;  // centroids of the slivers tried (ids change on a collapse)
+  auto centroid = [&](int q) {
+    Point2 c{0, 0};
+    for (int v : m.quads[q]) c.x += 0.25 * m.points[v].x, c.y += 0.25 * m.points[v].y;
+    return c;
+  };
+  for (int attempt = 0; attempt < params.sliver_tries; ++attempt) {
+    int pick = -1;
+    double flattest = params.sliver_convexity;
+    for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
+      const double c = quad_convexity(m, q);
+      if (c > flattest || (pick >= 0 && c == flattest)) continue;
+      const Point2 at = centroid(q);
+      if (std::any_of(tried.begin(), tried.end(),
+                      [&](const Point2& p) { return p.x == at.x && p.y == at.y; }))
+        continue;
+      pick = q;
+      flattest = c;
+    }
+    if (pick < 0) break;
+    tried.push_back(centroid(pick));
+    int slivers0, nonconvex0, slivers1, nonconvex1;
+    double worst0, worst1;
+    scan(slivers0, nonconvex0, worst0);
+    QuadMesh before = m;
+    const SmoothStats stats_before = stats;
+    if (collapse_quads(m, [&](int q) { return q == pick; }) == 0) continue;
+    const Topology t = topology(m);
+    SmoothStats ignored;
+    untangle(bg, m, t, lift, ignored, false);
+    untangle(bg, m, t, params, stats);
+    scan(slivers1, nonconvex1, worst1);
+    const bool better = nonconvex1 == 0 && worst1 >= worst0 &&
+                        (worst1 > worst0 || slivers1 < slivers0);
+    if (!better) {
+      m = std::move(before);
+      stats = stats_before;
+      continue;
+    }
+    ++stats.num_sliver_collapses;
+  }
+}
+
 }  // namespace
 
 SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
@@ -631,7 +693,8 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
     if (bad == 0) break;
     QuadMesh before = m;
     const SmoothStats stats_before = stats;
-    const int collapses = collapse_nonconvex(m, params.min_convexity);
+    const int collapses =
+        collapse_quads(m, [&](int q) { return quad_convexity(m, q) <= params.min_convexity; });
     if (collapses == 0) break;
     untangle(bg, m, topology(m), params, stats);
     if (count_nonconvex() >= bad) {
@@ -641,6 +704,7 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
     }
     stats.num_collapses += collapses;
   }
+  if (count_nonconvex() == 0) collapse_slivers(bg, m, params, lift, stats);
   stats.num_nonconvex_after = count_nonconvex();
   return stats;
 }

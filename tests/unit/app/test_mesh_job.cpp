@@ -32,6 +32,27 @@ TEST(MeshJob, EveryQuadStrictlyConvexAndTheAttemptsAreReported) {
   EXPECT_NE(mesh_report_json(r, "test").find("\"tiling_attempts\""), std::string::npos);
 }
 
+TEST(MeshJob, FlatQuadsAreRemovedByDiagonalCollapsesWhenThatHelps) {
+  // France at hmax 40 km: smoothing leaves one quad with a 171-degree corner (the sine
+  // of its turn under SmoothParams::sliver_convexity); the sliver pass collapses it and
+  // the flattest corner left is under 170 degrees. Without the pass it stays.
+  MeshOptions o;
+  o.fields.front.read.path = sample("france.shp");
+  o.fields.sizing.hmax_m = 40000.0;
+  o.smooth.sliver_tries = 0;
+  const MeshResult without = build_mesh(o);
+  EXPECT_EQ(without.smooth.num_sliver_collapses, 0);
+  EXPECT_GT(without.quality.max_angle_deg, 170.0);
+  o.smooth.sliver_tries = MeshOptions().smooth.sliver_tries;
+  const MeshResult with = build_mesh(o);
+  EXPECT_GE(with.smooth.num_sliver_collapses, 1);
+  EXPECT_LT(with.quality.max_angle_deg, 170.0);
+  EXPECT_GE(with.quality.min_angle_deg, without.quality.min_angle_deg);
+  EXPECT_EQ(with.quality.num_nonconvex, 0u);
+  EXPECT_EQ(with.quality.num_quads + with.smooth.num_sliver_collapses, without.quality.num_quads);
+  EXPECT_NE(mesh_report_json(with, "test").find("\"num_sliver_collapses\""), std::string::npos);
+}
+
 TEST(MeshJob, GivesUpWithAnErrorAfterTheLastAttempt) {
   // No quad is that convex (1 would need every corner at 90 degrees exactly): every
   // attempt fails, and the job stops after max_attempts instead of writing a mesh.
