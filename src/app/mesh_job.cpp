@@ -43,13 +43,21 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
     r.smooth = smooth_quads(r.fields.mesh, r.quads, o.smooth, &r.fields.size, &r.fields.cross);
     clock.lap("smoothing");
     r.attempts = attempt + 1;
-    if (r.smooth.num_nonconvex_after == 0) break;
-    std::string where;
-    for (int q = 0; q < static_cast<int>(r.quads.quads.size()) && where.empty(); ++q)
-      if (quad_convexity(r.quads, q) <= o.smooth.min_convexity)
-        where = " (the first near " + format_point(r.quads.points[r.quads.quads[q][0]]) + ")";
-    const std::string problem = std::to_string(r.smooth.num_nonconvex_after) +
-                                " quad(s) could not be made strictly convex" + where;
+    std::string problem;
+    if (r.smooth.num_nonconvex_after > 0) {
+      std::string where;
+      for (int q = 0; q < static_cast<int>(r.quads.quads.size()) && where.empty(); ++q)
+        if (quad_convexity(r.quads, q) <= o.smooth.min_convexity)
+          where = " (the first near " + format_point(r.quads.points[r.quads.quads[q][0]]) + ")";
+      problem = std::to_string(r.smooth.num_nonconvex_after) +
+                " quad(s) could not be made strictly convex" + where;
+    } else {
+      Point2 at;
+      const std::size_t crossings = count_boundary_crossings(r.quads, &at);
+      if (crossings == 0) break;
+      problem = "the mesh folds over itself: " + std::to_string(crossings) +
+                " pair(s) of boundary edges cross (the first near " + format_point(at) + ")";
+    }
     if (attempt + 1 >= options.max_attempts)
       throw Error(ErrorClass::internal, "smooth",
                   problem + " after " + std::to_string(r.attempts) +
@@ -64,6 +72,10 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
   if (r.quality.num_nonconvex > 0)
     throw Error(ErrorClass::internal, "quality",
                 std::to_string(r.quality.num_nonconvex) + " quad(s) are not strictly convex");
+  if (r.quality.num_boundary_crossings > 0)
+    throw Error(ErrorClass::internal, "quality",
+                std::to_string(r.quality.num_boundary_crossings) +
+                    " pair(s) of boundary edges cross: the mesh folds over itself");
   r.has_quads = true;
   progress.report("mesh", 1.0);
   return r;
@@ -170,6 +182,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("num_boundary_vertices", q.num_boundary_vertices)
         .value("num_triangles", 0)
         .value("num_nonconvex", q.num_nonconvex)
+        .value("num_boundary_crossings", q.num_boundary_crossings)
         .value("share_angles_75_105", q.share_angles_75_105)
         .value("min_angle_deg", q.min_angle_deg)
         .value("max_angle_deg", q.max_angle_deg)

@@ -41,6 +41,105 @@ double quad_convexity(const QuadMesh& m, int q) {
   return quad_convexity(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
 }
 
+namespace {
+
+// Sign of the turn a -> b -> c (0 when collinear).
+int orientation(const Point2& a, const Point2& b, const Point2& c) {
+  const double d = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+  return (d > 0) - (d < 0);
+}
+
+bool on_segment(const Point2& a, const Point2& b, const Point2& p) {
+  return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
+         p.y <= std::max(a.y, b.y);
+}
+
+// Segments pq and rs meet (ends included).
+bool segments_meet(const Point2& p, const Point2& q, const Point2& r, const Point2& s) {
+  const int o1 = orientation(p, q, r), o2 = orientation(p, q, s);
+  const int o3 = orientation(r, s, p), o4 = orientation(r, s, q);
+  if (o1 != o2 && o3 != o4) return true;
+  return (o1 == 0 && on_segment(p, q, r)) || (o2 == 0 && on_segment(p, q, s)) ||
+         (o3 == 0 && on_segment(r, s, p)) || (o4 == 0 && on_segment(r, s, q));
+}
+
+}  // namespace
+
+std::vector<std::array<int, 4>> boundary_crossings(const QuadMesh& m) {
+  std::vector<std::array<int, 4>> out;
+  // Boundary edges: directed quad edges whose reverse no quad has.
+  std::vector<std::pair<int, int>> directed;
+  for (const auto& q : m.quads)
+    for (int i = 0; i < 4; ++i) directed.push_back({q[i], q[(i + 1) % 4]});
+  std::vector<std::pair<int, int>> sorted = directed;
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<std::array<int, 2>> edges;
+  for (const auto& [a, b] : directed)
+    if (!std::binary_search(sorted.begin(), sorted.end(), std::make_pair(b, a))) edges.push_back({a, b});
+  if (edges.size() < 2) return out;
+  // A uniform grid of cells about one mean edge long; a pair is tested in the first cell
+  // both edges' boxes share.
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300, total = 0;
+  for (const auto& e : edges) {
+    const Point2 &a = m.points[e[0]], &b = m.points[e[1]];
+    x0 = std::min({x0, a.x, b.x}), y0 = std::min({y0, a.y, b.y});
+    x1 = std::max({x1, a.x, b.x}), y1 = std::max({y1, a.y, b.y});
+    total += distance(a, b);
+  }
+  const double cell = std::max({total / edges.size(), (x1 - x0) / 4096, (y1 - y0) / 4096, 1e-9});
+  const int nx = static_cast<int>((x1 - x0) / cell) + 1, ny = static_cast<int>((y1 - y0) / cell) + 1;
+  auto box = [&](const std::array<int, 2>& e) {
+    const Point2 &a = m.points[e[0]], &b = m.points[e[1]];
+    return std::array<int, 4>{static_cast<int>((std::min(a.x, b.x) - x0) / cell),
+                              static_cast<int>((std::min(a.y, b.y) - y0) / cell),
+                              static_cast<int>((std::max(a.x, b.x) - x0) / cell),
+                              static_cast<int>((std::max(a.y, b.y) - y0) / cell)};
+  };
+  std::vector<std::vector<int>> cells(static_cast<std::size_t>(nx) * ny);
+  for (int k = 0; k < static_cast<int>(edges.size()); ++k) {
+    const auto bx = box(edges[k]);
+    for (int j = bx[1]; j <= bx[3]; ++j)
+      for (int i = bx[0]; i <= bx[2]; ++i) cells[static_cast<std::size_t>(j) * nx + i].push_back(k);
+  }
+  for (std::size_t c = 0; c < cells.size(); ++c) {
+    const int ci = static_cast<int>(c % nx), cj = static_cast<int>(c / nx);
+    const auto& in = cells[c];
+    for (std::size_t u = 0; u < in.size(); ++u)
+      for (std::size_t w = u + 1; w < in.size(); ++w) {
+        const auto &e = edges[in[u]], &f = edges[in[w]];
+        const auto be = box(e), bf = box(f);
+        // Only in the first cell the two boxes share.
+        if (std::max(be[0], bf[0]) != ci || std::max(be[1], bf[1]) != cj) continue;
+        const int shared = (e[0] == f[0]) + (e[0] == f[1]) + (e[1] == f[0]) + (e[1] == f[1]);
+        const Point2 &p = m.points[e[0]], &q = m.points[e[1]], &r = m.points[f[0]], &s = m.points[f[1]];
+        bool meet;
+        if (shared == 0) {
+          meet = segments_meet(p, q, r, s);
+        } else {
+          // Edges with a common end meet elsewhere only if they overlap along a line.
+          const int o = e[0] == f[0] || e[0] == f[1] ? 0 : 1;  // e's shared end
+          const Point2& common = o == 0 ? p : q;
+          const Point2& e_other = o == 0 ? q : p;
+          const Point2& f_other = (f[0] == e[o]) ? s : r;
+          meet = shared == 1 && orientation(common, e_other, f_other) == 0 &&
+                 (e_other.x - common.x) * (f_other.x - common.x) +
+                         (e_other.y - common.y) * (f_other.y - common.y) > 0;
+        }
+        if (meet) out.push_back({e[0], e[1], f[0], f[1]});
+      }
+  }
+  return out;
+}
+
+std::size_t count_boundary_crossings(const QuadMesh& m, Point2* where) {
+  const auto crossings = boundary_crossings(m);
+  if (!crossings.empty() && where) {
+    const Point2 &p = m.points[crossings[0][0]], &q = m.points[crossings[0][1]];
+    *where = {0.5 * (p.x + q.x), 0.5 * (p.y + q.y)};
+  }
+  return crossings.size();
+}
+
 std::array<double, 4> quad_angles_deg(const QuadMesh& m, int q) {
   const auto& t = m.quads[q];
   std::array<double, 4> out{};

@@ -26,6 +26,15 @@ Point2 chain_point(const BackgroundMesh& mesh, const BoundaryChain& chain, doubl
 double quad_convexity(const Point2& a, const Point2& b, const Point2& c, const Point2& d);
 double quad_convexity(const QuadMesh& mesh, int q);
 
+// Pairs of boundary edges (edges of one quad only) that cross or touch other than at a
+// shared end: with every quad convex and counter-clockwise, the mesh then folds over
+// itself (quads overlap) although no quad is wrong on its own, as when the chord of one
+// bank of an inlet narrower than the quads cuts across the other bank's quads. Returns
+// the number of such pairs; `where` gets a point of the first (in edge order).
+std::size_t count_boundary_crossings(const QuadMesh& mesh, Point2* where = nullptr);
+// The pairs themselves: (a, b, c, d) for boundary edges a->b and c->d.
+std::vector<std::array<int, 4>> boundary_crossings(const QuadMesh& mesh);
+
 // The four interior angles in degrees.
 std::array<double, 4> quad_angles_deg(const QuadMesh& mesh, int q);
 double quad_area(const QuadMesh& mesh, int q);

@@ -33,6 +33,7 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
   const int np = static_cast<int>(m.points.size());
   s.num_quads = nq;
   s.num_vertices = np;
+  s.num_boundary_crossings = count_boundary_crossings(m);
   qm = QuadMetrics{};
   qm.min_angle_deg.resize(nq);
   qm.max_angle_deg.resize(nq);

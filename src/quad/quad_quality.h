@@ -29,6 +29,7 @@ struct QuadMetrics {
 struct QualitySummary {
   std::size_t num_quads = 0, num_vertices = 0, num_boundary_vertices = 0;
   std::size_t num_nonconvex = 0;  // not strictly convex counter-clockwise
+  std::size_t num_boundary_crossings = 0;  // count_boundary_crossings: 0 unless it folds
   double share_angles_75_105 = 0, min_angle_deg = 0, max_angle_deg = 0;
   std::vector<int> angle_histogram;  // 36 bins of 5 degrees over [0, 180)
   double size_ratio_median = 0, share_size_08_125 = 0;

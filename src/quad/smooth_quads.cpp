@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <tuple>
 
 #include "mesh/locate.h"
 
@@ -261,13 +262,14 @@ int flip_nonconvex(QuadMesh& m, double min_convexity) {
 // Diagonal collapses: each quad `wanted` picks, with a diagonal whose end c is inside
 // the domain and movable, is removed by merging c into the other end a (c's other quads
 // take a; a keeps its place, on the boundary if it is there). Of the possible merges the
-// one along the shorter diagonal is made. Refused when another quad holds both a and c,
+// one along the shorter diagonal is made (with `choice` k > 0, the k-th shortest, when
+// there are that many). Refused when another quad holds both a and c,
 // when an edge at the merged vertex would be used twice in the same direction, or when
 // a corner on the other diagonal would be left in fewer than 3 quads inside the domain
 // (1 on the boundary). Quads around a merge are not touched again in the same call.
 // Vertices left without quads are dropped and the ids renumbered. Returns the number
 // of quads removed.
-int collapse_quads(QuadMesh& m, const std::function<bool(int)>& wanted) {
+int collapse_quads(QuadMesh& m, const std::function<bool(int)>& wanted, int choice = 0) {
   const int nv = static_cast<int>(m.points.size());
   const int nq = static_cast<int>(m.quads.size());
   std::vector<std::vector<int>> around(nv);
@@ -278,8 +280,7 @@ int collapse_quads(QuadMesh& m, const std::function<bool(int)>& wanted) {
   for (int q = 0; q < nq; ++q) {
     if (touched[q] || !wanted(q)) continue;
     const auto& c4 = m.quads[q];
-    int best_keep = -1, best_drop = -1;
-    double best_length = std::numeric_limits<double>::infinity();
+    std::vector<std::tuple<double, int, int>> options;  // (diagonal length, keep, drop)
     for (int i = 0; i < 4; ++i) {
       const int a = c4[i], c = c4[(i + 2) % 4];
       if (m.chain[c] >= 0 || m.fixed[c]) continue;
@@ -306,10 +307,11 @@ int collapse_quads(QuadMesh& m, const std::function<bool(int)>& wanted) {
         }
       std::sort(directed.begin(), directed.end());
       if (std::adjacent_find(directed.begin(), directed.end()) != directed.end()) ok = false;
-      const double length = distance(m.points[a], m.points[c]);
-      if (ok && length < best_length) best_length = length, best_keep = a, best_drop = c;
+      if (ok) options.emplace_back(distance(m.points[a], m.points[c]), a, c);
     }
-    if (best_keep < 0) continue;
+    if (static_cast<int>(options.size()) <= choice) continue;
+    std::sort(options.begin(), options.end());
+    const int best_keep = std::get<1>(options[choice]), best_drop = std::get<2>(options[choice]);
     removed[q] = 1;
     for (int o : around[best_drop]) {
       touched[o] = 1;
@@ -575,6 +577,105 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
     }
 }
 
+Point2 quad_centroid(const QuadMesh& m, int q) {
+  Point2 c{0, 0};
+  for (int v : m.quads[q]) c.x += 0.25 * m.points[v].x, c.y += 0.25 * m.points[v].y;
+  return c;
+}
+
+bool contains_point(const std::vector<Point2>& points, const Point2& p) {
+  return std::any_of(points.begin(), points.end(),
+                     [&](const Point2& o) { return o.x == p.x && o.y == p.y; });
+}
+
+// Non-convex quads the collapse rounds left, one at a time (at most collapse_tries):
+// each of its possible collapses in turn (shorter diagonal first), the first that
+// leaves fewer quads non-convex kept. Returns the number kept.
+int collapse_one_by_one(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
+                        SmoothStats& stats) {
+  auto count_nonconvex = [&] {
+    int n = 0;
+    for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
+      n += quad_convexity(m, q) <= params.min_convexity;
+    return n;
+  };
+  std::vector<Point2> tried;  // centroids of the quads tried (ids change on a collapse)
+  int kept = 0;
+  for (int attempt = 0; attempt < params.collapse_tries;) {
+    const int bad = count_nonconvex();
+    if (bad == 0) break;
+    int pick = -1;
+    for (int q = 0; q < static_cast<int>(m.quads.size()) && pick < 0; ++q)
+      if (quad_convexity(m, q) <= params.min_convexity && !contains_point(tried, quad_centroid(m, q)))
+        pick = q;
+    if (pick < 0) break;
+    tried.push_back(quad_centroid(m, pick));
+    for (int choice = 0; choice < 4 && attempt < params.collapse_tries; ++choice, ++attempt) {
+      QuadMesh before = m;
+      const SmoothStats stats_before = stats;
+      if (collapse_quads(m, [&](int q) { return q == pick; }, choice) == 0) break;
+      untangle(bg, m, topology(m), params, stats);
+      if (count_nonconvex() < bad) {
+        ++kept;
+        break;
+      }
+      m = std::move(before);
+      stats = stats_before;
+    }
+  }
+  return kept;
+}
+
+// Folds (count_boundary_crossings): the boundary vertices of crossing boundary edges
+// slide along the boundary, each to the first of a few shrinking steps either way that
+// leaves fewer crossings and every quad around it convex; rounds until none is left or
+// no slide helps. Returns the crossings left.
+std::size_t unfold_boundary(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
+                            const SmoothParams& params) {
+  std::size_t crossings = count_boundary_crossings(m);
+  for (int round = 0; round < params.unfold_rounds && crossings > 0; ++round) {
+    bool moved = false;
+    std::vector<int> ends;
+    for (const auto& pair : boundary_crossings(m))
+      for (int v : pair)
+        if (m.chain[v] >= 0 && !m.fixed[v] && std::find(ends.begin(), ends.end(), v) == ends.end())
+          ends.push_back(v);
+    for (int v : ends) {
+      const auto& bn = t.boundary_neighbours[v];
+      const int c = m.chain[v];
+      if (bn[0] < 0 || bn[1] < 0 || m.chain[bn[0]] != c || m.chain[bn[1]] != c) continue;
+      const double len = bg.chains[c].length_m;
+      const double d0 = arc_delta(m.arc_m[v], m.arc_m[bn[0]], len);
+      const double d1 = arc_delta(m.arc_m[v], m.arc_m[bn[1]], len);
+      if (d0 * d1 >= 0) continue;
+      const Point2 start = m.points[v];
+      const double start_arc = m.arc_m[v];
+      bool done = false;
+      for (double fraction : {0.5, 0.3, 0.15, 0.05}) {
+        for (double d : {d0, d1}) {
+          const double arc = start_arc + fraction * d;
+          m.points[v] = chain_point(bg, bg.chains[c], arc);
+          m.arc_m[v] = arc;
+          if (worst_convexity(m, t, v) > params.min_convexity) {
+            const std::size_t left = count_boundary_crossings(m);
+            if (left < crossings) {
+              crossings = left;
+              done = moved = true;
+              break;
+            }
+          }
+          m.points[v] = start;
+          m.arc_m[v] = start_arc;
+        }
+        if (done) break;
+      }
+      if (crossings == 0) break;
+    }
+    if (!moved) break;
+  }
+  return crossings;
+}
+
 // Slivers, once every quad is convex: quads still flatter than sliver_convexity, the
 // flattest first, each removed by a diagonal collapse when that (with the lift and
 // untangling sweeps after it) leaves every quad convex and either raises the flattest
@@ -593,26 +694,18 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
     }
   };
   std::vector<Point2> tried;  // centroids of the slivers tried (ids change on a collapse)
-  auto centroid = [&](int q) {
-    Point2 c{0, 0};
-    for (int v : m.quads[q]) c.x += 0.25 * m.points[v].x, c.y += 0.25 * m.points[v].y;
-    return c;
-  };
   for (int attempt = 0; attempt < params.sliver_tries; ++attempt) {
     int pick = -1;
     double flattest = params.sliver_convexity;
     for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
       const double c = quad_convexity(m, q);
       if (c > flattest || (pick >= 0 && c == flattest)) continue;
-      const Point2 at = centroid(q);
-      if (std::any_of(tried.begin(), tried.end(),
-                      [&](const Point2& p) { return p.x == at.x && p.y == at.y; }))
-        continue;
+      if (contains_point(tried, quad_centroid(m, q))) continue;
       pick = q;
       flattest = c;
     }
     if (pick < 0) break;
-    tried.push_back(centroid(pick));
+    tried.push_back(quad_centroid(m, pick));
     int slivers0, nonconvex0, slivers1, nonconvex1;
     double worst0, worst1;
     scan(slivers0, nonconvex0, worst0);
@@ -704,6 +797,9 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
     }
     stats.num_collapses += collapses;
   }
+  if (count_nonconvex() > 0) stats.num_collapses += collapse_one_by_one(bg, m, params, stats);
+  if (count_nonconvex() == 0 && count_boundary_crossings(m) > 0)
+    stats.num_crossings_after = unfold_boundary(bg, m, topology(m), params);
   if (count_nonconvex() == 0) collapse_slivers(bg, m, params, lift, stats);
   stats.num_nonconvex_after = count_nonconvex();
   return stats;

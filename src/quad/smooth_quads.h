@@ -19,6 +19,12 @@ struct SmoothParams {
   // Rounds of diagonal collapses when flips are not enough either (the last resort before
   // the caller retries the tiling): see SmoothStats::num_collapses.
   int collapse_rounds = 3;
+  // Then quads still non-convex are tried one at a time, each possible collapse in turn
+  // (at most this many collapses tried).
+  int collapse_tries = 20;
+  // Rounds of sliding the ends of crossing boundary edges (a mesh folded where an inlet
+  // is narrower than its quads) along the boundary.
+  int unfold_rounds = 10;
   // Then, every quad convex, the flattest quads (sine of the worst corner turn at most
   // this; 0.17 ~ 10 degrees) are tried one by one for a diagonal collapse that makes the
   // mesh's flattest quad less flat (at most sliver_tries of them; 0 disables it).
@@ -68,7 +74,8 @@ struct SmoothStats {
   // Quads removed by merging the two ends of a diagonal (one of them inside the domain),
   // which drops a vertex: the mesh's vertex ids are renumbered.
   int num_collapses = 0;
-  int num_sliver_collapses = 0;  // the same, of slivers (SmoothParams::sliver_convexity)
+  int num_sliver_collapses = 0;
+  std::size_t num_crossings_after = 0;  // boundary edge crossings the unfolding left  // the same, of slivers (SmoothParams::sliver_convexity)
 };
 
 // Smooths in place. Does not throw; the caller decides what a remaining non-convex quad

@@ -100,9 +100,10 @@ double area_of(const OGRGeometry& g) {
 
 // Issue 5's properties of a mesh of a real domain, against the domain `isoquad domain`
 // writes with the same front-end options: only quads, all strictly convex and
-// counter-clockwise; every boundary vertex within 1e-6 h of the domain's boundary; the
-// quads' union has the domain's components and holes (every island still a hole) and
-// differs from it by less than 1% of its area; the area within 1%.
+// counter-clockwise, none overlapping another; every boundary vertex within 1e-6 h of
+// the domain's boundary; the quads' union has the domain's components and holes (every
+// island still a hole) and differs from it by less than 1% of its area; the area within
+// 1%.
 void check_mesh_of_domain(const std::string& mesh_gpkg, const std::string& domain_gpkg,
                           double h_m, int expected_holes) {
   const QuadLayer layer = read_quads(mesh_gpkg);
@@ -155,6 +156,9 @@ void check_mesh_of_domain(const std::string& mesh_gpkg, const std::string& domai
   }
   const std::unique_ptr<OGRGeometry> cover(quads.UnionCascaded());
   ASSERT_NE(cover, nullptr);
+  // No two quads overlap (a mesh folded over itself has convex quads that do): their
+  // union is as large as their sum.
+  EXPECT_NEAR(area_of(*cover), area, 1e-9 * area);
   EXPECT_EQ(num_parts(*cover), num_parts(parts));
   EXPECT_EQ(num_holes(*cover), expected_holes);
   const std::unique_ptr<OGRGeometry> difference(cover->SymDifference(&parts));
@@ -168,6 +172,9 @@ TEST(CliMesh, FranceAndBrittanyWaterFillTheirDomainsWithConvexQuads) {
   // Issue 5's tests on real domains: mainland France (one hole, the Llivia enclave) at
   // the acceptance case's sizes, and Brittany's water with its seven islands. The
   // cleaning options are given explicitly, the same to `domain` and `mesh`.
+  // France in its automatic projection: there, before the boundary was unfolded, the
+  // chord of one bank of an inlet near Lorient (narrower than the quads) cut across the
+  // other bank's quads, and the mesh overlapped itself by 0.3 km2.
   struct Case {
     std::vector<std::string> input, cleaning, sizing;
     double hmin_m;
@@ -179,7 +186,8 @@ TEST(CliMesh, FranceAndBrittanyWaterFillTheirDomainsWithConvexQuads) {
        {"--hmax", "28000"},
        2800.0,
        1},
-      {{sample("brittany_land.shp"), "--domain", "water", "--bbox=-5.6,46.6,-1.5,49.6"},
+      {{sample("brittany_land.shp"), "--domain", "water", "--bbox=-5.6,46.6,-1.5,49.6",
+        "--dst-crs", "EPSG:2154"},
        {"--simplify", "225", "--min-width", "225", "--min-island-area", "810000"},
        {"--hmax", "9000"},
        900.0,
@@ -190,7 +198,6 @@ TEST(CliMesh, FranceAndBrittanyWaterFillTheirDomainsWithConvexQuads) {
     const std::string domain = dir.file("domain.gpkg"), mesh = dir.file("mesh.gpkg");
     std::vector<std::string> args = {"domain"};
     args.insert(args.end(), c.input.begin(), c.input.end());
-    args.insert(args.end(), {"--dst-crs", "EPSG:2154"});
     args.insert(args.end(), c.cleaning.begin(), c.cleaning.end());
     std::vector<std::string> mesh_args = args;
     mesh_args[0] = "mesh";

@@ -127,6 +127,35 @@ TEST(SmoothQuads, UntanglesAndKeepsTheBoundaryOnTheBoundary) {
   EXPECT_NEAR(m.points[5].x, 5 * kSide / kN, 0.05 * kSide / kN);
 }
 
+TEST(QuadMesh, BoundaryCrossingsFindAMeshThatFoldsOverItself) {
+  QuadMesh m = grid();
+  EXPECT_EQ(count_boundary_crossings(m), 0u);
+  // A convex counter-clockwise quad over the grid's corner (1000, 1000): its sides cross
+  // the grid's top and right sides once each, although every quad is convex.
+  for (const Point2& p : {Point2{950, 950}, Point2{1100, 950}, Point2{1100, 1100}, Point2{950, 1100}}) {
+    m.points.push_back(p);
+    m.chain.push_back(-1);
+    m.arc_m.push_back(0.0);
+    m.fixed.push_back(0);
+  }
+  const int n = static_cast<int>(m.points.size());
+  m.quads.push_back({n - 4, n - 3, n - 2, n - 1});
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) ASSERT_GT(quad_convexity(m, q), 0.0);
+  Point2 where{0, 0};
+  EXPECT_EQ(count_boundary_crossings(m, &where), 2u);
+  EXPECT_EQ(boundary_crossings(m).size(), 2u);
+  EXPECT_GT(where.x, 900.0);
+  EXPECT_GT(where.y, 900.0);
+  // Quads that share a boundary vertex (a corner of the square) do not cross there.
+  QuadMesh two;
+  two.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {2, 1}, {2, 2}, {1, 2}};
+  two.chain.assign(7, -1);
+  two.arc_m.assign(7, 0.0);
+  two.fixed.assign(7, 0);
+  two.quads = {{0, 1, 2, 3}, {2, 4, 5, 6}};
+  EXPECT_EQ(count_boundary_crossings(two), 0u);
+}
+
 TEST(SmoothQuads, ADoubletNoMoveCanFixIsRemovedByADiagonalCollapse) {
   // One interior quad of the grid split along its diagonal by a vertex e in its middle
   // into two quads that share two sides: e has two quads, one of its corners is at
@@ -145,6 +174,7 @@ TEST(SmoothQuads, ADoubletNoMoveCanFixIsRemovedByADiagonalCollapse) {
   m.quads.push_back({a, e, c, d});
   SmoothParams params;
   params.collapse_rounds = 0;
+  params.collapse_tries = 0;
   QuadMesh kept = m;
   SmoothStats st = smooth_quads(bg, kept, params);
   EXPECT_GT(st.num_nonconvex_after, 0);  // without collapses the doublet stays
