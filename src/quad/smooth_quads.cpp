@@ -635,11 +635,16 @@ std::size_t unfold_boundary(const BackgroundMesh& bg, QuadMesh& m, const Topolog
   std::size_t crossings = count_boundary_crossings(m);
   for (int round = 0; round < params.unfold_rounds && crossings > 0; ++round) {
     bool moved = false;
+    // The ends of the crossing edges, then their neighbours along the boundary.
     std::vector<int> ends;
+    auto add = [&](int v) {
+      if (v >= 0 && m.chain[v] >= 0 && !m.fixed[v] && std::find(ends.begin(), ends.end(), v) == ends.end())
+        ends.push_back(v);
+    };
     for (const auto& pair : boundary_crossings(m))
-      for (int v : pair)
-        if (m.chain[v] >= 0 && !m.fixed[v] && std::find(ends.begin(), ends.end(), v) == ends.end())
-          ends.push_back(v);
+      for (int v : pair) add(v);
+    for (std::size_t k = 0, n = ends.size(); k < n; ++k)
+      for (int w : t.boundary_neighbours[ends[k]]) add(w);
     for (int v : ends) {
       const auto& bn = t.boundary_neighbours[v];
       const int c = m.chain[v];
@@ -651,7 +656,7 @@ std::size_t unfold_boundary(const BackgroundMesh& bg, QuadMesh& m, const Topolog
       const Point2 start = m.points[v];
       const double start_arc = m.arc_m[v];
       bool done = false;
-      for (double fraction : {0.5, 0.3, 0.15, 0.05}) {
+      for (double fraction : {0.8, 0.5, 0.3, 0.15, 0.05}) {
         for (double d : {d0, d1}) {
           const double arc = start_arc + fraction * d;
           m.points[v] = chain_point(bg, bg.chains[c], arc);
