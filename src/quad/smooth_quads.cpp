@@ -683,8 +683,9 @@ std::size_t unfold_boundary(const BackgroundMesh& bg, QuadMesh& m, const Topolog
 
 // Slivers, once every quad is convex: quads still flatter than sliver_convexity, the
 // flattest first, each removed by a diagonal collapse when that (with the lift and
-// untangling sweeps after it) leaves every quad convex and either raises the flattest
-// quad's convexity or leaves fewer slivers without lowering it. At most sliver_tries
+// untangling sweeps after it) leaves every quad convex, no more boundary crossings, and
+// either raises the flattest quad's convexity or leaves fewer slivers without lowering
+// it. At most sliver_tries
 // quads are tried; a collapse not kept is undone.
 void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
                       const SmoothParams& lift, SmoothStats& stats) {
@@ -714,6 +715,7 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
     int slivers0, nonconvex0, slivers1, nonconvex1;
     double worst0, worst1;
     scan(slivers0, nonconvex0, worst0);
+    const std::size_t crossings0 = count_boundary_crossings(m);
     QuadMesh before = m;
     const SmoothStats stats_before = stats;
     if (collapse_quads(m, [&](int q) { return q == pick; }) == 0) continue;
@@ -723,7 +725,8 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
     untangle(bg, m, t, params, stats);
     scan(slivers1, nonconvex1, worst1);
     const bool better = nonconvex1 == 0 && worst1 >= worst0 &&
-                        (worst1 > worst0 || slivers1 < slivers0);
+                        (worst1 > worst0 || slivers1 < slivers0) &&
+                        count_boundary_crossings(m) <= crossings0;
     if (!better) {
       m = std::move(before);
       stats = stats_before;
@@ -803,9 +806,9 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
     stats.num_collapses += collapses;
   }
   if (count_nonconvex() > 0) stats.num_collapses += collapse_one_by_one(bg, m, params, stats);
+  if (count_nonconvex() == 0) collapse_slivers(bg, m, params, lift, stats);
   if (count_nonconvex() == 0 && count_boundary_crossings(m) > 0)
     stats.num_crossings_after = unfold_boundary(bg, m, topology(m), params);
-  if (count_nonconvex() == 0) collapse_slivers(bg, m, params, lift, stats);
   stats.num_nonconvex_after = count_nonconvex();
   return stats;
 }
