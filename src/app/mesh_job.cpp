@@ -61,7 +61,12 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
     if (attempt + 1 >= options.max_attempts)
       throw Error(ErrorClass::internal, "smooth",
                   problem + " after " + std::to_string(r.attempts) +
-                      " tiling attempt(s); no mesh is written");
+                      " tiling attempt(s); no mesh is written" +
+                      (r.smooth.num_nonconvex_after == 0
+                           ? " (quads fold over each other where an inlet or channel is "
+                             "narrower than they are: a larger --min-width fills such inlets, "
+                             "a smaller --hmin or --size resolves them)"
+                           : ""));
     r.retry_reasons.push_back(problem);
     progress.report("retry: " + problem, 0.45);
   }

@@ -681,6 +681,54 @@ std::size_t unfold_boundary(const BackgroundMesh& bg, QuadMesh& m, const Topolog
   return crossings;
 }
 
+// Folds the slides leave: a quad with a crossing boundary edge is removed by a diagonal
+// collapse (each possible one in turn, at most collapse_tries in all), then the slides
+// run again; kept when fewer crossings are left and every quad is convex. Returns the
+// number of collapses kept.
+int collapse_folds(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
+                   SmoothStats& stats) {
+  auto nonconvex = [&] {
+    for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
+      if (quad_convexity(m, q) <= params.min_convexity) return true;
+    return false;
+  };
+  std::vector<Point2> tried;  // centroids of the quads tried
+  int kept = 0;
+  for (int attempt = 0; attempt < params.collapse_tries;) {
+    const std::size_t crossings = count_boundary_crossings(m);
+    if (crossings == 0) break;
+    // A quad that owns a crossing edge and was not tried yet.
+    int pick = -1;
+    for (const auto& pair : boundary_crossings(m)) {
+      for (int e = 0; e < 2 && pick < 0; ++e) {
+        const int a = pair[2 * e], b = pair[2 * e + 1];
+        for (int q = 0; q < static_cast<int>(m.quads.size()) && pick < 0; ++q) {
+          const auto& c = m.quads[q];
+          for (int i = 0; i < 4; ++i)
+            if (c[i] == a && c[(i + 1) % 4] == b && !contains_point(tried, quad_centroid(m, q))) pick = q;
+        }
+      }
+      if (pick >= 0) break;
+    }
+    if (pick < 0) break;
+    tried.push_back(quad_centroid(m, pick));
+    for (int choice = 0; choice < 4 && attempt < params.collapse_tries; ++choice, ++attempt) {
+      QuadMesh before = m;
+      const SmoothStats stats_before = stats;
+      if (collapse_quads(m, [&](int q) { return q == pick; }, choice) == 0) break;
+      const Topology t = topology(m);
+      untangle(bg, m, t, params, stats);
+      if (!nonconvex() && unfold_boundary(bg, m, t, params) < crossings) {
+        ++kept;
+        break;
+      }
+      m = std::move(before);
+      stats = stats_before;
+    }
+  }
+  return kept;
+}
+
 // Slivers, once every quad is convex: quads still flatter than sliver_convexity, the
 // flattest first, each removed by a diagonal collapse when that (with the lift and
 // untangling sweeps after it) leaves every quad convex, no more boundary crossings, and
@@ -807,8 +855,10 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
   }
   if (count_nonconvex() > 0) stats.num_collapses += collapse_one_by_one(bg, m, params, stats);
   if (count_nonconvex() == 0) collapse_slivers(bg, m, params, lift, stats);
-  if (count_nonconvex() == 0 && count_boundary_crossings(m) > 0)
-    stats.num_crossings_after = unfold_boundary(bg, m, topology(m), params);
+  if (count_nonconvex() == 0 && count_boundary_crossings(m) > 0 &&
+      unfold_boundary(bg, m, topology(m), params) > 0)
+    stats.num_collapses += collapse_folds(bg, m, params, stats);
+  stats.num_crossings_after = count_boundary_crossings(m);
   stats.num_nonconvex_after = count_nonconvex();
   return stats;
 }
