@@ -588,6 +588,25 @@ bool contains_point(const std::vector<Point2>& points, const Point2& p) {
                      [&](const Point2& o) { return o.x == p.x && o.y == p.y; });
 }
 
+// The possible collapses of quad `pick` in turn (shorter diagonal first, while `tries`
+// is under collapse_tries), each followed by the untangling sweeps: keeps the first
+// that `better` accepts (called with the new connectivity) and undoes the others.
+bool collapse_first_better(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
+                           SmoothStats& stats, int pick, int& tries,
+                           const std::function<bool(const Topology&)>& better) {
+  for (int choice = 0; choice < 4 && tries < params.collapse_tries; ++choice, ++tries) {
+    QuadMesh before = m;
+    const SmoothStats stats_before = stats;
+    if (collapse_quads(m, [&](int q) { return q == pick; }, choice) == 0) return false;
+    const Topology t = topology(m);
+    untangle(bg, m, t, params, stats);
+    if (better(t)) return true;
+    m = std::move(before);
+    stats = stats_before;
+  }
+  return false;
+}
+
 // Non-convex quads the collapse rounds left, one at a time (at most collapse_tries):
 // each of its possible collapses in turn (shorter diagonal first), the first that
 // leaves fewer quads non-convex kept. Returns the number kept.
@@ -610,18 +629,8 @@ int collapse_one_by_one(const BackgroundMesh& bg, QuadMesh& m, const SmoothParam
         pick = q;
     if (pick < 0) break;
     tried.push_back(quad_centroid(m, pick));
-    for (int choice = 0; choice < 4 && attempt < params.collapse_tries; ++choice, ++attempt) {
-      QuadMesh before = m;
-      const SmoothStats stats_before = stats;
-      if (collapse_quads(m, [&](int q) { return q == pick; }, choice) == 0) break;
-      untangle(bg, m, topology(m), params, stats);
-      if (count_nonconvex() < bad) {
-        ++kept;
-        break;
-      }
-      m = std::move(before);
-      stats = stats_before;
-    }
+    kept += collapse_first_better(bg, m, params, stats, pick, attempt,
+                                  [&](const Topology&) { return count_nonconvex() < bad; });
   }
   return kept;
 }
@@ -712,19 +721,9 @@ int collapse_folds(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& pa
     }
     if (pick < 0) break;
     tried.push_back(quad_centroid(m, pick));
-    for (int choice = 0; choice < 4 && attempt < params.collapse_tries; ++choice, ++attempt) {
-      QuadMesh before = m;
-      const SmoothStats stats_before = stats;
-      if (collapse_quads(m, [&](int q) { return q == pick; }, choice) == 0) break;
-      const Topology t = topology(m);
-      untangle(bg, m, t, params, stats);
-      if (!nonconvex() && unfold_boundary(bg, m, t, params) < crossings) {
-        ++kept;
-        break;
-      }
-      m = std::move(before);
-      stats = stats_before;
-    }
+    kept += collapse_first_better(bg, m, params, stats, pick, attempt, [&](const Topology& t) {
+      return !nonconvex() && unfold_boundary(bg, m, t, params) < crossings;
+    });
   }
   return kept;
 }
