@@ -114,7 +114,7 @@ std::string format_mesh_summary(const MeshResult& r) {
   if (r.smooth.num_flips > 0 || r.smooth.num_collapses > 0) {
     std::snprintf(buf, sizeof buf,
                   "repaired:     %d quad edge flip(s), %d diagonal collapse(s) where smoothing "
-                  "alone left a quad non-convex\n",
+                  "alone left a quad non-convex or the mesh folded\n",
                   r.smooth.num_flips, r.smooth.num_collapses);
     os << buf;
   }

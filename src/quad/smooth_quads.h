@@ -72,7 +72,8 @@ struct SmoothStats {
   int num_untangle_sweeps = 0;
   int num_flips = 0;             // quad edge flips (local topology changes)
   // Quads removed by merging the two ends of a diagonal (one of them inside the domain),
-  // which drops a vertex: the mesh's vertex ids are renumbered.
+  // which drops a vertex, to make every quad convex or to unfold the mesh: the mesh's
+  // vertex ids are renumbered.
   int num_collapses = 0;
   int num_sliver_collapses = 0;
   std::size_t num_crossings_after = 0;  // boundary edge crossings the unfolding left  // the same, of slivers (SmoothParams::sliver_convexity)
