@@ -65,9 +65,8 @@ bool segments_meet(const Point2& p, const Point2& q, const Point2& r, const Poin
 
 }  // namespace
 
-std::vector<std::array<int, 4>> boundary_crossings(const QuadMesh& m) {
-  std::vector<std::array<int, 4>> out;
-  // Boundary edges: directed quad edges whose reverse no quad has.
+std::vector<std::array<int, 2>> boundary_edges(const QuadMesh& m) {
+  // Directed quad edges whose reverse no quad has.
   std::vector<std::pair<int, int>> directed;
   for (const auto& q : m.quads)
     for (int i = 0; i < 4; ++i) directed.push_back({q[i], q[(i + 1) % 4]});
@@ -76,6 +75,27 @@ std::vector<std::array<int, 4>> boundary_crossings(const QuadMesh& m) {
   std::vector<std::array<int, 2>> edges;
   for (const auto& [a, b] : directed)
     if (!std::binary_search(sorted.begin(), sorted.end(), std::make_pair(b, a))) edges.push_back({a, b});
+  return edges;
+}
+
+bool boundary_edges_meet(const QuadMesh& m, const std::array<int, 2>& e, const std::array<int, 2>& f) {
+  const int shared = (e[0] == f[0]) + (e[0] == f[1]) + (e[1] == f[0]) + (e[1] == f[1]);
+  const Point2 &p = m.points[e[0]], &q = m.points[e[1]], &r = m.points[f[0]], &s = m.points[f[1]];
+  if (shared == 0) return segments_meet(p, q, r, s);
+  if (shared != 1) return false;
+  // Edges with a common end meet elsewhere only if they overlap along a line.
+  const int o = e[0] == f[0] || e[0] == f[1] ? 0 : 1;  // e's shared end
+  const Point2& common = o == 0 ? p : q;
+  const Point2& e_other = o == 0 ? q : p;
+  const Point2& f_other = (f[0] == e[o]) ? s : r;
+  return orientation(common, e_other, f_other) == 0 &&
+         (e_other.x - common.x) * (f_other.x - common.x) +
+                 (e_other.y - common.y) * (f_other.y - common.y) > 0;
+}
+
+std::vector<std::array<int, 4>> boundary_crossings(const QuadMesh& m) {
+  std::vector<std::array<int, 4>> out;
+  const std::vector<std::array<int, 2>> edges = boundary_edges(m);
   if (edges.size() < 2) return out;
   // A uniform grid of cells about one mean edge long; a pair is tested in the first cell
   // both edges' boxes share.
@@ -110,22 +130,7 @@ std::vector<std::array<int, 4>> boundary_crossings(const QuadMesh& m) {
         const auto be = box(e), bf = box(f);
         // Only in the first cell the two boxes share.
         if (std::max(be[0], bf[0]) != ci || std::max(be[1], bf[1]) != cj) continue;
-        const int shared = (e[0] == f[0]) + (e[0] == f[1]) + (e[1] == f[0]) + (e[1] == f[1]);
-        const Point2 &p = m.points[e[0]], &q = m.points[e[1]], &r = m.points[f[0]], &s = m.points[f[1]];
-        bool meet;
-        if (shared == 0) {
-          meet = segments_meet(p, q, r, s);
-        } else {
-          // Edges with a common end meet elsewhere only if they overlap along a line.
-          const int o = e[0] == f[0] || e[0] == f[1] ? 0 : 1;  // e's shared end
-          const Point2& common = o == 0 ? p : q;
-          const Point2& e_other = o == 0 ? q : p;
-          const Point2& f_other = (f[0] == e[o]) ? s : r;
-          meet = shared == 1 && orientation(common, e_other, f_other) == 0 &&
-                 (e_other.x - common.x) * (f_other.x - common.x) +
-                         (e_other.y - common.y) * (f_other.y - common.y) > 0;
-        }
-        if (meet) out.push_back({e[0], e[1], f[0], f[1]});
+        if (boundary_edges_meet(m, e, f)) out.push_back({e[0], e[1], f[0], f[1]});
       }
   }
   return out;

@@ -34,6 +34,11 @@ double quad_convexity(const QuadMesh& mesh, int q);
 std::size_t count_boundary_crossings(const QuadMesh& mesh, Point2* where = nullptr);
 // The pairs themselves: (a, b, c, d) for boundary edges a->b and c->d.
 std::vector<std::array<int, 4>> boundary_crossings(const QuadMesh& mesh);
+// The boundary edges (a, b), directed with the mesh on their left.
+std::vector<std::array<int, 2>> boundary_edges(const QuadMesh& mesh);
+// Whether two boundary edges meet other than at a shared end (the test above).
+bool boundary_edges_meet(const QuadMesh& mesh, const std::array<int, 2>& e,
+                         const std::array<int, 2>& f);
 
 // The four interior angles in degrees.
 std::array<double, 4> quad_angles_deg(const QuadMesh& mesh, int q);

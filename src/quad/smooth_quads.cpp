@@ -654,6 +654,7 @@ std::size_t unfold_boundary(const BackgroundMesh& bg, QuadMesh& m, const Topolog
       for (int v : pair) add(v);
     for (std::size_t k = 0, n = ends.size(); k < n; ++k)
       for (int w : t.boundary_neighbours[ends[k]]) add(w);
+    const std::vector<std::array<int, 2>> edges = boundary_edges(m);
     for (int v : ends) {
       const auto& bn = t.boundary_neighbours[v];
       const int c = m.chain[v];
@@ -664,6 +665,20 @@ std::size_t unfold_boundary(const BackgroundMesh& bg, QuadMesh& m, const Topolog
       if (d0 * d1 >= 0) continue;
       const Point2 start = m.points[v];
       const double start_arc = m.arc_m[v];
+      // Only the crossings of v's two boundary edges change as it slides.
+      std::vector<std::array<int, 2>> at_v;
+      for (const auto& e : edges)
+        if (e[0] == v || e[1] == v) at_v.push_back(e);
+      auto crossings_at_v = [&] {
+        std::size_t n = 0;
+        for (const auto& e : at_v)
+          for (const auto& f : edges)
+            if (f != e && !(std::find(at_v.begin(), at_v.end(), f) != at_v.end() && f < e) &&
+                boundary_edges_meet(m, e, f))
+              ++n;
+        return n;
+      };
+      const std::size_t before = crossings_at_v();
       bool done = false;
       for (double fraction : {0.8, 0.5, 0.3, 0.15, 0.05}) {
         for (double d : {d0, d1}) {
@@ -671,9 +686,9 @@ std::size_t unfold_boundary(const BackgroundMesh& bg, QuadMesh& m, const Topolog
           m.points[v] = chain_point(bg, bg.chains[c], arc);
           m.arc_m[v] = arc;
           if (worst_convexity(m, t, v) > params.min_convexity) {
-            const std::size_t left = count_boundary_crossings(m);
-            if (left < crossings) {
-              crossings = left;
+            const std::size_t after = crossings_at_v();
+            if (after < before) {
+              crossings = crossings - before + after;
               done = moved = true;
               break;
             }
