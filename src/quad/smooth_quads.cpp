@@ -872,7 +872,6 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
   if (count_nonconvex() == 0 && count_boundary_crossings(m) > 0 &&
       unfold_boundary(bg, m, topology(m), params) > 0)
     stats.num_collapses += collapse_folds(bg, m, params, stats);
-  stats.num_crossings_after = count_boundary_crossings(m);
   stats.num_nonconvex_after = count_nonconvex();
   return stats;
 }
