@@ -1,5 +1,6 @@
 #include "app/mesh_job.h"
 
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 
@@ -7,20 +8,59 @@
 #include "core/error.h"
 #include "core/json_writer.h"
 #include "mesh/boundary_corners.h"
+#include "mesh/locate.h"
 
 namespace isoquad {
+
+namespace {
+
+// Where an attempt failed: the centroids of the quads left non-convex and the midpoints
+// of crossing boundary edges.
+std::vector<Point2> failure_points(const QuadMesh& m, const SmoothParams& params) {
+  std::vector<Point2> points;
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
+    if (quad_convexity(m, q) <= params.min_convexity) points.push_back(quad_centroid(m, q));
+  for (const auto& c : boundary_crossings(m))
+    points.push_back({0.5 * (m.points[c[0]].x + m.points[c[1]].x),
+                      0.5 * (m.points[c[0]].y + m.points[c[1]].y)});
+  return points;
+}
+
+}  // namespace
+
+std::vector<LocalRefinement> refinements_at(const FieldsResult& f, const std::vector<Point2>& points,
+                                            std::size_t max_places) {
+  const TriangleLocator locator(f.mesh);
+  std::vector<LocalRefinement> out;
+  for (const Point2& p : points) {
+    bool near = false;
+    for (std::size_t i = 0; i < out.size() && !near; ++i)
+      near = std::hypot(p.x - out[i].centre.x, p.y - out[i].centre.y) < 2 * out[i].radius_m;
+    if (near) continue;
+    const Location loc = locator.locate(p);
+    if (loc.triangle < 0) continue;
+    const double h = f.size.at(f.mesh, loc.triangle, loc.bary);
+    out.push_back({p, h, 0.5 * h});
+    if (out.size() > max_places) return {};
+  }
+  return out;
+}
 
 MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
   MeshResult r;
   r.fields = build_fields(options.fields, progress.slice(0.0, 0.45));
+  FieldsOptions fields = options.fields;  // with the local refinements of failed attempts
 
   // The tiling and quad stages, retried when smoothing cannot make every quad convex:
   // such failures come from a few badly shaped tiles, and a different tiling rarely has
   // them at the same place. Attempts 1 and 3 start from the other initialization
   // (fronts or merging), which moves every tile; attempts 2 and 3 add a conforming
   // iteration and leave pairs of tiles as they are (no re-splitting: its tiles, cut
-  // along shortest paths, are the likelier to be bent at a sharp reflex corner). The
-  // attempts are a fixed sequence, so the output stays deterministic.
+  // along shortest paths, are the likelier to be bent at a sharp reflex corner). Each
+  // also has the sizes halved where the attempts before it failed (refinements_at), with
+  // the background mesh and fields built again: a fold where a channel is narrower than
+  // the quads comes back with any tiling of the same sizes. The attempts are a fixed
+  // sequence, so the output stays deterministic.
   for (int attempt = 0;; ++attempt) {
     MeshOptions o = options;
     o.tiling.conform_iters += attempt / 2;
@@ -67,6 +107,14 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
                              "narrower than they are: a larger --min-width fills such inlets, "
                              "a smaller --hmin or --size resolves them)"
                            : ""));
+    // The next attempt also has smaller sizes where this one failed.
+    const std::vector<LocalRefinement> more =
+        refinements_at(r.fields, failure_points(r.quads, o.smooth), options.max_refined_places);
+    if (!more.empty()) {
+      fields.sizing.refinements.insert(fields.sizing.refinements.end(), more.begin(), more.end());
+      problem += "; sizes halved at " + std::to_string(more.size()) + " place(s) there";
+      build_fields_on_domain(r.fields.front.domain, fields, r.fields, progress.slice(0.3, 0.45));
+    }
     r.retry_reasons.push_back(problem);
     progress.report("retry: " + problem, 0.45);
   }

@@ -22,6 +22,10 @@ struct MeshOptions {
   // Tiling attempts (build_mesh: the other initialization, then a conforming iteration
   // more) before giving up on a quad that smoothing cannot make convex.
   int max_attempts = 4;
+  // After a failed attempt, the next one has sizes halved where it failed
+  // (refinements_at), unless it failed at more places than this: then the failure is
+  // not a local feature and only the tiling changes.
+  std::size_t max_refined_places = 16;
 };
 
 struct MeshResult {
@@ -35,6 +39,14 @@ struct MeshResult {
   int attempts = 0;                        // tiling attempts made (see MeshOptions)
   std::vector<std::string> retry_reasons;  // why each earlier attempt was discarded
 };
+
+// Local refinements at the places where an attempt failed (one per cluster of points
+// within twice the local size h of each other): sizes at most h/2 within h of the place,
+// graded beyond. A channel narrower than its quads, where the chord of one bank cuts
+// the other bank's quads, then gets quads that fit it; a tile bent at a sharp corner,
+// smaller tiles. Empty when the points make more than max_places places.
+std::vector<LocalRefinement> refinements_at(const FieldsResult& fields, const std::vector<Point2>& points,
+                                            std::size_t max_places);
 
 // Throws Error(internal) rather than return a quad that is not strictly convex.
 MeshResult build_mesh(const MeshOptions& options, const Progress& progress = Progress());

@@ -37,6 +37,8 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
   if (params.hmin_m > 0 && params.hmax_m > 0 && params.hmin_m > params.hmax_m)
     usage("--hmin must not exceed --hmax");
   if (params.constant_m && *params.constant_m <= 0) usage("--size must be positive");
+  for (const LocalRefinement& r : params.refinements)
+    if (!(r.size_m > 0) || !(r.radius_m >= 0)) usage("a local refinement needs a positive size");
   const CrsInfo crs{domain.crs_wkt, domain.crs_name, false, true, 1.0};
 
   const bool explicit_source = params.constant_m || !params.expression.empty() ||
@@ -153,7 +155,12 @@ double SizingOracle::operator()(const Point2& p) const {
   if (!std::isfinite(h))
     throw Error(ErrorClass::usage, "sizing",
                 "no size at " + format_point(p) + " (outside every raster); give --hmax or --size");
-  return std::clamp(h, hmin_, hmax_);
+  h = std::clamp(h, hmin_, hmax_);
+  for (const LocalRefinement& r : params_.refinements) {
+    const double d = std::hypot(p.x - r.centre.x, p.y - r.centre.y);
+    h = std::min(h, r.size_m + gradation_ * std::max(0.0, d - r.radius_m));
+  }
+  return h;
 }
 
 double SizingField::at(const BackgroundMesh& mesh, int f, const std::array<double, 3>& b) const {

@@ -18,6 +18,16 @@ struct BackgroundMesh;
 class BoundaryFeatureSize;
 class RasterField;
 
+// A place where the sizes must be smaller than the sources say: at most size_m within
+// radius_m of centre, growing by the gradation beyond (a cone, already graded). Not
+// clamped to hmin. The mesh job adds these where a tiling attempt failed (a fold where a
+// channel is narrower than the quads, a quad no repair made convex).
+struct LocalRefinement {
+  Point2 centre;
+  double radius_m = 0.0;
+  double size_m = 0.0;
+};
+
 struct SizingParams {
   // Sources; `automatic` is the boundary's local feature size (feature_size.h).
   bool automatic = true;
@@ -35,6 +45,7 @@ struct SizingParams {
   double hmin_m = 0.0;        // --hmin (0: none, or the automatic default)
   double hmax_m = 0.0;        // --hmax (0: none, or the automatic default)
   double gradation = 0.2;     // --gradation K: |h(x) - h(y)| <= K |x - y|
+  std::vector<LocalRefinement> refinements;
 };
 
 // The resolved parameters and what the summary reports.
@@ -46,7 +57,8 @@ struct SizingSummary {
   std::size_t num_boundary_samples = 0;
 };
 
-// h(x) before gradation: the minimum of the sources, clamped to [hmin, hmax]. Not
+// h(x) before gradation: the minimum of the sources, clamped to [hmin, hmax], then of the
+// local refinements. Not
 // thread-safe. Throws Error(input) for a bad source (unreadable raster, expression that
 // does not parse) and Error(meshing) for a non-positive size.
 class SizingOracle {

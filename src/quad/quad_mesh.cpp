@@ -41,6 +41,12 @@ double quad_convexity(const QuadMesh& m, int q) {
   return quad_convexity(m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]);
 }
 
+Point2 quad_centroid(const QuadMesh& m, int q) {
+  Point2 c{0, 0};
+  for (int v : m.quads[q]) c.x += 0.25 * m.points[v].x, c.y += 0.25 * m.points[v].y;
+  return c;
+}
+
 namespace {
 
 // Sign of the turn a -> b -> c (0 when collinear).

@@ -25,6 +25,8 @@ Point2 chain_point(const BackgroundMesh& mesh, const BoundaryChain& chain, doubl
 // corner of a strictly convex counter-clockwise quad, in (-1, 1]).
 double quad_convexity(const Point2& a, const Point2& b, const Point2& c, const Point2& d);
 double quad_convexity(const QuadMesh& mesh, int q);
+// The mean of the quad's four vertices.
+Point2 quad_centroid(const QuadMesh& mesh, int q);
 
 // Pairs of boundary edges (edges of one quad only) that cross or touch other than at a
 // shared end: with every quad convex and counter-clockwise, the mesh then folds over

@@ -577,12 +577,6 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
     }
 }
 
-Point2 quad_centroid(const QuadMesh& m, int q) {
-  Point2 c{0, 0};
-  for (int v : m.quads[q]) c.x += 0.25 * m.points[v].x, c.y += 0.25 * m.points[v].y;
-  return c;
-}
-
 bool contains_point(const std::vector<Point2>& points, const Point2& p) {
   return std::any_of(points.begin(), points.end(),
                      [&](const Point2& o) { return o.x == p.x && o.y == p.y; });

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "core/error.h"
+#include "mesh/locate.h"
 #include "quad/quad_mesh.h"
 #include "support/test_support.h"
 
@@ -67,4 +68,36 @@ TEST(MeshJob, GivesUpWithAnErrorAfterTheLastAttempt) {
     EXPECT_NE(std::string(e.what()).find("after 2 tiling attempt(s)"), std::string::npos)
         << e.what();
   }
+}
+
+TEST(MeshJob, FailedPlacesGetHalfTheirSizeForTheNextAttempt) {
+  MeshOptions o = corsica(9000.0);
+  const FieldsResult f = build_fields(o.fields);
+  auto size_at = [&](const FieldsResult& g, const Point2& p) {
+    const TriangleLocator l(g.mesh);
+    const Location loc = l.locate(p);
+    return g.size.at(g.mesh, loc.triangle, loc.bary);
+  };
+  // Two places: three points, two of them closer than the local size.
+  const Point2 a = f.mesh.points[f.mesh.triangles[0][0]];
+  const Point2 b = f.mesh.points[f.mesh.triangles[f.mesh.triangles.size() / 2][0]];
+  const double ha = size_at(f, a);
+  const std::vector<LocalRefinement> r = refinements_at(f, {a, {a.x + 0.3 * ha, a.y}, b}, 16);
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_DOUBLE_EQ(r[0].size_m, 0.5 * ha);
+  EXPECT_DOUBLE_EQ(r[0].radius_m, ha);
+  EXPECT_TRUE(refinements_at(f, {a, b}, 1).empty());  // too many places: not local
+  // The fields built again with them: half the size there, the same far away.
+  FieldsOptions refined = o.fields;
+  refined.sizing.refinements = r;
+  FieldsResult g;
+  g.front = f.front;
+  build_fields_on_domain(f.front.domain, refined, g);
+  EXPECT_NEAR(size_at(g, a), 0.5 * ha, 0.05 * ha);
+  EXPECT_LT(size_at(g, b), 0.55 * size_at(f, b));
+  EXPECT_GT(predicted_num_quads(g.mesh, g.size), predicted_num_quads(f.mesh, f.size));
+  const double hmin = f.sizing.hmin_m;
+  double smallest = 1e300;
+  for (double h : g.size.size_m) smallest = std::min(smallest, h);
+  EXPECT_LT(smallest, hmin);  // refinements are not clamped to hmin
 }

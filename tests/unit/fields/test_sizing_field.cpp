@@ -106,6 +106,44 @@ TEST(SizingField, GradationMakesEveryEdgeLipschitz) {
   EXPECT_GT(far_max, 99.0);
 }
 
+// A local refinement (what a failed tiling attempt adds): at most its size within its
+// radius, growing by the gradation beyond, below hmin too; elsewhere the sources as
+// before; the field stays K-Lipschitz and predicts more quads.
+TEST(SizingField, LocalRefinementIsAGradedConeBelowHmin) {
+  const Domain d = rectangle(2000, 2000);
+  SizingParams p;
+  p.automatic = false;
+  p.constant_m = 100.0;
+  p.hmin_m = 80.0;
+  p.gradation = 0.25;
+  SizingOracle plain(d, p);
+  p.refinements.push_back({{500, 500}, 100.0, 40.0});
+  SizingOracle refined(d, p);
+  EXPECT_DOUBLE_EQ(refined({500, 500}), 40.0);
+  EXPECT_DOUBLE_EQ(refined({580, 500}), 40.0);                // inside the radius
+  EXPECT_NEAR(refined({500, 300}), 40.0 + 0.25 * 100.0, 1e-9);  // 200 m away: the cone
+  EXPECT_DOUBLE_EQ(refined({500, 900}), 100.0);               // beyond the cone
+  EXPECT_DOUBLE_EQ(refined({1500, 1500}), plain({1500, 1500}));
+  const BackgroundMesh mesh = mesh_for(d, refined);
+  const SizingField f = sample_sizing_field(mesh, refined, p.gradation);
+  expect_lipschitz(mesh, f, 0.25);
+  const BackgroundMesh plain_mesh = mesh_for(d, plain);
+  const SizingField g = sample_sizing_field(plain_mesh, plain, p.gradation);
+  EXPECT_GT(predicted_num_quads(mesh, f), predicted_num_quads(plain_mesh, g) + 10);
+  // Triangles near the centre follow the refined size.
+  double longest_near = 0;
+  for (const auto& t : mesh.triangles)
+    for (int i = 0; i < 3; ++i) {
+      const Point2 &a = mesh.points[t[i]], &b = mesh.points[t[(i + 1) % 3]];
+      if (std::hypot(a.x - 500, a.y - 500) < 50 && std::hypot(b.x - 500, b.y - 500) < 50)
+        longest_near = std::max(longest_near, std::hypot(a.x - b.x, a.y - b.y));
+    }
+  EXPECT_GT(longest_near, 0.0);
+  EXPECT_LE(longest_near, 0.5 * 40.0 * 1.01);
+  p.refinements.back().size_m = 0.0;
+  EXPECT_EQ(error_of([&] { SizingOracle o(d, p); }).error_class(), ErrorClass::usage);
+}
+
 TEST(SizingField, AutomaticSizingPutsCellsAcrossAThinRectangle) {
   for (double cells : {2.0, 4.0})
     for (double gradation : {1.0, 0.2}) {
