@@ -112,6 +112,7 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
         refinements_at(r.fields, failure_points(r.quads, o.smooth), options.max_refined_places);
     if (!more.empty()) {
       fields.sizing.refinements.insert(fields.sizing.refinements.end(), more.begin(), more.end());
+      r.refinements = fields.sizing.refinements;
       problem += "; sizes halved at " + std::to_string(more.size()) + " place(s) there";
       build_fields_on_domain(r.fields.front.domain, fields, r.fields, progress.slice(0.3, 0.45));
     }
@@ -201,8 +202,17 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
       .value("hmax_m", r.fields.sizing.hmax_m)
       .value("gradation", r.fields.sizing.gradation)
       .array("sources", r.fields.sizing.sources)
-      .value("predicted_quads", predicted_num_quads(r.fields.mesh, r.fields.size))
-      .end_object();
+      .value("predicted_quads", predicted_num_quads(r.fields.mesh, r.fields.size));
+  j.begin_array("local_refinements");  // where failed tiling attempts halved the sizes
+  for (const LocalRefinement& f : r.refinements)
+    j.begin_object()
+        .value("x_m", f.centre.x)
+        .value("y_m", f.centre.y)
+        .value("radius_m", f.radius_m)
+        .value("size_m", f.size_m)
+        .end_object();
+  j.end_array();
+  j.end_object();
   j.begin_object("background")
       .value("num_vertices", r.fields.mesh.points.size())
       .value("num_triangles", r.fields.mesh.triangles.size())

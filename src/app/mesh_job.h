@@ -38,6 +38,7 @@ struct MeshResult {
   SmoothStats smooth;
   int attempts = 0;                        // tiling attempts made (see MeshOptions)
   std::vector<std::string> retry_reasons;  // why each earlier attempt was discarded
+  std::vector<LocalRefinement> refinements;  // added after failed attempts (refinements_at)
 };
 
 // Local refinements at the places where an attempt failed (one per cluster of points

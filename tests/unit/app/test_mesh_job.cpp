@@ -101,3 +101,37 @@ TEST(MeshJob, FailedPlacesGetHalfTheirSizeForTheNextAttempt) {
   for (double h : g.size.size_m) smallest = std::min(smallest, h);
   EXPECT_LT(smallest, hmin);  // refinements are not clamped to hmin
 }
+
+TEST(MeshJob, TheRetryHasSmallerSizesWhereTheFailedAttemptFailed) {
+  // France at hmax 24 km with --simplify 800: the first tiling leaves two quads that no
+  // repair makes convex (near Le Croisic, by the Loire's mouth); the second, with the
+  // sizes halved there, meshes.
+  // (Should a change mesh it in one tiling, this test needs another such case.)
+  MeshOptions o;
+  o.fields.front.read.path = sample("france.shp");
+  o.fields.sizing.hmax_m = 24000.0;
+  o.fields.front.simplify_m = 800.0;
+  const MeshResult r = build_mesh(o);
+  ASSERT_EQ(r.attempts, 2) << "the premise: the first attempt fails";
+  ASSERT_EQ(r.retry_reasons.size(), 1u);
+  EXPECT_NE(r.retry_reasons[0].find("sizes halved at 1 place(s)"), std::string::npos)
+      << r.retry_reasons[0];
+  ASSERT_EQ(r.refinements.size(), 1u);
+  const LocalRefinement& f = r.refinements[0];
+  EXPECT_LT(f.size_m, r.fields.sizing.hmin_m);
+  // The final quads near the place are about that small; far away, as before.
+  double nearest_area = 0, nearest = 1e300;
+  for (int q = 0; q < static_cast<int>(r.quads.quads.size()); ++q) {
+    const Point2 c = quad_centroid(r.quads, q);
+    const double d = std::hypot(c.x - f.centre.x, c.y - f.centre.y);
+    if (d < nearest) nearest = d, nearest_area = quad_area(r.quads, q);
+  }
+  EXPECT_LT(nearest, f.radius_m);
+  EXPECT_LT(std::sqrt(nearest_area), 1.5 * f.size_m);
+  EXPECT_EQ(r.quality.num_nonconvex, 0u);
+  EXPECT_EQ(r.quality.num_boundary_crossings, 0u);
+  const std::string json = mesh_report_json(r, "test");
+  const std::size_t at = json.find("\"local_refinements\"");
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NE(json.find("\"radius_m\"", at), std::string::npos);
+}
