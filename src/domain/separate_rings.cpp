@@ -115,8 +115,12 @@ void separate_rings(Domain& domain, double r_m) {
     }
     cuts.push_back(geos.polygon({octagon}));
   }
-  const GeosGeometry cut = geos.difference(geos.multipolygon(std::move(parts)),
-                                           geos.unary_union(geos.multipolygon(std::move(cuts))));
+  // A ring touching itself is invalid for GEOS's overlays: made valid first (the touch
+  // stays, and the octagon cuts it).
+  GeosGeometry whole = geos.multipolygon(std::move(parts));
+  if (!geos.validity(whole).valid) whole = geos.make_valid(whole);
+  const GeosGeometry cut =
+      geos.difference(whole, geos.unary_union(geos.multipolygon(std::move(cuts))));
   std::vector<Polygon> polygons = geos.polygons(cut);
   if (polygons.empty())
     throw Error(ErrorClass::input, "simplify", "nothing is left after separating touching rings");
