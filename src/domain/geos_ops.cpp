@@ -184,6 +184,13 @@ GeosGeometry GeosContext::clip_by_rect(const GeosGeometry& g, double xmin, doubl
       "clip");
 }
 
+GeosGeometry GeosContext::clip_valid(const GeosGeometry& g, double xmin, double ymin, double xmax,
+                                     double ymax) {
+  GeosGeometry clipped = clip_by_rect(g, xmin, ymin, xmax, ymax);
+  if (validity(clipped).valid) return clipped;
+  return intersection(g, polygon({{{xmin, ymin}, {xmax, ymin}, {xmax, ymax}, {xmin, ymax}}}));
+}
+
 GeosGeometry GeosContext::buffer_mitre(const GeosGeometry& g, double distance, double mitre_limit) {
   return check(GEOSBufferWithStyle_r(state_->handle, static_cast<GEOSGeometry*>(g.get()), distance,
                                      8, GEOSBUF_CAP_FLAT, GEOSBUF_JOIN_MITRE, mitre_limit),

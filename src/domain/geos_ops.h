@@ -61,9 +61,13 @@ class GeosContext {
   // their place (down to mitre_limit, in multiples of |distance|) instead of rounding.
   GeosGeometry buffer_mitre(const GeosGeometry& g, double distance, double mitre_limit);
   // The part of g inside the rectangle (xmin, ymin, xmax, ymax); fast, possibly invalid
-  // along the cut, which is fine for intersection tests.
+  // along the cut: overlays (intersection...) refuse such input.
   GeosGeometry clip_by_rect(const GeosGeometry& g, double xmin, double ymin, double xmax,
                             double ymax);
+  // The same for a valid g, valid: the fast clip, or where that is invalid, the
+  // intersection with the rectangle.
+  GeosGeometry clip_valid(const GeosGeometry& g, double xmin, double ymin, double xmax,
+                          double ymax);
   // The polygons of a (multi)polygon or collection, each with its rings, open.
   std::vector<Polygon> polygons(const GeosGeometry& g);
   double area(const GeosGeometry& g);

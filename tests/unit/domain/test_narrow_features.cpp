@@ -155,3 +155,27 @@ TEST(NarrowFeatures, ManyPiecesAreCheckedByTheirContactsWithTheSameResult) {
   EXPECT_TRUE(s.changed);
   EXPECT_NEAR(s.area_added_m2, 20.0 * 400.0, 0.05 * 20.0 * 400.0);
 }
+
+TEST(NarrowFeatures, AThinIslandStaysAndTheSlitBesideItIsStillFilled) {
+  // A water domain with a slit 20 m wide and an island 30 m wide (a hole): the closing
+  // fills both, but filling the island removes a hole. By contacts (beyond
+  // max_sequential_pieces) the island's contact runs all round it: not one arc, so it
+  // stays; the slit is filled. (Before, the island counted as one contact, the overlay
+  // of both lost the hole, and neither was applied.)
+  NarrowParams local;
+  local.min_width_m = 100.0;
+  local.max_sequential_pieces = 0;
+  Domain sea = one_polygon({{0, 0},    {490, 0},     {490, 400}, {510, 400}, {510, 0},
+                            {1000, 0}, {1000, 1000}, {0, 1000}},
+                           {{{300, 700}, {700, 700}, {700, 730}, {300, 730}}});
+  const double island = 400.0 * 30.0, slit = 20.0 * 400.0;
+  const double before = area(sea);
+  const NarrowResult r = remove_narrow_features(sea, local);
+  EXPECT_TRUE(r.changed);
+  EXPECT_EQ(r.num_pieces, 1u);
+  EXPECT_EQ(r.num_pieces_kept, 1u);
+  ASSERT_EQ(sea.polygons.size(), 1u);
+  ASSERT_EQ(sea.polygons[0].holes.size(), 1u);
+  EXPECT_NEAR(std::abs(signed_area(sea.polygons[0].holes[0])), island, 0.01 * island);
+  EXPECT_NEAR(area(sea), before + slit, 0.05 * slit);
+}
