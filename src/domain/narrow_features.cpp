@@ -204,9 +204,6 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     // the topology still changes, only the pieces whose boxes meet no other piece's are
     // applied (each alone keeps it, by its contacts, but for the slivers below), less
     // those that still change it, and when even that changes it, nothing is.
-    // The reference is the domain through the same overlay and cleaning with no piece:
-    // the cleaning alone may change it (a hole touching the outer ring at a point opens
-    // there: the Caribbean's water at 1:10m, where every piece was refused for that).
     const double tiny = params.min_width_m * params.min_width_m;
     // The domain with the pieces in `ids`, when that keeps the reference topology (an
     // overlay GEOS fails on, at a non-noded intersection, counts as a change).
@@ -224,8 +221,8 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
       }
     };
     // The reference is the domain through the same overlay and cleaning with no piece:
-    // the cleaning alone may change it (a hole touching the outer ring at a point opens
-    // there: the Caribbean's water at 1:10m, where every piece was refused for that).
+    // the cleaning alone may change it (a hole touching the outer ring at a point would
+    // open there, and every piece be refused for that).
     try {
       reference = topology(overlay(std::vector<bool>(accepted.size(), false)), tiny);
     } catch (const Error&) {
@@ -253,8 +250,8 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
       if (!keeps(ids, nullptr)) {
         // Some piece changes it even alone: a fill the closing's mitred corner makes,
         // touching the domain at that corner only, is joined to it by a sliver that the
-        // cleaning drops (Indonesia at 1:10m: a 2.6 km2 triangle among 115 pieces, and
-        // none was applied). Halving finds the pieces that change it, or the sets that
+        // cleaning drops (Indonesia at 1:10m, --min-width 1000: a 2.6 km2 triangle among
+        // 115 pieces, and none was applied). Halving finds the pieces that change it, or the sets that
         // change it only together.
         std::vector<bool> dropped(accepted.size(), false);
         std::function<void(const std::vector<std::size_t>&)> drop =
