@@ -58,9 +58,8 @@ struct SizingSummary {
 };
 
 // h(x) before gradation: the minimum of the sources, clamped to [hmin, hmax], then of the
-// local refinements. Not
-// thread-safe. Throws Error(input) for a bad source (unreadable raster, expression that
-// does not parse) and Error(meshing) for a non-positive size.
+// local refinements. Not thread-safe. Throws Error(input) for a bad source (unreadable
+// raster, expression that does not parse) and Error(meshing) for a non-positive size.
 class SizingOracle {
  public:
   SizingOracle(const Domain& domain, const SizingParams& params);

@@ -517,9 +517,7 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
   for (std::size_t q = 0; q < m.quads.size(); ++q) {
     area0[q] = quad_area(m, static_cast<int>(q));
     if (!size) continue;
-    Point2 c{0, 0};
-    for (int v : m.quads[q]) c.x += 0.25 * m.points[v].x, c.y += 0.25 * m.points[v].y;
-    const Location loc = locator->locate(c);
+    const Location loc = locator->locate(quad_centroid(m, static_cast<int>(q)));
     const double h = loc.triangle >= 0 ? size->at(bg, loc.triangle, loc.bary) : 0.0;
     if (h > 0) area0[q] = h * h;
   }
