@@ -18,6 +18,8 @@ struct RingVertex {
   int index = 0;
 };
 
+}  // namespace
+
 // Vertices that touch another part of the domain's rings: a vertex used twice (by two
 // rings, or twice by one ring), or within 1e-9 of the domain's extent (a millimetre at
 // 1000 km) of a segment it does not end: GEOS output often has such near-touches, off by
@@ -87,12 +89,6 @@ std::vector<Point2> pinch_points(const Domain& domain) {
     }
   }
   return out;
-}
-
-}  // namespace
-
-std::size_t count_pinch_points(const Domain& domain) {
-  return pinch_points(domain).size();
 }
 
 void separate_rings(Domain& domain, double r_m) {

@@ -3,15 +3,16 @@
 // such pinch points; the background mesh cannot triangulate a domain pinched to a point.
 #pragma once
 
-#include <cstddef>
+#include <vector>
 
 #include "core/geometry.h"
 
 namespace isoquad {
 
-// Places where the domain's rings touch: a vertex used twice (by two rings, or twice by
-// one ring), or within 1e-9 of the domain's extent of a segment it does not end.
-std::size_t count_pinch_points(const Domain& domain);
+// Places where the domain's rings touch, one point each: a vertex used twice (by two
+// rings, or twice by one ring), or within 1e-9 of the domain's extent of a segment it
+// does not end.
+std::vector<Point2> pinch_points(const Domain& domain);
 
 // Separates the rings at every pinch point by cutting a small octagon of radius r out of
 // the domain there: two holes touching at a point become one hole, a hole touching its

@@ -147,6 +147,36 @@ TEST(Cli, WaterDomainAndRepairFromTheCommandLine) {
   EXPECT_NE(r.out.find("1 invalid polygon(s) fixed"), std::string::npos) << r.out;
 }
 
+// The Arctic Ocean's side of Europe and Asia from Natural Earth's land at 1:110m (the
+// seven parts of `world-atlas` land-110m.json that reach 64 N between 1 W and 91 E): with
+// no simplification, cutting the rings apart where they touched left two of the pieces,
+// slivers between the coast and the bbox edge at 66 N, touching at a point, and the
+// domain command stopped ("rings still touch after cutting them apart").
+TEST(Cli, PiecesLeftTouchingByACutAreCutApartInTurn) {
+  TempDir dir;
+  const std::string out = dir.file("arctic.gpkg");
+  const CliResult r = run_cli({"domain", source_dir() + "/tests/data/arctic_110m.geojson", "-o", out,
+                               "--bbox", "0,66,90,90", "--domain", "water", "--repair"},
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("point(s) where rings touched were cut apart"), std::string::npos) << r.err;
+  isoquad::ensure_gdal_registered();
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(out.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  OGRLayer* layer = ds->GetLayerByName("domain");
+  ASSERT_NE(layer, nullptr);
+  double area_m2 = 0;
+  for (auto& f : *layer) {
+    ASSERT_TRUE(f->GetGeometryRef()->IsValid());
+    area_m2 += f->GetFieldAsDouble("area_m2");
+  }
+  // The sea north of 66 N between 0 and 90 E (the Barents and Kara seas, the White Sea,
+  // part of the Norwegian and Greenland seas): 3.95 million km2.
+  EXPECT_NEAR(area_m2 / 3.95e12, 1.0, 0.02);
+  GDALClose(ds);
+}
+
 TEST(Cli, SameInputGivesByteIdenticalOutput) {
   TempDir dir;
   for (const char* name : {"a.gpkg", "b.gpkg"}) {
