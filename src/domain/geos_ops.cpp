@@ -159,6 +159,11 @@ GeosGeometry GeosContext::unary_union(const GeosGeometry& g) {
   return check(GEOSUnaryUnion_r(state_->handle, static_cast<GEOSGeometry*>(g.get())), "union");
 }
 
+GeosGeometry GeosContext::unary_union_snapped(const GeosGeometry& g, double grid) {
+  return check(GEOSUnaryUnionPrec_r(state_->handle, static_cast<GEOSGeometry*>(g.get()), grid),
+               "union");
+}
+
 GeosGeometry GeosContext::union_of(const GeosGeometry& a, const GeosGeometry& b) {
   return check(GEOSUnion_r(state_->handle, static_cast<GEOSGeometry*>(a.get()),
                            static_cast<GEOSGeometry*>(b.get())),

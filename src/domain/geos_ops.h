@@ -54,6 +54,9 @@ class GeosContext {
   // GEOS's MakeValid (structure method), keeping only the polygonal part.
   GeosGeometry make_valid(const GeosGeometry& g);
   GeosGeometry unary_union(const GeosGeometry& g);
+  // The union with every coordinate snapped to a grid of this spacing (GEOS's precision
+  // model): pieces closer than about the spacing join.
+  GeosGeometry unary_union_snapped(const GeosGeometry& g, double grid);
   GeosGeometry union_of(const GeosGeometry& a, const GeosGeometry& b);
   GeosGeometry intersection(const GeosGeometry& a, const GeosGeometry& b);
   GeosGeometry difference(const GeosGeometry& a, const GeosGeometry& b);

@@ -18,7 +18,13 @@ struct RingVertex {
   int index = 0;
 };
 
-}  // namespace
+// A vertex touching another part of the rings: ring (outer rings and holes numbered
+// polygon by polygon), its index there, where.
+struct Touch {
+  int ring = 0;
+  int index = 0;
+  Point2 p;
+};
 
 // Vertices that touch another part of the domain's rings: a vertex used twice (by two
 // rings, or twice by one ring), or within 1e-9 of the domain's extent (a millimetre at
@@ -26,7 +32,7 @@ struct RingVertex {
 // rounding, which the triangulation takes as separate and between which CGAL's
 // refinement can fail (Fiji's water had five, 1e-11 m apart). Real narrow gaps are the
 // narrow-feature step's business. One point per place.
-std::vector<Point2> pinch_points(const Domain& domain) {
+std::vector<Touch> touching_vertices(const Domain& domain, double* tol_out) {
   std::vector<const Ring*> rings;
   for (const Polygon& p : domain.polygons) {
     rings.push_back(&p.outer);
@@ -43,6 +49,7 @@ std::vector<Point2> pinch_points(const Domain& domain) {
   if (num_segments == 0) return {};
   const double extent = std::max(x1 - x0, y1 - y0);
   const double tol = 1e-9 * extent;
+  if (tol_out) *tol_out = tol;
   // Segments in a uniform grid of about one segment per cell, each in every cell its
   // box (widened by tol) meets.
   const int n = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(num_segments))));
@@ -61,7 +68,7 @@ std::vector<Point2> pinch_points(const Domain& domain) {
           grid[static_cast<std::size_t>(gy) * nx + gx].push_back({ri, i});
     }
   }
-  std::vector<Point2> out;
+  std::vector<Touch> out;
   for (int ri = 0; ri < static_cast<int>(rings.size()); ++ri) {
     const Ring& r = *rings[ri];
     const int m = static_cast<int>(r.size());
@@ -81,26 +88,83 @@ std::vector<Point2> pinch_points(const Domain& domain) {
           break;
         }
       }
-      if (!touches) continue;
-      // One point per place: the places found so far are few.
-      bool known = false;
-      for (const Point2& p : out) known = known || std::hypot(p.x - q.x, p.y - q.y) <= 2 * tol;
-      if (!known) out.push_back(q);
+      if (touches) out.push_back({ri, i, q});
     }
   }
   return out;
 }
 
-void separate_rings(Domain& domain, double r_m) {
-  const std::vector<Point2> pinches = pinch_points(domain);
-  if (pinches.empty()) return;
-  GeosContext geos;
+std::vector<GeosGeometry> geos_polygons(GeosContext& geos, const Domain& domain) {
   std::vector<GeosGeometry> parts;
   for (const Polygon& p : domain.polygons) {
     std::vector<Ring> rings{p.outer};
     rings.insert(rings.end(), p.holes.begin(), p.holes.end());
     parts.push_back(geos.polygon(rings));
   }
+  return parts;
+}
+
+void set_polygons(Domain& domain, std::vector<Polygon> polygons) {
+  for (Polygon& p : polygons) orient_polygon(p);
+  sort_by_area(polygons);
+  domain.polygons = std::move(polygons);
+}
+
+}  // namespace
+
+std::vector<Point2> pinch_points(const Domain& domain) {
+  double tol = 0.0;
+  std::vector<Point2> out;
+  for (const Touch& t : touching_vertices(domain, &tol)) {
+    // One point per place: the places found so far are few.
+    bool known = false;
+    for (const Point2& p : out) known = known || std::hypot(p.x - t.p.x, p.y - t.p.y) <= 2 * tol;
+    if (!known) out.push_back(t.p);
+  }
+  return out;
+}
+
+bool merge_overlapping_polygons(Domain& domain) {
+  if (domain.polygons.size() < 2) return false;
+  // Two consecutive vertices of a ring both touching: the edge between them runs along
+  // another ring, a contact GEOS may not see (rounding leaves a gap or an overlap of a
+  // few nanometres: the pieces were projected from longitudes -180 and 180).
+  double tol = 0.0;
+  const std::vector<Touch> touches = touching_vertices(domain, &tol);
+  bool edge_contact = false;
+  for (std::size_t k = 1; k < touches.size() && !edge_contact; ++k)
+    edge_contact = touches[k].ring == touches[k - 1].ring && touches[k].index == touches[k - 1].index + 1;
+  GeosContext geos;
+  // Each polygon valid on its own (a ring touching itself is invalid for GEOS), as a
+  // multipolygon: invalid only where two of them overlap or share boundary.
+  std::vector<GeosGeometry> parts;
+  for (GeosGeometry& g : geos_polygons(geos, domain)) {
+    if (geos.validity(g).valid) {
+      parts.push_back(std::move(g));
+      continue;
+    }
+    for (const Polygon& p : geos.polygons(geos.make_valid(g))) {
+      std::vector<Ring> rings{p.outer};
+      rings.insert(rings.end(), p.holes.begin(), p.holes.end());
+      parts.push_back(geos.polygon(rings));
+    }
+  }
+  const GeosGeometry all = geos.multipolygon(std::move(parts));
+  if (!edge_contact && geos.validity(all).valid) return false;
+  // Snapped to a grid of 4 tol: vertices move by 2 tol at most (a millimetre at 500 km).
+  // Kept only when polygons did join (two point contacts at consecutive vertices look
+  // like an edge contact too).
+  std::vector<Polygon> merged = geos.polygons(geos.unary_union_snapped(all, 4.0 * tol));
+  if (merged.empty() || merged.size() >= domain.polygons.size()) return false;
+  set_polygons(domain, std::move(merged));
+  return true;
+}
+
+void separate_rings(Domain& domain, double r_m) {
+  const std::vector<Point2> pinches = pinch_points(domain);
+  if (pinches.empty()) return;
+  GeosContext geos;
+  std::vector<GeosGeometry> parts = geos_polygons(geos, domain);
   // Octagons of radius r around the pinch points, cut out of the domain.
   std::vector<GeosGeometry> cuts;
   for (const Point2& c : pinches) {
@@ -120,9 +184,7 @@ void separate_rings(Domain& domain, double r_m) {
   std::vector<Polygon> polygons = geos.polygons(cut);
   if (polygons.empty())
     throw Error(ErrorClass::input, "simplify", "nothing is left after separating touching rings");
-  for (Polygon& p : polygons) orient_polygon(p);
-  sort_by_area(polygons);
-  domain.polygons = std::move(polygons);
+  set_polygons(domain, std::move(polygons));
 }
 
 }  // namespace isoquad

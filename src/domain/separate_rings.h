@@ -14,6 +14,14 @@ namespace isoquad {
 // does not end.
 std::vector<Point2> pinch_points(const Domain& domain);
 
+// Polygons that overlap or share a stretch of boundary (the pieces of a land mass that
+// the source cuts at the antimeridian meet only once projected: Chukotka in a domain
+// round the North Pole) are merged into one, each polygon made valid first, coordinates
+// snapped to a grid of 4e-9 of the domain's extent. Polygons touching only at points stay
+// as they are, and the domain is unchanged unless polygons join. Returns whether they
+// did.
+bool merge_overlapping_polygons(Domain& domain);
+
 // Separates the rings at every pinch point by cutting a small octagon of radius r out of
 // the domain there: two holes touching at a point become one hole, a hole touching its
 // shell becomes a bay. Throws Error(input) when nothing is left.
