@@ -202,6 +202,12 @@ class Reader {
     std::string selection;
     if (!p_.where.empty()) selection += " --where " + quote(p_.where);
     if (p_.bbox) selection += " --bbox";
+    if (out_.polygons.empty() && p_.empty_bbox_selection_ok && p_.bbox && p_.where.empty() &&
+        (out_.num_features == 0 || num_other == 0)) {
+      out_.warnings.push_back("no polygon of layer " + quote(out_.layer_name) +
+                              " reaches the bbox: the water domain is the whole bbox");
+      return;
+    }
     if (out_.num_features == 0) {
       if (selection.empty()) fail(ErrorClass::input, "layer " + quote(out_.layer_name) + " is empty");
       fail(ErrorClass::input, "the selection (" + selection.substr(1) +

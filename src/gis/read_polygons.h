@@ -21,6 +21,9 @@ struct ReadParams {
   std::string bbox_crs;                     // CRS of the bbox; empty: the source CRS
   std::string src_crs;                      // assigns the source CRS (overrides the file's)
   bool repair = false;                      // accept unclosed and degenerate rings, fixing them
+  // A --bbox selection (without --where) that matches no polygon gives no polygons and a
+  // warning instead of an error: the water domain of open sea is the whole bbox.
+  bool empty_bbox_selection_ok = false;
 };
 
 // One polygon of one feature, in the source CRS. rings[0] is the outer ring, the rest

@@ -177,6 +177,38 @@ TEST(Cli, PiecesLeftTouchingByACutAreCutApartInTurn) {
   GDALClose(ds);
 }
 
+TEST(Cli, WaterOfOpenSeaIsTheWholeBbox) {
+  // Off Brittany, no land in the bbox: the water domain is the bbox (with a warning);
+  // the land domain there is still an error, and so is a --where matching nothing.
+  TempDir dir;
+  const std::string out = dir.file("sea.gpkg");
+  CliResult r = run_cli({"domain", sample("brittany_land.geojson"), "-o", out, "--domain", "water",
+                         "--bbox", "-5.3,46.9,-4.7,47.3", "--size", "2000"},
+                        dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("the water domain is the whole bbox"), std::string::npos) << r.err;
+  EXPECT_NE(r.out.find("1 component(s), 1 ring(s), 0 hole(s)"), std::string::npos) << r.out;
+  // 0.6 by 0.4 degrees at 47.1 N: about 45.5 by 44.5 km.
+  isoquad::ensure_gdal_registered();
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(out.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  OGRLayer* layer = ds->GetLayerByName("domain");
+  ASSERT_NE(layer, nullptr);
+  auto f = std::unique_ptr<OGRFeature>(layer->GetNextFeature());
+  ASSERT_NE(f, nullptr);
+  EXPECT_NEAR(f->GetFieldAsDouble("area_m2") / 2.0255e9, 1.0, 0.01);
+  GDALClose(ds);
+  r = run_cli({"domain", sample("brittany_land.geojson"), "-o", dir.file("land.gpkg"), "--domain",
+               "land", "--bbox", "-5.3,46.9,-4.7,47.3"},
+              dir);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  r = run_cli({"domain", sample("brittany_land.geojson"), "-o", dir.file("where.gpkg"), "--domain",
+               "water", "--bbox", "-5.3,46.9,-4.7,47.3", "--where", "name = 'nothing'"},
+              dir);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+}
+
 TEST(Cli, SameInputGivesByteIdenticalOutput) {
   TempDir dir;
   for (const char* name : {"a.gpkg", "b.gpkg"}) {
