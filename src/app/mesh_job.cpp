@@ -71,32 +71,45 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
     CornerParams corners;
     corners.corner_angle_deg = o.tiling.graph.corner_angle_deg;
     tag_corners(r.fields.mesh, r.fields.size, corners);  // the repairs may clear some
-    r.tiling = build_tiling(r.fields.mesh, r.fields.size, r.fields.cross, o.tiling,
-                            progress.slice(0.45, 0.9));
+    r.attempts = attempt + 1;
+    std::string problem;
+    std::vector<Point2> failed_at;
+    try {
+      r.tiling = build_tiling(r.fields.mesh, r.fields.size, r.fields.cross, o.tiling,
+                              progress.slice(0.45, 0.9));
+    } catch (const TilingError& e) {
+      // A tile the repairs cannot mend (a sliver of water between a coast and the bbox
+      // edge): retried like a fold, with smaller sizes there.
+      if (!e.where() || attempt + 1 >= options.max_attempts || o.tiling.stop_after != TilingStep::none)
+        throw;
+      problem = e.message();
+      failed_at.push_back(*e.where());
+    }
     clock.lap("tiling");
     if (o.tiling.stop_after != TilingStep::none) return r;
 
-    progress.report("subdivide", 0.9);
-    r.quads = subdivide_tiles(r.fields.mesh, r.tiling.tiling, r.tiling.graph, o.subdivide);
-    clock.lap("subdivision");
-    progress.report("smooth", 0.93);
-    r.smooth = smooth_quads(r.fields.mesh, r.quads, o.smooth, &r.fields.size, &r.fields.cross);
-    clock.lap("smoothing");
-    r.attempts = attempt + 1;
-    std::string problem;
-    if (r.smooth.num_nonconvex_after > 0) {
-      std::string where;
-      for (int q = 0; q < static_cast<int>(r.quads.quads.size()) && where.empty(); ++q)
-        if (quad_convexity(r.quads, q) <= o.smooth.min_convexity)
-          where = " (the first near " + format_point(r.quads.points[r.quads.quads[q][0]]) + ")";
-      problem = std::to_string(r.smooth.num_nonconvex_after) +
-                " quad(s) could not be made strictly convex" + where;
-    } else {
-      Point2 at;
-      const std::size_t crossings = count_boundary_crossings(r.quads, &at);
-      if (crossings == 0) break;
-      problem = "the mesh folds over itself: " + std::to_string(crossings) +
-                " pair(s) of boundary edges cross (the first near " + format_point(at) + ")";
+    if (problem.empty()) {
+      progress.report("subdivide", 0.9);
+      r.quads = subdivide_tiles(r.fields.mesh, r.tiling.tiling, r.tiling.graph, o.subdivide);
+      clock.lap("subdivision");
+      progress.report("smooth", 0.93);
+      r.smooth = smooth_quads(r.fields.mesh, r.quads, o.smooth, &r.fields.size, &r.fields.cross);
+      clock.lap("smoothing");
+      if (r.smooth.num_nonconvex_after > 0) {
+        std::string where;
+        for (int q = 0; q < static_cast<int>(r.quads.quads.size()) && where.empty(); ++q)
+          if (quad_convexity(r.quads, q) <= o.smooth.min_convexity)
+            where = " (the first near " + format_point(r.quads.points[r.quads.quads[q][0]]) + ")";
+        problem = std::to_string(r.smooth.num_nonconvex_after) +
+                  " quad(s) could not be made strictly convex" + where;
+      } else {
+        Point2 at;
+        const std::size_t crossings = count_boundary_crossings(r.quads, &at);
+        if (crossings == 0) break;
+        problem = "the mesh folds over itself: " + std::to_string(crossings) +
+                  " pair(s) of boundary edges cross (the first near " + format_point(at) + ")";
+      }
+      failed_at = failure_points(r.quads, o.smooth);
     }
     if (attempt + 1 >= options.max_attempts)
       throw Error(ErrorClass::internal, "smooth",
@@ -109,7 +122,7 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
                            : ""));
     // The next attempt also has smaller sizes where this one failed.
     const std::vector<LocalRefinement> more =
-        refinements_at(r.fields, failure_points(r.quads, o.smooth), options.max_refined_places);
+        refinements_at(r.fields, failed_at, options.max_refined_places);
     if (!more.empty()) {
       fields.sizing.refinements.insert(fields.sizing.refinements.end(), more.begin(), more.end());
       r.refinements = fields.sizing.refinements;

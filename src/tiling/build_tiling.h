@@ -71,7 +71,7 @@ struct TilingResult {
 
 // Tiles are sized 2h: the final barycentric subdivision halves every edge. The repairs
 // may clear corner tags of the mesh's boundary chains that no tiling honours. Throws
-// Error(meshing) if an invariant (check_tiling) cannot be restored.
+// TilingError if an invariant (check_tiling) cannot be restored.
 TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
                           const CrossField& cross, const TilingParams& params,
                           const Progress& progress = Progress());

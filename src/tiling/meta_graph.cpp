@@ -95,7 +95,12 @@ MetaGraph build_meta_graph(const BackgroundMesh& mesh, const Tiling& tiling,
   return g;
 }
 
-std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const MetaGraph& graph) {
+std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const MetaGraph& graph,
+                         std::optional<Point2>* where) {
+  auto at = [&](const Point2& p) {
+    if (where) *where = p;
+    return format_point(p);
+  };
   const int num_faces = static_cast<int>(mesh.triangles.size());
   const int num_tiles = tiling.num_tiles();
   const std::vector<int>& label = tiling.label;
@@ -118,7 +123,7 @@ std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const
     const int tile = label[f];
     if (tile_seen[tile])
       return "tile " + std::to_string(tile) + " is not connected (triangle " + std::to_string(f) +
-             " at " + format_point(mesh.points[mesh.triangles[f][0]]) + ")";
+             " at " + at(mesh.points[mesh.triangles[f][0]]) + ")";
     tile_seen[tile] = 1;
     seen[f] = 1;
     stack.assign(1, f);
@@ -144,12 +149,12 @@ std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const
   for (int c = 0; c < b.num_cycles(); ++c)
     if (b.cycle_pinch[c] >= 0)
       return "tile " + std::to_string(b.cycle_tile[c]) + " is not a disk: it touches itself at " +
-             format_point(mesh.points[b.cycle_pinch[c]]);
+             at(mesh.points[b.cycle_pinch[c]]);
   for (int t = 0; t < num_tiles; ++t)
     if (graph.tiles[t].vertices.size() < 3) {
       const int c = b.tile_outer_cycle[t];
-      const Point2& at = mesh.points[halfedge_from(mesh, b.halfedges[b.cycle_begin[c]])];
-      return "tile " + std::to_string(t) + " near " + format_point(at) + " has " +
+      const Point2& p = mesh.points[halfedge_from(mesh, b.halfedges[b.cycle_begin[c]])];
+      return "tile " + std::to_string(t) + " near " + at(p) + " has " +
              std::to_string(graph.tiles[t].vertices.size()) + " meta-vertices (at least 3 needed)";
     }
 
@@ -158,7 +163,7 @@ std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const
   for (std::size_t m = 0; m < graph.vertices.size(); ++m) {
     const int v = graph.vertices[m];
     if (graph.vertex_on_boundary[m] && graph.vertex_num_tiles[m] < 2 && turning[v] < 0.0)
-      return "the reflex corner at " + format_point(mesh.points[v]) +
+      return "the reflex corner at " + at(mesh.points[v]) +
              " lies in a single tile (it needs at least two)";
   }
   return "";

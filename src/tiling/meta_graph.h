@@ -4,9 +4,11 @@
 // is cheap. Every tiling step and the barycentric subdivision use it.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "mesh/background_mesh.h"
 #include "tiling/tile_boundary.h"
 #include "tiling/tiling.h"
@@ -59,8 +61,22 @@ MetaGraph build_meta_graph(const BackgroundMesh& mesh, const Tiling& tiling,
 // The invariants that every tiling step keeps (checked in tests and debug builds):
 // every triangle labelled, every tile non-empty, connected and a topological disk (one
 // boundary cycle), every tile with at least 3 meta-vertices. Returns "" when they hold,
-// else a description of the first violation.
-std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const MetaGraph& graph);
+// else a description of the first violation, with a point near it in `where` (when given
+// and the violation has a place).
+std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const MetaGraph& graph,
+                         std::optional<Point2>* where = nullptr);
+
+// A tiling whose invariants (check_tiling) the repairs cannot restore: Error(meshing),
+// with the place when the violation has one (a retry can refine the sizes there).
+class TilingError : public Error {
+ public:
+  TilingError(const std::string& message, std::optional<Point2> where)
+      : Error(ErrorClass::meshing, "tiling", message), where_(where) {}
+  const std::optional<Point2>& where() const { return where_; }
+
+ private:
+  std::optional<Point2> where_;
+};
 
 // Statistics of a tiling, as the report gives them per step.
 struct TilingStats {

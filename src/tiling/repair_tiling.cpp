@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <queue>
 #include <utility>
 #include <vector>
@@ -117,12 +118,13 @@ class Repairer {
       break;
     }
     if (compact() || !clean) graph = build_meta_graph(mesh_, tiling_, params_.graph);
-    const std::string problem = check_tiling(mesh_, tiling_, graph);
+    std::optional<Point2> where;
+    const std::string problem = check_tiling(mesh_, tiling_, graph, &where);
     if (graph_out) *graph_out = std::move(graph);
     if (!problem.empty())
-      throw Error(ErrorClass::meshing, "tiling",
-                  "cannot restore the tiling invariants after " + std::to_string(stats_.rounds) +
-                      " rounds of repair: " + problem);
+      throw TilingError("cannot restore the tiling invariants after " + std::to_string(stats_.rounds) +
+                            " rounds of repair: " + problem,
+                        where);
     return stats_;
   }
 

@@ -7,6 +7,7 @@
 
 #include <array>
 #include <cmath>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -267,6 +268,35 @@ TEST(Tiling, CoastlineWithIslandsKeepsInvariants) {
     const TilingResult r = build_tiling(f.mesh, f.size, f.cross, p);
     EXPECT_EQ(check_tiling(f.mesh, r.tiling, r.graph), "") << r.steps.back().step;
   }
+}
+
+TEST(Tiling, CheckTilingSaysWhereATileHasTooFewMetaVertices) {
+  // One tile, and a second made of one triangle on the boundary away from the corners:
+  // two meta-vertices (the ends of its boundary edge). The place is what a failed tiling
+  // attempt refines (TilingError::where).
+  FieldsResult f = fields_on(square_domain(1000.0), 100.0, true);
+  Tiling t;
+  t.label.assign(f.mesh.triangles.size(), 0);
+  t.generator = {0, -1};
+  int small = -1;
+  for (int k = 0; k < static_cast<int>(f.mesh.triangles.size()) && small < 0; ++k) {
+    const auto& tri = f.mesh.triangles[k];
+    for (int i = 0; i < 3 && small < 0; ++i) {
+      const Point2 &a = f.mesh.points[tri[(i + 1) % 3]], &b = f.mesh.points[tri[(i + 2) % 3]];
+      const bool bottom = f.mesh.neighbours[k][i] < 0 && a.y == 0.0 && b.y == 0.0;
+      if (bottom && std::min(a.x, b.x) > 300.0 && std::max(a.x, b.x) < 700.0) small = k;
+    }
+  }
+  ASSERT_GE(small, 0);
+  t.label[small] = 1;
+  const MetaGraph g = build_meta_graph(f.mesh, t, MetaGraphParams());
+  std::optional<Point2> where;
+  const std::string problem = check_tiling(f.mesh, t, g, &where);
+  EXPECT_NE(problem.find("has 2 meta-vertices"), std::string::npos) << problem;
+  ASSERT_TRUE(where.has_value());
+  EXPECT_EQ(where->y, 0.0);
+  EXPECT_GT(where->x, 300.0);
+  EXPECT_LT(where->x, 700.0);
 }
 
 TEST(Tiling, BadParametersAreUsageErrors) {
