@@ -450,7 +450,18 @@ class Repairer {
             if (label_[vertex_faces_[q]] != t) forbidden.push_back(label_[vertex_faces_[q]]);
       }
       if (shared.empty()) {
-        fixes += (tag_island_corners(t, b) || split_isolated(t, b)) ? 1 : 0;
+        // An island split before that is one small tile again (its parts were too small
+        // to keep three meta-vertices each and merged back) takes closer corners.
+        const std::vector<int> members = collect(b.halfedges[b.cycle_begin[c]] / 3, t);
+        const int island = *std::min_element(members.begin(), members.end());
+        const bool split_before =
+            std::find(islands_split_.begin(), islands_split_.end(), island) != islands_split_.end();
+        if (tag_island_corners(t, b, split_before ? 12.0 : 8.0)) {
+          ++fixes;
+        } else if (split_isolated(t, b, members)) {
+          islands_split_.push_back(island);
+          ++fixes;
+        }
         continue;
       }
       auto allowed = [&](int x) {
@@ -469,11 +480,14 @@ class Repairer {
 
   // A tile alone in its mesh component with fewer than 3 meta-vertices (an island about
   // one tile large, with fewer than 3 corners): its most convex boundary vertices, at
-  // least an eighth of the perimeter from each other and from its corners, become corners
+  // least perimeter / spacing from each other and from its corners, become corners
   // until it has four (at least three), so that it subdivides into four (three) quads
   // around its centroid, about the size asked for. Only vertices turning left by at
-  // least 10 degrees qualify (the quads' angles there are 180 minus the turn).
-  bool tag_island_corners(int tile, const TileBoundaries& b) {
+  // least 10 degrees qualify (the quads' angles there are 180 minus the turn). Spacing 8
+  // first; 12 for an island whose split (split_isolated) came back as one tile: a 14 by
+  // 5 km sliver of water with quads 8 km wide, whose turning vertices cluster at its
+  // two ends, was split, merged back, split again for 200 rounds.
+  bool tag_island_corners(int tile, const TileBoundaries& b, double spacing) {
     const int c = b.tile_outer_cycle[tile];
     const int begin = b.cycle_begin[c], n = b.cycle_begin[c + 1] - begin;
     struct Candidate {
@@ -506,7 +520,7 @@ class Repairer {
       bool apart = true;
       for (const Candidate& y : chosen) {
         const double d = std::abs(x.arc - y.arc);
-        apart = apart && std::min(d, perimeter - d) >= perimeter / 8.0;
+        apart = apart && std::min(d, perimeter - d) >= perimeter / spacing;
       }
       if (apart) chosen.push_back(x);
       if (chosen.size() == 4) break;
@@ -522,11 +536,10 @@ class Repairer {
   // A tile alone in its mesh component with fewer than 3 meta-vertices whose boundary
   // has not three such corners: three tiles grown from three points evenly spaced along its
   // boundary, which meet at one interior meta-vertex.
-  bool split_isolated(int tile, const TileBoundaries& b) {
+  bool split_isolated(int tile, const TileBoundaries& b, const std::vector<int>& members) {
     const int c = b.tile_outer_cycle[tile];
     const int begin = b.cycle_begin[c], n = b.cycle_begin[c + 1] - begin;
     if (n < 3) return false;
-    const std::vector<int> members = collect(b.halfedges[begin] / 3, tile);
     if (members.size() < 3) return false;
     int seeds[3];
     for (int s = 0; s < 3; ++s) seeds[s] = b.halfedges[begin + s * n / 3] / 3;
@@ -719,6 +732,7 @@ class Repairer {
   int face_round_ = 0, vertex_round_ = 0;
   std::vector<int> members_, enclosed_;
   std::vector<int> split_attempts_;
+  std::vector<int> islands_split_;  // islands split by split_isolated, by their first triangle
   std::vector<double> dist_;  // #F scratch of split_from_corner
   std::vector<int> part_;     // #F scratch of split_from_corner
   std::vector<char> changed_, touched_;

@@ -450,3 +450,29 @@ TEST(CliMesh, RingsTouchingWithinRoundingAreCutApart) {
       << r.err;
   EXPECT_GT(check_convex_ccw(read_quads(dir.file("mesh.gpkg"))), 0.0);
 }
+
+TEST(CliMesh, ANarrowIslandAboutOneTileLargeGetsCornersAtItsEnds) {
+  // A sliver of the Laptev Sea's water, 14 by 5 km, cut off by the bbox edge at 72.7 N
+  // (Natural Earth 1:50m, metres in the projection below), alone as the domain, with the
+  // sizes of the whole Arctic band it came from: one tile with two corners, whose
+  // turning vertices cluster at its two ends (none an eighth of the perimeter from the
+  // corners). Split in three, merged back, 200 rounds of repair, and the run stopped.
+  TempDir dir;
+  const std::string proj =
+      "+proj=sterea +lat_0=70.5695 +lon_0=115 +k=0.99 +x_0=0 +y_0=0 +datum=WGS84 +units=m "
+      "+no_defs";
+  const std::string input = dir.file("sliver.geojson");
+  write_file(input, geojson_polygons({"[[[-57128.466,235736.972],[-56128.199,233652.947],"
+                                      "[-44448.204,230842.124],[-42843.957,232938.145],"
+                                      "[-45461.105,235438.606],[-57128.466,235736.972]]]"}));
+  const CliResult r = run_cli({"mesh", input, "--src-crs", proj, "--dst-crs", proj, "--hmin",
+                               "3972.45", "--hmax", "39724.5", "-o", dir.file("mesh.gpkg")},
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.find("retried"), std::string::npos) << r.out;
+  const auto quads = read_quads(dir.file("mesh.gpkg"));
+  EXPECT_EQ(quads.num_other, 0);
+  EXPECT_GE(quads.quads.size(), 3u);
+  EXPECT_LE(quads.quads.size(), 4u);
+  EXPECT_GT(check_convex_ccw(quads), 0.0);
+}
