@@ -102,13 +102,13 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
       simp.tolerance_m > 0 ? simp.tolerance_m : 1e-4 * std::sqrt(area(result.domain));
   auto cut_pinches = [&] {
     if (pinch_points(result.domain).empty()) return;
-    // Polygons that share boundary (pieces of one land mass cut at the antimeridian)
-    // are one polygon for the mesher: merged, not cut apart.
+    // Boundaries that coincide (pieces of one land mass cut at the antimeridian, the
+    // sides of a bbox round every longitude) are merged, not cut apart.
     const std::size_t pieces = result.domain.polygons.size();
-    if (merge_overlapping_polygons(result.domain))
-      s.warnings.push_back(std::to_string(pieces) +
-                           " polygons overlapping or sharing boundary once projected were "
-                           "merged into " + std::to_string(result.domain.polygons.size()));
+    if (merge_shared_boundaries(result.domain))
+      s.warnings.push_back("boundaries that coincide once projected were merged (" +
+                           std::to_string(pieces) + " polygon(s) before, " +
+                           std::to_string(result.domain.polygons.size()) + " after)");
     // A cut can leave two of its pieces touching at a point (slivers between a coast
     // and the bbox edge: the Arctic's water at 66 N): those are cut in turn.
     constexpr int kCutRounds = 3;

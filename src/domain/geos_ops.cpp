@@ -164,6 +164,11 @@ GeosGeometry GeosContext::unary_union_snapped(const GeosGeometry& g, double grid
                "union");
 }
 
+GeosGeometry GeosContext::snapped(const GeosGeometry& g, double grid) {
+  return check(GEOSGeom_setPrecision_r(state_->handle, static_cast<GEOSGeometry*>(g.get()), grid, 0),
+               "snap");
+}
+
 GeosGeometry GeosContext::union_of(const GeosGeometry& a, const GeosGeometry& b) {
   return check(GEOSUnion_r(state_->handle, static_cast<GEOSGeometry*>(a.get()),
                            static_cast<GEOSGeometry*>(b.get())),

@@ -57,6 +57,9 @@ class GeosContext {
   // The union with every coordinate snapped to a grid of this spacing (GEOS's precision
   // model): pieces closer than about the spacing join.
   GeosGeometry unary_union_snapped(const GeosGeometry& g, double grid);
+  // Every coordinate snapped to a grid of this spacing, the result made valid: parts
+  // that collapse (a slit whose sides meet on the grid) are dropped. `g` must be valid.
+  GeosGeometry snapped(const GeosGeometry& g, double grid);
   GeosGeometry union_of(const GeosGeometry& a, const GeosGeometry& b);
   GeosGeometry intersection(const GeosGeometry& a, const GeosGeometry& b);
   GeosGeometry difference(const GeosGeometry& a, const GeosGeometry& b);

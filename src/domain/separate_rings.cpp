@@ -124,19 +124,19 @@ std::vector<Point2> pinch_points(const Domain& domain) {
   return out;
 }
 
-bool merge_overlapping_polygons(Domain& domain) {
-  if (domain.polygons.size() < 2) return false;
+bool merge_shared_boundaries(Domain& domain) {
   // Two consecutive vertices of a ring both touching: the edge between them runs along
-  // another ring, a contact GEOS may not see (rounding leaves a gap or an overlap of a
-  // few nanometres: the pieces were projected from longitudes -180 and 180).
+  // another ring or another part of its own, a contact GEOS may not see (rounding leaves
+  // a gap or an overlap of a few nanometres: both sides were projected from longitudes
+  // -180 and 180).
   double tol = 0.0;
   const std::vector<Touch> touches = touching_vertices(domain, &tol);
   bool edge_contact = false;
   for (std::size_t k = 1; k < touches.size() && !edge_contact; ++k)
     edge_contact = touches[k].ring == touches[k - 1].ring && touches[k].index == touches[k - 1].index + 1;
   GeosContext geos;
-  // Each polygon valid on its own (a ring touching itself is invalid for GEOS), as a
-  // multipolygon: invalid only where two of them overlap or share boundary.
+  // Each polygon valid on its own, as a multipolygon: invalid only where two of them
+  // overlap or share boundary.
   std::vector<GeosGeometry> parts;
   for (GeosGeometry& g : geos_polygons(geos, domain)) {
     if (geos.validity(g).valid) {
@@ -151,12 +151,17 @@ bool merge_overlapping_polygons(Domain& domain) {
   }
   const GeosGeometry all = geos.multipolygon(std::move(parts));
   if (!edge_contact && geos.validity(all).valid) return false;
-  // Snapped to a grid of 4 tol: vertices move by 2 tol at most (a millimetre at 500 km).
-  // Kept only when polygons did join (two point contacts at consecutive vertices look
-  // like an edge contact too).
-  std::vector<Polygon> merged = geos.polygons(geos.unary_union_snapped(all, 4.0 * tol));
-  if (merged.empty() || merged.size() >= domain.polygons.size()) return false;
-  set_polygons(domain, std::move(merged));
+  // Snapped to a grid of 4 tol: vertices move by 2 tol at most (a millimetre at 500 km),
+  // coinciding edges become one and the union dissolves them. Kept only when polygons
+  // join or fewer places touch (two point contacts at consecutive vertices look like an
+  // edge contact too).
+  Domain merged;
+  merged.polygons = geos.polygons(geos.snapped(geos.unary_union_snapped(all, 4.0 * tol), 4.0 * tol));
+  if (merged.polygons.empty()) return false;
+  if (merged.polygons.size() >= domain.polygons.size() &&
+      pinch_points(merged).size() >= pinch_points(domain).size())
+    return false;
+  set_polygons(domain, std::move(merged.polygons));
   return true;
 }
 

@@ -14,13 +14,15 @@ namespace isoquad {
 // does not end.
 std::vector<Point2> pinch_points(const Domain& domain);
 
-// Polygons that overlap or share a stretch of boundary (the pieces of a land mass that
-// the source cuts at the antimeridian meet only once projected: Chukotka in a domain
-// round the North Pole) are merged into one, each polygon made valid first, coordinates
-// snapped to a grid of 4e-9 of the domain's extent. Polygons touching only at points stay
-// as they are, and the domain is unchanged unless polygons join. Returns whether they
-// did.
-bool merge_overlapping_polygons(Domain& domain);
+// Boundaries that coincide along a stretch, within rounding: polygons that overlap or
+// share boundary (the pieces of a land mass that the source cuts at the antimeridian
+// meet only once projected: Chukotka round the North Pole), and a ring running back
+// along itself (a bbox round every longitude: its two sides at -180 and 180 become one
+// meridian once projected). Merged by a union (each polygon made valid first) with
+// coordinates snapped to a grid of 4e-9 of the domain's extent. Polygons or rings
+// touching only at points stay as they are, and the domain is unchanged unless polygons
+// join or fewer places touch. Returns whether it changed.
+bool merge_shared_boundaries(Domain& domain);
 
 // Separates the rings at every pinch point by cutting a small octagon of radius r out of
 // the domain there: two holes touching at a point become one hole, a hole touching its

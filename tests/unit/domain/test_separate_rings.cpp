@@ -91,7 +91,7 @@ Polygon rectangle(double x0, double y0, double x1, double y1) {
 
 }  // namespace
 
-TEST(MergeOverlappingPolygons, PiecesSharingAnEdgeWithinRoundingBecomeOne) {
+TEST(MergeSharedBoundaries, PiecesSharingAnEdgeWithinRoundingBecomeOne) {
   // Two halves of an island, as a source cut at the antimeridian leaves them, projected
   // separately: the shared edge off by a nanometre (a gap GEOS sees, too narrow to mesh).
   Domain d;
@@ -99,23 +99,23 @@ TEST(MergeOverlappingPolygons, PiecesSharingAnEdgeWithinRoundingBecomeOne) {
   d.polygons.push_back(rectangle(1000 + 1e-9, 0, 2000, 1000));
   d.polygons.push_back(rectangle(5000, 0, 6000, 1000));  // far away: stays apart
   EXPECT_FALSE(pinch_points(d).empty());
-  EXPECT_TRUE(merge_overlapping_polygons(d));
+  EXPECT_TRUE(merge_shared_boundaries(d));
   ASSERT_EQ(d.polygons.size(), 2u);
   EXPECT_NEAR(area(d), 3.0e6, 1.0);
   EXPECT_TRUE(pinch_points(d).empty());
   EXPECT_NEAR(area(d.polygons[0]), 2.0e6, 1.0);  // the largest first
 }
 
-TEST(MergeOverlappingPolygons, OverlappingPolygonsBecomeTheirUnion) {
+TEST(MergeSharedBoundaries, OverlappingPolygonsBecomeTheirUnion) {
   Domain d;
   d.polygons.push_back(rectangle(0, 0, 1000, 1000));
   d.polygons.push_back(rectangle(500, 500, 1500, 1500));
-  EXPECT_TRUE(merge_overlapping_polygons(d));
+  EXPECT_TRUE(merge_shared_boundaries(d));
   ASSERT_EQ(d.polygons.size(), 1u);
   EXPECT_NEAR(area(d), 1.75e6, 1.0);
 }
 
-TEST(MergeOverlappingPolygons, PolygonsTouchingAtAPointStayAsTheyAre) {
+TEST(MergeSharedBoundaries, PolygonsTouchingAtAPointStayAsTheyAre) {
   // Corner to corner, and a hole touching its shell: separate_rings' business.
   Domain d;
   d.polygons.push_back(rectangle(0, 0, 1000, 1000));
@@ -125,10 +125,27 @@ TEST(MergeOverlappingPolygons, PolygonsTouchingAtAPointStayAsTheyAre) {
   for (Point2& p : d.polygons.back().holes[0]) p.x += 5000;
   const Domain before = d;
   EXPECT_FALSE(pinch_points(d).empty());
-  EXPECT_FALSE(merge_overlapping_polygons(d));
+  EXPECT_FALSE(merge_shared_boundaries(d));
   ASSERT_EQ(d.polygons.size(), before.polygons.size());
   for (std::size_t i = 0; i < d.polygons.size(); ++i) {
     EXPECT_EQ(d.polygons[i].outer, before.polygons[i].outer);
     EXPECT_EQ(d.polygons[i].holes, before.polygons[i].holes);
   }
+}
+
+TEST(MergeSharedBoundaries, ARingRunningBackAlongItselfLosesTheSlit) {
+  // A bbox round every longitude, projected: its sides at -180 and 180 become one
+  // meridian, a slit from the bbox edge to the pole whose two sides are a nanometre apart.
+  Domain d;
+  Polygon p;
+  p.outer = {{0, 0},         {500, 0},     {500, 300},    {500, 600}, {500 + 1e-9, 300},
+             {500 + 1e-9, 0}, {1000, 0},   {1000, 1000},  {0, 1000}};
+  d.polygons.push_back(p);
+  EXPECT_FALSE(pinch_points(d).empty());
+  EXPECT_TRUE(merge_shared_boundaries(d));
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_TRUE(pinch_points(d).empty());
+  EXPECT_TRUE(d.polygons[0].holes.empty());
+  EXPECT_NEAR(area(d), 1.0e6, 1e-3);
+  for (const Point2& q : d.polygons[0].outer) EXPECT_FALSE(q.y > 1.0 && q.y < 999.0 && std::abs(q.x - 500) < 1.0);
 }
