@@ -96,6 +96,25 @@ LocalProjection choose_local_projection(const CrsInfo& geographic,
   lp.lon0_deg = round_to(0.5 * (xmin + xmax), 1e-4);
   if (lp.lon0_deg > 180.0) lp.lon0_deg -= 360.0;
   lp.lat0_deg = round_to(0.5 * (ymin + ymax), 1e-4);
+  // A domain round a pole: the middle of its lon/lat box is no centre (Antarctica's
+  // would be at 75 S on the antimeridian). Every longitude: the pole on the side of its
+  // middle latitude (a polar cap, a band of latitudes round the globe); a pole but not
+  // every longitude (a wedge of the Southern Ocean): the direction of the mean of its
+  // points on the sphere.
+  constexpr double kDeg = M_PI / 180.0;
+  if (xmax - xmin > 180.0) {
+    lp.lat0_deg = ymin + ymax >= 0.0 ? 90.0 : -90.0;
+    lp.lon0_deg = 0.0;
+  } else if (ymax >= 90.0 - 1e-9 || ymin <= -90.0 + 1e-9) {
+    double sx = 0.0, sy = 0.0, sz = 0.0;
+    for (const Point2& p : lonlat) {
+      sx += std::cos(p.y * kDeg) * std::cos(p.x * kDeg);
+      sy += std::cos(p.y * kDeg) * std::sin(p.x * kDeg);
+      sz += std::sin(p.y * kDeg);
+    }
+    lp.lat0_deg = round_to(std::atan2(sz, std::hypot(sx, sy)) / kDeg, 1e-4);
+    lp.lon0_deg = std::abs(lp.lat0_deg) >= 90.0 ? 0.0 : round_to(std::atan2(sy, sx) / kDeg, 1e-4);
+  }
 
   const GeographicLib::Geodesic& geod = GeographicLib::Geodesic::WGS84();
   double smax = 0.0;

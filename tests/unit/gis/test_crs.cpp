@@ -78,3 +78,29 @@ TEST(Crs, LocalProjectionHandlesTheAntimeridian) {
   EXPECT_NEAR(lp.lon0_deg, 178.75, 1e-9);
   EXPECT_LT(lp.max_distance_km, 300.0);
 }
+
+TEST(Crs, LocalProjectionOfADomainRoundAPoleIsCentredOnThePole) {
+  const CrsInfo wgs = parse_crs("EPSG:4326", "src");
+  // A cap south of 65 S (every longitude, to the pole, as a lon/lat box draws it): the
+  // middle of the box would be 77.5 S on the antimeridian, 1400 km from the pole.
+  Ring cap;
+  for (int i = 0; i <= 72; ++i) cap.push_back({-180.0 + 5.0 * i, -65.0});
+  cap.push_back({180.0, -90.0});
+  cap.push_back({-180.0, -90.0});
+  LocalProjection lp = choose_local_projection(wgs, cap);
+  EXPECT_EQ(lp.lat0_deg, -90.0);
+  EXPECT_NEAR(lp.max_distance_km, 2800.0, 30.0);  // 25 degrees of meridian
+  // A band from 60 to 75 N round the globe: the north pole.
+  Ring band;
+  for (int i = 0; i <= 72; ++i) band.push_back({-180.0 + 5.0 * i, 60.0});
+  for (int i = 0; i <= 72; ++i) band.push_back({180.0 - 5.0 * i, 75.0});
+  lp = choose_local_projection(wgs, band);
+  EXPECT_EQ(lp.lat0_deg, 90.0);
+  EXPECT_NEAR(lp.max_distance_km, 3350.0, 30.0);
+  // A wedge from the pole to 60 S between 120 and 150 E: the mean direction of its
+  // points (three at 60 S, two at the pole: 72.3 S), on its middle meridian.
+  Ring wedge{{120.0, -60.0}, {135.0, -60.0}, {150.0, -60.0}, {150.0, -90.0}, {120.0, -90.0}};
+  lp = choose_local_projection(wgs, wedge);
+  EXPECT_NEAR(lp.lon0_deg, 135.0, 1e-6);
+  EXPECT_NEAR(lp.lat0_deg, -72.3, 0.05);
+}
