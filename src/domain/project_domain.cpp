@@ -1,5 +1,6 @@
 #include "domain/project_domain.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "core/error.h"
@@ -60,6 +61,23 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
     throw Error(ErrorClass::crs, "crs",
                 "point " + format_point(failed) + " cannot be transformed from '" + source_crs.name +
                     "' to '" + target.name + "'");
+  // Points that are one once projected (longitudes -180 and 180, every point at a pole),
+  // within 1e-9 of the extent: a ring round a pole closed through it comes back along
+  // the meridian it went down, a spike to remove.
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const Polygon& p : projected)
+    for (const Point2& q : p.outer)
+      x0 = std::min(x0, q.x), y0 = std::min(y0, q.y), x1 = std::max(x1, q.x), y1 = std::max(y1, q.y);
+  const double tol = 1e-9 * std::max(x1 - x0, y1 - y0);
+  for (Polygon& p : projected) {
+    remove_duplicates_and_spikes(p.outer, tol);
+    for (Ring& h : p.holes) remove_duplicates_and_spikes(h, tol);
+    p.holes.erase(std::remove_if(p.holes.begin(), p.holes.end(), [](const Ring& h) { return h.size() < 3; }),
+                  p.holes.end());
+  }
+  projected.erase(std::remove_if(projected.begin(), projected.end(),
+                                 [](const Polygon& p) { return p.outer.size() < 3; }),
+                  projected.end());
   for (Polygon& p : projected) orient_polygon(p);
   sort_by_area(projected);
   result.domain.polygons = std::move(projected);

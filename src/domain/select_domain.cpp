@@ -103,6 +103,62 @@ bool unwrap_continuously(std::vector<Ring>& rings) {
   return true;
 }
 
+// The rings of a polygon drawn round a pole, as a spherical polygon (d3's TopoJSON,
+// world-atlas's Antarctica): a ring whose longitudes wind once round the globe (the
+// moves of unwrap_continuously do not cancel). Drawn so in lon/lat, it encloses the
+// strip between itself and its closing edge; made continuous and closed through the
+// pole on its side of the equator, it is the polygon meant. A hole that winds within a
+// hundredth of a degree of the pole (a ring round the pole itself) is dropped. The rings
+// then start at or east of -180, as unwrap_continuously leaves them. False when no ring
+// winds, or a hole winds farther from the pole (left as drawn).
+bool close_round_pole(std::vector<Ring>& rings) {
+  bool winds = false;
+  std::vector<Ring> out;
+  for (std::size_t k = 0; k < rings.size(); ++k) {
+    Ring r = rings[k];
+    if (r.size() < 3) continue;
+    double turn = 0.0, lat = 0.0;
+    std::vector<double> turns(r.size(), 0.0);
+    for (std::size_t i = 1; i < r.size(); ++i) {
+      if (r[i].x - r[i - 1].x > 180.0) turn -= 360.0;
+      if (r[i - 1].x - r[i].x > 180.0) turn += 360.0;
+      turns[i] = turn;
+    }
+    double closing = 0.0;
+    if (r.front().x - r.back().x > 180.0) closing = -360.0;
+    if (r.back().x - r.front().x > 180.0) closing = 360.0;
+    for (const Point2& p : r) lat += p.y / static_cast<double>(r.size());
+    if (std::abs(turn + closing) < 1.0) {
+      out.push_back(std::move(r));
+      continue;
+    }
+    const double pole = lat < 0.0 ? -90.0 : 90.0;
+    if (k > 0) {
+      const bool at_pole = std::all_of(r.begin(), r.end(), [&](const Point2& p) {
+        return std::abs(p.y - pole) < 0.01;
+      });
+      if (!at_pole) return false;
+      winds = true;
+      continue;
+    }
+    winds = true;
+    for (std::size_t i = 0; i < r.size(); ++i) r[i].x += turns[i];
+    // One more step along the ring (its closing edge, the short way), then down to the
+    // pole and back along it to where the ring starts.
+    const double end_x = r.front().x + turns.back() + closing;
+    r.push_back({end_x, r.front().y});
+    r.push_back({end_x, pole});
+    r.push_back({r.front().x, pole});
+    double lo = 1e300;
+    for (const Point2& p : r) lo = std::min(lo, p.x);
+    const double whole = 360.0 * std::ceil((-180.0 - lo) / 360.0 - 1e-12);
+    for (Point2& p : r) p.x += whole;
+    out.push_back(std::move(r));
+  }
+  if (winds) rings = std::move(out);
+  return winds;
+}
+
 using Rectangle = std::array<double, 4>;  // xmin, ymin, xmax, ymax
 
 // Where a polygon's pieces are read: rectangles in the polygon's frame, and the shift in
@@ -170,6 +226,10 @@ SelectResult select_domain(const SourceData& input, const SelectParams& params) 
     if (world && crosses_antimeridian(sp.rings)) {
       continuous_rings = sp.rings;
       continuous = unwrap_continuously(continuous_rings);
+      if (!continuous) {
+        continuous_rings = sp.rings;
+        continuous = close_round_pole(continuous_rings);
+      }
     }
     std::vector<Window> ws = windows(rect, continuous);
     if (!world && ws.size() > 1) ws.resize(1);

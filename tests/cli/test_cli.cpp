@@ -6,6 +6,7 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "gis/gdal_env.h"
 #include "support/fixtures.h"
@@ -207,6 +208,48 @@ TEST(Cli, WaterOfOpenSeaIsTheWholeBbox) {
                "water", "--bbox", "-5.3,46.9,-4.7,47.3", "--where", "name = 'nothing'"},
               dir);
   EXPECT_EQ(r.exit_code, 3) << r.err;
+}
+
+TEST(Cli, ALandmassRoundThePoleIsMeshableLand) {
+  // As world-atlas's Antarctica at 1:50m: a coast round the south pole at 70 S (a bay of
+  // 10 by 5 degrees), drawn from -180 to 179 and closed by the short edge across the
+  // antimeridian, with a ring round the pole itself at 89.999 S as a hole. Closed through
+  // the pole, it projects (centred on the pole) to one ring that goes down the 180th
+  // meridian to the pole and back, a spike removed; with simplification the domain
+  // command stopped with the rings still touching there.
+  TempDir dir;
+  std::string coast = "[";
+  for (int lon = -180; lon < 0; lon += 10) coast += "[" + std::to_string(lon) + ",-70],";
+  coast += "[0,-70],[0,-75],[10,-75],[10,-70],";
+  for (int lon = 20; lon <= 170; lon += 10) coast += "[" + std::to_string(lon) + ",-70],";
+  coast += "[179,-70],[-180,-70]]";
+  std::string pole = "[";
+  for (int lon = 150; lon >= -180; lon -= 30) pole += "[" + std::to_string(lon) + ",-89.999],";
+  pole += "[150,-89.999]]";
+  const std::string input = dir.file("antarctica.geojson");
+  write_file(input, geojson_polygons({"[" + coast + "," + pole + "]"}));
+  const std::string out = dir.file("antarctica.gpkg");
+  // --repair: the ring round the pole, straight in lon/lat, is degenerate (dropped).
+  const CliResult r = run_cli({"domain", input, "-o", out, "--bbox", "-180,-90,180,-60",
+                               "--simplify", "1000", "--repair"},
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("+lat_0=-90"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("1 component(s), 1 ring(s), 0 hole(s)"), std::string::npos) << r.out;
+  // South of 70 S less the bay, on a sphere of the authalic radius: 15.06 million km2.
+  const double R = 6371007.2, deg = M_PI / 180.0;
+  const double expected = 2 * M_PI * R * R * (1 - std::sin(70 * deg)) -
+                          R * R * 10 * deg * (std::sin(75 * deg) - std::sin(70 * deg));
+  isoquad::ensure_gdal_registered();
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(out.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  OGRLayer* layer = ds->GetLayerByName("domain");
+  ASSERT_NE(layer, nullptr);
+  auto f = std::unique_ptr<OGRFeature>(layer->GetNextFeature());
+  ASSERT_NE(f, nullptr);
+  EXPECT_NEAR(f->GetFieldAsDouble("area_m2") / expected, 1.0, 0.01);
+  GDALClose(ds);
 }
 
 TEST(Cli, SameInputGivesByteIdenticalOutput) {

@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "core/error.h"
 #include "gis/crs.h"
 
@@ -281,4 +283,39 @@ TEST(SelectDomain, ABboxAcrossTheAntimeridianReadsBothSides) {
   ASSERT_EQ(r.polygons.size(), 1u);
   EXPECT_EQ(r.polygons[0].holes.size(), 2u);
   EXPECT_NEAR(area(r.polygons[0]), 4 * 5 - 1.0 - 0.5, 1e-9);
+}
+
+TEST(SelectDomain, ALandmassRoundAPoleIsClosedThroughThePole) {
+  // As world-atlas's Antarctica at 1:50m (a spherical polygon from d3's TopoJSON): a
+  // coast round the south pole drawn from -180 to 179 at 70 S (with a bay of 10 by 5
+  // degrees), closed by the short edge back across the antimeridian, and a hole that is
+  // a ring round the pole itself at 89.999 S. Read as drawn, the coast encloses the thin
+  // strip between itself and its closing edge; meant is everything south of it.
+  SourceData d;
+  d.crs = parse_crs("EPSG:4326", "test");
+  SourcePolygon land;
+  land.fid = 0;
+  Ring coast;
+  for (int lon = -180; lon < 0; lon += 10) coast.push_back({double(lon), -70.0});
+  coast.push_back({0.0, -70.0});
+  coast.push_back({0.0, -75.0});
+  coast.push_back({10.0, -75.0});
+  coast.push_back({10.0, -70.0});
+  for (int lon = 20; lon <= 170; lon += 10) coast.push_back({double(lon), -70.0});
+  coast.push_back({179.0, -70.0});
+  Ring pole;
+  for (int lon = -180; lon < 180; lon += 30) pole.push_back({double(lon), -89.999});
+  std::reverse(pole.begin(), pole.end());
+  land.rings = {coast, pole};
+  d.polygons = {land};
+  d.bbox_ring = box_ring(-180, -90, 180, -60);
+  SelectResult r = select_domain(d, params(DomainKind::land));
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_TRUE(r.polygons[0].holes.empty());
+  EXPECT_NEAR(area(r.polygons[0]), 360.0 * 20.0 - 10.0 * 5.0, 1e-6);
+  // The water between 60 and 70 S is the bbox's band above it, with the bay.
+  r = select_domain(d, params(DomainKind::water));
+  double water = 0.0;
+  for (const Polygon& p : r.polygons) water += area(p);
+  EXPECT_NEAR(water, 360.0 * 10.0 + 10.0 * 5.0, 1e-6);
 }
