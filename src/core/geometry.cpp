@@ -79,26 +79,23 @@ void orient_polygon(Polygon& polygon) {
     if (signed_area(h) > 0) std::reverse(h.begin(), h.end());
 }
 
-std::size_t remove_duplicates_and_spikes(Ring& ring, double tol) {
+std::size_t remove_duplicates_and_spikes(Ring& ring) {
   const std::size_t before = ring.size();
-  auto same = [tol](const Point2& a, const Point2& b) {
-    return tol > 0.0 ? std::hypot(a.x - b.x, a.y - b.y) <= tol : a == b;
-  };
   bool changed = true;
   while (changed && !ring.empty()) {
     changed = false;
     Ring out;
     out.reserve(ring.size());
     for (const Point2& p : ring)
-      if (out.empty() || !same(out.back(), p)) out.push_back(p);
-    while (out.size() > 1 && same(out.back(), out.front())) out.pop_back();
+      if (out.empty() || out.back() != p) out.push_back(p);
+    while (out.size() > 1 && out.back() == out.front()) out.pop_back();
     // A spike: the ring goes a -> b -> a. Removing b and one copy of a keeps the area.
     const std::size_t n = out.size();
     if (n >= 3) {
       std::vector<bool> drop(n, false);
       for (std::size_t i = 0; i < n; ++i) {
         const std::size_t prev = (i + n - 1) % n, next = (i + 1) % n;
-        if (!drop[prev] && same(out[prev], out[next])) {
+        if (!drop[prev] && out[prev] == out[next]) {
           drop[i] = true;
           drop[next] = true;
           changed = true;

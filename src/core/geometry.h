@@ -54,9 +54,9 @@ std::size_t num_holes(const Domain& domain);
 void orient_polygon(Polygon& polygon);
 
 // Removes consecutive duplicate points (including a closing copy of the first point)
-// and spikes (a vertex where the ring turns back on itself: prev == next), points
-// within `tol` counting as the same (0: equal). Returns the number of points removed.
-std::size_t remove_duplicates_and_spikes(Ring& ring, double tol = 0.0);
+// and spikes (a vertex where the ring turns back on itself: prev == next). Returns the
+// number of points removed.
+std::size_t remove_duplicates_and_spikes(Ring& ring);
 
 // "(x, y)" with 10 significant digits, for messages.
 std::string format_point(const Point2& p);

@@ -55,23 +55,29 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
   }
 
   std::vector<Polygon> projected = polygons;
+  // Longitude 180 read as -180: the same point once projected, bit for bit, so that a
+  // ring closed through a pole (select_domain), which goes down the 180th meridian and
+  // comes back up at -180, comes back along exactly the same points (a spike, removed
+  // below).
+  if (source_crs.geographic)
+    for (Polygon& p : projected) {
+      for (Point2& q : p.outer)
+        if (q.x == 180.0) q.x = -180.0;
+      for (Ring& h : p.holes)
+        for (Point2& q : h)
+          if (q.x == 180.0) q.x = -180.0;
+    }
   CrsTransform t(source_crs, target);
   Point2 failed;
   if (!transform_all(t, projected, &failed))
     throw Error(ErrorClass::crs, "crs",
                 "point " + format_point(failed) + " cannot be transformed from '" + source_crs.name +
                     "' to '" + target.name + "'");
-  // Points that are one once projected (longitudes -180 and 180, every point at a pole),
-  // within 1e-9 of the extent: a ring round a pole closed through it comes back along
-  // the meridian it went down, a spike to remove.
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
-  for (const Polygon& p : projected)
-    for (const Point2& q : p.outer)
-      x0 = std::min(x0, q.x), y0 = std::min(y0, q.y), x1 = std::max(x1, q.x), y1 = std::max(y1, q.y);
-  const double tol = 1e-9 * std::max(x1 - x0, y1 - y0);
+  // Points that are one once projected (every point at a pole; see above for the
+  // antimeridian) leave duplicates and spikes.
   for (Polygon& p : projected) {
-    remove_duplicates_and_spikes(p.outer, tol);
-    for (Ring& h : p.holes) remove_duplicates_and_spikes(h, tol);
+    remove_duplicates_and_spikes(p.outer);
+    for (Ring& h : p.holes) remove_duplicates_and_spikes(h);
     p.holes.erase(std::remove_if(p.holes.begin(), p.holes.end(), [](const Ring& h) { return h.size() < 3; }),
                   p.holes.end());
   }
