@@ -114,6 +114,19 @@ std::size_t remove_duplicates_and_spikes(Ring& ring) {
   return before - ring.size();
 }
 
+void remove_duplicates_and_spikes(std::vector<Polygon>& polygons) {
+  for (Polygon& p : polygons) {
+    remove_duplicates_and_spikes(p.outer);
+    for (Ring& h : p.holes) remove_duplicates_and_spikes(h);
+    p.holes.erase(
+        std::remove_if(p.holes.begin(), p.holes.end(), [](const Ring& h) { return h.size() < 3; }),
+        p.holes.end());
+  }
+  polygons.erase(std::remove_if(polygons.begin(), polygons.end(),
+                                [](const Polygon& p) { return p.outer.size() < 3; }),
+                 polygons.end());
+}
+
 std::string format_point(const Point2& p) {
   std::ostringstream os;
   os.precision(10);

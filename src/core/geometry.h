@@ -57,6 +57,9 @@ void orient_polygon(Polygon& polygon);
 // and spikes (a vertex where the ring turns back on itself: prev == next). Returns the
 // number of points removed.
 std::size_t remove_duplicates_and_spikes(Ring& ring);
+// The same on every ring of the polygons; then holes left with fewer than 3 points are
+// dropped, and polygons whose outer ring is.
+void remove_duplicates_and_spikes(std::vector<Polygon>& polygons);
 
 // "(x, y)" with 10 significant digits, for messages.
 std::string format_point(const Point2& p);

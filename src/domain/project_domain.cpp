@@ -1,6 +1,5 @@
 #include "domain/project_domain.h"
 
-#include <algorithm>
 #include <sstream>
 
 #include "core/error.h"
@@ -59,13 +58,14 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
   // ring closed through a pole (select_domain), which goes down the 180th meridian and
   // comes back up at -180, comes back along exactly the same points (a spike, removed
   // below).
+  auto antimeridian_west = [](Ring& r) {
+    for (Point2& q : r)
+      if (q.x == 180.0) q.x = -180.0;
+  };
   if (source_crs.geographic)
     for (Polygon& p : projected) {
-      for (Point2& q : p.outer)
-        if (q.x == 180.0) q.x = -180.0;
-      for (Ring& h : p.holes)
-        for (Point2& q : h)
-          if (q.x == 180.0) q.x = -180.0;
+      antimeridian_west(p.outer);
+      for (Ring& h : p.holes) antimeridian_west(h);
     }
   CrsTransform t(source_crs, target);
   Point2 failed;
@@ -75,15 +75,7 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
                     "' to '" + target.name + "'");
   // Points that are one once projected (every point at a pole; see above for the
   // antimeridian) leave duplicates and spikes.
-  for (Polygon& p : projected) {
-    remove_duplicates_and_spikes(p.outer);
-    for (Ring& h : p.holes) remove_duplicates_and_spikes(h);
-    p.holes.erase(std::remove_if(p.holes.begin(), p.holes.end(), [](const Ring& h) { return h.size() < 3; }),
-                  p.holes.end());
-  }
-  projected.erase(std::remove_if(projected.begin(), projected.end(),
-                                 [](const Polygon& p) { return p.outer.size() < 3; }),
-                  projected.end());
+  remove_duplicates_and_spikes(projected);
   for (Polygon& p : projected) orient_polygon(p);
   sort_by_area(projected);
   result.domain.polygons = std::move(projected);

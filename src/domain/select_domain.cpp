@@ -281,17 +281,8 @@ SelectResult select_domain(const SourceData& input, const SelectParams& params) 
   }
 
   result.polygons = geos.polygons(domain);
-  for (Polygon& p : result.polygons) {
-    remove_duplicates_and_spikes(p.outer);
-    for (Ring& h : p.holes) remove_duplicates_and_spikes(h);
-    p.holes.erase(
-        std::remove_if(p.holes.begin(), p.holes.end(), [](const Ring& h) { return h.size() < 3; }),
-        p.holes.end());
-    orient_polygon(p);
-  }
-  result.polygons.erase(std::remove_if(result.polygons.begin(), result.polygons.end(),
-                                       [](const Polygon& p) { return p.outer.size() < 3; }),
-                        result.polygons.end());
+  remove_duplicates_and_spikes(result.polygons);
+  for (Polygon& p : result.polygons) orient_polygon(p);
   if (result.polygons.empty())
     throw Error(ErrorClass::input, "domain",
                 file + ": the " + std::string(params.kind == DomainKind::water ? "water" : "land") +
