@@ -76,29 +76,49 @@ void unwrap_antimeridian(SourceData& source) {
 // move by 360; then each ring moves by whole turns so that it starts at or east of -180
 // (holes: of the outer ring's west end). False for a ring around a pole (the moves do
 // not cancel), which is left as drawn.
+// The turns (multiples of 360 degrees) that make a ring's longitudes continuous: after
+// an edge more than 180 degrees long, the following vertices move by 360. Applied in one
+// addition per vertex, so that a vertex that ends where it was keeps its exact
+// coordinate. The closing edge, from the last vertex back to the first, undoes them
+// unless the ring winds round a pole.
+struct RingTurns {
+  std::vector<double> turn;  // added to each vertex
+  double closing = 0.0;      // the closing edge's
+  bool winds() const { return std::abs(turn.back() + closing) > 1.0; }
+};
+
+RingTurns ring_turns(const Ring& r) {
+  RingTurns t;
+  t.turn.assign(r.size(), 0.0);
+  for (std::size_t i = 1; i < r.size(); ++i) {
+    t.turn[i] = t.turn[i - 1];
+    if (r[i].x - r[i - 1].x > 180.0) t.turn[i] -= 360.0;
+    if (r[i - 1].x - r[i].x > 180.0) t.turn[i] += 360.0;
+  }
+  if (r.front().x - r.back().x > 180.0) t.closing = -360.0;
+  if (r.back().x - r.front().x > 180.0) t.closing = 360.0;
+  return t;
+}
+
+// The ring's longitudes with `turn` added, moved by whole turns to start at or east of
+// `west`; returns its west end.
+double move_east_of(Ring& r, const std::vector<double>& turn, double west) {
+  double lo = 1e300;
+  for (std::size_t i = 0; i < r.size(); ++i) lo = std::min(lo, r[i].x + turn[i]);
+  const double whole = 360.0 * std::ceil((west - lo) / 360.0 - 1e-12);
+  for (std::size_t i = 0; i < r.size(); ++i) r[i].x += turn[i] + whole;
+  return lo + whole;
+}
+
 bool unwrap_continuously(std::vector<Ring>& rings) {
   double west = -180.0;
   for (std::size_t k = 0; k < rings.size(); ++k) {
     Ring& r = rings[k];
     if (r.empty()) continue;
-    // Turns added to each vertex (in multiples of 360), applied in one addition below so
-    // that a vertex that ends where it was keeps its exact coordinate.
-    std::vector<double> turn(r.size(), 0.0);
-    for (std::size_t i = 1; i < r.size(); ++i) {
-      turn[i] = turn[i - 1];
-      if (r[i].x - r[i - 1].x > 180.0) turn[i] -= 360.0;
-      if (r[i - 1].x - r[i].x > 180.0) turn[i] += 360.0;
-    }
-    // The closing edge, from the last vertex back to the first, must undo the turns.
-    double closing = 0.0;
-    if (r.front().x - r.back().x > 180.0) closing = -360.0;
-    if (r.back().x - r.front().x > 180.0) closing = 360.0;
-    if (std::abs(turn.back() + closing) > 1.0) return false;
-    double lo = 1e300;
-    for (std::size_t i = 0; i < r.size(); ++i) lo = std::min(lo, r[i].x + turn[i]);
-    const double whole = 360.0 * std::ceil((west - lo) / 360.0 - 1e-12);
-    for (std::size_t i = 0; i < r.size(); ++i) r[i].x += turn[i] + whole;
-    if (k == 0) west = lo + whole;
+    const RingTurns t = ring_turns(r);
+    if (t.winds()) return false;
+    const double lo = move_east_of(r, t.turn, west);
+    if (k == 0) west = lo;
   }
   return true;
 }
@@ -117,42 +137,29 @@ bool close_round_pole(std::vector<Ring>& rings) {
   for (std::size_t k = 0; k < rings.size(); ++k) {
     Ring r = rings[k];
     if (r.size() < 3) continue;
-    double turn = 0.0, lat = 0.0;
-    std::vector<double> turns(r.size(), 0.0);
-    for (std::size_t i = 1; i < r.size(); ++i) {
-      if (r[i].x - r[i - 1].x > 180.0) turn -= 360.0;
-      if (r[i - 1].x - r[i].x > 180.0) turn += 360.0;
-      turns[i] = turn;
-    }
-    double closing = 0.0;
-    if (r.front().x - r.back().x > 180.0) closing = -360.0;
-    if (r.back().x - r.front().x > 180.0) closing = 360.0;
-    for (const Point2& p : r) lat += p.y / static_cast<double>(r.size());
-    if (std::abs(turn + closing) < 1.0) {
+    const RingTurns t = ring_turns(r);
+    if (!t.winds()) {
       out.push_back(std::move(r));
       continue;
     }
+    double lat = 0.0;
+    for (const Point2& p : r) lat += p.y / static_cast<double>(r.size());
     const double pole = lat < 0.0 ? -90.0 : 90.0;
+    winds = true;
     if (k > 0) {
-      const bool at_pole = std::all_of(r.begin(), r.end(), [&](const Point2& p) {
-        return std::abs(p.y - pole) < 0.01;
-      });
-      if (!at_pole) return false;
-      winds = true;
+      if (!std::all_of(r.begin(), r.end(), [&](const Point2& p) { return std::abs(p.y - pole) < 0.01; }))
+        return false;
       continue;
     }
-    winds = true;
-    for (std::size_t i = 0; i < r.size(); ++i) r[i].x += turns[i];
+    for (std::size_t i = 0; i < r.size(); ++i) r[i].x += t.turn[i];
     // One more step along the ring (its closing edge, the short way), then down to the
     // pole and back along it to where the ring starts.
-    const double end_x = r.front().x + turns.back() + closing;
-    r.push_back({end_x, r.front().y});
+    const double end_x = r.front().x + t.turn.back() + t.closing;
+    const Point2 start = r.front();
+    r.push_back({end_x, start.y});
     r.push_back({end_x, pole});
-    r.push_back({r.front().x, pole});
-    double lo = 1e300;
-    for (const Point2& p : r) lo = std::min(lo, p.x);
-    const double whole = 360.0 * std::ceil((-180.0 - lo) / 360.0 - 1e-12);
-    for (Point2& p : r) p.x += whole;
+    r.push_back({start.x, pole});
+    move_east_of(r, std::vector<double>(r.size(), 0.0), -180.0);
     out.push_back(std::move(r));
   }
   if (winds) rings = std::move(out);
