@@ -158,6 +158,15 @@ bool merge_shared_boundaries(Domain& domain) {
   Domain merged;
   merged.polygons = geos.polygons(geos.snapped(geos.unary_union_snapped(all, 4.0 * tol), 4.0 * tol));
   if (merged.polygons.empty()) return false;
+  // The snapping gives a coordinate that rounds to zero either sign, not always the same
+  // from one run to the next: +0, so that the output is the same byte for byte.
+  auto positive_zeros = [](Ring& r) {
+    for (Point2& q : r) q.x += 0.0, q.y += 0.0;
+  };
+  for (Polygon& p : merged.polygons) {
+    positive_zeros(p.outer);
+    for (Ring& h : p.holes) positive_zeros(h);
+  }
   if (merged.polygons.size() >= domain.polygons.size() &&
       pinch_points(merged).size() >= pinch_points(domain).size())
     return false;
