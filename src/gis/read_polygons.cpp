@@ -157,7 +157,7 @@ class Reader {
       area.addGeometry(&poly);
     }
     OGREnvelope ext;
-    if (layer_->GetExtent(&ext, TRUE) == OGRERR_NONE &&
+    if (layer_->GetExtent(&ext, TRUE) == OGRERR_NONE && (reach_pole(ext), true) &&
         std::none_of(filters_.begin(), filters_.end(),
                      [&](const OGREnvelope& f) { return f.Intersects(ext); }))
       fail(ErrorClass::input, "--bbox " + fmt(b[0]) + "," + fmt(b[1]) + "," + fmt(b[2]) + "," +
@@ -165,10 +165,12 @@ class Reader {
                                   quote(out_.layer_name) + " (extent " + fmt(ext.MinX) + "," +
                                   fmt(ext.MinY) + "," + fmt(ext.MaxX) + "," + fmt(ext.MaxY) +
                                   " in " + out_.crs.name + ")");
-    if (filters_.size() == 1)
-      layer_->SetSpatialFilterRect(xmin, ymin, xmax, ymax);
-    else
-      layer_->SetSpatialFilter(&area);
+    // OGR's filter tests the geometry itself, drawn in lon/lat: land round a pole that
+    // it does not reach as drawn (reach_pole) would miss a bbox near the pole. Polar
+    // bboxes read every feature; add_polygon selects the parts.
+    const bool polar = out_.crs.geographic && (ymax <= -60.0 || ymin >= 60.0);
+    if (!polar && filters_.size() == 1) layer_->SetSpatialFilterRect(xmin, ymin, xmax, ymax);
+    if (!polar && filters_.size() > 1) layer_->SetSpatialFilter(&area);
     out_.bbox_ring = std::move(ring);
   }
 
@@ -236,12 +238,22 @@ class Reader {
     }
   }
 
+  // In longitudes, what spans every longitude may be drawn round a pole without
+  // reaching it (world-atlas's Antarctica stops at 85 S, the pole implied): its envelope
+  // reaches the pole.
+  void reach_pole(OGREnvelope& e) const {
+    if (!out_.crs.geographic || e.MaxX - e.MinX < 359.0) return;
+    if (e.MaxY < 0.0) e.MinY = -90.0;
+    if (e.MinY > 0.0) e.MaxY = 90.0;
+  }
+
   void add_polygon(long long fid, int part, const OGRPolygon& poly) {
     // The bbox filter selects whole features; a part of a multipolygon (the land of the
     // world as one feature) that misses the bbox is not read, nor checked.
     if (!filters_.empty()) {
       OGREnvelope e;
       poly.getEnvelope(&e);
+      reach_pole(e);
       if (std::none_of(filters_.begin(), filters_.end(),
                        [&](const OGREnvelope& f) { return e.Intersects(f); }))
         return;
