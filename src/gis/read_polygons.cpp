@@ -157,14 +157,16 @@ class Reader {
       area.addGeometry(&poly);
     }
     OGREnvelope ext;
-    if (layer_->GetExtent(&ext, TRUE) == OGRERR_NONE && (reach_pole(ext), true) &&
-        std::none_of(filters_.begin(), filters_.end(),
-                     [&](const OGREnvelope& f) { return f.Intersects(ext); }))
-      fail(ErrorClass::input, "--bbox " + fmt(b[0]) + "," + fmt(b[1]) + "," + fmt(b[2]) + "," +
-                                  fmt(b[3]) + " misses the data of layer " +
-                                  quote(out_.layer_name) + " (extent " + fmt(ext.MinX) + "," +
-                                  fmt(ext.MinY) + "," + fmt(ext.MaxX) + "," + fmt(ext.MaxY) +
-                                  " in " + out_.crs.name + ")");
+    if (layer_->GetExtent(&ext, TRUE) == OGRERR_NONE) {
+      reach_pole(ext);
+      if (std::none_of(filters_.begin(), filters_.end(),
+                       [&](const OGREnvelope& f) { return f.Intersects(ext); }))
+        fail(ErrorClass::input, "--bbox " + fmt(b[0]) + "," + fmt(b[1]) + "," + fmt(b[2]) + "," +
+                                    fmt(b[3]) + " misses the data of layer " +
+                                    quote(out_.layer_name) + " (extent " + fmt(ext.MinX) + "," +
+                                    fmt(ext.MinY) + "," + fmt(ext.MaxX) + "," + fmt(ext.MaxY) +
+                                    " in " + out_.crs.name + ")");
+    }
     // OGR's filter tests the geometry itself, drawn in lon/lat: land round a pole that
     // it does not reach as drawn (reach_pole) would miss a bbox near the pole. Polar
     // bboxes read every feature; add_polygon selects the parts.
