@@ -51,21 +51,26 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
   r.fields = build_fields(options.fields, progress.slice(0.0, 0.45));
   FieldsOptions fields = options.fields;  // with the local refinements of failed attempts
 
-  // The tiling and quad stages, retried when smoothing cannot make every quad convex:
-  // such failures come from a few badly shaped tiles, and a different tiling rarely has
-  // them at the same place. Attempts 1 and 3 start from the other initialization
-  // (fronts or merging), which moves every tile; attempts 2 and 3 add a conforming
-  // iteration and leave pairs of tiles as they are (no re-splitting: its tiles, cut
-  // along shortest paths, are the likelier to be bent at a sharp reflex corner). Each
-  // also has the sizes halved where the attempts before it failed (refinements_at), with
-  // the background mesh and fields built again: a fold where a channel is narrower than
-  // the quads comes back with any tiling of the same sizes. The attempts are a fixed
-  // sequence, so the output stays deterministic.
+  // The tiling and quad stages, retried when smoothing cannot make every quad convex
+  // or the mesh folds: such failures come from a few badly shaped tiles. The next
+  // attempt has the sizes halved where this one failed (refinements_at), with the
+  // background mesh and fields built again: a fold where a channel is narrower than the
+  // quads comes back with any tiling of the same sizes. It keeps the tiling's variant, so
+  // that the tiles change where the sizes did, not everywhere: a new variant would bring
+  // its own failures elsewhere (the Norwegian and Barents seas at 1:10m failed at a new
+  // place in each of four attempts, and met in the third with the variant kept). When
+  // there is nothing to refine (failures at more than max_refined_places), the next
+  // variant: variants 1 and 3 start from the other initialization (fronts or merging),
+  // which moves every tile; variants 2 and 3 add a conforming iteration and leave pairs
+  // of tiles as they are (no re-splitting: its tiles, cut along shortest paths, are the
+  // likelier to be bent at a sharp reflex corner). The attempts are a fixed sequence, so
+  // the output stays deterministic.
+  int variant = 0;
   for (int attempt = 0;; ++attempt) {
     MeshOptions o = options;
-    o.tiling.conform_iters += attempt / 2;
-    if (attempt >= 2) o.tiling.resplit_rounds = 0;
-    if (attempt % 2 == 1)
+    o.tiling.conform_iters += variant / 2;
+    if (variant >= 2) o.tiling.resplit_rounds = 0;
+    if (variant % 2 == 1)
       o.tiling.init = o.tiling.init == TilingInit::front ? TilingInit::merge : TilingInit::front;
     StageClock clock(r.fields.times);
     CornerParams corners;
@@ -128,6 +133,8 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
       r.refinements = fields.sizing.refinements;
       problem += "; sizes halved at " + std::to_string(more.size()) + " place(s) there";
       build_fields_on_domain(r.fields.front.domain, fields, r.fields, progress.slice(0.3, 0.45));
+    } else {
+      ++variant;
     }
     r.retry_reasons.push_back(problem);
     progress.report("retry: " + problem, 0.45);
