@@ -19,12 +19,15 @@ struct MeshOptions {
   TilingParams tiling;
   SubdivideParams subdivide;
   SmoothParams smooth;
-  // Tiling attempts (build_mesh: the other initialization, then a conforming iteration
-  // more) before giving up on a quad that smoothing cannot make convex.
-  int max_attempts = 4;
+  // Tiling attempts (build_mesh: the sizes halved where the last one failed, or the
+  // tiling's next variant) before giving up on a quad that smoothing cannot make
+  // convex or a fold. 6: the Arctic Ocean north of 66 N at 1:10m folds at a new narrow
+  // channel in each of its first four tilings (each refined where the one before
+  // folded) and meshes in the fifth.
+  int max_attempts = 6;
   // After a failed attempt, the next one has sizes halved where it failed
   // (refinements_at), unless it failed at more places than this: then the failure is
-  // not a local feature and only the tiling changes.
+  // not a local feature and the next tiling is the next variant.
   std::size_t max_refined_places = 16;
 };
 
