@@ -112,16 +112,25 @@ void set_polygons(Domain& domain, std::vector<Polygon> polygons) {
 
 }  // namespace
 
-std::vector<Point2> pinch_points(const Domain& domain) {
-  double tol = 0.0;
+namespace {
+
+// One point per place: the places are few.
+std::vector<Point2> places(const std::vector<Touch>& touches, double tol) {
   std::vector<Point2> out;
-  for (const Touch& t : touching_vertices(domain, &tol)) {
-    // One point per place: the places found so far are few.
+  for (const Touch& t : touches) {
     bool known = false;
     for (const Point2& p : out) known = known || std::hypot(p.x - t.p.x, p.y - t.p.y) <= 2 * tol;
     if (!known) out.push_back(t.p);
   }
   return out;
+}
+
+}  // namespace
+
+std::vector<Point2> pinch_points(const Domain& domain) {
+  double tol = 0.0;
+  const std::vector<Touch> touches = touching_vertices(domain, &tol);
+  return places(touches, tol);
 }
 
 bool merge_shared_boundaries(Domain& domain) {
@@ -168,7 +177,7 @@ bool merge_shared_boundaries(Domain& domain) {
     for (Ring& h : p.holes) positive_zeros(h);
   }
   if (merged.polygons.size() >= domain.polygons.size() &&
-      pinch_points(merged).size() >= pinch_points(domain).size())
+      pinch_points(merged).size() >= places(touches, tol).size())
     return false;
   set_polygons(domain, std::move(merged.polygons));
   return true;
