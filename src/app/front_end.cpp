@@ -101,25 +101,27 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   const double pinch_gap =
       simp.tolerance_m > 0 ? simp.tolerance_m : 1e-4 * std::sqrt(area(result.domain));
   auto cut_pinches = [&] {
-    if (pinch_points(result.domain).empty()) return;
+    std::size_t pinches = pinch_points(result.domain).size();
+    if (pinches == 0) return;
     // Boundaries that coincide (pieces of one land mass cut at the antimeridian, the
     // sides of a bbox round every longitude) are merged, not cut apart.
     const std::size_t pieces = result.domain.polygons.size();
-    if (merge_shared_boundaries(result.domain))
+    if (merge_shared_boundaries(result.domain)) {
       s.warnings.push_back("boundaries that coincide once projected were merged (" +
                            std::to_string(pieces) + " polygon(s) before, " +
                            std::to_string(result.domain.polygons.size()) + " after)");
+      pinches = pinch_points(result.domain).size();
+    }
     // A cut can leave two of its pieces touching at a point (slivers between a coast
     // and the bbox edge: the Arctic's water at 66 N): those are cut in turn.
     constexpr int kCutRounds = 3;
-    for (int round = 0; round < kCutRounds; ++round) {
-      const std::size_t pinches = pinch_points(result.domain).size();
-      if (pinches == 0) return;
+    for (int round = 0; round < kCutRounds && pinches > 0; ++round) {
       separate_rings(result.domain, pinch_gap);
       pinches_cut += pinches;
+      pinches = pinch_points(result.domain).size();
     }
+    if (pinches == 0) return;
     const std::vector<Point2> left = pinch_points(result.domain);
-    if (left.empty()) return;
     char where[112];
     std::snprintf(where, sizeof where,
                   " (%zu place(s), the first near (%.10g, %.10g) in the meshing CRS)", left.size(),
