@@ -401,7 +401,7 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
       ->group("Quads");
   cmd->add_option("--angle-iters", m.mesh.smooth.angle_iterations,
                   "Angle sweeps last: vertices take small moves that bring corners nearer 90 "
-                  "degrees and edges nearer the cross field, keeping sizes (default 10; 0: none)")
+                  "degrees and edges nearer the cross field, keeping sizes (default 20; 0: none)")
       ->check(CLI::NonNegativeNumber)
       ->group("Quads");
   cmd->add_option("--output-format", m.output_formats,

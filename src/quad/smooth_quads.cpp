@@ -459,32 +459,63 @@ class AlignedSmoother {
   std::vector<double> h_, theta_;
 };
 
+// The logistic function: a smooth step from 0 (x << 0) to 1 (x >> 0).
+double smooth_step(double x) { return 1.0 / (1.0 + std::exp(-x)); }
+
+// The angle at corner o of a quad whose corners run p, o, n counter-clockwise, in (-pi, pi]
+// (negative where the quad folds).
+double corner_angle_rad(const Point2& p, const Point2& o, const Point2& n) {
+  const double ax = p.x - o.x, ay = p.y - o.y, bx = n.x - o.x, by = n.y - o.y;
+  return std::atan2(bx * ay - by * ax, ax * bx + ay * by);
+}
+
 // The angle sweeps' energy at v: over the quads around v, the sum of (angle - 90 deg)^2
-// (rad^2) of the corners that a move of v changes (at v and at its two neighbours in the
-// quad; the fourth is constant), plus area_weight (log(area / area0))^2 per quad (area0:
-// the target area); infinite when one of those corners turns by less than min_convexity
-// (quad_convexity's measure; the caller has checked the fourth).
-double moving_corner_energy(const QuadMesh& m, const Topology& t, int v, double min_convexity,
-                            const std::vector<double>& area0, double area_weight) {
+// (rad^2) plus the smooth count of corners out of range (SmoothParams::angle_range_*) of
+// the corners that a move of v changes (at v and at its two neighbours in the quad; the
+// fourth is constant: opposite_angle, per quad of v in order), plus per quad
+// area_weight (log(area / area0))^2, the smooth count of sizes out of range
+// (size_range_*; area0: the target area) and of smallest over largest angle under
+// min_angle_ratio; infinite when one of the moving corners turns by less than
+// min_convexity (quad_convexity's measure; the caller has checked the fourth).
+// `sharpest` takes the smallest of the moving corners' angles, if smaller.
+double moving_corner_energy(const QuadMesh& m, const Topology& t, int v, const SmoothParams& params,
+                            const std::vector<double>& area0, const double* opposite_angle,
+                            double& sharpest) {
+  const double range = params.angle_range_deg * M_PI / 180;
+  const double softness = params.angle_range_softness_deg * M_PI / 180;
   double e = 0;
   for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
     const int q = t.quad_items[k];
     const auto& c = m.quads[q];
     const int j = c[0] == v ? 0 : c[1] == v ? 1 : c[2] == v ? 2 : 3;
+    double smallest = opposite_angle[k - t.quad_start[v]], largest = smallest;
     for (int d = 3; d <= 5; ++d) {
       const int i = (j + d) % 4;
       const Point2 &p = m.points[c[(i + 3) % 4]], &o = m.points[c[i]], &n = m.points[c[(i + 1) % 4]];
       const double ax = p.x - o.x, ay = p.y - o.y, bx = n.x - o.x, by = n.y - o.y;
       const double cross = bx * ay - by * ax, dot = ax * bx + ay * by;
+      const double angle = std::atan2(cross, dot);
+      smallest = std::min(smallest, angle);
+      largest = std::max(largest, angle);
+      sharpest = std::min(sharpest, angle);
       // quad_convexity's measure at this corner: the sine of the turn between edges.
       const double l2 = (ax * ax + ay * ay) * (bx * bx + by * by);
-      if (l2 == 0 || cross <= min_convexity * std::sqrt(l2)) return std::numeric_limits<double>::infinity();
-      const double a = std::atan2(cross, dot) - 0.5 * M_PI;
+      if (l2 == 0 || cross <= params.min_convexity * std::sqrt(l2))
+        return std::numeric_limits<double>::infinity();
+      const double a = angle - 0.5 * M_PI;
       e += a * a;
+      if (params.angle_range_weight > 0)
+        e += params.angle_range_weight * smooth_step((std::abs(a) - range) / softness);
     }
-    if (area_weight > 0) {
+    if (params.angle_ratio_weight > 0)
+      e += params.angle_ratio_weight *
+           smooth_step((params.min_angle_ratio - smallest / largest) / params.angle_ratio_softness);
+    if (params.angle_area_weight > 0 || params.size_range_weight > 0) {
       const double r = std::log(quad_area(m, q) / area0[q]);
-      e += area_weight * r * r;
+      e += params.angle_area_weight * r * r;
+      if (params.size_range_weight > 0)
+        e += params.size_range_weight *
+             smooth_step((std::abs(r) - params.size_range_log_area) / params.size_range_softness);
     }
   }
   return e;
@@ -502,13 +533,15 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
   const double ow = params.angle_orientation_weight;
   std::unique_ptr<TriangleLocator> locator;
   if ((cross && ow > 0) || size) locator = std::make_unique<TriangleLocator>(bg);
-  // The cross at every vertex where the sweeps start.
-  std::vector<double> theta;
+  // The cross at every vertex where the sweeps start: the unit vector of one of its axes.
+  std::vector<Point2> axis;
   if (cross && ow > 0) {
-    theta.resize(nv);
+    axis.resize(nv);
     for (int v = 0; v < nv; ++v) {
       const Location loc = locator->locate(m.points[v]);
-      theta[v] = loc.triangle >= 0 ? cross_angle_at(bg, *cross, loc.triangle, loc.bary) : 0.0;
+      const double theta =
+          loc.triangle >= 0 ? cross_angle_at(bg, *cross, loc.triangle, loc.bary) : 0.0;
+      axis[v] = {std::cos(theta), std::sin(theta)};
     }
   }
   // Target areas: h^2 at the quad centroids where the sweeps start (the sizing field),
@@ -521,58 +554,100 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
     const double h = loc.triangle >= 0 ? size->at(bg, loc.triangle, loc.bary) : 0.0;
     if (h > 0) area0[q] = h * h;
   }
-  // moving_corner_energy plus ow (rotation from the nearest cross axis)^2 over the edges at v.
-  auto energy = [&](int v) {
-    double e = moving_corner_energy(m, t, v, params.min_convexity, area0, params.angle_area_weight);
-    if (theta.empty() || !std::isfinite(e)) return e;
+  // moving_corner_energy plus ow (rotation from the nearest cross axis)^2 over the edges at
+  // v: in the frame of the cross, an edge (x, y) is atan(min(|x|, |y|) / max(|x|, |y|))
+  // away from the nearest axis.
+  std::vector<double> opposite;  // the constant corners of v's quads (moving_corner_energy)
+  auto energy = [&](int v, double& sharpest) {
+    sharpest = M_PI;
+    double e = moving_corner_energy(m, t, v, params, area0, opposite.data(), sharpest);
+    if (axis.empty() || !std::isfinite(e)) return e;
+    const Point2 u = axis[v];
     for (int w : t.neighbours[v]) {
-      const double phi = std::atan2(m.points[w].y - m.points[v].y, m.points[w].x - m.points[v].x);
-      const double r = cross_rotation_rad(theta[v], phi);
+      const double dx = m.points[w].x - m.points[v].x, dy = m.points[w].y - m.points[v].y;
+      const double x = std::abs(dx * u.x + dy * u.y), y = std::abs(dy * u.x - dx * u.y);
+      const double r = std::max(x, y) > 0 ? std::atan(std::min(x, y) / std::max(x, y)) : 0.0;
       e += ow * r * r;
     }
     return e;
   };
-  for (int it = 0; it < params.angle_iterations; ++it)
-    for (int v = 0; v < nv; ++v) {
-      if (m.fixed[v] || t.neighbours[v].empty()) continue;
-      const Point2 start = m.points[v];
-      const double start_arc = m.arc_m[v];
-      double shortest = std::numeric_limits<double>::infinity();
-      for (int w : t.neighbours[v]) shortest = std::min(shortest, distance(start, m.points[w]));
-      // The second half of the sweeps refines with steps 0.3 as long.
-      const double step = (2 * it < params.angle_iterations ? 1.0 : 0.3) * params.angle_step * shortest;
-      // A vertex with a quad not convex enough (at any corner) stays where it is.
-      if (worst_convexity(m, t, v) <= params.min_convexity) continue;
-      double best = energy(v);
-      if (!std::isfinite(best)) continue;
-      Point2 best_point = start;
-      double best_arc = start_arc;
-      auto consider = [&](const Point2& p, double arc) {
-        m.points[v] = p;
-        m.arc_m[v] = arc;
-        const double e = energy(v);
-        if (e < best) best = e, best_point = p, best_arc = arc;
-      };
-      const int c = m.chain[v];
-      if (c < 0) {
-        for (int k = 0; k < 8; ++k)
-          consider({start.x + step * std::cos(k * M_PI / 4), start.y + step * std::sin(k * M_PI / 4)},
-                   start_arc);
-      } else {
-        // Along the boundary, between the boundary neighbours of the same chain.
-        const auto& bn = t.boundary_neighbours[v];
-        if (bn[0] < 0 || bn[1] < 0 || m.chain[bn[0]] != c || m.chain[bn[1]] != c) continue;
-        const double len = bg.chains[c].length_m;
-        const double d0 = arc_delta(start_arc, m.arc_m[bn[0]], len);
-        const double d1 = arc_delta(start_arc, m.arc_m[bn[1]], len);
-        if (d0 * d1 >= 0) continue;
-        for (double d : {-step, step})
-          if (std::abs(d) < 0.5 * std::min(std::abs(d0), std::abs(d1)))
-            consider(chain_point(bg, bg.chains[c], start_arc + d), start_arc + d);
-      }
-      m.points[v] = best_point;
-      m.arc_m[v] = best_arc;
+  // The best move of v (false: it stays where it is).
+  auto move = [&](int v, double step_factor) {
+    const Point2 start = m.points[v];
+    const double start_arc = m.arc_m[v];
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int w : t.neighbours[v]) shortest = std::min(shortest, distance(start, m.points[w]));
+    const double step = step_factor * params.angle_step * shortest;
+    // A vertex with a quad not convex enough (at any corner) stays where it is.
+    if (worst_convexity(m, t, v) <= params.min_convexity) return false;
+    opposite.clear();
+    for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
+      const auto& c = m.quads[t.quad_items[k]];
+      const int i = c[0] == v ? 2 : c[1] == v ? 3 : c[2] == v ? 0 : 1;
+      opposite.push_back(
+          corner_angle_rad(m.points[c[(i + 3) % 4]], m.points[c[i]], m.points[c[(i + 1) % 4]]));
     }
+    double sharpest = 0;
+    double best = energy(v, sharpest);
+    // No move makes a corner sharper than angle_floor_deg, or sharper still.
+    const double floor = std::min(sharpest, params.angle_floor_deg * M_PI / 180);
+    if (!std::isfinite(best)) return false;
+    Point2 best_point = start;
+    double best_arc = start_arc;
+    auto consider = [&](const Point2& p, double arc) {
+      m.points[v] = p;
+      m.arc_m[v] = arc;
+      double sharp = 0;
+      const double e = energy(v, sharp);
+      if (e < best && sharp >= floor) best = e, best_point = p, best_arc = arc;
+    };
+    const int c = m.chain[v];
+    if (c < 0) {
+      for (int k = 0; k < 8; ++k)
+        consider({start.x + step * std::cos(k * M_PI / 4), start.y + step * std::sin(k * M_PI / 4)},
+                 start_arc);
+    } else {
+      // Along the boundary, between the boundary neighbours of the same chain.
+      const auto& bn = t.boundary_neighbours[v];
+      if (bn[0] < 0 || bn[1] < 0 || m.chain[bn[0]] != c || m.chain[bn[1]] != c) return false;
+      const double len = bg.chains[c].length_m;
+      const double d0 = arc_delta(start_arc, m.arc_m[bn[0]], len);
+      const double d1 = arc_delta(start_arc, m.arc_m[bn[1]], len);
+      if (d0 * d1 >= 0) return false;
+      for (double d : {-step, step})
+        if (std::abs(d) < 0.5 * std::min(std::abs(d0), std::abs(d1)))
+          consider(chain_point(bg, bg.chains[c], start_arc + d), start_arc + d);
+    }
+    m.points[v] = best_point;
+    m.arc_m[v] = best_arc;
+    return best_point.x != start.x || best_point.y != start.y;
+  };
+  // Which vertices need another look: one that stayed where it was stays again until a
+  // vertex of its quads moves (its energy and moves depend on nothing else), or the steps
+  // shorten. Stamps count the moves looked at.
+  std::vector<long> moved_at(nv, -1), stayed_at(nv, -1);
+  long stamp = 0;
+  auto unchanged = [&](int v) {
+    if (stayed_at[v] < 0) return false;
+    for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k)
+      for (int w : m.quads[t.quad_items[k]])
+        if (moved_at[w] > stayed_at[v]) return false;
+    return true;
+  };
+  for (int it = 0; it < params.angle_iterations; ++it) {
+    // The second half of the sweeps refines with steps 0.3 as long.
+    const bool refine = 2 * it >= params.angle_iterations;
+    if (refine && 2 * (it - 1) < params.angle_iterations)
+      std::fill(stayed_at.begin(), stayed_at.end(), -1);
+    for (int v = 0; v < nv; ++v) {
+      if (m.fixed[v] || t.neighbours[v].empty() || unchanged(v)) continue;
+      ++stamp;
+      if (move(v, refine ? 0.3 : 1.0))
+        moved_at[v] = stamp, stayed_at[v] = -1;
+      else
+        stayed_at[v] = stamp;
+    }
+  }
 }
 
 bool contains_point(const std::vector<Point2>& points, const Point2& p) {
