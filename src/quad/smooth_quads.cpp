@@ -5,6 +5,7 @@
 #include <functional>
 #include <limits>
 #include <memory>
+#include <thread>
 #include <tuple>
 
 #include "mesh/locate.h"
@@ -347,6 +348,51 @@ int collapse_quads(QuadMesh& m, const std::function<bool(int)>& wanted, int choi
   return collapses;
 }
 
+// Colours of the vertices such that no two vertices of a quad share one (greedy, in vertex
+// order): vertices of a colour are moved independently of each other, each colour's in
+// vertex order.
+std::vector<std::vector<int>> quad_colouring(const QuadMesh& m, const Topology& t) {
+  const int nv = static_cast<int>(m.points.size());
+  std::vector<int> colour(nv, -1);
+  std::vector<std::vector<int>> classes;
+  std::vector<char> taken;
+  for (int v = 0; v < nv; ++v) {
+    taken.assign(classes.size() + 1, 0);
+    for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k)
+      for (int w : m.quads[t.quad_items[k]])
+        if (colour[w] >= 0) taken[colour[w]] = 1;
+    int c = 0;
+    while (taken[c]) ++c;
+    colour[v] = c;
+    if (c == static_cast<int>(classes.size())) classes.emplace_back();
+    classes[c].push_back(v);
+  }
+  return classes;
+}
+
+// Threads for the sweeps (SmoothParams::threads; the result does not depend on it).
+int sweep_threads(const SmoothParams& params) {
+  if (params.threads > 0) return params.threads;
+  return static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 4u));
+}
+
+// body(begin, end, thread) over [0, n) in `threads` contiguous chunks, in parallel.
+template <class Body>
+void parallel_chunks(int n, int threads, const Body& body) {
+  const int chunk = (n + threads - 1) / std::max(threads, 1);
+  if (threads <= 1 || n < 64) {
+    body(0, n, 0);
+    return;
+  }
+  std::vector<std::thread> pool;
+  for (int k = 1; k < threads; ++k) {
+    const int begin = k * chunk, end = std::min(n, begin + chunk);
+    if (begin < end) pool.emplace_back([&body, begin, end, k] { body(begin, end, k); });
+  }
+  body(0, std::min(n, chunk), 0);
+  for (std::thread& th : pool) th.join();
+}
+
 // The field-aligned sweeps (SmoothParams::aligned_iterations).
 class AlignedSmoother {
  public:
@@ -358,12 +404,15 @@ class AlignedSmoother {
     const int nv = static_cast<int>(m_.points.size());
     h_.resize(nv);
     theta_.resize(nv);
+    const int threads = sweep_threads(params_);
     for (int it = 0; it < params_.aligned_iterations; ++it) {
-      for (int v = 0; v < nv; ++v) {
-        const Location loc = locator_.locate(m_.points[v]);
-        h_[v] = loc.triangle >= 0 ? size_.at(bg_, loc.triangle, loc.bary) : 0.0;
-        theta_[v] = loc.triangle >= 0 ? cross_angle_at(bg_, cross_, loc.triangle, loc.bary) : 0.0;
-      }
+      parallel_chunks(nv, threads, [&](int begin, int end, int) {
+        for (int v = begin; v < end; ++v) {
+          const Location loc = locator_.locate(m_.points[v]);
+          h_[v] = loc.triangle >= 0 ? size_.at(bg_, loc.triangle, loc.bary) : 0.0;
+          theta_[v] = loc.triangle >= 0 ? cross_angle_at(bg_, cross_, loc.triangle, loc.bary) : 0.0;
+        }
+      });
       for (int v = 0; v < nv; ++v) {
         if (m_.fixed[v]) continue;
         if (m_.chain[v] >= 0) slide_boundary(v);
@@ -557,8 +606,8 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
   // moving_corner_energy plus ow (rotation from the nearest cross axis)^2 over the edges at
   // v: in the frame of the cross, an edge (x, y) is atan(min(|x|, |y|) / max(|x|, |y|))
   // away from the nearest axis.
-  std::vector<double> opposite;  // the constant corners of v's quads (moving_corner_energy)
-  auto energy = [&](int v, double& sharpest) {
+  // `opposite`: the constant corners of v's quads (moving_corner_energy).
+  auto energy = [&](int v, const std::vector<double>& opposite, double& sharpest) {
     sharpest = M_PI;
     double e = moving_corner_energy(m, t, v, params, area0, opposite.data(), sharpest);
     if (axis.empty() || !std::isfinite(e)) return e;
@@ -572,7 +621,7 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
     return e;
   };
   // The best move of v (false: it stays where it is).
-  auto move = [&](int v, double step_factor) {
+  auto move = [&](int v, double step_factor, std::vector<double>& opposite) {
     const Point2 start = m.points[v];
     const double start_arc = m.arc_m[v];
     double shortest = std::numeric_limits<double>::infinity();
@@ -588,7 +637,7 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
           corner_angle_rad(m.points[c[(i + 3) % 4]], m.points[c[i]], m.points[c[(i + 1) % 4]]));
     }
     double sharpest = 0;
-    double best = energy(v, sharpest);
+    double best = energy(v, opposite, sharpest);
     // No move makes a corner sharper than angle_floor_deg, or sharper still.
     const double floor = std::min(sharpest, params.angle_floor_deg * M_PI / 180);
     if (!std::isfinite(best)) return false;
@@ -598,7 +647,7 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
       m.points[v] = p;
       m.arc_m[v] = arc;
       double sharp = 0;
-      const double e = energy(v, sharp);
+      const double e = energy(v, opposite, sharp);
       if (e < best && sharp >= floor) best = e, best_point = p, best_arc = arc;
     };
     const int c = m.chain[v];
@@ -624,9 +673,8 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
   };
   // Which vertices need another look: one that stayed where it was stays again until a
   // vertex of its quads moves (its energy and moves depend on nothing else), or the steps
-  // shorten. Stamps count the moves looked at.
+  // shorten. Times count the colours swept.
   std::vector<long> moved_at(nv, -1), stayed_at(nv, -1);
-  long stamp = 0;
   auto unchanged = [&](int v) {
     if (stayed_at[v] < 0) return false;
     for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k)
@@ -634,18 +682,28 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
         if (moved_at[w] > stayed_at[v]) return false;
     return true;
   };
+  // The vertices of one colour move independently, so in parallel.
+  const std::vector<std::vector<int>> colours = quad_colouring(m, t);
+  const int threads = sweep_threads(params);
+  std::vector<std::vector<double>> scratch(threads);
+  long time = 0;
   for (int it = 0; it < params.angle_iterations; ++it) {
     // The second half of the sweeps refines with steps 0.3 as long.
     const bool refine = 2 * it >= params.angle_iterations;
     if (refine && 2 * (it - 1) < params.angle_iterations)
       std::fill(stayed_at.begin(), stayed_at.end(), -1);
-    for (int v = 0; v < nv; ++v) {
-      if (m.fixed[v] || t.neighbours[v].empty() || unchanged(v)) continue;
-      ++stamp;
-      if (move(v, refine ? 0.3 : 1.0))
-        moved_at[v] = stamp, stayed_at[v] = -1;
-      else
-        stayed_at[v] = stamp;
+    for (const std::vector<int>& colour : colours) {
+      ++time;
+      parallel_chunks(static_cast<int>(colour.size()), threads, [&](int begin, int end, int thread) {
+        for (int i = begin; i < end; ++i) {
+          const int v = colour[i];
+          if (m.fixed[v] || t.neighbours[v].empty() || unchanged(v)) continue;
+          if (move(v, refine ? 0.3 : 1.0, scratch[thread]))
+            moved_at[v] = time, stayed_at[v] = -1;
+          else
+            stayed_at[v] = time;
+        }
+      });
     }
   }
 }

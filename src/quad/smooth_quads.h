@@ -94,6 +94,10 @@ struct SmoothParams {
   // Earth's 1:50m Peru: smallest angle 28.9 -> 19.7 degrees without it, 30.0 with it,
   // the same 92.6% of angles in range).
   double angle_floor_deg = 30.0;
+  // Threads for the sweeps (0: the machine's, at most 4). The angle sweeps move the
+  // vertices colour by colour, no two vertices of a quad of the same colour, so that a
+  // colour's moves are independent: the mesh is the same with any number of threads.
+  int threads = 0;
 };
 
 struct SmoothStats {
