@@ -77,6 +77,7 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
     corners.corner_angle_deg = o.tiling.graph.corner_angle_deg;
     tag_corners(r.fields.mesh, r.fields.size, corners);  // the repairs may clear some
     r.attempts = attempt + 1;
+    r.tiling_variants.push_back(variant);
     std::string problem;
     std::vector<Point2> failed_at;
     try {
@@ -287,6 +288,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .end_object();
     j.begin_object("smoothing")
         .value("tiling_attempts", r.attempts)
+        .array("tiling_variants", r.tiling_variants)
         .value("num_nonconvex_before", r.smooth.num_nonconvex_before)
         .value("num_untangle_sweeps", r.smooth.num_untangle_sweeps)
         .value("num_flips", r.smooth.num_flips)

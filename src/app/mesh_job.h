@@ -40,6 +40,7 @@ struct MeshResult {
   QualitySummary quality;
   SmoothStats smooth;
   int attempts = 0;                        // tiling attempts made (see MeshOptions)
+  std::vector<int> tiling_variants;        // the tiling variant of each attempt (build_mesh)
   std::vector<std::string> retry_reasons;  // why each earlier attempt was discarded
   std::vector<LocalRefinement> refinements;  // added after failed attempts (refinements_at)
 };

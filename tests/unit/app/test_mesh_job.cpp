@@ -21,6 +21,16 @@ MeshOptions corsica(double hmax_m) {
   return o;
 }
 
+// Brittany's water at hmax 10 km, whose first tiling fails at one place.
+MeshOptions brittany_water_at_10km() {
+  MeshOptions o;
+  o.fields.front.read.path = sample("brittany_land.shp");
+  o.fields.front.read.bbox = std::array<double, 4>{-5.3, 46.8, -1.95, 49.35};
+  o.fields.front.kind = DomainKind::water;
+  o.fields.sizing.hmax_m = 10000.0;
+  return o;
+}
+
 }  // namespace
 
 TEST(MeshJob, EveryQuadStrictlyConvexAndTheAttemptsAreReported) {
@@ -107,13 +117,10 @@ TEST(MeshJob, TheRetryHasSmallerSizesWhereTheFailedAttemptFailed) {
   // convex; the second, with the sizes halved there, meshes. (France at hmax 24 km with
   // --simplify 800 was such a case until the angle sweeps moved the vertices colour by
   // colour. Should a change mesh this one in one tiling too, the test needs another.)
-  MeshOptions o;
-  o.fields.front.read.path = sample("brittany_land.shp");
-  o.fields.front.read.bbox = std::array<double, 4>{-5.3, 46.8, -1.95, 49.35};
-  o.fields.front.kind = DomainKind::water;
-  o.fields.sizing.hmax_m = 10000.0;
-  const MeshResult r = build_mesh(o);
+  const MeshResult r = build_mesh(brittany_water_at_10km());
   ASSERT_EQ(r.attempts, 2) << "the premise: the first attempt fails";
+  // Refined where it failed, the second attempt keeps the tiling's variant.
+  EXPECT_EQ(r.tiling_variants, (std::vector<int>{0, 0}));
   ASSERT_EQ(r.retry_reasons.size(), 1u);
   EXPECT_NE(r.retry_reasons[0].find("sizes halved at 1 place(s)"), std::string::npos)
       << r.retry_reasons[0];
@@ -135,4 +142,18 @@ TEST(MeshJob, TheRetryHasSmallerSizesWhereTheFailedAttemptFailed) {
   const std::size_t at = json.find("\"local_refinements\"");
   ASSERT_NE(at, std::string::npos);
   EXPECT_NE(json.find("\"radius_m\"", at), std::string::npos);
+}
+
+TEST(MeshJob, ARetryThatCannotRefineTakesTheNextTilingVariant) {
+  // The same failure with no place allowed to be refined: each retry takes the next
+  // variant (the other initialization, then more conforming and no re-splitting).
+  MeshOptions o = brittany_water_at_10km();
+  o.max_refined_places = 0;
+  const MeshResult r = build_mesh(o);
+  ASSERT_GE(r.attempts, 2) << "the premise: the first attempt fails";
+  ASSERT_EQ(r.tiling_variants.size(), static_cast<std::size_t>(r.attempts));
+  for (int k = 0; k < r.attempts; ++k) EXPECT_EQ(r.tiling_variants[k], k);
+  EXPECT_TRUE(r.refinements.empty());
+  EXPECT_EQ(r.quality.num_nonconvex, 0u);
+  EXPECT_NE(mesh_report_json(r, "test").find("\"tiling_variants\""), std::string::npos);
 }
