@@ -196,65 +196,95 @@ void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const Sm
   }
 }
 
+// The quads that share each edge (an edge used by one quad only is on the boundary).
+class EdgeQuads {
+ public:
+  explicit EdgeQuads(const QuadMesh& m) {
+    for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
+      for (int i = 0; i < 4; ++i) {
+        const int a = m.quads[q][i], b = m.quads[q][(i + 1) % 4];
+        edges_.push_back({{std::min(a, b), std::max(a, b)}, q});
+      }
+    std::sort(edges_.begin(), edges_.end());
+  }
+  // The quad other than q on edge (a, b), or -1.
+  int other(int a, int b, int q) const {
+    const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
+    auto it = std::lower_bound(edges_.begin(), edges_.end(), std::make_pair(key, -1));
+    for (; it != edges_.end() && it->first == key; ++it)
+      if (it->second != q) return it->second;
+    return -1;
+  }
+
+ private:
+  std::vector<std::pair<std::pair<int, int>, int>> edges_;  // (edge, quad), sorted
+};
+
+// A quad edge flip: quads q and n, which share an edge, replaced by a and b.
+struct QuadFlip {
+  int q = -1, n = -1;
+  std::array<int, 4> a{}, b{};
+  double convexity = 0;  // the worse of a and b (quad_convexity)
+};
+
+// The flips of quad q: with each neighbour n it forms a hexagon, which splits into two
+// quads along its two other long diagonals.
+std::vector<QuadFlip> flips_of(const QuadMesh& m, const EdgeQuads& edges, int q) {
+  std::vector<QuadFlip> out;
+  for (int i = 0; i < 4; ++i) {
+    const int a = m.quads[q][i], b = m.quads[q][(i + 1) % 4];
+    const int n = edges.other(a, b, q);
+    if (n < 0) continue;
+    // Hexagon: q from b round to a (b, q[i+2], q[i+3], a), then n, which runs from b to
+    // a (both counter-clockwise), from a round to b.
+    const auto& nq4 = m.quads[n];
+    int j = 0;
+    while (nq4[j] != a) ++j;
+    if (nq4[(j + 3) % 4] != b) continue;  // inconsistent orientation
+    const std::array<int, 6> h = {b, m.quads[q][(i + 2) % 4], m.quads[q][(i + 3) % 4], a,
+                                  nq4[(j + 1) % 4], nq4[(j + 2) % 4]};
+    // Two quads that share two sides (a doublet) make no hexagon.
+    std::array<int, 6> sorted = h;
+    std::sort(sorted.begin(), sorted.end());
+    if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) continue;
+    for (int d = 1; d < 3; ++d) {  // diagonal (h0, h3) = the shared edge: the current pair
+      QuadFlip f;
+      f.q = q;
+      f.n = n;
+      f.a = {h[d], h[d + 1], h[d + 2], h[(d + 3) % 6]};
+      f.b = {h[(d + 3) % 6], h[(d + 4) % 6], h[(d + 5) % 6], h[d]};
+      const Point2* pa[4];
+      const Point2* pb[4];
+      for (int k = 0; k < 4; ++k) pa[k] = &m.points[f.a[k]], pb[k] = &m.points[f.b[k]];
+      f.convexity = std::min(quad_convexity(*pa[0], *pa[1], *pa[2], *pa[3]),
+                             quad_convexity(*pb[0], *pb[1], *pb[2], *pb[3]));
+      out.push_back(f);
+    }
+  }
+  return out;
+}
+
 // Quad edge flips: a non-convex quad and a neighbour form a hexagon, which splits into
 // two quads along any of its three long diagonals. A split is kept when its worse quad
 // is more convex than the worse of the pair before. Returns the number of flips.
 int flip_nonconvex(QuadMesh& m, double min_convexity) {
   const int nq = static_cast<int>(m.quads.size());
-  std::vector<std::pair<std::pair<int, int>, int>> edges;  // (edge, quad)
-  for (int q = 0; q < nq; ++q)
-    for (int i = 0; i < 4; ++i) {
-      const int a = m.quads[q][i], b = m.quads[q][(i + 1) % 4];
-      edges.push_back({{std::min(a, b), std::max(a, b)}, q});
-    }
-  std::sort(edges.begin(), edges.end());
-  auto other_quad = [&](int a, int b, int q) {
-    const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
-    auto it = std::lower_bound(edges.begin(), edges.end(), std::make_pair(key, -1));
-    for (; it != edges.end() && it->first == key; ++it)
-      if (it->second != q) return it->second;
-    return -1;
-  };
+  const EdgeQuads edges(m);
   std::vector<char> done(nq, 0);
   int flips = 0;
   for (int q = 0; q < nq; ++q) {
     if (done[q] || quad_convexity(m, q) > min_convexity) continue;
-    double best = -2.0;
-    int best_n = -1;
-    std::array<int, 4> best_a{}, best_b{};
-    for (int i = 0; i < 4; ++i) {
-      const int a = m.quads[q][i], b = m.quads[q][(i + 1) % 4];
-      const int n = other_quad(a, b, q);
-      if (n < 0 || done[n]) continue;
-      // Hexagon: q from b round to a (b, q[i+2], q[i+3], a), then n from a round to b.
-      const auto& nq4 = m.quads[n];
-      int j = 0;
-      while (nq4[j] != a) ++j;
-      if (nq4[(j + 1) % 4] != b) continue;  // inconsistent orientation
-      const std::array<int, 6> h = {b, m.quads[q][(i + 2) % 4], m.quads[q][(i + 3) % 4], a,
-                                    nq4[(j + 2) % 4], nq4[(j + 3) % 4]};
-      const double before = std::min(quad_convexity(m, q), quad_convexity(m, n));
-      for (int d = 0; d < 3; ++d) {
-        if (d == 0) continue;  // diagonal (h0, h3) = the shared edge: the current pair
-        const std::array<int, 4> qa = {h[d], h[d + 1], h[d + 2], h[(d + 3) % 6]};
-        const std::array<int, 4> qb = {h[(d + 3) % 6], h[(d + 4) % 6], h[(d + 5) % 6], h[d]};
-        const Point2* pa[4];
-        const Point2* pb[4];
-        for (int k = 0; k < 4; ++k) pa[k] = &m.points[qa[k]], pb[k] = &m.points[qb[k]];
-        const double value = std::min(quad_convexity(*pa[0], *pa[1], *pa[2], *pa[3]),
-                                      quad_convexity(*pb[0], *pb[1], *pb[2], *pb[3]));
-        if (value > before + 1e-9 && value > best) {
-          best = value;
-          best_n = n;
-          best_a = qa;
-          best_b = qb;
-        }
-      }
+    const QuadFlip* best = nullptr;
+    const std::vector<QuadFlip> flips_here = flips_of(m, edges, q);
+    for (const QuadFlip& f : flips_here) {
+      if (done[f.n]) continue;
+      const double before = std::min(quad_convexity(m, q), quad_convexity(m, f.n));
+      if (f.convexity > before + 1e-9 && (!best || f.convexity > best->convexity)) best = &f;
     }
-    if (best_n < 0) continue;
-    m.quads[q] = best_a;
-    m.quads[best_n] = best_b;
-    done[q] = done[best_n] = 1;
+    if (!best) continue;
+    m.quads[q] = best->a;
+    m.quads[best->n] = best->b;
+    done[q] = done[best->n] = 1;
     ++flips;
   }
   return flips;
@@ -899,27 +929,47 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
     }
     if (pick < 0) break;
     tried.push_back(quad_centroid(m, pick));
-    int slivers0, nonconvex0, slivers1, nonconvex1;
-    double worst0, worst1;
+    int slivers0, nonconvex0;
+    double worst0;
     scan(slivers0, nonconvex0, worst0);
     const std::size_t crossings0 = count_boundary_crossings(m);
-    QuadMesh before = m;
-    const SmoothStats stats_before = stats;
-    if (collapse_quads(m, [&](int q) { return q == pick; }) == 0) continue;
-    const Topology t = topology(m);
-    SmoothStats ignored;
-    untangle(bg, m, t, lift, ignored, false);
-    untangle(bg, m, t, params, stats);
-    scan(slivers1, nonconvex1, worst1);
-    const bool better = nonconvex1 == 0 && worst1 >= worst0 &&
-                        (worst1 > worst0 || slivers1 < slivers0) &&
-                        count_boundary_crossings(m) <= crossings0;
-    if (!better) {
+    // A change of the topology around the sliver, kept when the mesh is then better.
+    auto kept = [&](const std::function<bool()>& change) {
+      QuadMesh before = m;
+      const SmoothStats stats_before = stats;
+      if (!change()) return false;
+      const Topology t = topology(m);
+      SmoothStats ignored;
+      untangle(bg, m, t, lift, ignored, false);
+      untangle(bg, m, t, params, stats);
+      int slivers1, nonconvex1;
+      double worst1;
+      scan(slivers1, nonconvex1, worst1);
+      if (nonconvex1 == 0 && worst1 >= worst0 && (worst1 > worst0 || slivers1 < slivers0) &&
+          count_boundary_crossings(m) <= crossings0)
+        return true;
       m = std::move(before);
       stats = stats_before;
-      continue;
-    }
-    ++stats.num_sliver_collapses;
+      return false;
+    };
+    // Each diagonal collapse (shortest diagonal first), then each edge flip with a
+    // neighbour (its hexagon split along another diagonal).
+    bool done = false;
+    for (int choice = 0; choice < 4 && !done; ++choice)
+      if (kept([&] { return collapse_quads(m, [&](int q) { return q == pick; }, choice) > 0; })) {
+        ++stats.num_sliver_collapses;
+        done = true;
+      }
+    const std::vector<QuadFlip> flips = done ? std::vector<QuadFlip>{} : flips_of(m, EdgeQuads(m), pick);
+    for (std::size_t k = 0; k < flips.size() && !done; ++k)
+      if (kept([&] {
+            m.quads[flips[k].q] = flips[k].a;
+            m.quads[flips[k].n] = flips[k].b;
+            return true;
+          })) {
+        ++stats.num_flips;
+        done = true;
+      }
   }
 }
 

@@ -2,6 +2,7 @@
 // background mesh gives the boundary chain.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "fields/cross_field.h"
@@ -161,6 +162,7 @@ TEST(SmoothQuads, ADoubletNoMoveCanFixIsRemovedByADiagonalCollapse) {
   // into two quads that share two sides: e has two quads, one of its corners is at
   // least 180 degrees wherever it goes, and flipping either shared side gives the same
   // pair. Collapsing a diagonal of the bad quad merges e into a corner: the grid again.
+  // (A flip with a neighbour in the grid mends it too: the flips are off here.)
   const BackgroundMesh bg = square_background();
   QuadMesh m = grid();
   const int split = 4 * kN + 4;  // quad (a, b, c, d), interior
@@ -173,6 +175,7 @@ TEST(SmoothQuads, ADoubletNoMoveCanFixIsRemovedByADiagonalCollapse) {
   m.quads[split] = {a, b, c, e};
   m.quads.push_back({a, e, c, d});
   SmoothParams params;
+  params.flip_rounds = 0;
   params.collapse_rounds = 0;
   params.collapse_tries = 0;
   QuadMesh kept = m;
@@ -181,6 +184,7 @@ TEST(SmoothQuads, ADoubletNoMoveCanFixIsRemovedByADiagonalCollapse) {
   EXPECT_EQ(st.num_collapses, 0);
 
   params = SmoothParams();
+  params.flip_rounds = 0;
   st = smooth_quads(bg, m, params);
   EXPECT_EQ(st.num_nonconvex_after, 0);
   EXPECT_EQ(st.num_collapses, 1);
@@ -403,4 +407,59 @@ TEST(SmoothQuads, AngleSweepsGiveTheSameMeshWithAnyNumberOfThreads) {
     }
   }
   EXPECT_GT(moved, 1.0);
+}
+
+TEST(SmoothQuads, AQuadNoMoveMendsIsFlippedWithItsNeighbour) {
+  // Two quads of a hexagon whose vertex h1 is pushed inside: split along (h0, h3), the
+  // quad holding h1 is not convex, and no vertex may move (all fixed). Split along
+  // another long diagonal of the hexagon (an edge flip), both quads are convex.
+  const BackgroundMesh bg = square_background();
+  QuadMesh m;
+  for (int k = 0; k < 6; ++k) {
+    const double r = k == 1 ? 0.4 : 1.0;
+    m.points.push_back({500 + 200 * r * std::cos(k * M_PI / 3), 500 + 200 * r * std::sin(k * M_PI / 3)});
+    m.chain.push_back(-1);
+    m.arc_m.push_back(0.0);
+    m.fixed.push_back(1);
+  }
+  m.quads = {{0, 1, 2, 3}, {3, 4, 5, 0}};
+  ASSERT_LE(quad_convexity(m, 0), 0.0);
+  const SmoothStats st = smooth_quads(bg, m, SmoothParams());
+  EXPECT_EQ(st.num_nonconvex_before, 1);
+  EXPECT_EQ(st.num_nonconvex_after, 0);
+  EXPECT_EQ(st.num_flips, 1);
+  ASSERT_EQ(m.quads.size(), 2u);
+  for (int q = 0; q < 2; ++q) EXPECT_GT(quad_convexity(m, q), 0.02) << q;
+}
+
+TEST(SmoothQuads, ADoubletIsMendedByAFlipWithAQuadOfTheGrid) {
+  // The doublet above with flips on and no collapses: a flip with a quad of the grid
+  // mends it, and every quad is convex, holds four distinct vertices and turns
+  // counter-clockwise (their areas sum to the square's).
+  const BackgroundMesh bg = square_background();
+  QuadMesh m = grid();
+  const int split = 4 * kN + 4;
+  const auto [a, b, c, d] = m.quads[split];
+  m.points.push_back({0.5 * (m.points[a].x + m.points[c].x), 0.5 * (m.points[a].y + m.points[c].y)});
+  m.chain.push_back(-1);
+  m.arc_m.push_back(0.0);
+  m.fixed.push_back(0);
+  const int e = static_cast<int>(m.points.size()) - 1;
+  m.quads[split] = {a, b, c, e};
+  m.quads.push_back({a, e, c, d});
+  SmoothParams params;
+  params.collapse_rounds = 0;
+  params.collapse_tries = 0;
+  const SmoothStats st = smooth_quads(bg, m, params);
+  EXPECT_EQ(st.num_nonconvex_after, 0);
+  EXPECT_GE(st.num_flips, 1);
+  double area = 0;
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
+    EXPECT_GT(quad_convexity(m, q), params.min_convexity) << q;
+    std::array<int, 4> v = m.quads[q];
+    std::sort(v.begin(), v.end());
+    EXPECT_EQ(std::adjacent_find(v.begin(), v.end()), v.end()) << "quad " << q << " repeats a vertex";
+    area += quad_area(m, q);
+  }
+  EXPECT_NEAR(area, kSide * kSide, 1e-6 * kSide * kSide);
 }
