@@ -383,6 +383,11 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "longest-towards, or close-shortest (closing the shortest such meta-edge)")
       ->check(CLI::IsMember({"close-shortest", "longest-away", "longest-towards", "lattice"}))
       ->group(g);
+  cmd->add_option("--max-attempts", m.mesh.max_attempts,
+                  "Tilings tried before giving up where quads fold or stay non-convex, each "
+                  "with the sizes halved where the one before failed (default 6)")
+      ->check(CLI::Range(1, 100))
+      ->group(g);
   cmd->add_option("--corner-angle", m.mesh.tiling.graph.corner_angle_deg,
                   "Boundary vertices turning by more than this many degrees are corners (default 45)")
       ->check(CLI::Range(0.0, 180.0))

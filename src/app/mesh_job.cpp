@@ -117,7 +117,11 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
       }
       failed_at = failure_points(r.quads, o.smooth);
     }
-    if (attempt + 1 >= options.max_attempts)
+    if (attempt + 1 >= options.max_attempts) {
+      // Where the earlier attempts failed too: a user can then look at every place.
+      std::string earlier;
+      for (std::size_t i = 0; i < r.retry_reasons.size(); ++i)
+        earlier += "; attempt " + std::to_string(i + 1) + ": " + r.retry_reasons[i];
       throw Error(ErrorClass::internal, "smooth",
                   problem + " after " + std::to_string(r.attempts) +
                       " tiling attempt(s); no mesh is written" +
@@ -125,7 +129,9 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
                            ? " (quads fold over each other where an inlet or channel is "
                              "narrower than they are: a larger --min-width fills such inlets, "
                              "a smaller --hmin or --size resolves them)"
-                           : ""));
+                           : "") +
+                      earlier);
+    }
     // The next attempt also has smaller sizes where this one failed.
     const std::vector<LocalRefinement> more =
         refinements_at(r.fields, failed_at, options.max_refined_places);

@@ -83,6 +83,8 @@ TEST(MeshJob, GivesUpWithAnErrorAfterTheLastAttempt) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("after 2 tiling attempt(s)"), std::string::npos)
         << e.what();
+    // The first attempt's failure is in the message too.
+    EXPECT_NE(std::string(e.what()).find("; attempt 1: "), std::string::npos) << e.what();
   }
 }
 
