@@ -21,9 +21,9 @@ struct MeshOptions {
   SmoothParams smooth;
   // Tiling attempts (build_mesh: the sizes halved where the last one failed, or the
   // tiling's next variant) before giving up on a quad that smoothing cannot make
-  // convex or a fold. 6: the Arctic Ocean north of 66 N at 1:10m folds at a new narrow
-  // channel in each of its first four tilings (each refined where the one before
-  // folded) and meshes in the fifth.
+  // convex or a fold (--max-attempts). The Norwegian and Barents seas at 1:10m mesh in
+  // the fourth; the Arctic Ocean north of 66 N at 1:10m folds at a new narrow channel in
+  // each of ten (it needs a smaller --hmin).
   int max_attempts = 6;
   // After a failed attempt, the next one has sizes halved where it failed
   // (refinements_at), unless it failed at more places than this: then the failure is
