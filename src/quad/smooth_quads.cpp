@@ -237,10 +237,10 @@ std::vector<QuadFlip> flips_of(const QuadMesh& m, const EdgeQuads& edges, int q)
     if (n < 0) continue;
     // Hexagon: q from b round to a (b, q[i+2], q[i+3], a), then n, which runs from b to
     // a (both counter-clockwise), from a round to b.
+    // (An index built before other flips may name a quad that no longer has the edge.)
     const auto& nq4 = m.quads[n];
-    int j = 0;
-    while (nq4[j] != a) ++j;
-    if (nq4[(j + 3) % 4] != b) continue;  // inconsistent orientation
+    const int j = static_cast<int>(std::find(nq4.begin(), nq4.end(), a) - nq4.begin());
+    if (j == 4 || nq4[(j + 3) % 4] != b) continue;  // not the edge, or inconsistent orientation
     const std::array<int, 6> h = {b, m.quads[q][(i + 2) % 4], m.quads[q][(i + 3) % 4], a,
                                   nq4[(j + 1) % 4], nq4[(j + 2) % 4]};
     // Two quads that share two sides (a doublet) make no hexagon.
