@@ -192,8 +192,15 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
                   "Elements across a narrow channel (automatic sizing; default 2)")
       ->check(CLI::PositiveNumber)
       ->group(g);
-  cmd->add_option("--hmin", f.sizing.hmin_m, "Smallest size (automatic default: hmax / 10)")
+  cmd->add_option("--hmin", f.sizing.hmin_m,
+                  "Smallest size (automatic default: hmax / 10); automatic sizing puts one "
+                  "element across channels, inlets and spits narrower than --cells-across x "
+                  "hmin, down to hmin/2 (see --no-narrow-sizes)")
       ->check(CLI::PositiveNumber)
+      ->group(g);
+  cmd->add_flag("--no-narrow-sizes{false}", f.sizing.narrow_sizes,
+                "Leave channels narrower than --cells-across x hmin at the sizes around them "
+                "(hmin or more): fewer quads, which may fold across them")
       ->group(g);
   cmd->add_option("--hmax", f.sizing.hmax_m,
                   "Largest size (automatic default: sqrt(domain area / 2000))")

@@ -105,6 +105,13 @@ std::string format_fields_summary(const FieldsResult& r) {
   std::snprintf(buf, sizeof buf, "; hmin %.6g m, hmax %.6g m, gradation %.3g\n", r.sizing.hmin_m,
                 r.sizing.hmax_m, r.sizing.gradation);
   os << buf;
+  if (r.sizing.num_narrow_sites > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "narrow sizes: one element across channels, inlets and spits narrower than "
+                  "--cells-across x hmin, down to hmin/2 (%zu medial points)\n",
+                  r.sizing.num_narrow_sites);
+    os << buf;
+  }
   if (!r.size.size_m.empty()) {
     const auto [lo, hi] = std::minmax_element(r.size.size_m.begin(), r.size.size_m.end());
     std::snprintf(buf, sizeof buf,

@@ -2,6 +2,7 @@
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/Orthogonal_k_neighbor_search.h>
 #include <CGAL/Search_traits_2.h>
 
@@ -16,7 +17,8 @@ namespace isoquad {
 namespace {
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
-using Delaunay = CGAL::Delaunay_triangulation_2<K>;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;  // the sample's index
+using Delaunay = CGAL::Delaunay_triangulation_2<K, CGAL::Triangulation_data_structure_2<Vb>>;
 using MedialTraits = CGAL::Search_traits_2<K>;
 using MedialSearch = CGAL::Orthogonal_k_neighbor_search<MedialTraits>;
 using MedialTree = MedialSearch::Tree;
@@ -120,32 +122,68 @@ BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSize
       !std::isfinite(params.max_size_m))
     throw Error(ErrorClass::internal, "sizing",
                 "feature size needs lambda, K, cells > 0 and a finite max size");
+  const bool with_narrow = params.narrow_lambda_m > 0 && params.narrow_lambda_m < params.lambda_m;
   const double spacing =
       params.sample_spacing_m > 0 ? params.sample_spacing_m : 0.5 * params.lambda_m;
 
-  // Dense boundary samples: every ring vertex plus evenly spaced points on each segment.
+  // Dense boundary samples: every ring vertex plus evenly spaced points on each segment,
+  // each with its ring and its arc length along it.
+  std::vector<int> ring_of;
+  std::vector<double> arc_of, ring_length;
+  std::vector<Point2> inward;  // #samples unit normal of its segment, towards the domain
   for (const Polygon& p : domain.polygons) {
     std::vector<const Ring*> rings{&p.outer};
     for (const Ring& h : p.holes) rings.push_back(&h);
-    for (const Ring* r : rings)
+    for (const Ring* r : rings) {
+      // The domain is left of an outer ring drawn counter-clockwise, right of a hole so.
+      const double left = (signed_area(*r) > 0) == (r == &p.outer) ? 1.0 : -1.0;
+      double arc = 0.0;
       for (std::size_t i = 0; i < r->size(); ++i) {
         const Point2 a = (*r)[i], b = (*r)[(i + 1) % r->size()];
-        const int n = std::max(1, static_cast<int>(std::ceil(std::hypot(b.x - a.x, b.y - a.y) / spacing)));
+        const double len = std::hypot(b.x - a.x, b.y - a.y);
+        const int n = std::max(1, static_cast<int>(std::ceil(len / spacing)));
         for (int k = 0; k < n; ++k) {
           const double t = static_cast<double>(k) / n;
           samples_.push_back({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
+          ring_of.push_back(static_cast<int>(ring_length.size()));
+          arc_of.push_back(arc + t * len);
+          inward.push_back(len > 0 ? Point2{-left * (b.y - a.y) / len, left * (b.x - a.x) / len}
+                                   : Point2{0, 0});
         }
+        arc += len;
       }
+      ring_length.push_back(arc);
+    }
   }
+  // Distance along the boundary between two samples (infinite on different rings).
+  auto along = [&](int i, int j) {
+    if (ring_of[i] != ring_of[j]) return std::numeric_limits<double>::infinity();
+    const double d = std::abs(arc_of[i] - arc_of[j]);
+    return std::min(d, ring_length[ring_of[i]] - d);
+  };
 
   // The lambda-medial axis: circumcentres of Delaunay triangles of the samples whose
   // vertices are spread over a circle of radius >= lambda.
   std::vector<K::Point_2> pts;
+  std::vector<std::pair<K::Point_2, int>> indexed;
   pts.reserve(samples_.size());
-  for (const Point2& s : samples_) pts.emplace_back(s.x, s.y);
-  Delaunay dt(pts.begin(), pts.end());
+  indexed.reserve(samples_.size());
+  for (const Point2& s : samples_) {
+    indexed.emplace_back(K::Point_2(s.x, s.y), static_cast<int>(pts.size()));
+    pts.emplace_back(s.x, s.y);
+  }
+  Delaunay dt(indexed.begin(), indexed.end());
   std::vector<K::Point_2> medial;
   std::vector<double> medial_radius;
+  std::vector<Site> narrow_sites;  // features between 2 narrow_lambda and 2 lambda wide
+  // Size per unit of feature size. In a straight channel of width w, sites sit on both
+  // banks and on the centre line (all with lfs = w/2), and between them h grows with
+  // slope K. Requiring the integral of dy / h across the channel to be at least N gives
+  // h_site = K (w/4) / (exp(N K / 4) - 1), i.e. this factor times lfs. It tends to
+  // 2 / N (h = w / N) as K -> 0. A 2% margin covers the sampling.
+  const double n = params.cells_across, k = params.gradation;
+  const double size_per_lfs = 0.98 * k / (2.0 * std::expm1(n * k / 4.0));
+  const double size_per_lfs_one = 0.98 * k / (2.0 * std::expm1(k / 4.0));  // N = 1
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
     const K::Point_2 &a = f->vertex(0)->point(), &b = f->vertex(1)->point(),
                      &c = f->vertex(2)->point();
@@ -154,9 +192,31 @@ BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSize
     // (the centre is at infinity in doubles): no medial point there.
     if (CGAL::determinant(b.x() - a.x(), b.y() - a.y(), c.x() - a.x(), c.y() - a.y()) == 0.0)
       continue;
-    if (enclosing_radius(a, b, c) >= params.lambda_m) {
+    const double spread = enclosing_radius(a, b, c);
+    if (spread >= params.lambda_m) {
       medial.push_back(CGAL::circumcenter(a, b, c));
       medial_radius.push_back(std::sqrt(CGAL::squared_radius(a, b, c)));
+    } else if (with_narrow && spread >= params.narrow_lambda_m) {
+      // A narrow channel or inlet of the domain (not of its outside: a land domain's
+      // estuaries are no place for its quads): the triangle is on the inner side of the
+      // samples' segments, for two of its three vertices at least.
+      const int ia = f->vertex(0)->info(), ib = f->vertex(1)->info(), ic = f->vertex(2)->info();
+      const double gx = (a.x() + b.x() + c.x()) / 3, gy = (a.y() + b.y() + c.y()) / 3;
+      int inner = 0;
+      for (int i : {ia, ib, ic})
+        inner += (gx - samples_[i].x) * inward[i].x + (gy - samples_[i].y) * inward[i].y > 0;
+      if (inner < 2) continue;
+      // Its banks are joined along the boundary only far away (or never: a strait
+      // between two rings). Vertices joined within a few radii are a corner's (angle
+      // over 37 degrees), whose sizes stay hmin.
+      const double apart = std::max({along(ia, ib), along(ib, ic), along(ic, ia)});
+      if (apart < 6.0 * spread) continue;
+      const K::Point_2 centre = CGAL::circumcenter(a, b, c);
+      const double h = std::max(params.narrow_floor_m,
+                                size_per_lfs_one * std::sqrt(CGAL::squared_radius(a, b, c)));
+      // On the centre line and on both banks, as the samples and medial points below.
+      narrow_sites.push_back({centre.x(), centre.y(), h});
+      for (const K::Point_2* v : {&a, &b, &c}) narrow_sites.push_back({v->x(), v->y(), h});
     }
   }
   // Nearest medial point by kd-tree: the circumcentres are highly degenerate (many
@@ -164,13 +224,6 @@ BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSize
   // handles badly.
   MedialTree tree(medial.begin(), medial.end());
 
-  // Size per unit of feature size. In a straight channel of width w, sites sit on both
-  // banks and on the centre line (all with lfs = w/2), and between them h grows with
-  // slope K. Requiring the integral of dy / h across the channel to be at least N gives
-  // h_site = K (w/4) / (exp(N K / 4) - 1), i.e. this factor times lfs. It tends to
-  // 2 / N (h = w / N) as K -> 0. A 2% margin covers the sampling.
-  const double n = params.cells_across, k = params.gradation;
-  const double size_per_lfs = 0.98 * k / (2.0 * std::expm1(n * k / 4.0));
   lfs_.resize(samples_.size(), std::numeric_limits<double>::infinity());
   size_.resize(samples_.size(), params.max_size_m);
   std::vector<Site>& sites = impl_->sites;
@@ -191,10 +244,24 @@ BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSize
   }
   impl_->gradation = params.gradation;
   impl_->build(0.5 * params.lambda_m);
+  if (!narrow_sites.empty()) {
+    narrow_ = std::make_unique<Impl>();
+    narrow_->sites = std::move(narrow_sites);
+    narrow_->gradation = params.gradation;
+    narrow_->build(0.5 * params.lambda_m);
+  }
 }
 
 BoundaryFeatureSize::~BoundaryFeatureSize() = default;
 
 double BoundaryFeatureSize::operator()(const Point2& x) const { return (*impl_)(x.x, x.y); }
+
+double BoundaryFeatureSize::narrow(const Point2& x) const {
+  return narrow_ ? (*narrow_)(x.x, x.y) : std::numeric_limits<double>::infinity();
+}
+
+std::size_t BoundaryFeatureSize::num_narrow_sites() const {
+  return narrow_ ? narrow_->sites.size() : 0;
+}
 
 }  // namespace isoquad

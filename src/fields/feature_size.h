@@ -24,6 +24,10 @@ struct FeatureSizeParams {
   double cells_across = 2.0;      // at least this many elements across a channel
   double gradation = 1.0;         // K, the Lipschitz constant of the extension
   double max_size_m = 0.0;        // sizes at samples are capped here (hmax, finite)
+  // Features narrower than 2 lambda but about 2 narrow_lambda_m wide or more (0: none)
+  // get sizes of their own, one element across, down to narrow_floor_m: narrow() below.
+  double narrow_lambda_m = 0.0;
+  double narrow_floor_m = 0.0;
 };
 
 class BoundaryFeatureSize {
@@ -35,6 +39,11 @@ class BoundaryFeatureSize {
 
   // h(x) = min_i(h_i + K |x - p_i|), metres.
   double operator()(const Point2& x) const;
+  // The same over the medial points of the domain's narrow features alone (channels,
+  // inlets and spits from about 2 narrow_lambda to 2 lambda wide, not corners), whose
+  // sizes put one element across them but stay above narrow_floor; +inf without any.
+  double narrow(const Point2& x) const;
+  std::size_t num_narrow_sites() const;
 
   const std::vector<Point2>& samples() const { return samples_; }
   // #S local feature size at each sample (metres; +inf when no medial point is kept).
@@ -46,6 +55,7 @@ class BoundaryFeatureSize {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+  std::unique_ptr<Impl> narrow_;
   std::vector<Point2> samples_;
   std::vector<double> lfs_;
   std::vector<double> size_;

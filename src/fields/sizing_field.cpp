@@ -94,11 +94,17 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
     fp.cells_across = params.cells_across;
     fp.gradation = params.gradation;
     fp.max_size_m = hmax_;
-    // Channels narrower than cells_across * hmin cannot be resolved anyway: ignore the
-    // medial axis below that scale.
+    // Channels narrower than cells_across * hmin cannot be resolved at hmin: the medial
+    // axis below that scale is left out of the feature size. Without more, such a
+    // channel takes the sizes around it, up to hmax, and quads wider than it fold across
+    // it. So the domain's channels, inlets and spits from hmin/2 wide up get one element
+    // across, down to hmin/2 (operator() below).
     fp.lambda_m = 0.5 * params.cells_across * hmin_;
+    fp.narrow_lambda_m = params.narrow_sizes ? 0.25 * hmin_ : 0.0;
+    fp.narrow_floor_m = 0.5 * hmin_;
     automatic_ = std::make_unique<BoundaryFeatureSize>(domain, fp);
     summary_.num_boundary_samples = automatic_->samples().size();
+    summary_.num_narrow_sites = automatic_->num_narrow_sites();
     summary_.sources.insert(summary_.sources.begin(), "automatic (local feature size)");
   }
 }
@@ -156,6 +162,7 @@ double SizingOracle::operator()(const Point2& p) const {
     throw Error(ErrorClass::usage, "sizing",
                 "no size at " + format_point(p) + " (outside every raster); give --hmax or --size");
   h = std::clamp(h, hmin_, hmax_);
+  if (automatic_) h = std::min(h, automatic_->narrow(p));
   for (const LocalRefinement& r : params_.refinements) {
     const double d = std::hypot(p.x - r.centre.x, p.y - r.centre.y);
     h = std::min(h, r.size_m + gradation_ * std::max(0.0, d - r.radius_m));

@@ -42,6 +42,7 @@ struct SizingParams {
   double min_depth_m = 1.0;           // depths below this (and dry land) count as this
 
   double cells_across = 2.0;  // --cells-across: elements across a narrow channel
+  bool narrow_sizes = true;   // one element across narrower ones, down to hmin/2
   double hmin_m = 0.0;        // --hmin (0: none, or the automatic default)
   double hmax_m = 0.0;        // --hmax (0: none, or the automatic default)
   double gradation = 0.2;     // --gradation K: |h(x) - h(y)| <= K |x - y|
@@ -55,10 +56,11 @@ struct SizingSummary {
   double gradation = 1.0;
   std::vector<std::string> sources;  // e.g. "automatic (local feature size)"
   std::size_t num_boundary_samples = 0;
+  std::size_t num_narrow_sites = 0;  // medial points of features too narrow for hmin
 };
 
 // h(x) before gradation: the minimum of the sources, clamped to [hmin, hmax], then of the
-// local refinements. Not thread-safe. Throws Error(input) for a bad source (unreadable
+// narrow features' sizes (automatic sizing; down to hmin/2) and the local refinements. Not thread-safe. Throws Error(input) for a bad source (unreadable
 // raster, expression that does not parse) and Error(meshing) for a non-positive size.
 class SizingOracle {
  public:

@@ -21,14 +21,16 @@ MeshOptions corsica(double hmax_m) {
   return o;
 }
 
-// Brittany's water at hmax 10 km without quad edge flips, whose first tiling leaves a
-// quad that no repair makes convex (the flips mend it).
+// Brittany's water at hmax 10 km without quad edge flips and without the narrow
+// channels' sizes, whose first tiling leaves a quad that no repair makes convex (the
+// flips mend it, and the narrow sizes avoid it).
 MeshOptions brittany_water_at_10km() {
   MeshOptions o;
   o.fields.front.read.path = sample("brittany_land.shp");
   o.fields.front.read.bbox = std::array<double, 4>{-5.3, 46.8, -1.95, 49.35};
   o.fields.front.kind = DomainKind::water;
   o.fields.sizing.hmax_m = 10000.0;
+  o.fields.sizing.narrow_sizes = false;
   o.smooth.flip_rounds = 0;
   return o;
 }
@@ -46,12 +48,14 @@ TEST(MeshJob, EveryQuadStrictlyConvexAndTheAttemptsAreReported) {
 }
 
 TEST(MeshJob, FlatQuadsAreRemovedByDiagonalCollapsesWhenThatHelps) {
-  // France at hmax 40 km: smoothing leaves one quad with a 171-degree corner (the sine
-  // of its turn under SmoothParams::sliver_convexity); the sliver pass collapses it and
-  // the flattest corner left is under 170 degrees. Without the pass it stays.
+  // France at hmax 40 km without the narrow channels' sizes: smoothing leaves one quad
+  // with a 171-degree corner (the sine of its turn under SmoothParams::sliver_convexity);
+  // the sliver pass collapses it and the flattest corner left is under 170 degrees.
+  // Without the pass it stays.
   MeshOptions o;
   o.fields.front.read.path = sample("france.shp");
   o.fields.sizing.hmax_m = 40000.0;
+  o.fields.sizing.narrow_sizes = false;  // which leave no such quad here
   o.smooth.sliver_tries = 0;
   const MeshResult without = build_mesh(o);
   EXPECT_EQ(without.smooth.num_sliver_collapses, 0);

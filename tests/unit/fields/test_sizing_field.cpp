@@ -298,3 +298,43 @@ TEST(FeatureSize, NearlyFlatTrianglesOfTheSamplesAreSkipped) {
   for (double s : fs.sample_size_m()) EXPECT_TRUE(std::isfinite(s) && s > 0);
   EXPECT_TRUE(std::isfinite(fs({30000, 15000})));
 }
+
+// A channel narrower than cells_across * hmin gets one element across, down to hmin/2:
+// without that it had hmax here (0.2 elements across), the lambda-medial axis ignoring
+// it. A corner keeps its sizes, and a channel wide enough for hmin has no such sizes.
+TEST(SizingField, ChannelsTooNarrowForHminGetOneElementAcross) {
+  auto across = [](const Domain& d, double width, double* smallest) {
+    SizingParams p;
+    p.hmax_m = 5000;
+    p.hmin_m = 800;
+    SizingOracle oracle(d, p);
+    double n = 0.0;
+    *smallest = 1e300;
+    for (int i = 0; i < 2000; ++i) {
+      const double h = oracle({10000, (i + 0.5) * width / 2000});
+      n += (width / 2000) / h;
+      *smallest = std::min(*smallest, h);
+    }
+    return std::make_pair(n, oracle.summary().num_narrow_sites);
+  };
+  // The banks are sampled hmin/2 apart: a circle through two samples of a bank and one
+  // of the other is wider than the channel, by a sixth when it is hmin/2 wide.
+  double smallest = 0;
+  for (double width : {500.0, 1000.0, 1500.0}) {  // hmin/2 to 2 hmin
+    const auto [n, sites] = across(rectangle(20000, width), width, &smallest);
+    EXPECT_GE(n, 0.7) << width;
+    EXPECT_LE(n, 1.5) << width;
+    EXPECT_GE(smallest, 400.0) << width;
+    EXPECT_GT(sites, 0u) << width;
+  }
+  const auto [n4000, sites4000] = across(rectangle(20000, 4000), 4000, &smallest);
+  EXPECT_GE(smallest, 800.0);  // resolved at hmin and above
+  EXPECT_EQ(sites4000, 0u);
+  // A square's corners are no narrow features: the sizes in them stay hmin or above.
+  SizingParams p;
+  p.hmax_m = 5000;
+  p.hmin_m = 800;
+  SizingOracle square(rectangle(20000, 20000), p);
+  EXPECT_EQ(square.summary().num_narrow_sites, 0u);
+  EXPECT_GE(square({100, 100}), 800.0);
+}
