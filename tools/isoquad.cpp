@@ -198,9 +198,10 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
                   "hmin, down to hmin/2 (see --no-narrow-sizes)")
       ->check(CLI::PositiveNumber)
       ->group(g);
-  cmd->add_flag_callback("--no-narrow-sizes", [&f] { f.sizing.narrow_sizes = false; },
-                "Leave channels narrower than --cells-across x hmin at the sizes around them "
-                "(hmin or more): fewer quads, which may fold across them")
+  cmd->add_flag_callback(
+         "--no-narrow-sizes", [&f] { f.sizing.narrow_sizes = false; },
+         "Leave channels narrower than --cells-across x hmin at the sizes around them (hmin "
+         "or more): fewer quads, which may fold across them")
       ->group(g);
   cmd->add_option("--hmax", f.sizing.hmax_m,
                   "Largest size (automatic default: sqrt(domain area / 2000))")

@@ -60,8 +60,9 @@ struct SizingSummary {
 };
 
 // h(x) before gradation: the minimum of the sources, clamped to [hmin, hmax], then of the
-// narrow features' sizes (automatic sizing; down to hmin/2) and the local refinements. Not thread-safe. Throws Error(input) for a bad source (unreadable
-// raster, expression that does not parse) and Error(meshing) for a non-positive size.
+// narrow features' sizes (automatic sizing; down to hmin/2) and the local refinements.
+// Not thread-safe. Throws Error(input) for a bad source (unreadable raster, expression
+// that does not parse) and Error(meshing) for a non-positive size.
 class SizingOracle {
  public:
   SizingOracle(const Domain& domain, const SizingParams& params);
