@@ -229,6 +229,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
       .value("hmax_m", r.fields.sizing.hmax_m)
       .value("gradation", r.fields.sizing.gradation)
       .array("sources", r.fields.sizing.sources)
+      .value("narrow_medial_points", r.fields.sizing.num_narrow_sites)
       .value("predicted_quads", predicted_num_quads(r.fields.mesh, r.fields.size));
   j.begin_array("local_refinements");  // where failed tiling attempts halved the sizes
   for (const LocalRefinement& f : r.refinements)

@@ -44,7 +44,11 @@ TEST(MeshJob, EveryQuadStrictlyConvexAndTheAttemptsAreReported) {
   EXPECT_EQ(r.retry_reasons.size(), static_cast<std::size_t>(r.attempts - 1));
   for (int q = 0; q < static_cast<int>(r.quads.quads.size()); ++q)
     ASSERT_GT(quad_convexity(r.quads, q), MeshOptions().smooth.min_convexity) << "quad " << q;
-  EXPECT_NE(mesh_report_json(r, "test").find("\"tiling_attempts\""), std::string::npos);
+  const std::string json = mesh_report_json(r, "test");
+  EXPECT_NE(json.find("\"tiling_attempts\""), std::string::npos);
+  EXPECT_NE(json.find("\"narrow_medial_points\": " +
+                      std::to_string(r.fields.sizing.num_narrow_sites)),
+            std::string::npos);
 }
 
 TEST(MeshJob, FlatQuadsAreRemovedByDiagonalCollapsesWhenThatHelps) {
