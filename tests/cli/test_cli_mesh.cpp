@@ -478,3 +478,45 @@ TEST(CliMesh, ANarrowIslandAboutOneTileLargeGetsCornersAtItsEnds) {
   EXPECT_LE(quads.quads.size(), 4u);
   EXPECT_GT(check_convex_ccw(quads), 0.0);
 }
+
+TEST(CliMesh, AChannelNarrowerThanHminGetsQuadsNoWiderThanIt) {
+  // Two 30 km squares joined by a channel 20 km long and 1.5 km wide, hmin 3 km: the
+  // lambda-medial axis ignores the channel (narrower than 2 hmin), so without the narrow
+  // sizes its quads take the squares' sizes and stretch along it; with them they are
+  // about as wide as the channel, in a row along it.
+  TempDir dir;
+  const std::string input = dir.file("dumbbell.geojson");
+  write_file(input, geojson_polygons({"[[[0,0],[30000,0],[30000,14250],[50000,14250],"
+                                      "[50000,0],[80000,0],[80000,30000],[50000,30000],"
+                                      "[50000,15750],[30000,15750],[30000,30000],[0,30000],"
+                                      "[0,0]]]"}));
+  // Quads whose centroid is in the middle half of the channel: their count and their
+  // largest sqrt(area).
+  auto channel_quads = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args{"mesh",  input,   "--src-crs", "EPSG:3857", "--dst-crs",
+                                  "EPSG:3857", "--hmin", "3000",  "--hmax",   "30000",
+                                  "-o",    dir.file("mesh.gpkg"), "--overwrite"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliResult r = run_cli(args, dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const QuadLayer quads = read_quads(dir.file("mesh.gpkg"));
+    EXPECT_EQ(quads.num_other, 0);
+    EXPECT_GT(check_convex_ccw(quads), 0.0);
+    int n = 0;
+    double widest = 0.0;
+    for (const auto& q : quads.quads) {
+      const double cx = 0.25 * (q[0][0] + q[1][0] + q[2][0] + q[3][0]);
+      if (cx < 35000 || cx > 45000) continue;
+      ++n;
+      const double area = 0.5 * (cross(q[0], q[1], q[2]) + cross(q[0], q[2], q[3]));
+      widest = std::max(widest, std::sqrt(area));
+    }
+    return std::make_pair(n, widest);
+  };
+  const auto [n, widest] = channel_quads({});
+  EXPECT_GE(n, 6);                // 10 km of channel in quads about 1.5 km long
+  EXPECT_LE(widest, 1.2 * 1500);  // a quad about as wide as the channel
+  const auto [n_without, widest_without] = channel_quads({"--no-narrow-sizes"});
+  EXPECT_LE(n_without, 3);            // the premise: quads stretched along the channel
+  EXPECT_GT(widest_without, 2000.0);  // (aspect ratios of 2 to 7)
+}
