@@ -119,6 +119,12 @@ void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const Sm
   const int nv = static_cast<int>(m.points.size());
   std::vector<char> active(nv, 0);
   int stalled = 0, previous_bad = -1;
+  auto widen_at = [&](int sweep, int stalled_then) {
+    return sweep >= params.untangle_iterations / 10 && stalled_then > 2;
+  };
+  auto free_corners_at = [&](int sweep) {
+    return may_free_corners && sweep >= params.untangle_iterations / 2;
+  };
   for (int sweep = 0; sweep < params.untangle_iterations; ++sweep) {
     std::vector<int> bad;
     for (int q = 0; q < nq; ++q)
@@ -127,8 +133,9 @@ void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const Sm
     ++stats.num_untangle_sweeps;
     stalled = static_cast<int>(bad.size()) >= previous_bad && previous_bad >= 0 ? stalled + 1 : 0;
     previous_bad = static_cast<int>(bad.size());
-    const bool widen = sweep >= params.untangle_iterations / 10 && stalled > 2;
-    const bool free_corners = may_free_corners && sweep >= params.untangle_iterations / 2;
+    const bool widen = widen_at(sweep, stalled);
+    const bool free_corners = free_corners_at(sweep);
+    bool moved = false;
     std::fill(active.begin(), active.end(), 0);
     std::vector<int> order;
     for (int q : bad)
@@ -141,6 +148,8 @@ void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const Sm
       }
     for (int v : order) {
       if (m.fixed[v] && !(free_corners && m.chain[v] >= 0)) continue;
+      const Point2 was = m.points[v];
+      const double was_arc = m.arc_m[v];
       double edge = 0;
       for (int w : t.neighbours[v])
         edge = std::max(edge, std::hypot(m.points[w].x - m.points[v].x, m.points[w].y - m.points[v].y));
@@ -192,6 +201,21 @@ void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const Sm
           }
         }
       }
+      moved = moved || m.points[v].x != was.x || m.points[v].y != was.y || m.arc_m[v] != was_arc;
+    }
+    // A sweep that moved nothing is a fixed point: the sweeps after it, with the same
+    // quads bad (stalled one more each) and the same rules, would move nothing either.
+    // Skip to the first one whose rules change (widened, or corners freed), counted.
+    if (!moved) {
+      int next = sweep + 1;
+      while (next < params.untangle_iterations &&
+             widen_at(next, stalled + (next - sweep)) == widen &&
+             free_corners_at(next) == free_corners)
+        ++next;
+      const int skipped = next - sweep - 1;
+      stats.num_untangle_sweeps += skipped;
+      stalled += skipped;
+      sweep += skipped;
     }
   }
 }

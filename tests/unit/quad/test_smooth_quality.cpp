@@ -432,6 +432,37 @@ TEST(SmoothQuads, AQuadNoMoveMendsIsFlippedWithItsNeighbour) {
   for (int q = 0; q < 2; ++q) EXPECT_GT(quad_convexity(m, q), 0.02) << q;
 }
 
+TEST(SmoothQuads, UntanglingCountsEverySweepEvenWhenNothingCanMove) {
+  // The same hexagon with no flips or collapses allowed: no vertex may move, so the
+  // first sweep of the convexity repair moves nothing and the rest are skipped as the
+  // fixed point they are; each is still counted, and nothing moves.
+  const BackgroundMesh bg = square_background();
+  QuadMesh m;
+  for (int k = 0; k < 6; ++k) {
+    const double r = k == 1 ? 0.4 : 1.0;
+    m.points.push_back({500 + 200 * r * std::cos(k * M_PI / 3), 500 + 200 * r * std::sin(k * M_PI / 3)});
+    m.chain.push_back(-1);
+    m.arc_m.push_back(0.0);
+    m.fixed.push_back(1);
+  }
+  m.quads = {{0, 1, 2, 3}, {3, 4, 5, 0}};
+  const std::vector<Point2> before = m.points;
+  SmoothParams params;
+  params.flip_rounds = 0;
+  params.collapse_rounds = 0;
+  params.collapse_tries = 0;
+  for (int iterations : {1, 7, 200}) {
+    params.untangle_iterations = iterations;
+    const SmoothStats st = smooth_quads(bg, m, params);
+    EXPECT_EQ(st.num_nonconvex_after, 1);
+    EXPECT_EQ(st.num_untangle_sweeps, iterations);
+    for (std::size_t i = 0; i < m.points.size(); ++i) {
+      EXPECT_EQ(m.points[i].x, before[i].x);
+      EXPECT_EQ(m.points[i].y, before[i].y);
+    }
+  }
+}
+
 TEST(SmoothQuads, ADoubletIsMendedByAFlipWithAQuadOfTheGrid) {
   // The doublet above with flips on and no collapses: a flip with a quad of the grid
   // mends it, and every quad is convex, holds four distinct vertices and turns
