@@ -55,6 +55,21 @@ QuadMesh grid(int n = kN) {
   return m;
 }
 
+// Two quads of a hexagon whose vertex h1 is pushed inside, split along (h0, h3): the
+// quad holding h1 is not convex. No vertex may move (all fixed).
+QuadMesh hexagon_with_a_vertex_pushed_in() {
+  QuadMesh m;
+  for (int k = 0; k < 6; ++k) {
+    const double r = k == 1 ? 0.4 : 1.0;
+    m.points.push_back({500 + 200 * r * std::cos(k * M_PI / 3), 500 + 200 * r * std::sin(k * M_PI / 3)});
+    m.chain.push_back(-1);
+    m.arc_m.push_back(0.0);
+    m.fixed.push_back(1);
+  }
+  m.quads = {{0, 1, 2, 3}, {3, 4, 5, 0}};
+  return m;
+}
+
 double distance_to_square_boundary(const Point2& p) {
   return std::min({std::abs(p.x), std::abs(p.y), std::abs(kSide - p.x), std::abs(kSide - p.y)});
 }
@@ -414,15 +429,7 @@ TEST(SmoothQuads, AQuadNoMoveMendsIsFlippedWithItsNeighbour) {
   // quad holding h1 is not convex, and no vertex may move (all fixed). Split along
   // another long diagonal of the hexagon (an edge flip), both quads are convex.
   const BackgroundMesh bg = square_background();
-  QuadMesh m;
-  for (int k = 0; k < 6; ++k) {
-    const double r = k == 1 ? 0.4 : 1.0;
-    m.points.push_back({500 + 200 * r * std::cos(k * M_PI / 3), 500 + 200 * r * std::sin(k * M_PI / 3)});
-    m.chain.push_back(-1);
-    m.arc_m.push_back(0.0);
-    m.fixed.push_back(1);
-  }
-  m.quads = {{0, 1, 2, 3}, {3, 4, 5, 0}};
+  QuadMesh m = hexagon_with_a_vertex_pushed_in();
   ASSERT_LE(quad_convexity(m, 0), 0.0);
   const SmoothStats st = smooth_quads(bg, m, SmoothParams());
   EXPECT_EQ(st.num_nonconvex_before, 1);
@@ -437,15 +444,7 @@ TEST(SmoothQuads, UntanglingCountsEverySweepEvenWhenNothingCanMove) {
   // first sweep of the convexity repair moves nothing and the rest are skipped as the
   // fixed point they are; each is still counted, and nothing moves.
   const BackgroundMesh bg = square_background();
-  QuadMesh m;
-  for (int k = 0; k < 6; ++k) {
-    const double r = k == 1 ? 0.4 : 1.0;
-    m.points.push_back({500 + 200 * r * std::cos(k * M_PI / 3), 500 + 200 * r * std::sin(k * M_PI / 3)});
-    m.chain.push_back(-1);
-    m.arc_m.push_back(0.0);
-    m.fixed.push_back(1);
-  }
-  m.quads = {{0, 1, 2, 3}, {3, 4, 5, 0}};
+  QuadMesh m = hexagon_with_a_vertex_pushed_in();
   const std::vector<Point2> before = m.points;
   SmoothParams params;
   params.flip_rounds = 0;
