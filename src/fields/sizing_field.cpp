@@ -105,6 +105,8 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
     automatic_ = std::make_unique<BoundaryFeatureSize>(domain, fp);
     summary_.num_boundary_samples = automatic_->samples().size();
     summary_.num_narrow_sites = automatic_->num_narrow_sites();
+    summary_.narrow_min_width_m = 2 * fp.narrow_lambda_m;
+    summary_.narrow_max_width_m = 2 * fp.lambda_m;
     summary_.sources.insert(summary_.sources.begin(), "automatic (local feature size)");
   }
 }

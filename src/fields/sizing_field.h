@@ -57,6 +57,8 @@ struct SizingSummary {
   std::vector<std::string> sources;  // e.g. "automatic (local feature size)"
   std::size_t num_boundary_samples = 0;
   std::size_t num_narrow_sites = 0;  // medial points of features too narrow for hmin
+  double narrow_min_width_m = 0.0;   // the widths those features have (about)
+  double narrow_max_width_m = 0.0;
 };
 
 // h(x) before gradation: the minimum of the sources, clamped to [hmin, hmax], then of the
