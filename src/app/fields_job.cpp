@@ -110,7 +110,7 @@ std::string format_fields_summary(const FieldsResult& r) {
                   "narrow sizes: one element across the channels, inlets and spits %.6g to %.6g m "
                   "wide (hmin/2 to --cells-across x hmin), down to %.6g m (%zu medial points)\n",
                   r.sizing.narrow_min_width_m, r.sizing.narrow_max_width_m,
-                  0.5 * r.sizing.hmin_m, r.sizing.num_narrow_sites);
+                  r.sizing.narrow_floor_m, r.sizing.num_narrow_sites);
     os << buf;
   }
   if (!r.size.size_m.empty()) {

@@ -107,6 +107,7 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
     summary_.num_narrow_sites = automatic_->num_narrow_sites();
     summary_.narrow_min_width_m = 2 * fp.narrow_lambda_m;
     summary_.narrow_max_width_m = 2 * fp.lambda_m;
+    summary_.narrow_floor_m = fp.narrow_floor_m;
     summary_.sources.insert(summary_.sources.begin(), "automatic (local feature size)");
   }
 }

@@ -59,6 +59,7 @@ struct SizingSummary {
   std::size_t num_narrow_sites = 0;  // medial points of features too narrow for hmin
   double narrow_min_width_m = 0.0;   // the widths those features have (about)
   double narrow_max_width_m = 0.0;
+  double narrow_floor_m = 0.0;  // their smallest size
 };
 
 // h(x) before gradation: the minimum of the sources, clamped to [hmin, hmax], then of the
