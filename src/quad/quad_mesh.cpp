@@ -1,6 +1,7 @@
 #include "quad/quad_mesh.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cmath>
 
 namespace isoquad {
@@ -72,15 +73,24 @@ bool segments_meet(const Point2& p, const Point2& q, const Point2& r, const Poin
 }  // namespace
 
 std::vector<std::array<int, 2>> boundary_edges(const QuadMesh& m) {
-  // Directed quad edges whose reverse no quad has.
-  std::vector<std::pair<int, int>> directed;
+  // Directed quad edges whose reverse no quad has: each vertex's outgoing edges in a
+  // compressed table, the reverse looked up among the few of its other end.
+  const std::size_t n = m.points.size();
+  std::vector<int> start(n + 1, 0);
   for (const auto& q : m.quads)
-    for (int i = 0; i < 4; ++i) directed.push_back({q[i], q[(i + 1) % 4]});
-  std::vector<std::pair<int, int>> sorted = directed;
-  std::sort(sorted.begin(), sorted.end());
+    for (int v : q) ++start[v + 1];
+  for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  std::vector<int> to(start[n]);
+  std::vector<int> fill(start.begin(), start.end() - 1);
+  for (const auto& q : m.quads)
+    for (int i = 0; i < 4; ++i) to[fill[q[i]]++] = q[(i + 1) % 4];
   std::vector<std::array<int, 2>> edges;
-  for (const auto& [a, b] : directed)
-    if (!std::binary_search(sorted.begin(), sorted.end(), std::make_pair(b, a))) edges.push_back({a, b});
+  for (const auto& q : m.quads)
+    for (int i = 0; i < 4; ++i) {
+      const int a = q[i], b = q[(i + 1) % 4];
+      if (std::find(to.begin() + start[b], to.begin() + start[b + 1], a) == to.begin() + start[b + 1])
+        edges.push_back({a, b});
+    }
   return edges;
 }
 
@@ -121,23 +131,29 @@ std::vector<std::array<int, 4>> boundary_crossings(const QuadMesh& m) {
                               static_cast<int>((std::max(a.x, b.x) - x0) / cell),
                               static_cast<int>((std::max(a.y, b.y) - y0) / cell)};
   };
-  std::vector<std::vector<int>> cells(static_cast<std::size_t>(nx) * ny);
+  // (cell, edge) for every cell an edge's box covers, sorted: the non-empty cells in
+  // order, each with its edges in order (a dense grid of up to 4096 x 4096 cells would
+  // cost more to allocate than the test itself on a large domain).
+  std::vector<std::pair<std::int64_t, int>> items;
   for (int k = 0; k < static_cast<int>(edges.size()); ++k) {
     const auto bx = box(edges[k]);
     for (int j = bx[1]; j <= bx[3]; ++j)
-      for (int i = bx[0]; i <= bx[2]; ++i) cells[static_cast<std::size_t>(j) * nx + i].push_back(k);
+      for (int i = bx[0]; i <= bx[2]; ++i) items.push_back({static_cast<std::int64_t>(j) * nx + i, k});
   }
-  for (std::size_t c = 0; c < cells.size(); ++c) {
-    const int ci = static_cast<int>(c % nx), cj = static_cast<int>(c / nx);
-    const auto& in = cells[c];
-    for (std::size_t u = 0; u < in.size(); ++u)
-      for (std::size_t w = u + 1; w < in.size(); ++w) {
-        const auto &e = edges[in[u]], &f = edges[in[w]];
+  std::sort(items.begin(), items.end());
+  for (std::size_t first = 0; first < items.size();) {
+    std::size_t last = first;
+    while (last < items.size() && items[last].first == items[first].first) ++last;
+    const int ci = static_cast<int>(items[first].first % nx), cj = static_cast<int>(items[first].first / nx);
+    for (std::size_t u = first; u < last; ++u)
+      for (std::size_t w = u + 1; w < last; ++w) {
+        const auto &e = edges[items[u].second], &f = edges[items[w].second];
         const auto be = box(e), bf = box(f);
         // Only in the first cell the two boxes share.
         if (std::max(be[0], bf[0]) != ci || std::max(be[1], bf[1]) != cj) continue;
         if (boundary_edges_meet(m, e, f)) out.push_back({e[0], e[1], f[0], f[1]});
       }
+    first = last;
   }
   return out;
 }

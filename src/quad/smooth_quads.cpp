@@ -31,33 +31,30 @@ Topology topology(const QuadMesh& m) {
   std::vector<int> fill(t.quad_start.begin(), t.quad_start.end() - 1);
   for (std::size_t q = 0; q < m.quads.size(); ++q)
     for (int v : m.quads[q]) t.quad_items[fill[v]++] = static_cast<int>(q);
+  // A vertex's edge neighbours from its quads (each quad gives the corners before and
+  // after it); an edge used by one quad only is a boundary edge. Boundary neighbours in
+  // increasing order (the second slot keeps the last when there are more than two).
   t.neighbours.assign(n, {});
-  // An edge used by one quad only is a boundary edge.
-  std::vector<std::pair<std::pair<int, int>, int>> edges;
-  for (const auto& q : m.quads)
-    for (int i = 0; i < 4; ++i) {
-      const int a = q[i], b = q[(i + 1) % 4];
-      t.neighbours[a].push_back(b);
-      t.neighbours[b].push_back(a);
-      edges.push_back({{std::min(a, b), std::max(a, b)}, 1});
-    }
-  for (auto& nb : t.neighbours) {
-    std::sort(nb.begin(), nb.end());
-    nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
-  }
-  std::sort(edges.begin(), edges.end());
   t.boundary_neighbours.assign(n, {-1, -1});
-  for (std::size_t i = 0; i < edges.size();) {
-    std::size_t j = i;
-    while (j < edges.size() && edges[j].first == edges[i].first) ++j;
-    if (j - i == 1) {
-      const auto [a, b] = edges[i].first;
-      for (auto [u, w] : {std::pair{a, b}, std::pair{b, a}}) {
-        auto& bn = t.boundary_neighbours[u];
-        (bn[0] < 0 ? bn[0] : bn[1]) = w;
-      }
+  std::vector<int> around;
+  for (std::size_t v = 0; v < n; ++v) {
+    around.clear();
+    for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
+      const auto& q = m.quads[t.quad_items[k]];
+      const int i = static_cast<int>(std::find(q.begin(), q.end(), static_cast<int>(v)) - q.begin());
+      around.push_back(q[(i + 1) % 4]);
+      around.push_back(q[(i + 3) % 4]);
     }
-    i = j;
+    std::sort(around.begin(), around.end());
+    auto& nb = t.neighbours[v];
+    auto& bn = t.boundary_neighbours[v];
+    for (std::size_t i = 0; i < around.size();) {
+      std::size_t j = i;
+      while (j < around.size() && around[j] == around[i]) ++j;
+      nb.push_back(around[i]);
+      if (j - i == 1) (bn[0] < 0 ? bn[0] : bn[1]) = around[i];
+      i = j;
+    }
   }
   return t;
 }
@@ -113,8 +110,11 @@ bool boundary_target(const BackgroundMesh& bg, const QuadMesh& m, const Topology
 // around them (pattern search with shrinking steps). When that stalls, the vertices of
 // the quads around them move too, and at last domain corners may slide along the
 // boundary (a cut corner is better than a non-convex quad).
+// With `only`, the quads looked at are those (ascending ids): a local repair after a
+// local change.
 void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const SmoothParams& params,
-              SmoothStats& stats, bool may_free_corners = true) {
+              SmoothStats& stats, bool may_free_corners = true,
+              const std::vector<int>* only = nullptr) {
   const int nq = static_cast<int>(m.quads.size());
   const int nv = static_cast<int>(m.points.size());
   std::vector<char> active(nv, 0);
@@ -127,8 +127,13 @@ void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const Sm
   };
   for (int sweep = 0; sweep < params.untangle_iterations; ++sweep) {
     std::vector<int> bad;
-    for (int q = 0; q < nq; ++q)
-      if (quad_convexity(m, q) <= params.min_convexity) bad.push_back(q);
+    if (only) {
+      for (int q : *only)
+        if (quad_convexity(m, q) <= params.min_convexity) bad.push_back(q);
+    } else {
+      for (int q = 0; q < nq; ++q)
+        if (quad_convexity(m, q) <= params.min_convexity) bad.push_back(q);
+    }
     if (bad.empty()) break;
     ++stats.num_untangle_sweeps;
     stalled = static_cast<int>(bad.size()) >= previous_bad && previous_bad >= 0 ? stalled + 1 : 0;
@@ -922,12 +927,44 @@ int collapse_folds(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& pa
   return kept;
 }
 
+// How far the repair after a sliver's collapse or flip reaches, in rings of quads.
+constexpr int kSliverRings = 3;
+
+// The quads within `rings` rings (sharing a vertex, ring by ring) of the quad whose
+// centroid is nearest `at`, ascending.
+std::vector<int> quads_near(const QuadMesh& m, const Topology& t, const Point2& at, int rings) {
+  const int nq = static_cast<int>(m.quads.size());
+  int seed = -1;
+  double best = 1e300;
+  for (int q = 0; q < nq; ++q) {
+    const Point2 c = quad_centroid(m, q);
+    const double d = (c.x - at.x) * (c.x - at.x) + (c.y - at.y) * (c.y - at.y);
+    if (d < best) best = d, seed = q;
+  }
+  std::vector<int> out;
+  if (seed < 0) return out;
+  std::vector<char> in(nq, 0);
+  in[seed] = 1;
+  out.push_back(seed);
+  for (std::size_t first = 0, ring = 0; ring < static_cast<std::size_t>(rings); ++ring) {
+    const std::size_t last = out.size();
+    for (std::size_t i = first; i < last; ++i)
+      for (int v : m.quads[out[i]])
+        for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k)
+          if (!in[t.quad_items[k]]) in[t.quad_items[k]] = 1, out.push_back(t.quad_items[k]);
+    first = last;
+  }
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
 // Slivers, once every quad is convex: quads still flatter than sliver_convexity, the
 // flattest first, each removed by a diagonal collapse when that (with the lift and
-// untangling sweeps after it) leaves every quad convex, no more boundary crossings, and
-// either raises the flattest quad's convexity or leaves fewer slivers without lowering
-// it. At most sliver_tries
-// quads are tried; a collapse not kept is undone.
+// untangling sweeps after it, on the quads within kSliverRings of it) leaves every quad
+// convex, no more boundary crossings, and either raises the flattest quad's convexity or
+// leaves fewer slivers without lowering it. At most sliver_tries quads are tried; a
+// collapse not kept is undone. (Sweeps over the whole mesh after each try cost the
+// Arctic Ocean at 1:10m, 39,770 quads, 10 s of its 13 s here; the local ones 0.1 s.)
 void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
                       const SmoothParams& lift, SmoothStats& stats) {
   auto scan = [&](int& slivers, int& nonconvex, double& worst) {
@@ -963,9 +1000,10 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
       const SmoothStats stats_before = stats;
       if (!change()) return false;
       const Topology t = topology(m);
+      const std::vector<int> near = quads_near(m, t, tried.back(), kSliverRings);
       SmoothStats ignored;
-      untangle(bg, m, t, lift, ignored, false);
-      untangle(bg, m, t, params, stats);
+      untangle(bg, m, t, lift, ignored, false, &near);
+      untangle(bg, m, t, params, stats, true, &near);
       int slivers1, nonconvex1;
       double worst1;
       scan(slivers1, nonconvex1, worst1);
