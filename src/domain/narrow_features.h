@@ -32,6 +32,9 @@ struct NarrowResult {
   std::size_t num_pieces_kept = 0;  // pieces left as they were: they would change the topology
   std::size_t num_components_before = 0;
   std::size_t num_components_after = 0;
+  // Overlays of the whole domain with a set of pieces, to check its topology (many
+  // pieces only; the costly part on large domains).
+  std::size_t num_domain_checks = 0;
   bool changed = false;  // false: the domain is left exactly as it was
 
   // Adds a later round on the domain this one left.
@@ -41,6 +44,7 @@ struct NarrowResult {
     num_pieces += later.num_pieces;
     num_pieces_kept = later.num_pieces_kept;
     num_components_after = later.num_components_after;
+    num_domain_checks += later.num_domain_checks;
     changed = changed || later.changed;
   }
 };
