@@ -791,9 +791,39 @@ bool collapse_first_better(const BackgroundMesh& bg, QuadMesh& m, const SmoothPa
   return false;
 }
 
+// The edge flips of quad `pick` with its neighbours in turn (while `tries` is under
+// collapse_tries), each followed by the untangling sweeps: keeps the first that
+// `better` accepts and undoes the others. Unlike flip_nonconvex, a flip need not make
+// the two quads better where the vertices stand: a boundary vertex in one quad only,
+// where the boundary runs straight, is a corner of 180 degrees that no move mends, and a
+// flip that gives it a second quad lets the sweeps make both convex (France at hmax 29
+// km: a quad on a lake's straight side, whose tiling was retried before).
+bool flip_first_better(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
+                       SmoothStats& stats, int pick, int& tries,
+                       const std::function<bool()>& better) {
+  const std::vector<QuadFlip> flips = flips_of(m, EdgeQuads(m), pick);
+  for (std::size_t k = 0; k < flips.size() && tries < params.collapse_tries; ++k, ++tries) {
+    QuadMesh before = m;
+    const SmoothStats stats_before = stats;
+    m.quads[flips[k].q] = flips[k].a;
+    m.quads[flips[k].n] = flips[k].b;
+    untangle(bg, m, topology(m), params, stats);
+    if (better()) {
+      ++stats.num_flips;
+      return true;
+    }
+    m = std::move(before);
+    stats = stats_before;
+  }
+  return false;
+}
+
 // Non-convex quads the collapse rounds left, one at a time (at most collapse_tries):
 // each of its possible collapses in turn (shorter diagonal first), the first that
-// leaves fewer quads non-convex kept. Returns the number kept.
+// leaves fewer quads non-convex kept; failing those, each of its edge flips (at most
+// collapse_tries of them in all; none with flip_rounds 0), kept the same way when no
+// more boundary edges cross.
+// Returns the number of collapses kept.
 int collapse_one_by_one(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
                         SmoothStats& stats) {
   auto count_nonconvex = [&] {
@@ -803,8 +833,8 @@ int collapse_one_by_one(const BackgroundMesh& bg, QuadMesh& m, const SmoothParam
     return n;
   };
   std::vector<Point2> tried;  // centroids of the quads tried (ids change on a collapse)
-  int kept = 0;
-  for (int attempt = 0; attempt < params.collapse_tries;) {
+  int kept = 0, flip_tries = 0;
+  for (int attempt = 0; attempt < params.collapse_tries || flip_tries < params.collapse_tries;) {
     const int bad = count_nonconvex();
     if (bad == 0) break;
     int pick = -1;
@@ -813,8 +843,16 @@ int collapse_one_by_one(const BackgroundMesh& bg, QuadMesh& m, const SmoothParam
         pick = q;
     if (pick < 0) break;
     tried.push_back(quad_centroid(m, pick));
-    kept += collapse_first_better(bg, m, params, stats, pick, attempt,
-                                  [&](const Topology&) { return count_nonconvex() < bad; });
+    if (collapse_first_better(bg, m, params, stats, pick, attempt,
+                              [&](const Topology&) { return count_nonconvex() < bad; })) {
+      ++kept;
+      continue;
+    }
+    if (params.flip_rounds == 0) continue;  // flips off
+    const std::size_t crossings = count_boundary_crossings(m);
+    flip_first_better(bg, m, params, stats, pick, flip_tries, [&] {
+      return count_nonconvex() < bad && count_boundary_crossings(m) <= crossings;
+    });
   }
   return kept;
 }

@@ -174,3 +174,25 @@ TEST(MeshJob, ARetryThatCannotRefineTakesTheNextTilingVariant) {
   EXPECT_EQ(r.quality.num_nonconvex, 0u);
   EXPECT_NE(mesh_report_json(r, "test").find("\"tiling_variants\""), std::string::npos);
 }
+
+TEST(MeshJob, AFlipAndTheSweepsMendABoundaryVertexInOneQuad) {
+  // France at hmax 29 km: the first tiling leaves a quad on the straight side of the
+  // domain's one hole with a boundary vertex in that quad only (a corner of 180 degrees
+  // that no move mends), and no flip makes both quads better where the vertices stand.
+  // Without the one-by-one repairs the tiling is retried; with them an edge flip followed
+  // by the untangling sweeps mends it in the first tiling.
+  MeshOptions o;
+  o.fields.front.read.path = sample("france.shp");
+  o.fields.sizing.hmax_m = 29000.0;
+  MeshOptions without = o;
+  without.smooth.collapse_tries = 0;
+  const MeshResult before = build_mesh(without);
+  ASSERT_GE(before.attempts, 2) << "the premise: without them the first tiling fails";
+
+  const MeshResult r = build_mesh(o);
+  EXPECT_EQ(r.attempts, 1);
+  EXPECT_GE(r.smooth.num_flips, 1);
+  EXPECT_EQ(r.quality.num_nonconvex, 0u);
+  EXPECT_EQ(r.quality.num_boundary_crossings, 0u);
+  EXPECT_GT(r.quality.min_angle_deg, 10.0);
+}
