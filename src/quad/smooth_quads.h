@@ -20,7 +20,8 @@ struct SmoothParams {
   // the caller retries the tiling): see SmoothStats::num_collapses.
   int collapse_rounds = 3;
   // Then quads still non-convex are tried one at a time, each possible collapse in turn
-  // (at most this many collapses tried).
+  // (at most this many collapses tried), then each of its edge flips followed by the
+  // untangling sweeps (at most as many flips; none with flip_rounds 0).
   int collapse_tries = 20;
   // Rounds of sliding the ends of crossing boundary edges (a mesh folded where an inlet
   // is narrower than its quads) along the boundary.
