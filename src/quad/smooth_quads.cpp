@@ -1144,9 +1144,13 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
   }
   if (count_nonconvex() > 0) stats.num_collapses += collapse_one_by_one(bg, m, params, stats);
   if (count_nonconvex() == 0) collapse_slivers(bg, m, params, lift, stats);
-  if (count_nonconvex() == 0 && count_boundary_crossings(m) > 0 &&
-      unfold_boundary(bg, m, topology(m), params) > 0)
-    stats.num_collapses += collapse_folds(bg, m, params, stats);
+  if (count_nonconvex() == 0 && count_boundary_crossings(m) > 0) {
+    if (unfold_boundary(bg, m, topology(m), params) > 0)
+      stats.num_collapses += collapse_folds(bg, m, params, stats);
+    // The slides and collapses that unfold the mesh can leave a sliver where it folded
+    // (France at hmax 18 km --simplify 800: 2.2 degrees): the sliver pass again there.
+    if (count_nonconvex() == 0) collapse_slivers(bg, m, params, lift, stats);
+  }
   stats.num_nonconvex_after = count_nonconvex();
   return stats;
 }

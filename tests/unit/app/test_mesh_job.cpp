@@ -196,3 +196,20 @@ TEST(MeshJob, AFlipAndTheSweepsMendABoundaryVertexInOneQuad) {
   EXPECT_EQ(r.quality.num_boundary_crossings, 0u);
   EXPECT_GT(r.quality.min_angle_deg, 10.0);
 }
+
+TEST(MeshJob, NoSliverIsLeftWhereTheMeshWasUnfolded) {
+  // France at hmax 18 km with the domain simplified at 800 m: the first tiling folds
+  // where an inlet is narrower than its quads; sliding boundary vertices apart unfolds
+  // it but left a quad of 2.2 and 178.7 degrees there, after the sliver pass had run.
+  // The sliver pass runs again after the unfolding.
+  MeshOptions o;
+  o.fields.front.read.path = sample("france.shp");
+  o.fields.front.simplify_m = 800.0;
+  o.fields.sizing.hmax_m = 18000.0;
+  const MeshResult r = build_mesh(o);
+  EXPECT_EQ(r.attempts, 1);
+  EXPECT_EQ(r.quality.num_nonconvex, 0u);
+  EXPECT_EQ(r.quality.num_boundary_crossings, 0u);
+  EXPECT_GT(r.quality.min_angle_deg, 10.0);
+  EXPECT_LT(r.quality.max_angle_deg, 170.0);
+}
