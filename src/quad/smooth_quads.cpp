@@ -928,9 +928,11 @@ std::size_t unfold_boundary(const BackgroundMesh& bg, QuadMesh& m, const Topolog
 }
 
 // Folds the slides leave: a quad with a crossing boundary edge is removed by a diagonal
-// collapse (each possible one in turn, at most collapse_tries in all), then the slides
-// run again; kept when fewer crossings are left and every quad is convex. Returns the
-// number of collapses kept.
+// collapse (each possible one in turn, at most collapse_tries in all), or failing that
+// re-split with a neighbour by an edge flip (as many; none with flip_rounds 0) and
+// untangled, then the slides run again; kept when fewer crossings are left and every
+// quad is convex (France at hmax 24 km --simplify 800: a quad across a narrow inlet,
+// whose tiling was retried before). Returns the number of collapses kept.
 int collapse_folds(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
                    SmoothStats& stats) {
   auto nonconvex = [&] {
@@ -939,8 +941,8 @@ int collapse_folds(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& pa
     return false;
   };
   std::vector<Point2> tried;  // centroids of the quads tried
-  int kept = 0;
-  for (int attempt = 0; attempt < params.collapse_tries;) {
+  int kept = 0, flip_tries = 0;
+  for (int attempt = 0; attempt < params.collapse_tries || flip_tries < params.collapse_tries;) {
     const std::size_t crossings = count_boundary_crossings(m);
     if (crossings == 0) break;
     // A quad that owns a crossing edge and was not tried yet.
@@ -958,8 +960,16 @@ int collapse_folds(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& pa
     }
     if (pick < 0) break;
     tried.push_back(quad_centroid(m, pick));
-    kept += collapse_first_better(bg, m, params, stats, pick, attempt, [&](const Topology& t) {
-      return !nonconvex() && unfold_boundary(bg, m, t, params) < crossings;
+    if (collapse_first_better(bg, m, params, stats, pick, attempt, [&](const Topology& t) {
+          return !nonconvex() && unfold_boundary(bg, m, t, params) < crossings;
+        })) {
+      ++kept;
+      continue;
+    }
+    // Failing those, its edge flips, each followed by the sweeps and the slides.
+    if (params.flip_rounds == 0) continue;
+    flip_first_better(bg, m, params, stats, pick, flip_tries, [&] {
+      return !nonconvex() && unfold_boundary(bg, m, topology(m), params) < crossings;
     });
   }
   return kept;

@@ -21,7 +21,8 @@ struct SmoothParams {
   int collapse_rounds = 3;
   // Then quads still non-convex are tried one at a time, each possible collapse in turn
   // (at most this many collapses tried), then each of its edge flips followed by the
-  // untangling sweeps (at most as many flips; none with flip_rounds 0).
+  // untangling sweeps (at most as many flips; none with flip_rounds 0). Quads on the
+  // crossing edges of a fold are tried the same way.
   int collapse_tries = 20;
   // Rounds of sliding the ends of crossing boundary edges (a mesh folded where an inlet
   // is narrower than its quads) along the boundary.

@@ -213,3 +213,25 @@ TEST(MeshJob, NoSliverIsLeftWhereTheMeshWasUnfolded) {
   EXPECT_GT(r.quality.min_angle_deg, 10.0);
   EXPECT_LT(r.quality.max_angle_deg, 170.0);
 }
+
+TEST(MeshJob, AFlipAndTheSlidesUnfoldAMeshFoldedAtAnInlet) {
+  // France at hmax 24 km with the domain simplified at 800 m: the first tiling folds where
+  // a quad reaches across a narrow inlet, and neither the slides nor a collapse unfold it
+  // (the tiling was retried with the sizes halved there). An edge flip of a quad on a
+  // crossing edge, followed by the sweeps and the slides, does.
+  MeshOptions o;
+  o.fields.front.read.path = sample("france.shp");
+  o.fields.front.simplify_m = 800.0;
+  o.fields.sizing.hmax_m = 24000.0;
+  MeshOptions without = o;
+  without.smooth.collapse_tries = 0;
+  const MeshResult before = build_mesh(without);
+  ASSERT_GE(before.attempts, 2) << "the premise: without them the first tiling folds";
+
+  const MeshResult r = build_mesh(o);
+  EXPECT_EQ(r.attempts, 1);
+  EXPECT_GE(r.smooth.num_flips, 1);
+  EXPECT_EQ(r.quality.num_nonconvex, 0u);
+  EXPECT_EQ(r.quality.num_boundary_crossings, 0u);
+  EXPECT_GT(r.quality.min_angle_deg, 10.0);
+}
