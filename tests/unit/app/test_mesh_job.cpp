@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include "core/error.h"
 #include "mesh/locate.h"
 #include "quad/quad_mesh.h"
@@ -33,6 +35,32 @@ MeshOptions brittany_water_at_10km() {
   o.fields.sizing.narrow_sizes = false;
   o.smooth.flip_rounds = 0;
   return o;
+}
+
+// France with the automatic sizes at hmax_m (and the domain simplified at simplify_m).
+MeshOptions france(double hmax_m, std::optional<double> simplify_m = std::nullopt) {
+  MeshOptions o;
+  o.fields.front.read.path = sample("france.shp");
+  o.fields.front.simplify_m = simplify_m;
+  o.fields.sizing.hmax_m = hmax_m;
+  return o;
+}
+
+// The first tiling of `o` leaves what only the one-by-one repairs (collapse_tries) mend:
+// without them it is retried; with them a flip mends it and the first tiling meshes,
+// every quad convex, none folded, none sharper than 10 degrees.
+void expect_mended_by_a_flip_in_one_tiling(const MeshOptions& o) {
+  MeshOptions without = o;
+  without.smooth.collapse_tries = 0;
+  const MeshResult before = build_mesh(without);
+  ASSERT_GE(before.attempts, 2) << "the premise: without them the first tiling fails";
+
+  const MeshResult r = build_mesh(o);
+  EXPECT_EQ(r.attempts, 1);
+  EXPECT_GE(r.smooth.num_flips, 1);
+  EXPECT_EQ(r.quality.num_nonconvex, 0u);
+  EXPECT_EQ(r.quality.num_boundary_crossings, 0u);
+  EXPECT_GT(r.quality.min_angle_deg, 10.0);
 }
 
 }  // namespace
@@ -181,20 +209,7 @@ TEST(MeshJob, AFlipAndTheSweepsMendABoundaryVertexInOneQuad) {
   // that no move mends), and no flip makes both quads better where the vertices stand.
   // Without the one-by-one repairs the tiling is retried; with them an edge flip followed
   // by the untangling sweeps mends it in the first tiling.
-  MeshOptions o;
-  o.fields.front.read.path = sample("france.shp");
-  o.fields.sizing.hmax_m = 29000.0;
-  MeshOptions without = o;
-  without.smooth.collapse_tries = 0;
-  const MeshResult before = build_mesh(without);
-  ASSERT_GE(before.attempts, 2) << "the premise: without them the first tiling fails";
-
-  const MeshResult r = build_mesh(o);
-  EXPECT_EQ(r.attempts, 1);
-  EXPECT_GE(r.smooth.num_flips, 1);
-  EXPECT_EQ(r.quality.num_nonconvex, 0u);
-  EXPECT_EQ(r.quality.num_boundary_crossings, 0u);
-  EXPECT_GT(r.quality.min_angle_deg, 10.0);
+  expect_mended_by_a_flip_in_one_tiling(france(29000.0));
 }
 
 TEST(MeshJob, NoSliverIsLeftWhereTheMeshWasUnfolded) {
@@ -202,11 +217,7 @@ TEST(MeshJob, NoSliverIsLeftWhereTheMeshWasUnfolded) {
   // where an inlet is narrower than its quads; sliding boundary vertices apart unfolds
   // it but left a quad of 2.2 and 178.7 degrees there, after the sliver pass had run.
   // The sliver pass runs again after the unfolding.
-  MeshOptions o;
-  o.fields.front.read.path = sample("france.shp");
-  o.fields.front.simplify_m = 800.0;
-  o.fields.sizing.hmax_m = 18000.0;
-  const MeshResult r = build_mesh(o);
+  const MeshResult r = build_mesh(france(18000.0, 800.0));
   EXPECT_EQ(r.attempts, 1);
   EXPECT_EQ(r.quality.num_nonconvex, 0u);
   EXPECT_EQ(r.quality.num_boundary_crossings, 0u);
@@ -219,19 +230,5 @@ TEST(MeshJob, AFlipAndTheSlidesUnfoldAMeshFoldedAtAnInlet) {
   // a quad reaches across a narrow inlet, and neither the slides nor a collapse unfold it
   // (the tiling was retried with the sizes halved there). An edge flip of a quad on a
   // crossing edge, followed by the sweeps and the slides, does.
-  MeshOptions o;
-  o.fields.front.read.path = sample("france.shp");
-  o.fields.front.simplify_m = 800.0;
-  o.fields.sizing.hmax_m = 24000.0;
-  MeshOptions without = o;
-  without.smooth.collapse_tries = 0;
-  const MeshResult before = build_mesh(without);
-  ASSERT_GE(before.attempts, 2) << "the premise: without them the first tiling folds";
-
-  const MeshResult r = build_mesh(o);
-  EXPECT_EQ(r.attempts, 1);
-  EXPECT_GE(r.smooth.num_flips, 1);
-  EXPECT_EQ(r.quality.num_nonconvex, 0u);
-  EXPECT_EQ(r.quality.num_boundary_crossings, 0u);
-  EXPECT_GT(r.quality.min_angle_deg, 10.0);
+  expect_mended_by_a_flip_in_one_tiling(france(24000.0, 800.0));
 }
