@@ -89,12 +89,14 @@ struct BoundaryFeatureSize::Impl {
           const int j = pass == 0 ? jj : ny - 1 - jj;
           for (int ii = 0; ii < nx; ++ii) {
             const int i = pass == 0 ? ii : nx - 1 - ii;
+            const std::size_t c = static_cast<std::size_t>(j) * nx + i;
             for (int dj = -1; dj <= 1; ++dj)
               for (int di = -1; di <= 1; ++di) {
                 const int a = i - step * di, b = j - step * dj;
                 if ((di == 0 && dj == 0) || a < 0 || b < 0 || a >= nx || b >= ny) continue;
                 const int site = best[static_cast<std::size_t>(b) * nx + a];
-                if (site >= 0) offer(i, j, site);
+                // The cell's own site again changes nothing (most neighbours share it).
+                if (site >= 0 && site != best[c]) offer(i, j, site);
               }
           }
         }
