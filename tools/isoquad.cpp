@@ -417,6 +417,13 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "degrees and edges nearer the cross field, keeping sizes (default 20; 0: none)")
       ->check(CLI::NonNegativeNumber)
       ->group("Quads");
+  cmd->add_option("--orientation-weight", m.mesh.smooth.angle_orientation_weight,
+                  "Weight of the edges' rotation from the cross field in the angle sweeps, "
+                  "against square corners and sizes (default 1.5; 0: none). More turns edges "
+                  "nearer the field at the cost of angles and sizes; less gives better angles "
+                  "(fewer quads under SCHISM's angle ratio)")
+      ->check(CLI::NonNegativeNumber)
+      ->group("Quads");
   cmd->add_option("--output-format", m.output_formats,
                   "gpkg, vtu, vtk, msh, gr3 or nc: once for every -o, or once per -o in order "
                   "(default: by extension)")
