@@ -11,6 +11,11 @@ Each case is a directory tests/golden/<case>/ holding:
   tools/golden.py check tests/golden/<case> --isoquad build/isoquad
   tools/golden.py update tests/golden/*            (after an intended change; review
                                                     the diff of expected.json)
+  tools/golden.py init my_cases/bay -- INPUT --hmax 5000 ...
+                                                   (a new case: writes args.txt from the
+                                                    arguments after --, runs them and
+                                                    writes expected.json with the default
+                                                    values and tolerances below)
 
 Only values listed in expected.json are compared, with their tolerances; the mesh
 itself is not stored (byte-exact floating point would fail across compilers).
@@ -78,12 +83,62 @@ def update(case, isoquad):
     print(f"updated {path}")
 
 
+# What `init` records, with its tolerances: the counts and shares of the quality report.
+DEFAULT_EXPECTED = {
+    "quality.num_quads": {"rtol": 0.1},
+    "quality.num_triangles": {"tol": 0},
+    "quality.num_nonconvex": {"tol": 0},
+    "quality.share_angles_75_105": {"tol": 0.03},
+    "quality.share_regular_interior": {"tol": 0.05},
+    "quality.size_ratio_median": {"tol": 0.05},
+    "quality.share_size_ratio_08_125": {"tol": 0.05},
+    "quality.orientation_mean_deg": {"tol": 1.0},
+    "domain.num_components": {"tol": 0},
+    "domain.num_holes": {"tol": 0},
+}
+
+
+def init(case, isoquad, args):
+    case = os.path.abspath(case)
+    if not args:
+        sys.exit("golden: init needs the isoquad mesh arguments after --")
+    for name in ("args.txt", "expected.json"):
+        if os.path.exists(os.path.join(case, name)):
+            sys.exit(f"golden: {case}: {name} exists; use update")
+    os.makedirs(case, exist_ok=True)
+    # Paths inside the case directory are written as {dir}, so the case can move.
+    lines = []
+    for a in args:
+        full = os.path.abspath(a)
+        lines.append("{dir}" + full[len(case):] if os.path.exists(a) and full.startswith(case + os.sep) else a)
+    with open(os.path.join(case, "args.txt"), "w") as f:
+        f.write("\n".join(lines) + "\n")
+    report = run_case(case, isoquad)
+    expected = {key: dict(spec, value=lookup(report, key)) for key, spec in DEFAULT_EXPECTED.items()}
+    with open(os.path.join(case, "expected.json"), "w") as f:
+        json.dump(expected, f, indent=2, sort_keys=True)
+        f.write("\n")
+    print(f"created {os.path.join(case, 'args.txt')} and expected.json")
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("command", choices=["check", "update"])
+    ap.add_argument("command", choices=["check", "update", "init"])
     ap.add_argument("cases", nargs="+")
     ap.add_argument("--isoquad", default=os.path.join(SRC, "build", "isoquad"))
-    a = ap.parse_args()
+    argv = sys.argv[1:]
+    mesh_args = []
+    if "--" in argv:
+        mesh_args = argv[argv.index("--") + 1:]
+        argv = argv[:argv.index("--")]
+    a = ap.parse_args(argv)
+    if a.command == "init":
+        if len(a.cases) != 1:
+            sys.exit("golden: init takes one case directory")
+        init(a.cases[0], a.isoquad, mesh_args)
+        return
+    if mesh_args:
+        sys.exit("golden: arguments after -- are for init only")
     for case in a.cases:
         (check if a.command == "check" else update)(case, a.isoquad)
 

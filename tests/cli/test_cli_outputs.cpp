@@ -429,3 +429,41 @@ TEST(CliOutputs, VerticesOutsideTheBathymetryGetZeroDepth) {
             std::string::npos)
       << r.err;
 }
+
+TEST(CliOutputs, GoldenToolStartsACaseThatChecksAndCatchesAChange) {
+  // tools/golden.py init: a user's own regression case from an isoquad mesh command
+  // line; `check` passes on it, and fails once an expected value is off.
+  TempDir dir;
+  const std::string golden = std::string(ISOQUAD_SOURCE_DIR) + "/tools/golden.py";
+  const std::string case_dir = dir.file("square_case");
+  std::filesystem::create_directories(case_dir);
+  write_file(case_dir + "/input.geojson",
+             geojson_polygons({"[[[0,0],[1000,0],[1000,1000],[0,1000],[0,0]]]"}));
+  CliResult r = run_cli_program("/usr/bin/python3",
+                                {golden, "init", case_dir, "--isoquad", ISOQUAD_CLI, "--",
+                                 case_dir + "/input.geojson", "--src-crs", "EPSG:3857", "--size", "100"},
+                                dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  // The input inside the case is written relative to it, so the case can move.
+  EXPECT_NE(read_file(case_dir + "/args.txt").find("{dir}/input.geojson"), std::string::npos);
+  r = run_cli_program("/usr/bin/python3", {golden, "check", case_dir, "--isoquad", ISOQUAD_CLI}, dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("quality.num_quads"), std::string::npos) << r.out;
+  // A second init would overwrite the case: refused.
+  r = run_cli_program("/usr/bin/python3",
+                      {golden, "init", case_dir, "--isoquad", ISOQUAD_CLI, "--", "x.geojson"}, dir);
+  EXPECT_NE(r.exit_code, 0);
+  // Twice the quads expected (tolerance 10%): check fails and names the value.
+  std::string expected = read_file(case_dir + "/expected.json");
+  const std::string key = "\"quality.num_quads\": {\n    \"rtol\": 0.1,\n    \"value\": ";
+  const std::size_t at = expected.find(key);
+  ASSERT_NE(at, std::string::npos) << expected;
+  const std::size_t begin = at + key.size(), end = expected.find('\n', begin);
+  const int quads = std::stoi(expected.substr(begin, end - begin));
+  EXPECT_GT(quads, 50);  // a 1 km square at 100 m: about 100 quads
+  expected.replace(begin, end - begin, std::to_string(2 * quads));
+  write_file(case_dir + "/expected.json", expected);
+  r = run_cli_program("/usr/bin/python3", {golden, "check", case_dir, "--isoquad", ISOQUAD_CLI}, dir);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("quality.num_quads"), std::string::npos) << r.err;
+}
