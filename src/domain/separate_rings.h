@@ -26,7 +26,9 @@ bool merge_shared_boundaries(Domain& domain);
 
 // Separates the rings at every pinch point by cutting a small octagon of radius r out of
 // the domain there: two holes touching at a point become one hole, a hole touching its
-// shell becomes a bay. Throws Error(input) when nothing is left.
+// shell becomes a bay. Pieces and holes the cut leaves smaller than r^2 (slivers where a
+// thin spike met the octagon, which would touch themselves within rounding) are dropped.
+// Throws Error(input) when nothing is left.
 void separate_rings(Domain& domain, double r_m);
 
 }  // namespace isoquad

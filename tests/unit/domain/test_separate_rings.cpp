@@ -80,6 +80,23 @@ TEST(SeparateRings, NearTouchesCountAsTouches) {
   EXPECT_EQ(pinch_points(far).size(), 0u);
 }
 
+TEST(SeparateRings, SliversTheCutLeavesAreDropped) {
+  // A needle 400 m long and 10 micrometres wide at its base, its tip on the square's side
+  // (Kiribati at 1:10m had such a sliver island): the octagon cuts the tip off, and what
+  // is left of the needle ends in two vertices far closer than rounding (a new pinch at
+  // every cut). It is far smaller than the octagon: dropped.
+  Domain d;
+  d.polygons.push_back(square_with_holes({}));
+  Polygon needle;
+  needle.outer = {{1000, 500}, {1400, 500}, {1400, 500.00001}};
+  d.polygons.push_back(needle);
+  EXPECT_EQ(pinch_points(d).size(), 1u);
+  separate_rings(d, 5.0);
+  EXPECT_EQ(pinch_points(d).size(), 0u);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_NEAR(area(d), 1.0e6, M_PI * 25.0);
+}
+
 namespace {
 
 Polygon rectangle(double x0, double y0, double x1, double y1) {
