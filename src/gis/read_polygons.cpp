@@ -186,7 +186,7 @@ class Reader {
 
   void read_features() {
     layer_->ResetReading();
-    std::size_t num_other = 0;
+    std::size_t num_other = 0, num_empty = 0;
     GdalErrorCapture capture;
     for (auto& feature : *layer_) {
       ++out_.num_features;
@@ -194,6 +194,7 @@ class Reader {
       if (!g || g->IsEmpty() || !is_polygonal(g->getGeometryType())) {
         ++out_.num_features_skipped;
         if (g && !g->IsEmpty()) ++num_other;
+        else ++num_empty;
         continue;
       }
       std::unique_ptr<OGRGeometry> linear(g->getLinearGeometry());
@@ -220,8 +221,9 @@ class Reader {
     if (out_.polygons.empty())
       fail(ErrorClass::input, "layer " + quote(out_.layer_name) + " has no polygons (" +
                                   std::to_string(out_.num_features) + " feature(s) read, " +
-                                  std::to_string(num_other) +
-                                  " with point or line geometry" + (selection.empty() ? "" : ", after" + selection) + ")");
+                                  std::to_string(num_other) + " with point or line geometry, " +
+                                  std::to_string(num_empty) + " with none or an empty one" +
+                                  (selection.empty() ? "" : ", after" + selection) + ")");
   }
 
   void add_geometry(long long fid, const OGRGeometry& g) {

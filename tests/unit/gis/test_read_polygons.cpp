@@ -81,7 +81,15 @@ TEST(ReadPolygons, BadInputsAreReportedWithFileAndProblem) {
   expect_error(params(dir.file("missing.shp")), ErrorClass::input, "no such file");
   expect_error(params(corrupt_shapefile(dir)), ErrorClass::input, "cannot read");
   expect_error(params(empty_file(dir)), ErrorClass::input, "empty");
-  expect_error(params(points_geojson(dir)), ErrorClass::input, "has no polygons");
+  expect_error(params(points_geojson(dir)), ErrorClass::input, "1 with point or line geometry");
+  // A feature whose geometry is empty (a tiny island quantized away: Natural Earth's
+  // Vatican at 1:10m in world-atlas) is counted as such.
+  const std::string empty_geometry = dir.file("empty_geometry.geojson");
+  write_file(empty_geometry,
+             "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\","
+             "\"properties\":{},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[]}}]}");
+  expect_error(params(empty_geometry), ErrorClass::input, "has no polygons (1 feature(s) read, "
+                                                          "0 with point or line geometry, 1 with none or an empty one)");
   expect_error(params(no_crs_csv(dir)), ErrorClass::crs, "--src-crs");
   expect_error(params(unclosed_geojson(dir)), ErrorClass::input, "not closed");
   expect_error(params(non_finite_geojson(dir)), ErrorClass::input, "not finite");
