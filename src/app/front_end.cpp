@@ -156,6 +156,11 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     if (moved < np.min_width_m * np.min_width_m) break;
   }
   cut_pinches();
+  // Last, tips sharper than a quad's corner may be (after the simplification, which can
+  // sharpen them), cut back to min_width wide.
+  SpikeParams spikes;
+  spikes.min_width_m = np.min_width_m;
+  s.spikes = cut_spike_tips(result.domain, spikes);
   if (pinches_cut > 0) {
     char width[32];
     std::snprintf(width, sizeof width, "%.3g", 2 * pinch_gap);

@@ -11,6 +11,7 @@
 #include "core/progress.h"
 #include "domain/clean_domain.h"
 #include "domain/narrow_features.h"
+#include "domain/spike_tips.h"
 #include "domain/project_domain.h"
 #include "domain/select_domain.h"
 #include "domain/simplify_domain.h"
@@ -61,6 +62,7 @@ struct DomainSummary {
   double min_island_area_m2 = 0.0;
   double min_width_m = 0.0;
   NarrowResult narrow;
+  SpikeResult spikes;  // tips sharper than SpikeParams::max_angle_deg cut back
   CleanResult dropped;
   std::vector<std::string> warnings;
 };

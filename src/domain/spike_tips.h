@@ -1,0 +1,31 @@
+// Spike tips: a corner of the domain sharper than a few degrees (the end of a thin spit
+// or of an atoll's rim, where the narrow-feature step keeps the whole spit because
+// removing it would cut the rim) is a corner that every quad mesh must have too: the
+// quad there has that angle (French Polynesia at 1:10m: 1.9 degrees). Such a tip is cut
+// back, square across its bisector, to where it is min_width wide.
+#pragma once
+
+#include <cstddef>
+
+#include "core/geometry.h"
+
+namespace isoquad {
+
+struct SpikeParams {
+  double min_width_m = 0.0;      // the width of the cut end; 0: off
+  double max_angle_deg = 15.0;   // tips with an interior angle under this are cut
+};
+
+struct SpikeResult {
+  std::size_t num_cut = 0;
+  double area_removed_m2 = 0.0;
+};
+
+// Cuts every convex vertex of the domain's rings whose interior angle is under
+// max_angle_deg: the part of the domain beyond the line across the tip's bisector, at
+// the distance where the tip's two sides are min_width apart, that holds the tip, is
+// removed. A cut that would change the domain's components or holes, or remove more than
+// the tip's triangle could hold, is not made. The result is oriented and sorted by area.
+SpikeResult cut_spike_tips(Domain& domain, const SpikeParams& params);
+
+}  // namespace isoquad
