@@ -60,6 +60,18 @@ GeosGeometry GeosContext::check(void* g, const char* what) {
   return GeosGeometry(state_.get(), g);
 }
 
+GeosGeometry GeosContext::polygon_with_holes(const Polygon& p) {
+  std::vector<Ring> rings{p.outer};
+  rings.insert(rings.end(), p.holes.begin(), p.holes.end());
+  return polygon(rings);
+}
+
+GeosGeometry GeosContext::domain_multipolygon(const Domain& d) {
+  std::vector<GeosGeometry> parts;
+  for (const Polygon& p : d.polygons) parts.push_back(polygon_with_holes(p));
+  return multipolygon(std::move(parts));
+}
+
 GeosGeometry GeosContext::polygon(const std::vector<Ring>& rings) {
   GEOSContextHandle_t h = state_->handle;
   std::vector<GEOSGeometry*> lrs;

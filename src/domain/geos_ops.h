@@ -45,6 +45,10 @@ class GeosContext {
   // Rings as given (open); orientation does not matter to GEOS.
   GeosGeometry polygon(const std::vector<Ring>& rings);
   GeosGeometry multipolygon(std::vector<GeosGeometry> parts);
+  // A polygon of the domain (its outer ring and holes), and the whole domain as one
+  // multipolygon.
+  GeosGeometry polygon_with_holes(const Polygon& p);
+  GeosGeometry domain_multipolygon(const Domain& d);
   // Any geometries (polygons, multipolygons) as one collection, e.g. to union them.
   GeosGeometry collection(std::vector<GeosGeometry> parts);
   bool is_empty(const GeosGeometry& g);

@@ -15,12 +15,6 @@ namespace isoquad {
 
 namespace {
 
-GeosGeometry to_geos(GeosContext& geos, const Polygon& p) {
-  std::vector<Ring> rings{p.outer};
-  rings.insert(rings.end(), p.holes.begin(), p.holes.end());
-  return geos.polygon(rings);
-}
-
 // Components and holes: what the domain's topology is, for the comparison below. Parts
 // and holes smaller than min_area are not counted.
 std::pair<std::size_t, std::size_t> topology(const std::vector<Polygon>& polygons,
@@ -75,9 +69,7 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
   const double negligible = 1e-4 * params.min_width_m * params.min_width_m;
 
   GeosContext geos;
-  std::vector<GeosGeometry> parts;
-  for (const Polygon& p : domain.polygons) parts.push_back(to_geos(geos, p));
-  const GeosGeometry original = geos.multipolygon(std::move(parts));
+  const GeosGeometry original = geos.domain_multipolygon(domain);
   // GEOS's overlays refuse an invalid domain (a ring touching itself where the
   // simplification brought a vertex onto another edge): nothing is changed then.
   if (!geos.validity(original).valid) return result;
@@ -105,15 +97,10 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     // water domain: flood a narrow land bridge); those are left out, so the domain keeps
     // its components and holes: connections are the user's to change (--min-width 0
     // turns this off). Few pieces: applied one by one, each checked on the whole domain.
-    GeosGeometry current = geos.multipolygon({});
-    {
-      std::vector<GeosGeometry> again;
-      for (const Polygon& p : domain.polygons) again.push_back(to_geos(geos, p));
-      current = geos.multipolygon(std::move(again));
-    }
+    GeosGeometry current = geos.domain_multipolygon(domain);
     auto apply = [&](const std::vector<Polygon>& list, bool add, double& area) {
       for (const Polygon& p : list) {
-        const GeosGeometry piece = to_geos(geos, p);
+        const GeosGeometry piece = geos.polygon_with_holes(p);
         std::optional<GeosGeometry> next;
         try {  // an overlay GEOS fails on (a non-noded intersection): the piece is kept
           next = add ? geos.union_of(current, piece) : geos.difference(current, piece);
@@ -177,7 +164,7 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     std::vector<Piece> accepted;
     auto sort_out = [&](const std::vector<Polygon>& list, bool removed_piece) {
       for (const Polygon& p : list) {
-        if (!p.holes.empty() || contacts(to_geos(geos, p), p, removed_piece) != 1) {
+        if (!p.holes.empty() || contacts(geos.polygon_with_holes(p), p, removed_piece) != 1) {
           ++result.num_pieces_kept;
           continue;
         }
@@ -199,7 +186,7 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     auto cleaned = [&](const GeosGeometry& current) {
       std::vector<Polygon> out;
       for (const Polygon& part : geos.polygons(current)) {
-        GeosGeometry g = to_geos(geos, part);
+        GeosGeometry g = geos.polygon_with_holes(part);
         g = geos.buffer_mitre(geos.buffer_mitre(g, -eps, params.mitre_limit), eps, params.mitre_limit);
         g = geos.buffer_mitre(geos.buffer_mitre(g, eps, params.mitre_limit), -eps, params.mitre_limit);
         for (Polygon& q : geos.polygons(g)) out.push_back(std::move(q));
@@ -208,13 +195,12 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     };
     // The domain with the chosen pieces cut out or filled in.
     auto overlay = [&](const std::vector<bool>& chosen) {
-      std::vector<GeosGeometry> cut, fill, again;
+      std::vector<GeosGeometry> cut, fill;
       for (std::size_t i = 0; i < accepted.size(); ++i) {
         if (!chosen[i]) continue;
-        (accepted[i].cut ? cut : fill).push_back(to_geos(geos, *accepted[i].polygon));
+        (accepted[i].cut ? cut : fill).push_back(geos.polygon_with_holes(*accepted[i].polygon));
       }
-      for (const Polygon& p : domain.polygons) again.push_back(to_geos(geos, p));
-      GeosGeometry current = geos.multipolygon(std::move(again));
+      GeosGeometry current = geos.domain_multipolygon(domain);
       if (!cut.empty()) current = geos.difference(current, geos.unary_union(geos.multipolygon(std::move(cut))));
       if (!fill.empty()) current = geos.union_of(current, geos.unary_union(geos.multipolygon(std::move(fill))));
       return cleaned(current);
@@ -292,7 +278,7 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
           try {
             const GeosGeometry near =
                 geos.clip_valid(original, window[0], window[1], window[2], window[3]);
-            const GeosGeometry piece = to_geos(geos, *a.polygon);
+            const GeosGeometry piece = geos.polygon_with_holes(*a.polygon);
             const GeosGeometry with = a.cut ? geos.difference(near, piece) : geos.union_of(near, piece);
             // The cleaning moves the window's edges by rounding only; 4 eps is ample.
             changes = topology_in_window(cleaned(near), tiny, window, 4 * eps) !=

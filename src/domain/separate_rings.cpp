@@ -96,11 +96,7 @@ std::vector<Touch> touching_vertices(const Domain& domain, double* tol_out) {
 
 std::vector<GeosGeometry> geos_polygons(GeosContext& geos, const Domain& domain) {
   std::vector<GeosGeometry> parts;
-  for (const Polygon& p : domain.polygons) {
-    std::vector<Ring> rings{p.outer};
-    rings.insert(rings.end(), p.holes.begin(), p.holes.end());
-    parts.push_back(geos.polygon(rings));
-  }
+  for (const Polygon& p : domain.polygons) parts.push_back(geos.polygon_with_holes(p));
   return parts;
 }
 

@@ -12,18 +12,6 @@ namespace isoquad {
 
 namespace {
 
-GeosGeometry to_geos(GeosContext& geos, const Polygon& p) {
-  std::vector<Ring> rings{p.outer};
-  rings.insert(rings.end(), p.holes.begin(), p.holes.end());
-  return geos.polygon(rings);
-}
-
-GeosGeometry domain_geos(GeosContext& geos, const Domain& domain) {
-  std::vector<GeosGeometry> parts;
-  for (const Polygon& p : domain.polygons) parts.push_back(to_geos(geos, p));
-  return geos.multipolygon(std::move(parts));
-}
-
 std::pair<std::size_t, std::size_t> topology(const std::vector<Polygon>& polygons) {
   std::size_t holes = 0;
   for (const Polygon& p : polygons) holes += p.holes.size();
@@ -78,7 +66,7 @@ SpikeResult cut_spike_tips(Domain& domain, const SpikeParams& params) {
   if (tips.empty()) return result;
 
   GeosContext geos;
-  const GeosGeometry whole = domain_geos(geos, domain);
+  const GeosGeometry whole = geos.domain_multipolygon(domain);
   if (!geos.validity(whole).valid) return result;
   const auto reference = topology(domain.polygons);
   // Each tip's piece: the part of the domain in the box from just beyond the tip to the
@@ -115,7 +103,7 @@ SpikeResult cut_spike_tips(Domain& domain, const SpikeParams& params) {
     // sides), and the new end is the box's straight side.
     try {
       pieces.push_back(geos.intersection(
-          box, geos.buffer_mitre(to_geos(geos, *tip_piece), 1e-3 * w, 5.0)));
+          box, geos.buffer_mitre(geos.polygon_with_holes(*tip_piece), 1e-3 * w, 5.0)));
     } catch (const Error&) {
       continue;
     }
@@ -141,7 +129,7 @@ SpikeResult cut_spike_tips(Domain& domain, const SpikeParams& params) {
     result.num_cut = pieces.size();
     for (double a : areas) result.area_removed_m2 += a;
   } else {
-    GeosGeometry current = domain_geos(geos, domain);
+    GeosGeometry current = geos.domain_multipolygon(domain);
     polygons.clear();
     for (std::size_t i = 0; i < pieces.size(); ++i) {
       std::vector<GeosGeometry> one;
@@ -150,7 +138,7 @@ SpikeResult cut_spike_tips(Domain& domain, const SpikeParams& params) {
       if (next.empty() || topology(next) != reference) continue;
       Domain d;
       d.polygons = next;
-      current = domain_geos(geos, d);
+      current = geos.domain_multipolygon(d);
       polygons = std::move(next);
       ++result.num_cut;
       result.area_removed_m2 += areas[i];
