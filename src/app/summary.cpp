@@ -45,7 +45,7 @@ std::string format_domain_summary(const DomainSummary& s) {
   if (s.spikes.num_cut)
     os << "spikes:       " << s.spikes.num_cut << " tip(s) sharper than "
        << num(SpikeParams{}.max_angle_deg) << " deg cut back to " << num(s.min_width_m)
-       << " m wide: " << num(s.spikes.area_removed_m2, 4) << " m2 removed\n";
+       << " m wide: " << num(s.spikes.area_removed_m2 / 1e6, 4) << " km2 removed\n";
   if (s.num_repaired || s.num_rings_closed || s.num_rings_dropped || s.num_points_removed)
     os << "repairs:      " << s.num_repaired << " invalid polygon(s) fixed, " << s.num_rings_closed
        << " ring(s) closed, " << s.num_rings_dropped << " degenerate ring(s) dropped, "

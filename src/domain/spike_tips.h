@@ -1,8 +1,10 @@
-// Spike tips: a corner of the domain sharper than a few degrees (the end of a thin spit
-// or of an atoll's rim, where the narrow-feature step keeps the whole spit because
-// removing it would cut the rim) is a corner that every quad mesh must have too: the
-// quad there has that angle (French Polynesia at 1:10m: 1.9 degrees). Such a tip is cut
-// back, square across its bisector, to where it is min_width wide.
+// Spike tips: a corner of the domain sharper than a few degrees is a corner that every
+// quad mesh must have too: the quad there has that angle (French Polynesia at 1:10m:
+// 1.9 degrees). The narrow-feature step bevels a spike where it is min_width wide, but
+// the simplification after it (whose tolerance is min_width by default) takes the
+// bevel's two corners back to one sharp tip; and it keeps whole a spit or an atoll's rim
+// narrower than min_width all along when removing it would cut the rim. So, last, such
+// a tip is cut back, square across its bisector, to where it is min_width wide.
 #pragma once
 
 #include <cstddef>

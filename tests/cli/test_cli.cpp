@@ -192,6 +192,39 @@ TEST(Cli, PiecesLeftTouchingByACutAreCutApartInTurn) {
   EXPECT_NEAR(d.area_m2 / 3.95e12, 1.0, 0.02);
 }
 
+TEST(Cli, ASharpTipIsCutBackToTheMinimumWidth) {
+  // A square 1 km wide with a spike 600 m long and 40 m wide at its base (a tip of 3.8
+  // degrees), in metres, cleaned as the mesh command does (simplification and minimum
+  // width equal): the opening bevels the tip where it is 10 m wide, the simplification
+  // that follows (10 m) takes the bevel's two corners back to a sharp tip, and the tip is
+  // cut at last, less than the 750 m2 triangle the spike's last 150 m make. With
+  // --min-width 0 nothing is cut.
+  TempDir dir;
+  const std::string input = dir.file("spike.geojson");
+  write_file(input, geojson_polygons({"[[[0,0],[1000,0],[1000,480],[1600,500],[1000,520],"
+                                      "[1000,1000],[0,1000],[0,0]]]"}));
+  auto run = [&](const std::string& width) {
+    const CliResult r = run_cli({"domain", input, "--src-crs", "EPSG:3857", "--dst-crs", "EPSG:3857",
+                                 "--simplify", "10", "--min-width", width, "-o", dir.file("d.gpkg"),
+                                 "--overwrite", "--report", dir.file("r.json")},
+                                dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return std::make_pair(r.out, read_file(dir.file("r.json")));
+  };
+  const auto [out, report] = run("10");
+  EXPECT_NE(out.find("spikes:       1 tip(s) sharper than 15 deg cut back to 10 m wide"),
+            std::string::npos) << out;
+  EXPECT_NE(report.find("\"spikes_num_cut\": 1"), std::string::npos) << report;
+  const std::size_t at = report.find("\"spikes_area_removed_m2\": ");
+  ASSERT_NE(at, std::string::npos) << report;
+  const double removed = std::stod(report.substr(at + 26));
+  EXPECT_GT(removed, 100.0);
+  EXPECT_LT(removed, 750.0);
+  const auto [out_off, report_off] = run("0");
+  EXPECT_EQ(out_off.find("spikes:"), std::string::npos) << out_off;
+  EXPECT_NE(report_off.find("\"spikes_num_cut\": 0"), std::string::npos) << report_off;
+}
+
 TEST(Cli, WaterOfOpenSeaIsTheWholeBbox) {
   // Off Brittany, no land in the bbox: the water domain is the bbox (with a warning);
   // the land domain there is still an error, and so is a --where matching nothing.
