@@ -122,6 +122,7 @@ SpikeResult cut_spike_tips(Domain& domain, const SpikeParams& params) {
       return {};
     }
   };
+  // (unary_union of one piece: a copy, as the pieces are kept for the second pass.)
   std::vector<GeosGeometry> all;
   for (const GeosGeometry& p : pieces) all.push_back(geos.unary_union(p));
   std::vector<Polygon> polygons = apply(whole, std::move(all));
