@@ -195,7 +195,7 @@ std::string format_mesh_summary(const MeshResult& r) {
     os << buf;
   }
   if (r.smooth.num_sliver_collapses > 0) {
-    std::snprintf(buf, sizeof buf, "slivers:      %d flat quad(s) removed by diagonal collapses\n",
+    std::snprintf(buf, sizeof buf, "slivers:      %d flat quad(s) removed by diagonal collapses or thin rows merged\n",
                   r.smooth.num_sliver_collapses);
     os << buf;
   }

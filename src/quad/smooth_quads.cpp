@@ -329,6 +329,8 @@ int flip_nonconvex(QuadMesh& m, double min_convexity) {
 // (1 on the boundary). Quads around a merge are not touched again in the same call.
 // Vertices left without quads are dropped and the ids renumbered. Returns the number
 // of quads removed.
+void remove_quads(QuadMesh& m, const std::vector<char>& removed);
+
 int collapse_quads(QuadMesh& m, const std::function<bool(int)>& wanted, int choice = 0) {
   const int nv = static_cast<int>(m.points.size());
   const int nq = static_cast<int>(m.quads.size());
@@ -383,7 +385,15 @@ int collapse_quads(QuadMesh& m, const std::function<bool(int)>& wanted, int choi
     ++collapses;
   }
   if (collapses == 0) return 0;
-  // Drop the removed quads and the vertices no quad uses any more.
+  remove_quads(m, removed);
+  return collapses;
+}
+
+// Drops the quads marked in `removed` and the vertices no quad uses any more (ids
+// renumbered in order).
+void remove_quads(QuadMesh& m, const std::vector<char>& removed) {
+  const int nv = static_cast<int>(m.points.size());
+  const int nq = static_cast<int>(m.quads.size());
   std::vector<std::array<int, 4>> quads;
   std::vector<int> id(nv, -1);
   for (int q = 0; q < nq; ++q)
@@ -404,7 +414,6 @@ int collapse_quads(QuadMesh& m, const std::function<bool(int)>& wanted, int choi
     for (int& v : quad) v = id[v];
   out.quads = std::move(quads);
   m = std::move(out);
-  return collapses;
 }
 
 // Colours of the vertices such that no two vertices of a quad share one (greedy, in vertex
@@ -1006,6 +1015,92 @@ std::vector<int> quads_near(const QuadMesh& m, const Topology& t, const Point2& 
   return out;
 }
 
+// A thin chord: a row of quads joined by their short sides, from the boundary to the
+// boundary, each quad's short sides under a quarter of its long ones (Croatia at 1:10m:
+// a column 27 m wide and 615 m long, ending in a quad with a side of 0.7 m). No
+// collapse of a diagonal or flip mends it; merging the two ends of every short side
+// removes the row, and the quads on its two sides meet. A merged vertex is the boundary
+// one where one is on the boundary (the fixed one where one is a corner), at the arc's
+// middle where both are, else at the middle. Returns false, the mesh unchanged, when
+// the row is not thin throughout, does not reach the boundary both ways within max_row
+// quads, would merge two corners or two chains, or would leave a quad with a vertex
+// twice or an edge used twice the same way.
+bool collapse_chord(const BackgroundMesh& bg, QuadMesh& m, int start, int max_row) {
+  const EdgeQuads edges(m);
+  auto side = [&](int q, int i) {
+    return distance(m.points[m.quads[q][i]], m.points[m.quads[q][(i + 1) % 4]]);
+  };
+  // Whether quad q's sides i and i + 2 are its short ones, and short enough.
+  auto thin = [&](int q, int i) {
+    return std::max(side(q, i), side(q, i + 2)) < 0.25 * std::min(side(q, i + 1), side(q, (i + 3) % 4));
+  };
+  const int k = std::max(side(start, 0), side(start, 2)) < std::max(side(start, 1), side(start, 3)) ? 0 : 1;
+  if (!thin(start, k)) return false;
+  std::vector<int> row{start};
+  std::vector<std::array<int, 2>> sides{{m.quads[start][k], m.quads[start][k + 1]},
+                                        {m.quads[start][k + 2], m.quads[start][(k + 3) % 4]}};
+  for (int way = 0; way < 2; ++way) {
+    int cur = start;
+    std::array<int, 2> e = sides[way];
+    for (;;) {
+      const int n = edges.other(e[0], e[1], cur);
+      if (n < 0) break;  // the boundary
+      if (static_cast<int>(row.size()) >= max_row || std::find(row.begin(), row.end(), n) != row.end())
+        return false;
+      const auto& t = m.quads[n];
+      int j = 0;
+      while (j < 4 && !(t[j] == e[1] && t[(j + 1) % 4] == e[0])) ++j;
+      if (j == 4 || !thin(n, j % 2)) return false;
+      row.push_back(n);
+      e = {t[(j + 2) % 4], t[(j + 3) % 4]};
+      sides.push_back(e);
+      cur = n;
+    }
+  }
+  // Merge each short side's ends: w into u.
+  const int nv = static_cast<int>(m.points.size());
+  std::vector<int> into(nv);
+  for (int v = 0; v < nv; ++v) into[v] = v;
+  QuadMesh out = m;
+  for (auto [u, w] : sides) {
+    if (m.fixed[u] && m.fixed[w]) return false;
+    if (m.chain[u] >= 0 && m.chain[w] >= 0) {
+      if (m.chain[u] != m.chain[w]) return false;
+      if (m.fixed[w]) std::swap(u, w);
+      if (!m.fixed[u]) {
+        const BoundaryChain& c = bg.chains[m.chain[u]];
+        const double arc = m.arc_m[u] + 0.5 * arc_delta(m.arc_m[u], m.arc_m[w], c.length_m);
+        out.arc_m[u] = arc;
+        out.points[u] = chain_point(bg, c, arc);
+      }
+    } else if (m.chain[w] >= 0 || m.fixed[w]) {
+      std::swap(u, w);  // keep the boundary (or fixed) one
+    } else if (m.chain[u] < 0 && !m.fixed[u]) {
+      out.points[u] = {0.5 * (m.points[u].x + m.points[w].x), 0.5 * (m.points[u].y + m.points[w].y)};
+    }
+    if (into[w] != w || into[u] != u) return false;  // an end of two sides: not a plain row
+    into[w] = u;
+  }
+  std::vector<char> removed(m.quads.size(), 0);
+  for (int q : row) removed[q] = 1;
+  std::vector<std::pair<int, int>> directed;
+  for (std::size_t q = 0; q < out.quads.size(); ++q) {
+    if (removed[q]) continue;
+    for (int& v : out.quads[q]) v = into[v];
+    const auto& t = out.quads[q];
+    for (int i = 0; i < 4; ++i) {
+      for (int j = i + 1; j < 4; ++j)
+        if (t[i] == t[j]) return false;
+      directed.push_back({t[i], t[(i + 1) % 4]});
+    }
+  }
+  std::sort(directed.begin(), directed.end());
+  if (std::adjacent_find(directed.begin(), directed.end()) != directed.end()) return false;
+  remove_quads(out, removed);
+  m = std::move(out);
+  return true;
+}
+
 // Slivers, once every quad is convex: quads still flatter than sliver_convexity, the
 // flattest first, each removed by a diagonal collapse when that (with the lift and
 // untangling sweeps after it, on the quads within kSliverRings of it) leaves every quad
@@ -1080,6 +1175,10 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
         ++stats.num_flips;
         done = true;
       }
+    // Failing those, the thin row it ends, collapsed.
+    if (!done && params.sliver_row_max > 0 &&
+        kept([&] { return collapse_chord(bg, m, pick, params.sliver_row_max); }))
+      ++stats.num_sliver_collapses;
   }
 }
 

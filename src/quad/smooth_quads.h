@@ -38,6 +38,10 @@ struct SmoothParams {
   // 8.3: its collapse would fold the mesh).
   double sliver_convexity = 0.17;
   int sliver_tries = 20;
+  // Failing those, a sliver that ends a thin row of quads (joined by their short sides,
+  // each under a quarter of its long ones, boundary to boundary, at most this many
+  // quads) has the row merged away (0: never). Croatia at 1:10m: 7.2 -> 19.0 degrees.
+  int sliver_row_max = 8;
   // Before the convexity repair, quads flatter than this (sine of the worst corner
   // turn; 0.26 ~ 15 degrees) get `lift_iterations` sweeps of the same search.
   double lift_convexity = 0.26;
@@ -113,7 +117,8 @@ struct SmoothStats {
   // which drops a vertex, to make every quad convex or to unfold the mesh: the mesh's
   // vertex ids are renumbered.
   int num_collapses = 0;
-  int num_sliver_collapses = 0;  // the same, of slivers (SmoothParams::sliver_convexity)
+  // The same, of slivers (SmoothParams::sliver_convexity), and thin rows of quads merged.
+  int num_sliver_collapses = 0;
 };
 
 // Smooths in place. Does not throw; the caller decides what a remaining non-convex quad
