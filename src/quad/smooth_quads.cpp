@@ -319,6 +319,33 @@ int flip_nonconvex(QuadMesh& m, double min_convexity) {
   return flips;
 }
 
+// Drops the quads marked in `removed` and the vertices no quad uses any more (ids
+// renumbered in order).
+void remove_quads(QuadMesh& m, const std::vector<char>& removed) {
+  const int nv = static_cast<int>(m.points.size());
+  const int nq = static_cast<int>(m.quads.size());
+  std::vector<std::array<int, 4>> quads;
+  std::vector<int> id(nv, -1);
+  for (int q = 0; q < nq; ++q)
+    if (!removed[q]) {
+      quads.push_back(m.quads[q]);
+      for (int v : m.quads[q]) id[v] = 0;
+    }
+  QuadMesh out;
+  for (int v = 0; v < nv; ++v) {
+    if (id[v] < 0) continue;
+    id[v] = static_cast<int>(out.points.size());
+    out.points.push_back(m.points[v]);
+    out.chain.push_back(m.chain[v]);
+    out.arc_m.push_back(m.arc_m[v]);
+    out.fixed.push_back(m.fixed[v]);
+  }
+  for (auto& quad : quads)
+    for (int& v : quad) v = id[v];
+  out.quads = std::move(quads);
+  m = std::move(out);
+}
+
 // Diagonal collapses: each quad `wanted` picks, with a diagonal whose end c is inside
 // the domain and movable, is removed by merging c into the other end a (c's other quads
 // take a; a keeps its place, on the boundary if it is there). Of the possible merges the
@@ -329,8 +356,6 @@ int flip_nonconvex(QuadMesh& m, double min_convexity) {
 // (1 on the boundary). Quads around a merge are not touched again in the same call.
 // Vertices left without quads are dropped and the ids renumbered. Returns the number
 // of quads removed.
-void remove_quads(QuadMesh& m, const std::vector<char>& removed);
-
 int collapse_quads(QuadMesh& m, const std::function<bool(int)>& wanted, int choice = 0) {
   const int nv = static_cast<int>(m.points.size());
   const int nq = static_cast<int>(m.quads.size());
@@ -389,32 +414,6 @@ int collapse_quads(QuadMesh& m, const std::function<bool(int)>& wanted, int choi
   return collapses;
 }
 
-// Drops the quads marked in `removed` and the vertices no quad uses any more (ids
-// renumbered in order).
-void remove_quads(QuadMesh& m, const std::vector<char>& removed) {
-  const int nv = static_cast<int>(m.points.size());
-  const int nq = static_cast<int>(m.quads.size());
-  std::vector<std::array<int, 4>> quads;
-  std::vector<int> id(nv, -1);
-  for (int q = 0; q < nq; ++q)
-    if (!removed[q]) {
-      quads.push_back(m.quads[q]);
-      for (int v : m.quads[q]) id[v] = 0;
-    }
-  QuadMesh out;
-  for (int v = 0; v < nv; ++v) {
-    if (id[v] < 0) continue;
-    id[v] = static_cast<int>(out.points.size());
-    out.points.push_back(m.points[v]);
-    out.chain.push_back(m.chain[v]);
-    out.arc_m.push_back(m.arc_m[v]);
-    out.fixed.push_back(m.fixed[v]);
-  }
-  for (auto& quad : quads)
-    for (int& v : quad) v = id[v];
-  out.quads = std::move(quads);
-  m = std::move(out);
-}
 
 // Colours of the vertices such that no two vertices of a quad share one (greedy, in vertex
 // order): vertices of a colour are moved independently of each other, each colour's in
