@@ -123,7 +123,7 @@ std::vector<std::array<int, 4>> boundary_crossings(const QuadMesh& m) {
     total += distance(a, b);
   }
   const double cell = std::max({total / edges.size(), (x1 - x0) / 4096, (y1 - y0) / 4096, 1e-9});
-  const int nx = static_cast<int>((x1 - x0) / cell) + 1, ny = static_cast<int>((y1 - y0) / cell) + 1;
+  const int nx = static_cast<int>((x1 - x0) / cell) + 1;
   auto box = [&](const std::array<int, 2>& e) {
     const Point2 &a = m.points[e[0]], &b = m.points[e[1]];
     return std::array<int, 4>{static_cast<int>((std::min(a.x, b.x) - x0) / cell),
