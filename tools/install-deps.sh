@@ -8,7 +8,7 @@ export DEBIAN_FRONTEND=noninteractive
 PACKAGES=(
   build-essential cmake ninja-build pkg-config
   libcgal-dev libgmp-dev libmpfr-dev libboost-dev
-  libeigen3-dev libsuitesparse-dev libopenblas0-serial
+  libeigen3-dev
   libgdal-dev gdal-bin libgeos-dev
   libproj-dev proj-bin proj-data
   libgeographiclib-dev

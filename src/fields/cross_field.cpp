@@ -1,8 +1,6 @@
 #include "fields/cross_field.h"
 
-#include <Eigen/CholmodSupport>
 #include <Eigen/Sparse>
-#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <cmath>
@@ -12,6 +10,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "fields/cross_solve.h"
 
 namespace isoquad {
 
@@ -185,56 +184,7 @@ CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
     std::vector<Eigen::Triplet<Complex>>().swap(triplets);
     std::vector<std::vector<EdgeEntry>>().swap(adjacency);
 
-    // CHOLMOD's supernodal factorisation: several times faster than Eigen's simplicial
-    // one on meshes of a few hundred thousand vertices.
-    Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<double>> solver(laplacian);
-    if (solver.info() != Eigen::Success)
-      throw Error(ErrorClass::meshing, kStage,
-                  "the Laplacian could not be factorised (a mesh component without boundary?)");
-    // The real solve of a complex vector: its real and imaginary parts.
-    auto real_solve = [&](const Eigen::VectorXcd& right) {
-      Eigen::MatrixXd parts(num_unknowns, 2);
-      parts.col(0) = right.real();
-      parts.col(1) = right.imag();
-      const Eigen::MatrixXd x = solver.solve(parts);
-      if (solver.info() != Eigen::Success)
-        throw Error(ErrorClass::meshing, kStage, "the cross field solve failed");
-      Eigen::VectorXcd out(num_unknowns);
-      out.real() = x.col(0);
-      out.imag() = x.col(1);
-      return out;
-    };
-    Eigen::VectorXcd u = real_solve(rhs);
-    if (connect) {
-      // Conjugate gradients on the Hermitian matrix, preconditioned by the real
-      // Laplacian's factor (the same matrix without rotations): a complex factorisation
-      // would take about twice the memory (Chile at 1:10m: 380 -> 650 MB). A relative
-      // residual of 1e-5 moves crosses by far less than a degree; France automatic: 15
-      // iterations.
-      const double target = 1e-5 * rhs.norm();
-      Eigen::VectorXcd residual = rhs - hermitian * u;
-      Eigen::VectorXcd z = real_solve(residual);
-      Eigen::VectorXcd direction = z;
-      double rz = residual.dot(z).real();
-      constexpr int kMaxIterations = 200;
-      for (int it = 0; it < kMaxIterations && residual.norm() > target; ++it) {
-        const Eigen::VectorXcd image = hermitian * direction;
-        const double alpha = rz / direction.dot(image).real();
-        u += alpha * direction;
-        residual -= alpha * image;
-        z = real_solve(residual);
-        const double rz_next = residual.dot(z).real();
-        direction = z + (rz_next / rz) * direction;
-        rz = rz_next;
-      }
-      if (residual.norm() > target) {
-        // Rotations too strong for the preconditioner: factorise the complex matrix.
-        Eigen::CholmodSupernodalLLT<Eigen::SparseMatrix<Complex>> complex_solver(hermitian);
-        if (complex_solver.info() == Eigen::Success) u = complex_solver.solve(rhs);
-        if (complex_solver.info() != Eigen::Success)
-          throw Error(ErrorClass::meshing, kStage, "the cross field solve failed");
-      }
-    }
+    const Eigen::VectorXcd u = solve_cross_system(laplacian, connect ? &hermitian : nullptr, rhs);
     for (int v = 0; v < num_vertices; ++v) {
       if (unknown[v] < 0) continue;
       uc[v] = u(unknown[v]).real();
