@@ -9,7 +9,12 @@ metrics for both meshes here, independently of isoquad's own report:
   angles in [75,105], min and max angle, non-convex quads, triangles left,
   sqrt(area)/H median and share in [0.8,1.25], orientation deviation from isoquad's
   boundary-aligned cross field (mean, p90), regular interior vertices, wall time and
-  peak memory (each process's own, from wait4).
+  peak memory (each process's own, from GNU time: the wait4 of a process forked from
+  this one would count this script's own memory, copied at the fork).
+
+In --auto mode `isoquad domain` gets the simplification, minimum width and island area
+that `isoquad fields` reports it used, so that Gmsh meshes the same cleaned boundary
+(the script stops if the two domains' vertex counts differ).
 
 Each program runs --repeat times (default 3), alternately, so that a slow spell of the
 machine falls on both: the table gives the median wall time with the range, and the
@@ -21,9 +26,10 @@ sqrt(area)/h is measured against it at the quad centroids.
 
 Usage: tools/compare_gmsh.py INPUT (--size H | --auto) [--isoquad build/isoquad]
        [--workdir DIR] [--simplify M] [--repeat N] [extra isoquad options after --]
-Needs Debian's gmsh, python3-meshio, python3-gdal, python3-scipy (tools/install-deps.sh).
+Needs Debian's gmsh, time, python3-meshio, python3-gdal, python3-scipy (tools/install-deps.sh).
 """
 import argparse
+import json
 import math
 import os
 import subprocess
@@ -38,17 +44,16 @@ from scipy.spatial import cKDTree
 
 
 def run(cmd):
-    """Runs cmd; returns its wall time in seconds and its peak resident memory in MB (the
-    kernel's account of that process, read with wait4)."""
-    t0 = time.perf_counter()
-    proc = subprocess.Popen(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
-    err = proc.stderr.read()
-    _, status, usage = os.wait4(proc.pid, 0)
-    elapsed = time.perf_counter() - t0
-    proc.returncode = os.waitstatus_to_exitcode(status)
-    if proc.returncode != 0:
-        sys.exit(f"compare_gmsh: {' '.join(cmd)} failed ({proc.returncode}):\n{err}")
-    return elapsed, usage.ru_maxrss / 1024.0
+    """Runs cmd; returns its wall time in seconds and its peak resident memory in MB, as
+    GNU time reads it from wait4 (time forks the command from its own small process)."""
+    with tempfile.NamedTemporaryFile("r", suffix=".rss") as rss:
+        t0 = time.perf_counter()
+        proc = subprocess.run(["/usr/bin/time", "-f", "%M", "-o", rss.name, *cmd],
+                              stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True)
+        elapsed = time.perf_counter() - t0
+        if proc.returncode != 0:
+            sys.exit(f"compare_gmsh: {' '.join(cmd)} failed ({proc.returncode}):\n{proc.stderr}")
+        return elapsed, int(rss.read().split()[-1]) / 1024.0
 
 
 def domain_to_geo(gpkg, geo_path, size, background=None):
@@ -183,8 +188,13 @@ def main():
         common += ["--size", repr(a.size), "--simplify", repr(simplify)]
     elif a.simplify is not None:
         common += ["--simplify", repr(a.simplify)]
+    fields = os.path.join(work, "fields.vtu")
+    fields_report = os.path.join(work, "fields.json")
+    run([a.isoquad, "fields", *common, "-o", fields, "--report", fields_report])
     domain = os.path.join(work, "domain.gpkg")
-    # `isoquad domain` takes no sizing options.
+    # `isoquad domain` takes no sizing options, and without --size it leaves the domain
+    # as read: it is given the cleaning that `fields` and `mesh` derived from the
+    # automatic hmin (their report's), so that Gmsh meshes the same simplified boundary.
     sizing = {"--hmax", "--hmin", "--gradation", "--cells-across", "--size-expr", "--size-raster"}
     domain_args, skip = [], False
     for arg in common:
@@ -194,9 +204,21 @@ def main():
             skip = True
         else:
             domain_args.append(arg)
-    run([a.isoquad, "domain", *domain_args, "-o", domain])
-    fields = os.path.join(work, "fields.vtu")
-    run([a.isoquad, "fields", *common, "-o", fields])
+    with open(fields_report) as f:
+        used = json.load(f)
+    used = used.get("domain", used)
+    for option, key in (("--simplify", "simplify_m"), ("--min-width", "min_width_m"),
+                        ("--min-island-area", "min_island_area_m2")):
+        if option not in domain_args and key in used:
+            domain_args += [option, repr(float(used[key]))]
+    domain_report = os.path.join(work, "domain.json")
+    run([a.isoquad, "domain", *domain_args, "-o", domain, "--report", domain_report])
+    with open(domain_report) as f:
+        given = json.load(f)
+    for key in ("num_vertices_after", "num_rings"):
+        if given.get(key) != used.get(key):
+            sys.exit(f"compare_gmsh: the domain written for Gmsh has {key} {given.get(key)}, "
+                     f"isoquad's mesh {used.get(key)}")
     cross = field_at(fields, "cross_angle", math.pi / 180)
     size = field_at(fields, "size") if a.auto else (lambda pts: np.full(len(pts), a.size))
 

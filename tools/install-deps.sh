@@ -16,7 +16,7 @@ PACKAGES=(
   libcairo2-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   libnetcdf-dev
-  python3-gdal python3-numpy python3-meshio python3-scipy python3-netcdf4 gmsh
+  python3-gdal python3-numpy python3-meshio python3-scipy python3-netcdf4 gmsh time
   python3-qgis qgis-providers
 )
 stamp=/var/lib/apt/periodic/update-success-stamp
