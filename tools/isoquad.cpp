@@ -306,7 +306,7 @@ int run_domain(CommonArgs& a) {
   return 0;
 }
 
-int run_fields(CommonArgs& a, FieldArgs& f) {
+int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
   finish_front_end_args(a);
   check_output_path(a.output, a.overwrite);
   if (!f.plot_path.empty()) check_output_path(f.plot_path, a.overwrite);
@@ -325,7 +325,7 @@ int run_fields(CommonArgs& a, FieldArgs& f) {
     plot_fields(r.mesh, r.size, r.cross, r.singularities, pp);
   }
   if (!a.report_path.empty())
-    write_text_atomically(a.report_path, domain_summary_json(r.front.summary), a.overwrite);
+    write_text_atomically(a.report_path, fields_report_json(r, command_line), a.overwrite);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
     std::cout << format_domain_summary(r.front.summary) << format_fields_summary(r);
@@ -660,7 +660,7 @@ int main(int argc, char** argv) {
 
   try {
     if (domain_cmd->parsed()) return run_domain(domain_args);
-    if (fields_cmd->parsed()) return run_fields(fields_args, field_args);
+    if (fields_cmd->parsed()) return run_fields(fields_args, field_args, joined_command_line(argc, argv));
     if (mesh_cmd->parsed())
       return run_mesh(mesh_args, mesh_field_args, mesh_extra, joined_command_line(argc, argv));
   } catch (const Error& e) {

@@ -5,7 +5,9 @@
 #include <cstdio>
 #include <sstream>
 
+#include "app/summary.h"
 #include "core/error.h"
+#include "core/stage_clock.h"
 #include "fields/size_cache.h"
 #include "gis/raster_field.h"
 #include "plot/canvas.h"
@@ -21,6 +23,19 @@ double default_hmin_for_area(const SizingParams& s, double area_m2) {
   if (s.constant_m) return *s.constant_m;
   const double hmax = s.hmax_m > 0 ? s.hmax_m : std::sqrt(area_m2 / 2000.0);
   return hmax / 10.0;
+}
+
+struct SingularityCounts {
+  int plus = 0, minus = 0, total_quarters = 0;
+};
+
+SingularityCounts count_singularities(const std::vector<Singularity>& singularities) {
+  SingularityCounts c;
+  for (const Singularity& s : singularities) {
+    (s.index_quarters > 0 ? c.plus : c.minus) += 1;
+    c.total_quarters += s.index_quarters;
+  }
+  return c;
 }
 
 }  // namespace
@@ -123,15 +138,11 @@ std::string format_fields_summary(const FieldsResult& r) {
   std::snprintf(buf, sizeof buf, "background:   %zu vertices, %zu triangles, %zu boundary chains\n",
                 r.mesh.points.size(), r.mesh.triangles.size(), r.mesh.chains.size());
   os << buf;
-  int plus = 0, minus = 0, total = 0;
-  for (const Singularity& s : r.singularities) {
-    (s.index_quarters > 0 ? plus : minus) += 1;
-    total += s.index_quarters;
-  }
+  const SingularityCounts c = count_singularities(r.singularities);
   std::snprintf(buf, sizeof buf,
                 "cross field:  %zu singularities (%d of index +1/4, %d of index -1/4 or less; "
                 "total index %d/4)\n",
-                r.singularities.size(), plus, minus, total);
+                r.singularities.size(), c.plus, c.minus, c.total_quarters);
   os << buf;
   os << "times:       ";
   for (const StageTime& t : r.times) {
@@ -140,6 +151,63 @@ std::string format_fields_summary(const FieldsResult& r) {
   }
   os << "\n";
   return os.str();
+}
+
+void add_sizing_report(JsonWriter& j, const FieldsResult& r) {
+  j.value("hmin_m", r.sizing.hmin_m)
+      .value("hmax_m", r.sizing.hmax_m)
+      .value("gradation", r.sizing.gradation)
+      .array("sources", r.sizing.sources)
+      .value("narrow_medial_points", r.sizing.num_narrow_sites)
+      .value("predicted_quads", predicted_num_quads(r.mesh, r.size));
+  if (!r.size.size_m.empty()) {
+    const auto [lo, hi] = std::minmax_element(r.size.size_m.begin(), r.size.size_m.end());
+    j.value("size_min_m", *lo).value("size_max_m", *hi);
+  }
+}
+
+void add_background_report(JsonWriter& j, const FieldsResult& r) {
+  const SingularityCounts c = count_singularities(r.singularities);
+  j.begin_object("background")
+      .value("num_vertices", r.mesh.points.size())
+      .value("num_triangles", r.mesh.triangles.size())
+      .value("num_boundary_chains", r.mesh.chains.size())
+      .value("num_singularities", r.singularities.size())
+      .end_object();
+  j.begin_object("cross_field")
+      .value("num_singularities", r.singularities.size())
+      .value("num_index_plus_quarter", c.plus)
+      .value("num_index_minus_quarter_or_less", c.minus)
+      .value("total_index_quarters", c.total_quarters)
+      .end_object();
+}
+
+void add_stage_times(JsonWriter& j, const std::vector<StageTime>& times) {
+  j.begin_array("stages");
+  for (const StageTime& t : times)
+    j.begin_object()
+        .value("stage", t.stage)
+        .value("seconds", t.seconds)
+        .value("peak_mb", t.peak_mb)
+        .end_object();
+  j.end_array();
+}
+
+std::string fields_report_json(const FieldsResult& r, const std::string& command_line) {
+  JsonWriter j;
+  j.begin_object();
+  j.value("isoquad_version", ISOQUAD_VERSION).value("command_line", command_line);
+  j.begin_object("domain");
+  add_domain_summary(j, r.front.summary);
+  j.end_object();
+  j.begin_object("sizing");
+  add_sizing_report(j, r);
+  j.end_object();
+  add_background_report(j, r);
+  add_stage_times(j, r.times);
+  j.value("peak_memory_mb", process_peak_mb());  // the whole process so far
+  j.end_object();
+  return j.str();
 }
 
 }  // namespace isoquad

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/front_end.h"
+#include "core/json_writer.h"
 #include "core/stage_clock.h"
 #include "fields/cross_field.h"
 #include "fields/sizing_field.h"
@@ -61,5 +62,16 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options,
                             FieldsResult& result, const Progress& progress = Progress());
 
 std::string format_fields_summary(const FieldsResult& r);
+
+// The report's sections on the fields, shared by `isoquad fields` and `isoquad mesh`:
+// the values of the "sizing" object (the caller opens and closes it), the whole
+// "background" and "cross_field" objects, and the "stages" array.
+void add_sizing_report(JsonWriter& j, const FieldsResult& r);
+void add_background_report(JsonWriter& j, const FieldsResult& r);
+void add_stage_times(JsonWriter& j, const std::vector<StageTime>& times);
+
+// `isoquad fields --report`: the version and command line, then "domain", "sizing",
+// "background", "cross_field", "stages" and the peak memory, as in the mesh report.
+std::string fields_report_json(const FieldsResult& r, const std::string& command_line);
 
 }  // namespace isoquad

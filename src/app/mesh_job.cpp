@@ -224,13 +224,8 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
   j.begin_object("domain");
   add_domain_summary(j, r.fields.front.summary);
   j.end_object();
-  j.begin_object("sizing")
-      .value("hmin_m", r.fields.sizing.hmin_m)
-      .value("hmax_m", r.fields.sizing.hmax_m)
-      .value("gradation", r.fields.sizing.gradation)
-      .array("sources", r.fields.sizing.sources)
-      .value("narrow_medial_points", r.fields.sizing.num_narrow_sites)
-      .value("predicted_quads", predicted_num_quads(r.fields.mesh, r.fields.size));
+  j.begin_object("sizing");
+  add_sizing_report(j, r.fields);
   j.begin_array("local_refinements");  // where failed tiling attempts halved the sizes
   for (const LocalRefinement& f : r.refinements)
     j.begin_object()
@@ -241,11 +236,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .end_object();
   j.end_array();
   j.end_object();
-  j.begin_object("background")
-      .value("num_vertices", r.fields.mesh.points.size())
-      .value("num_triangles", r.fields.mesh.triangles.size())
-      .value("num_singularities", r.fields.singularities.size())
-      .end_object();
+  add_background_report(j, r.fields);
   j.begin_array("tiling");
   for (const TilingStepReport& s : r.tiling.steps) {
     j.begin_object()
@@ -303,14 +294,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("num_sliver_collapses", r.smooth.num_sliver_collapses)
         .end_object();
   }
-  j.begin_array("stages");
-  for (const StageTime& t : r.fields.times)
-    j.begin_object()
-        .value("stage", t.stage)
-        .value("seconds", t.seconds)
-        .value("peak_mb", t.peak_mb)
-        .end_object();
-  j.end_array();
+  add_stage_times(j, r.fields.times);
   j.value("peak_memory_mb", process_peak_mb());  // the whole process so far
   j.end_object();
   return j.str();
