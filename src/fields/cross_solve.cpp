@@ -35,7 +35,7 @@ Eigen::VectorXcd solve_cross_system(const Eigen::SparseMatrix<double>& laplacian
   if (!hermitian) return u;
 
   // A relative residual of 1e-5 moves crosses by far less than a degree; France
-  // automatic: 15 iterations.
+  // automatic: 16 iterations.
   const Eigen::SparseMatrix<std::complex<double>>& h = *hermitian;
   const double target = 1e-5 * rhs.norm();
   Eigen::VectorXcd residual = rhs - h * u;
