@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <cmath>
+#include <limits>
 
 namespace isoquad {
 
@@ -24,6 +25,17 @@ Point2 chain_point(const BackgroundMesh& mesh, const BoundaryChain& chain, doubl
 
 double quad_convexity(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
   const Point2 v[4] = {a, b, c, d};
+  // A side shorter than kDegenerateSide times the longest is no side: its direction is
+  // rounding noise, and the quad a triangle (the Baltic at 1:10m had one of 2e-9 m in a
+  // quad 2.5 km long, which the turns alone counted convex).
+  constexpr double kDegenerateSide = 1e-6;
+  double shortest2 = std::numeric_limits<double>::infinity(), longest2 = 0.0;
+  for (int i = 0; i < 4; ++i) {
+    const double dx = v[(i + 1) % 4].x - v[i].x, dy = v[(i + 1) % 4].y - v[i].y;
+    shortest2 = std::min(shortest2, dx * dx + dy * dy);
+    longest2 = std::max(longest2, dx * dx + dy * dy);
+  }
+  if (shortest2 <= kDegenerateSide * kDegenerateSide * longest2) return -1.0;
   double worst = 1.0;
   for (int i = 0; i < 4; ++i) {
     const Point2& p = v[(i + 3) % 4];

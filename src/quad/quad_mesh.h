@@ -22,7 +22,8 @@ struct QuadMesh {
 Point2 chain_point(const BackgroundMesh& mesh, const BoundaryChain& chain, double arc_m);
 
 // Convexity of a quad: the smallest sine of its four turning angles (positive for every
-// corner of a strictly convex counter-clockwise quad, in (-1, 1]).
+// corner of a strictly convex counter-clockwise quad, in (-1, 1]); -1 when a side is
+// shorter than a millionth of the longest (a degenerate quad, whatever its turns).
 double quad_convexity(const Point2& a, const Point2& b, const Point2& c, const Point2& d);
 double quad_convexity(const QuadMesh& mesh, int q);
 // The mean of the quad's four vertices.

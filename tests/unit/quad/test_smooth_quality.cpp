@@ -559,3 +559,17 @@ TEST(SmoothQuads, AThinRowOfSliversIsMergedAway) {
     }
   }
 }
+
+TEST(QuadConvexity, ASideOfNothingIsDegenerateWhateverItsTurns) {
+  // The Baltic at 1:10m: a quad 2.5 km long with a side of 2e-9 m, its turns all convex
+  // by rounding. Such a quad is a triangle: not convex. A side a hundred thousandth of the
+  // longest still counts by its turns.
+  const Point2 a{287560.586, 53273.342}, b{288765.217, 53694.992}, c{289614.977, 54690.609};
+  const Point2 d{c.x - 1.2e-9, c.y + 1.5e-9};  // its turns alone give 0.26: convex
+  EXPECT_LE(quad_convexity(a, b, c, d), 0.0);
+  EXPECT_LE(quad_convexity(a, b, c, c), 0.0);
+  const Point2 s0{0, 0}, s1{100, 0}, s2{100, 100}, s3{0, 100};
+  EXPECT_DOUBLE_EQ(quad_convexity(s0, s1, s2, s3), 1.0);
+  // A trapezoid with a 1 mm top: its turns decide (convex).
+  EXPECT_GT(quad_convexity(s0, s1, {50.0005, 100}, {49.9995, 100}), 0.0);
+}
