@@ -590,8 +590,8 @@ double corner_angle_rad(const Point2& p, const Point2& o, const Point2& n) {
 // the corners that a move of v changes (at v and at its two neighbours in the quad; the
 // fourth is constant: opposite_angle, per quad of v in order), plus per quad
 // area_weight (log(area / area0))^2, the smooth count of sizes out of range
-// (size_range_*; area0: the target area) and of smallest over largest angle under
-// min_angle_ratio; infinite when one of the moving corners turns by less than
+// (size_range_*; area0: the target area), of smallest over largest angle under
+// min_angle_ratio and of longest over shortest side over max_aspect; infinite when one of the moving corners turns by less than
 // min_convexity (quad_convexity's measure; the caller has checked the fourth).
 // `sharpest` takes the smallest of the moving corners' angles, if smaller.
 double moving_corner_energy(const QuadMesh& m, const Topology& t, int v, const SmoothParams& params,
@@ -626,6 +626,17 @@ double moving_corner_energy(const QuadMesh& m, const Topology& t, int v, const S
     if (params.angle_ratio_weight > 0)
       e += params.angle_ratio_weight *
            smooth_step((params.min_angle_ratio - smallest / largest) / params.angle_ratio_softness);
+    if (params.aspect_weight > 0) {
+      double shortest = std::numeric_limits<double>::infinity(), longest = 0;
+      for (int i = 0; i < 4; ++i) {
+        const double l = distance(m.points[c[i]], m.points[c[(i + 1) % 4]]);
+        shortest = std::min(shortest, l), longest = std::max(longest, l);
+      }
+      if (shortest > 0)
+        e += params.aspect_weight *
+             smooth_step((std::log(longest / shortest) - std::log(params.max_aspect)) /
+                         params.aspect_softness);
+    }
     if (params.angle_area_weight > 0 || params.size_range_weight > 0) {
       const double r = std::log(quad_area(m, q) / area0[q]);
       e += params.angle_area_weight * r * r;
