@@ -12,9 +12,10 @@ metrics for both meshes here, independently of isoquad's own report:
   peak memory (each process's own, from GNU time: the wait4 of a process forked from
   this one would count this script's own memory, copied at the fork).
 
-In --auto mode `isoquad domain` gets the simplification, minimum width and island area
-that `isoquad fields` reports it used, so that Gmsh meshes the same cleaned boundary
-(the script stops if the two domains' vertex counts differ).
+In --auto mode every isoquad run (and `isoquad domain`, which writes Gmsh's domain) gets
+the simplification, minimum width and island area that `isoquad fields` reports it used,
+so that Gmsh meshes the same cleaned boundary (the script stops if the two domains'
+vertex counts differ).
 
 Each program runs --repeat times (default 3), alternately, so that a slow spell of the
 machine falls on both: the table gives the median wall time with the range, and the
@@ -190,11 +191,29 @@ def main():
         common += ["--simplify", repr(a.simplify)]
     fields = os.path.join(work, "fields.vtu")
     fields_report = os.path.join(work, "fields.json")
-    run([a.isoquad, "fields", *common, "-o", fields, "--report", fields_report])
-    domain = os.path.join(work, "domain.gpkg")
+
+    def fields_domain_summary():
+        run([a.isoquad, "fields", *common, "-o", fields, "--report", fields_report])
+        with open(fields_report) as f:
+            report = json.load(f)
+        return report.get("domain", report)
+
+    used = fields_domain_summary()
     # `isoquad domain` takes no sizing options, and without --size it leaves the domain
-    # as read: it is given the cleaning that `fields` and `mesh` derived from the
-    # automatic hmin (their report's), so that Gmsh meshes the same simplified boundary.
+    # as read. So the cleaning that `fields` and `mesh` derive from the automatic hmin
+    # (their report's) is given to every run: Gmsh meshes the same simplified boundary.
+    # The report rounds to 10 digits, and a tolerance that differs in its tenth digit can
+    # keep one more vertex (the Baltic at 1:10m): the fields run again with the rounded
+    # values, and isoquad's meshes use them too.
+    cleaning = []
+    for option, key in (("--simplify", "simplify_m"), ("--min-width", "min_width_m"),
+                        ("--min-island-area", "min_island_area_m2")):
+        if option not in common and key in used:
+            cleaning += [option, repr(float(used[key]))]
+    if cleaning:
+        common += cleaning
+        used = fields_domain_summary()
+    domain = os.path.join(work, "domain.gpkg")
     sizing = {"--hmax", "--hmin", "--gradation", "--cells-across", "--size-expr", "--size-raster"}
     domain_args, skip = [], False
     for arg in common:
@@ -204,13 +223,6 @@ def main():
             skip = True
         else:
             domain_args.append(arg)
-    with open(fields_report) as f:
-        used = json.load(f)
-    used = used.get("domain", used)
-    for option, key in (("--simplify", "simplify_m"), ("--min-width", "min_width_m"),
-                        ("--min-island-area", "min_island_area_m2")):
-        if option not in domain_args and key in used:
-            domain_args += [option, repr(float(used[key]))]
     domain_report = os.path.join(work, "domain.json")
     run([a.isoquad, "domain", *domain_args, "-o", domain, "--report", domain_report])
     with open(domain_report) as f:
