@@ -195,8 +195,7 @@ def main():
     def fields_domain_summary():
         run([a.isoquad, "fields", *common, "-o", fields, "--report", fields_report])
         with open(fields_report) as f:
-            report = json.load(f)
-        return report.get("domain", report)
+            return json.load(f)["domain"]
 
     used = fields_domain_summary()
     # `isoquad domain` takes no sizing options, and without --size it leaves the domain
@@ -205,10 +204,11 @@ def main():
     # The report rounds to 10 digits, and a tolerance that differs in its tenth digit can
     # keep one more vertex (the Baltic at 1:10m): the fields run again with the rounded
     # values, and isoquad's meshes use them too.
+    # With --size H, `domain` derives the same cleaning from H itself.
     cleaning = []
     for option, key in (("--simplify", "simplify_m"), ("--min-width", "min_width_m"),
                         ("--min-island-area", "min_island_area_m2")):
-        if option not in common and key in used:
+        if a.auto and option not in common:
             cleaning += [option, repr(float(used[key]))]
     if cleaning:
         common += cleaning

@@ -591,8 +591,9 @@ double corner_angle_rad(const Point2& p, const Point2& o, const Point2& n) {
 // fourth is constant: opposite_angle, per quad of v in order), plus per quad
 // area_weight (log(area / area0))^2, the smooth count of sizes out of range
 // (size_range_*; area0: the target area), of smallest over largest angle under
-// min_angle_ratio and of longest over shortest side over max_aspect; infinite when one of the moving corners turns by less than
-// min_convexity (quad_convexity's measure; the caller has checked the fourth).
+// min_angle_ratio and of longest over shortest side over max_aspect; infinite when one
+// of the moving corners turns by less than min_convexity (quad_convexity's measure; the
+// caller has checked the fourth).
 // `sharpest` takes the smallest of the moving corners' angles, if smaller.
 double moving_corner_energy(const QuadMesh& m, const Topology& t, int v, const SmoothParams& params,
                             const std::vector<double>& area0, const double* opposite_angle,

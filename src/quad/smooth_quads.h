@@ -108,7 +108,7 @@ struct SmoothParams {
   // shrinking while the quad's angles and area stay good. Measured on 12 cases (France
   // at three sizes, Corsica, Brittany's land and water, five countries at 1:50m or
   // 1:10m, the Baltic) against no such term: quads over SCHISM's 5 halved (France
-  // automatic at 28 km 82 -> 40, Indonesia at 1:50m 85 -> 35, the Baltic 984 -> 652),
+  // automatic at 28 km 82 -> 40, Indonesia at 1:50m 85 -> 35, the Baltic 984 -> 648),
   // angles in range 0.1 point lower (at most 0.2), orientation up to 0.04 deg more, the
   // smallest angle the same or larger (France 20.3 -> 22.2 deg). Weight 1: 29 quads over
   // the ratio on France, but its smallest angle 16.2 deg.
