@@ -59,6 +59,9 @@ Topology topology(const QuadMesh& m) {
   return t;
 }
 
+// Points in lexicographic order (x, then y).
+bool point_less(const Point2& a, const Point2& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); }
+
 double worst_convexity(const QuadMesh& m, const Topology& t, int v) {
   double worst = 1.0;
   for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k)
@@ -155,9 +158,20 @@ void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const Sm
       if (m.fixed[v] && !(free_corners && m.chain[v] >= 0)) continue;
       const Point2 was = m.points[v];
       const double was_arc = m.arc_m[v];
-      double edge = 0;
-      for (int w : t.neighbours[v])
-        edge = std::max(edge, std::hypot(m.points[w].x - m.points[v].x, m.points[w].y - m.points[v].y));
+      double edge = 0, shortest = std::numeric_limits<double>::infinity();
+      for (int w : t.neighbours[v]) {
+        const double l = distance(m.points[w], m.points[v]);
+        edge = std::max(edge, l), shortest = std::min(shortest, l);
+      }
+      // No move shortens an edge at v below untangle_min_side times its longest (or below
+      // its shortest, when that is already shorter).
+      const double floor_side = std::min(shortest, params.untangle_min_side * edge);
+      auto short_edge = [&] {
+        if (floor_side <= 0) return false;
+        for (int w : t.neighbours[v])
+          if (distance(m.points[w], m.points[v]) < floor_side) return true;
+        return false;
+      };
       double best = worst_convexity(m, t, v);
       if (m.chain[v] < 0 && best <= params.min_convexity) {
         // A local search may sit in the wrong part of a non-convex 1-ring: try a grid
@@ -174,7 +188,7 @@ void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const Sm
           for (int j = 1; j < kGrid; ++j) {
             m.points[v] = {x0 + (x1 - x0) * i / kGrid, y0 + (y1 - y0) * j / kGrid};
             const double value = worst_convexity(m, t, v);
-            if (value > best + 1e-12) best = value, best_point = m.points[v];
+            if (value > best + 1e-12 && !short_edge()) best = value, best_point = m.points[v];
           }
         m.points[v] = best_point;
       }
@@ -196,7 +210,7 @@ void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const Sm
               m.points[v] = {old.x + step * std::cos(a), old.y + step * std::sin(a)};
             }
             const double value = worst_convexity(m, t, v);
-            if (value > best + 1e-12) {
+            if (value > best + 1e-12 && !short_edge()) {
               best = value;
               improved = true;
             } else {
@@ -627,16 +641,17 @@ double moving_corner_energy(const QuadMesh& m, const Topology& t, int v, const S
     if (params.angle_ratio_weight > 0)
       e += params.angle_ratio_weight *
            smooth_step((params.min_angle_ratio - smallest / largest) / params.angle_ratio_softness);
-    if (params.aspect_weight > 0) {
+    if (params.aspect_weight > 0 || params.aspect_log_weight > 0) {
       double shortest = std::numeric_limits<double>::infinity(), longest = 0;
       for (int i = 0; i < 4; ++i) {
         const double l = distance(m.points[c[i]], m.points[c[(i + 1) % 4]]);
         shortest = std::min(shortest, l), longest = std::max(longest, l);
       }
-      if (shortest > 0)
-        e += params.aspect_weight *
-             smooth_step((std::log(longest / shortest) - std::log(params.max_aspect)) /
-                         params.aspect_softness);
+      if (shortest > 0) {
+        const double over = std::log(longest / shortest) - std::log(params.max_aspect);
+        e += params.aspect_weight * smooth_step(over / params.aspect_softness);
+        if (over > 0) e += params.aspect_log_weight * over;
+      }
     }
     if (params.angle_area_weight > 0 || params.size_range_weight > 0) {
       const double r = std::log(quad_area(m, q) / area0[q]);
@@ -656,8 +671,10 @@ double moving_corner_energy(const QuadMesh& m, const Topology& t, int v, const S
 // field) plus the orientation term of its edges; convexity never drops below
 // min_convexity.
 void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
-                  const SmoothParams& params, const CrossField* cross, const SizingField* size) {
+                  const SmoothParams& params, const CrossField* cross, const SizingField* size,
+                  const std::vector<char>* only = nullptr, int iterations = -1) {
   const int nv = static_cast<int>(m.points.size());
+  if (iterations < 0) iterations = params.angle_iterations;
   const double ow = params.angle_orientation_weight;
   std::unique_ptr<TriangleLocator> locator;
   if ((cross && ow > 0) || size) locator = std::make_unique<TriangleLocator>(bg);
@@ -666,6 +683,7 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
   if (cross && ow > 0) {
     axis.resize(nv);
     for (int v = 0; v < nv; ++v) {
+      if (only && !(*only)[v]) continue;
       const Location loc = locator->locate(m.points[v]);
       const double theta =
           loc.triangle >= 0 ? cross_angle_at(bg, *cross, loc.triangle, loc.bary) : 0.0;
@@ -766,17 +784,17 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
   const int threads = sweep_threads(params);
   std::vector<std::vector<double>> scratch(threads);
   long time = 0;
-  for (int it = 0; it < params.angle_iterations; ++it) {
+  for (int it = 0; it < iterations; ++it) {
     // The second half of the sweeps refines with steps 0.3 as long.
-    const bool refine = 2 * it >= params.angle_iterations;
-    if (refine && 2 * (it - 1) < params.angle_iterations)
+    const bool refine = 2 * it >= iterations;
+    if (refine && 2 * (it - 1) < iterations)
       std::fill(stayed_at.begin(), stayed_at.end(), -1);
     for (const std::vector<int>& colour : colours) {
       ++time;
       parallel_chunks(static_cast<int>(colour.size()), threads, [&](int begin, int end, int thread) {
         for (int i = begin; i < end; ++i) {
           const int v = colour[i];
-          if (m.fixed[v] || t.neighbours[v].empty() || unchanged(v)) continue;
+          if (m.fixed[v] || t.neighbours[v].empty() || (only && !(*only)[v]) || unchanged(v)) continue;
           if (move(v, refine ? 0.3 : 1.0, scratch[thread]))
             moved_at[v] = time, stayed_at[v] = -1;
           else
@@ -1228,6 +1246,8 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
   if (size && cross && params.aligned_iterations > 0)
     AlignedSmoother(bg, m, t, *size, *cross, params).run();
   angle_sweeps(bg, m, t, params, cross, size);
+  std::vector<Point2> swept = m.points;  // where the sweeps left the vertices
+  std::sort(swept.begin(), swept.end(), point_less);
 
   // A few sweeps that lift the flattest quads (angles near 0 or 180 degrees) as far as
   // they can; only the pass below must succeed.
@@ -1270,6 +1290,30 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
     // The slides and collapses that unfold the mesh can leave a sliver where it folded
     // (France at hmax 18 km --simplify 800: 2.2 degrees): the sliver pass again there.
     if (count_nonconvex() == 0) collapse_slivers(bg, m, params, lift, stats);
+  }
+  if (params.resweep_iterations > 0 && params.angle_iterations > 0 && count_nonconvex() == 0) {
+    // The repairs above move vertices for convexity alone, and flips and collapses leave
+    // new quads unswept: the angle sweeps again (SmoothParams::resweep_iterations) on the
+    // vertices that moved since the sweeps and the ones next to them, undone should they
+    // fold the mesh.
+    const Topology t2 = topology(m);
+    std::vector<char> only(m.points.size(), 0);
+    bool any = false;
+    for (std::size_t v = 0; v < m.points.size(); ++v) {
+      if (std::binary_search(swept.begin(), swept.end(), m.points[v], point_less)) continue;
+      any = true;
+      only[v] = 1;
+      for (int w : t2.neighbours[v]) only[w] = 1;
+    }
+    if (any) {
+      const std::size_t crossings = count_boundary_crossings(m);
+      QuadMesh before = m;
+      // With the lift's convexity bound: nothing the lift raised falls back.
+      SmoothParams resweep = params;
+      resweep.min_convexity = std::max(params.min_convexity, params.lift_convexity);
+      angle_sweeps(bg, m, t2, resweep, cross, size, &only, params.resweep_iterations);
+      if (count_nonconvex() > 0 || count_boundary_crossings(m) > crossings) m = std::move(before);
+    }
   }
   stats.num_nonconvex_after = count_nonconvex();
   return stats;

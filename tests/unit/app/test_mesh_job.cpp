@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <optional>
 
 #include "core/error.h"
@@ -23,13 +24,24 @@ MeshOptions corsica(double hmax_m) {
   return o;
 }
 
+// The smoothing without what was added to it after the cases below were found: the
+// sweeps' side ratio terms (aspect_weight, aspect_log_weight), the untangling's side
+// floor (untangle_min_side) and the sweeps again after the repairs
+// (resweep_iterations). With those, their first tilings mesh without the repairs the
+// tests are about.
+void without_the_later_smoothing(MeshOptions& o) {
+  o.smooth.aspect_weight = 0.0;
+  o.smooth.aspect_log_weight = 0.0;
+  o.smooth.untangle_min_side = 0.0;
+  o.smooth.resweep_iterations = 0;
+}
+
 // Brittany's water at hmax 10 km without quad edge flips and without the narrow
 // channels' sizes, whose first tiling leaves a quad that no repair makes convex (the
-// flips mend it, and the narrow sizes avoid it). Smoothed without the sweeps' aspect
-// term (SmoothParams::aspect_weight), with which the first tiling meshes.
+// flips mend it, and the narrow sizes avoid it). Without the later smoothing.
 MeshOptions brittany_water_at_10km() {
   MeshOptions o;
-  o.smooth.aspect_weight = 0.0;
+  without_the_later_smoothing(o);
   o.fields.front.read.path = sample("brittany_land.shp");
   o.fields.front.read.bbox = std::array<double, 4>{-5.3, 46.8, -1.95, 49.35};
   o.fields.front.kind = DomainKind::water;
@@ -50,11 +62,11 @@ MeshOptions france(double hmax_m, std::optional<double> simplify_m = std::nullop
 
 // The first tiling of `o` leaves what only the one-by-one repairs (collapse_tries) mend:
 // without them it is retried; with them a flip mends it and the first tiling meshes,
-// every quad convex, none folded, none sharper than 10 degrees. Both smoothed without
-// the sweeps' aspect term (SmoothParams::aspect_weight), with which the France cases
-// below mesh in the first tiling without the repairs.
+// every quad convex, none folded, none sharper than 10 degrees. Both without the later
+// smoothing, with which the France cases below mesh in the first tiling without the
+// repairs.
 void expect_mended_by_a_flip_in_one_tiling(MeshOptions o) {
-  o.smooth.aspect_weight = 0.0;
+  without_the_later_smoothing(o);
   MeshOptions without = o;
   without.smooth.collapse_tries = 0;
   const MeshResult before = build_mesh(without);
@@ -236,4 +248,42 @@ TEST(MeshJob, AFlipAndTheSlidesUnfoldAMeshFoldedAtAnInlet) {
   // (the tiling was retried with the sizes halved there). An edge flip of a quad on a
   // crossing edge, followed by the sweeps and the slides, does.
   expect_mended_by_a_flip_in_one_tiling(france(24000.0, 800.0));
+}
+
+TEST(MeshJob, NoQuadHasASideOfAFewMetresNextToSidesOfKilometres) {
+  // France automatic at hmax 28 km (the acceptance case). Measured on 2026-12-02: the
+  // untangling, which raised the worst corner turn at any length of side, and the
+  // sweeps' side ratio term, which is flat beyond ratios of about 5, left a quad with a
+  // side of 0.04 h (48 times shorter than its longest); with the untangling's side floor
+  // and the term growing with the log of the ratio, the shortest side is 0.09 h and no
+  // quad is over 20 to 1.
+  auto worst = [](const MeshResult& r, double& shortest_over_h, double& ratio) {
+    const TriangleLocator locator(r.fields.mesh);
+    shortest_over_h = 1e300, ratio = 0;
+    for (int q = 0; q < static_cast<int>(r.quads.quads.size()); ++q) {
+      const auto& c = r.quads.quads[q];
+      double lo = 1e300, hi = 0;
+      for (int i = 0; i < 4; ++i) {
+        const double l = distance(r.quads.points[c[i]], r.quads.points[c[(i + 1) % 4]]);
+        lo = std::min(lo, l), hi = std::max(hi, l);
+      }
+      const Location loc = locator.locate(quad_centroid(r.quads, q));
+      const double h = r.fields.size.at(r.fields.mesh, loc.triangle, loc.bary);
+      shortest_over_h = std::min(shortest_over_h, lo / h);
+      ratio = std::max(ratio, hi / lo);
+    }
+  };
+  MeshOptions o = france(28000.0);
+  const MeshResult r = build_mesh(o);
+  double shortest = 0, ratio = 0;
+  worst(r, shortest, ratio);
+  EXPECT_EQ(r.quality.num_nonconvex, 0u);
+  EXPECT_GT(shortest, 0.07);
+  EXPECT_LT(ratio, 25.0);
+  o.smooth.untangle_min_side = 0.0;
+  o.smooth.aspect_log_weight = 0.0;
+  const MeshResult before = build_mesh(o);
+  worst(before, shortest, ratio);
+  EXPECT_LT(shortest, 0.05) << "the premise: without them a side is shorter";
+  EXPECT_GT(ratio, 40.0);
 }
