@@ -669,7 +669,8 @@ double moving_corner_energy(const QuadMesh& m, const Topology& t, int v, const S
 // neighbours), each angle_step of its shortest edge long (0.3 of that in the second
 // half of the sweeps), if that lowers moving_corner_energy (target areas h^2 with a sizing
 // field) plus the orientation term of its edges; convexity never drops below
-// min_convexity.
+// min_convexity. `iterations` sweeps (default angle_iterations); with `only`, the
+// vertices it marks move, the others stay.
 void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
                   const SmoothParams& params, const CrossField* cross, const SizingField* size,
                   const std::vector<char>* only = nullptr, int iterations = -1) {

@@ -21,9 +21,10 @@ struct SmoothParams {
   // after a sliver's collapse slid boundary vertices to within metres of a corner:
   // France automatic at 28 km, a side of 0.04 h, 48 times shorter than its quad's
   // longest; the Baltic at 1:10m, 44 quads with a side under a hundredth of their longest
-  // after the repairs instead of 10 before them. With the floor (and aspect_log_weight)
-  // over 12 cases, quads with a side under 0.05 h: 1 to 8 -> 0 in 11 cases, the Baltic
-  // 81 -> 19 (those are at near-pinches of its domain, from the subdivision).
+  // after the repairs instead of 10 before them. With the floor, aspect_log_weight and
+  // resweep_iterations, over 12 cases, quads with a side under 0.05 h: 1 to 8 -> 0 in 10
+  // cases, France default 6 -> 2, the Baltic 81 -> 19 (those at near-pinches of its
+  // domain, from the subdivision).
   double untangle_min_side = 0.1;
   int flip_rounds = 5;  // rounds of quad edge flips when untangling is not enough
   // Rounds of diagonal collapses when flips are not enough either (the last resort before
