@@ -89,6 +89,11 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   simp.tolerance_m = options.simplify_m.value_or(h > 0 ? 0.25 * h : 0.0);
   if (simp.tolerance_m < 0) throw Error(ErrorClass::usage, "simplify", "--simplify must not be negative");
   s.simplify_m = simp.tolerance_m;
+  // Parts of the boundary are kept as far apart as the tolerance (or as they were):
+  // otherwise a channel narrower than twice the tolerance could close to a crack.
+  simp.clearance_m = options.simplify_clearance_m.value_or(simp.tolerance_m);
+  if (simp.clearance_m < 0)
+    throw Error(ErrorClass::usage, "simplify", "the simplification's clearance must not be negative");
   const SimplifyResult sr = simplify_domain(result.domain, simp);
   s.num_vertices_before = sr.num_vertices_before;
   s.num_vertices_after = sr.num_vertices_after;

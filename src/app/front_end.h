@@ -31,6 +31,9 @@ struct FrontEndOptions {
   // automatic sizing's default scale), or leaves it unknown when empty.
   std::function<double(double area_m2)> target_size_for_area;
   std::optional<double> simplify_m;          // default: target_size_m / 4, or off
+  // How near the simplification may bring two parts of the boundary that were farther
+  // apart (SimplifyParams::clearance_m). Default: the simplification's tolerance; 0: off.
+  std::optional<double> simplify_clearance_m;
   std::optional<double> min_island_area_m2;  // default: target_size_m^2, or 0
   std::optional<double> min_width_m;         // default: target_size_m / 4, or off
 };

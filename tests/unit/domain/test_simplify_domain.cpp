@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "support/ring_checks.h"
@@ -74,4 +75,99 @@ TEST(SimplifyDomain, IsDeterministic) {
   ASSERT_EQ(a.polygons[0].outer.size(), b.polygons[0].outer.size());
   for (std::size_t i = 0; i < a.polygons[0].outer.size(); ++i)
     EXPECT_EQ(a.polygons[0].outer[i], b.polygons[0].outer[i]);
+}
+
+namespace {
+
+// Distance from p to the segment ab.
+double to_segment(const Point2& p, const Point2& a, const Point2& b) {
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double t = std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
+  return std::hypot(p.x - a.x - t * dx, p.y - a.y - t * dy);
+}
+
+// Distance from p to the ring's edges that lie left of x = 1500 (the U's left arm).
+double to_left_arm(const Ring& ring, const Point2& p) {
+  double d = 1e300;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Point2& a = ring[i];
+    const Point2& b = ring[(i + 1) % ring.size()];
+    if (a.x < 1500 && b.x < 1500) d = std::min(d, to_segment(p, a, b));
+  }
+  return d;
+}
+
+// Water shaped as a U round a slot of land 600 m wide and 4 km deep. The slot's left
+// wall has a notch 300 m deep (within a tolerance of 350 m, so the simplification would
+// straighten it); its right wall a cape whose tip reaches 20 m from where the straightened
+// wall would run (580 m deep: it stays). The notch's two sides are 274 m from the tip.
+Domain u_with_a_cape() {
+  Domain d;
+  d.polygons.push_back({{{0, 0}, {1000, 10}, {2000, -10}, {3000, 0}, {3000, 5000}, {1800, 5000},
+                         {1800, 3100}, {1220, 3000}, {1800, 2900}, {1800, 1000}, {1200, 1000},
+                         {1200, 2500}, {900, 3000}, {1200, 3500}, {1200, 5000}, {0, 5000}},
+                        {}});
+  return d;
+}
+
+}  // namespace
+
+TEST(SimplifyDomain, KeepsTheGapAcrossAChannel) {
+  // The Baltic at 1:10m: a bay's mouth of 280 m closed to 0.5 m at a tolerance of 385 m,
+  // and the quads across it had sides of 0.4 m.
+  const Point2 tip{1220, 3000};
+  Domain without = u_with_a_cape();
+  simplify_domain(without, {350.0, 0.0});
+  EXPECT_LT(to_left_arm(without.polygons[0].outer, tip), 25.0) << "the premise: the notch goes";
+  Domain with = u_with_a_cape();
+  const SimplifyResult r = simplify_domain(with, {350.0, 350.0});
+  EXPECT_GT(to_left_arm(with.polygons[0].outer, tip), 270.0);
+  EXPECT_EQ(test::find_crossing(with), "");
+  // The bottom's zig-zag of 10 m still goes: only the notch is kept.
+  EXPECT_EQ(r.num_vertices_after, without.polygons[0].outer.size() + 1);
+}
+
+TEST(SimplifyDomain, KeepsTheGapToAnIsland) {
+  // An island 300 m off a coast whose bay (250 m deep, within the tolerance) would be
+  // cut across 50 m from the island's nearest corner.
+  Domain d;
+  Polygon p;
+  p.outer = {{0, 0}, {4000, 0}, {5000, -250}, {6000, 0}, {10000, 0}, {10000, 10000}, {0, 10000}};
+  p.holes.push_back({{4600, 50}, {4600, 450}, {5400, 450}, {5400, 50}});  // clockwise
+  d.polygons.push_back(p);
+  Domain without = d;
+  simplify_domain(without, {300.0, 0.0});
+  EXPECT_EQ(without.polygons[0].outer.size(), 4u) << "the premise: the bay goes";
+  simplify_domain(d, {300.0, 300.0});
+  EXPECT_EQ(d.polygons[0].outer.size(), 5u);  // the bay stays, its two corners at y = 0 go
+  EXPECT_EQ(d.polygons[0].holes[0].size(), 4u);
+}
+
+TEST(SimplifyDomain, TheClearanceDoesNotHoldBackACoastsOwnNoise) {
+  // A zig-zag's next vertices are as near as the noise, but on the same stretch of coast.
+  for (double clearance : {0.0, 50.0, 200.0}) {
+    Domain d;
+    d.polygons.push_back({noisy_circle(0, 0, 1000, 400, 2), {}});
+    const SimplifyResult r = simplify_domain(d, {50.0, clearance});
+    EXPECT_LT(r.num_vertices_after, 60u) << "clearance " << clearance;
+  }
+}
+
+TEST(SimplifyDomain, AShortSpitIsOneStretchOfCoast) {
+  // A spit of land 60 m wide and 200 m long: its two sides are nearer than the clearance
+  // but on one stretch of coast (round its tip, within the clearance), so they simplify
+  // as without it. (Were they two banks, the tip could not be cut: the chord would pass
+  // 57 m from the far corner of the spit's base, 60 m from the spit before.)
+  auto domain = [] {
+    Domain d;
+    d.polygons.push_back({{{0, 0}, {4970, 0}, {4970, 200}, {5030, 200}, {5030, 0}, {10000, 0},
+                           {10000, 10000}, {0, 10000}},
+                          {}});
+    return d;
+  };
+  Domain without = domain(), with = domain();
+  simplify_domain(without, {100.0, 0.0});
+  ASSERT_LT(without.polygons[0].outer.size(), 8u) << "the premise: the tip is cut";
+  simplify_domain(with, {100.0, 300.0});
+  EXPECT_EQ(with.polygons[0].outer, without.polygons[0].outer);
 }
