@@ -8,7 +8,9 @@ metrics for both meshes here, independently of isoquad's own report:
 
   angles in [75,105], min and max angle, non-convex quads, triangles left,
   sqrt(area)/H median and share in [0.8,1.25], orientation deviation from isoquad's
-  boundary-aligned cross field (mean, p90), regular interior vertices, wall time and
+  boundary-aligned cross field (mean, p90), regular interior vertices, SCHISM's two
+  checks (quads whose smallest over largest angle is under 0.5, and whose longest over
+  shortest side is over 5, as isoquad's report counts them), wall time and
   peak memory (each process's own, from GNU time: the wait4 of a process forked from
   this one would count this script's own memory, copied at the fork).
 
@@ -139,6 +141,9 @@ def metrics(points, quads, triangles, size, cross):
     edge = np.roll(q, -1, axis=1) - q
     turn = edge[..., 0] * np.roll(edge, -1, axis=1)[..., 1] - edge[..., 1] * np.roll(edge, -1, axis=1)[..., 0]
     nonconvex = int(np.sum(~np.all(turn > 0, axis=1)))
+    side = np.linalg.norm(edge, axis=-1)
+    under_angle_ratio = int(np.sum(ang.min(axis=1) < 0.5 * ang.max(axis=1)))
+    over_aspect = int(np.sum(side.max(axis=1) > 5 * side.min(axis=1)))
     ratio = np.sqrt(np.abs(area)) / size(q.mean(axis=1))
     theta = cross(q.mean(axis=1))
     phi = np.arctan2(edge[..., 1], edge[..., 0])
@@ -162,6 +167,8 @@ def metrics(points, quads, triangles, size, cross):
         "sqrt(area)/h in [0.8,1.25]": f"{100 * np.mean((ratio >= 0.8) & (ratio <= 1.25)):.1f}%",
         "orientation dev. mean / p90": f"{dev.mean():.1f} / {np.percentile(dev, 90):.1f} deg",
         "regular interior vertices": f"{100 * np.mean(degree[interior] == 4):.1f}%",
+        "SCHISM: angle ratio < 0.5": under_angle_ratio,
+        "SCHISM: aspect ratio > 5": over_aspect,
     }
 
 
