@@ -3,11 +3,13 @@
 #include <CGAL/Constrained_Delaunay_triangulation_2.h>
 #include <CGAL/Constrained_triangulation_plus_2.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Handle_hash_function.h>
 #include <CGAL/Polyline_simplification_2/simplify.h>
 
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
+#include <unordered_set>
 #include <vector>
 
 #include "core/error.h"
@@ -71,12 +73,13 @@ bool keeps_clearance(const Ct& ct, typename Ct::Vertex_handle c, typename Ct::Ve
   };
   walk(c, n);
   walk(c, p);
+  std::sort(stretch.begin(), stretch.end());  // (handles order by address; only looked up)
   // The faces within the clearance of pn, flooded from those round c (the region is
   // convex, so they are connected across edges); their vertices are the candidates.
-  std::vector<Face_handle> seen, pending;
+  std::unordered_set<Face_handle, CGAL::Handle_hash_function> seen;
+  std::vector<Face_handle> pending;
   auto visit = [&](Face_handle f) {
-    if (ct.is_infinite(f) || std::find(seen.begin(), seen.end(), f) != seen.end()) return;
-    seen.push_back(f);
+    if (ct.is_infinite(f) || !seen.insert(f).second) return;
     const K::Triangle_2 t(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point());
     if (CGAL::squared_distance(t, pn) < clearance2) pending.push_back(f);
   };
@@ -89,7 +92,7 @@ bool keeps_clearance(const Ct& ct, typename Ct::Vertex_handle c, typename Ct::Ve
     pending.pop_back();
     for (int i = 0; i < 3; ++i) {
       const Vertex_handle v = g->vertex(i);
-      if (std::find(stretch.begin(), stretch.end(), v) == stretch.end()) {
+      if (!std::binary_search(stretch.begin(), stretch.end(), v)) {
         const double now = CGAL::squared_distance(v->point(), pn);
         if (now < clearance2) {
           const double before = std::min(CGAL::squared_distance(v->point(), pc),
