@@ -199,6 +199,13 @@ std::string format_mesh_summary(const MeshResult& r) {
                   r.smooth.num_sliver_collapses);
     os << buf;
   }
+  if (r.smooth.num_corner_splits > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "corners:      %d reflex corner(s) given a third quad where an interior vertex was "
+                  "glued to them\n",
+                  r.smooth.num_corner_splits);
+    os << buf;
+  }
   std::snprintf(buf, sizeof buf, "angles:       %.1f%% in [75,105], min %.1f, max %.1f deg; eta mean %.3f, min %.3f\n",
                 100 * q.share_angles_75_105, q.min_angle_deg, q.max_angle_deg, q.eta_mean, q.eta_min);
   os << buf;
@@ -292,6 +299,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("num_flips", r.smooth.num_flips)
         .value("num_collapses", r.smooth.num_collapses)
         .value("num_sliver_collapses", r.smooth.num_sliver_collapses)
+        .value("num_corner_splits", r.smooth.num_corner_splits)
         .end_object();
   }
   add_stage_times(j, r.fields.times);

@@ -1212,6 +1212,133 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
   }
 }
 
+// A doubled corner (SmoothParams::doubled_corner_side): boundary vertex b in two quads,
+// interior vertex i in four. The four quads round i bound an octagon b, v1, ..., v7
+// (counter-clockwise); it is split into three quads fanned from b, along b-v3 and b-v5,
+// and i goes. Returns false, the mesh unchanged, when the quads round i do not close
+// round it or b is not among their corners as expected.
+bool split_doubled_corner(QuadMesh& m, const Topology& t, int b, int i) {
+  // Each quad round i from i: (i, x1, x2, x3); the octagon is the x1, x2 of each in turn
+  // (one's x3 is the next one's x1), from the quad whose x1 is b.
+  std::vector<std::array<int, 3>> outer;
+  std::vector<int> round_i;
+  for (int k = t.quad_start[i]; k < t.quad_start[i + 1]; ++k) {
+    const int q = t.quad_items[k];
+    const auto& v = m.quads[q];
+    int j = 0;
+    while (v[j] != i) ++j;
+    outer.push_back({v[(j + 1) % 4], v[(j + 2) % 4], v[(j + 3) % 4]});
+    round_i.push_back(q);
+  }
+  if (outer.size() != 4) return false;
+  std::vector<int> octagon;
+  int from = b;
+  for (int step = 0; step < 4; ++step) {
+    int next = -1;
+    for (const auto& o : outer)
+      if (o[0] == from) next = &o - outer.data();
+    if (next < 0) return false;
+    octagon.push_back(outer[next][0]);
+    octagon.push_back(outer[next][1]);
+    from = outer[next][2];
+  }
+  if (from != b) return false;
+  for (std::size_t a = 0; a < octagon.size(); ++a)
+    for (std::size_t c = a + 1; c < octagon.size(); ++c)
+      if (octagon[a] == octagon[c]) return false;
+  std::vector<char> removed(m.quads.size(), 0);
+  for (int q : round_i) removed[q] = 1;
+  const auto& o = octagon;
+  m.quads.push_back({o[0], o[1], o[2], o[3]});
+  m.quads.push_back({o[0], o[3], o[4], o[5]});
+  m.quads.push_back({o[0], o[5], o[6], o[7]});
+  removed.resize(m.quads.size(), 0);
+  remove_quads(m, removed);  // i, in none of them now, goes too
+  return true;
+}
+
+// Doubled corners, every quad convex: each tried once, kept when the mesh is then
+// convex (after the lift and untangling sweeps on the quads within kSliverRings), its
+// flattest quad no flatter and no more boundary edges cross; otherwise undone. Returns
+// where the kept splits left the vertices of their three quads (for the sweeps after).
+std::vector<Point2> split_doubled_corners(const BackgroundMesh& bg, QuadMesh& m,
+                                          const SmoothParams& params, const SmoothParams& lift,
+                                          SmoothStats& stats) {
+  std::vector<Point2> touched;
+  // The corners, by position (ids change with each split): b and i.
+  std::vector<std::pair<Point2, Point2>> found;
+  {
+    const Topology t = topology(m);
+    for (int b = 0; b < static_cast<int>(m.points.size()); ++b) {
+      if (m.chain[b] < 0 && !m.fixed[b]) continue;
+      if (t.quad_start[b + 1] - t.quad_start[b] != 2) continue;
+      double turn = 0, longest = 0;
+      for (int k = t.quad_start[b]; k < t.quad_start[b + 1]; ++k) {
+        const int q = t.quad_items[k];
+        int j = 0;
+        while (m.quads[q][j] != b) ++j;
+        turn += quad_angles_deg(m, q)[j];
+      }
+      if (turn <= 200.0) continue;
+      for (int w : t.neighbours[b]) longest = std::max(longest, distance(m.points[b], m.points[w]));
+      for (int i : t.neighbours[b])
+        if (m.chain[i] < 0 && !m.fixed[i] && t.quad_start[i + 1] - t.quad_start[i] == 4 &&
+            distance(m.points[b], m.points[i]) < params.doubled_corner_side * longest)
+          found.push_back({m.points[b], m.points[i]});
+    }
+  }
+  auto convexity = [&](int& nonconvex, double& worst) {
+    nonconvex = 0;
+    worst = 1.0;
+    for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
+      const double c = quad_convexity(m, q);
+      nonconvex += c <= params.min_convexity;
+      worst = std::min(worst, c);
+    }
+  };
+  // The mesh as it stands (measured again after each kept split).
+  int nonconvex0 = 0;
+  double worst0 = 1.0;
+  std::size_t crossings0 = 0;
+  if (!found.empty()) {
+    convexity(nonconvex0, worst0);
+    crossings0 = count_boundary_crossings(m);
+  }
+  for (const auto& [pb, pi] : found) {
+    int b = -1, i = -1;
+    for (int v = 0; v < static_cast<int>(m.points.size()); ++v) {
+      if (m.points[v] == pb) b = v;
+      if (m.points[v] == pi) i = v;
+    }
+    if (b < 0 || i < 0) continue;  // moved by an earlier split's sweeps
+    QuadMesh before = m;
+    const SmoothStats stats_before = stats;
+    if (!split_doubled_corner(m, topology(m), b, i)) continue;
+    const Topology t = topology(m);
+    const std::vector<int> near = quads_near(m, t, pb, kSliverRings);
+    SmoothStats ignored;
+    untangle(bg, m, t, lift, ignored, false, &near);
+    untangle(bg, m, t, params, stats, true, &near);
+    int nonconvex1;
+    double worst1;
+    convexity(nonconvex1, worst1);
+    const std::size_t crossings1 = nonconvex1 == 0 && worst1 >= worst0 ? count_boundary_crossings(m) : 0;
+    if (nonconvex1 == 0 && worst1 >= worst0 && crossings1 <= crossings0) {
+      ++stats.num_corner_splits;
+      worst0 = worst1;
+      crossings0 = crossings1;
+      // remove_quads keeps the order of the quads left: the three new ones are last.
+      for (std::size_t q = m.quads.size() - 3; q < m.quads.size(); ++q)
+        for (int v : m.quads[q]) touched.push_back(m.points[v]);
+      continue;
+    }
+    m = std::move(before);
+    stats = stats_before;
+  }
+  std::sort(touched.begin(), touched.end(), point_less);
+  return touched;
+}
+
 }  // namespace
 
 SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
@@ -1292,6 +1419,9 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
     // (France at hmax 18 km --simplify 800: 2.2 degrees): the sliver pass again there.
     if (count_nonconvex() == 0) collapse_slivers(bg, m, params, lift, stats);
   }
+  std::vector<Point2> split;  // where the corner splits left their quads' vertices
+  if (params.doubled_corner_side > 0 && count_nonconvex() == 0)
+    split = split_doubled_corners(bg, m, params, lift, stats);
   if (params.resweep_iterations > 0 && params.angle_iterations > 0 && count_nonconvex() == 0) {
     // The repairs above move vertices for convexity alone, and flips and collapses leave
     // new quads unswept: the angle sweeps again (SmoothParams::resweep_iterations) on the
@@ -1301,7 +1431,9 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
     std::vector<char> only(m.points.size(), 0);
     bool any = false;
     for (std::size_t v = 0; v < m.points.size(); ++v) {
-      if (std::binary_search(swept.begin(), swept.end(), m.points[v], point_less)) continue;
+      if (std::binary_search(swept.begin(), swept.end(), m.points[v], point_less) &&
+          !std::binary_search(split.begin(), split.end(), m.points[v], point_less))
+        continue;
       any = true;
       only[v] = 1;
       for (int w : t2.neighbours[v]) only[w] = 1;

@@ -53,6 +53,14 @@ struct SmoothParams {
   // each under a quarter of its long ones, boundary to boundary, at most this many
   // quads) has the row merged away (0: never). Croatia at 1:10m: 7.2 -> 19.0 degrees.
   int sliver_row_max = 8;
+  // Then a boundary vertex in two quads only at a reflex corner of the domain (their
+  // corners there sum to over 200 degrees), with an interior vertex in four quads nearer
+  // than this share of its longest other edge: that vertex stands in for the third quad
+  // the corner lacks, and the two quads have a side of metres (South Korea at 1:10m:
+  // 2.5 m next to 2.2 km; the Baltic, 34 m). The four quads round the interior vertex
+  // become three fanned from the corner, kept when the mesh is then convex, no flatter
+  // and no more folded (0: never).
+  double doubled_corner_side = 0.1;
   // Before the convexity repair, quads flatter than this (sine of the worst corner
   // turn; 0.26 ~ 15 degrees) get `lift_iterations` sweeps of the same search.
   double lift_convexity = 0.26;
@@ -152,6 +160,9 @@ struct SmoothStats {
   int num_collapses = 0;
   // The same, of slivers (SmoothParams::sliver_convexity), and thin rows of quads merged.
   int num_sliver_collapses = 0;
+  // Reflex corners given their third quad (SmoothParams::doubled_corner_side), each
+  // dropping a vertex and a quad.
+  int num_corner_splits = 0;
 };
 
 // Smooths in place. Does not throw; the caller decides what a remaining non-convex quad
