@@ -59,8 +59,10 @@ struct SmoothParams {
   // the corner lacks, and the two quads have a side of metres (South Korea at 1:10m:
   // 2.5 m next to 2.2 km; the Baltic, 34 m). The four quads round the interior vertex
   // become three fanned from the corner, kept when the mesh is then convex, no flatter
-  // and no more folded (0: never).
-  double doubled_corner_side = 0.1;
+  // and no more folded (0: never). The Arctic Ocean at 1:10m: at 0.05, 12 corners,
+  // quads with a side under 0.05 h 55 -> 43, angles in range 77.1 -> 77.0%; at 0.1, 76
+  // corners for the same 43, and 76.7%.
+  double doubled_corner_side = 0.05;
   // Before the convexity repair, quads flatter than this (sine of the worst corner
   // turn; 0.26 ~ 15 degrees) get `lift_iterations` sweeps of the same search.
   double lift_convexity = 0.26;

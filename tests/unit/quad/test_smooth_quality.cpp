@@ -597,7 +597,7 @@ double l_arc(const Point2& p) {
 }
 
 // The L's grid of kN x kN cells less the upper right quarter, except that the three
-// quads at the reflex corner b are four round a vertex i 7 m from b, which stands in for
+// quads at the reflex corner b are four round a vertex i 3 m from b, which stands in for
 // the third quad b should have (as the subdivision can leave them at a reflex corner).
 QuadMesh l_grid_with_a_doubled_corner(int& b) {
   const double h = kSide / kN;
@@ -625,7 +625,7 @@ QuadMesh l_grid_with_a_doubled_corner(int& b) {
       m.quads.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1)});
     }
   const int i = static_cast<int>(m.points.size());
-  m.points.push_back({c * h - 5, c * h - 5});
+  m.points.push_back({c * h - 2, c * h - 2});
   m.chain.push_back(-1);
   m.arc_m.push_back(0.0);
   m.fixed.push_back(0);
@@ -681,7 +681,7 @@ TEST(SmoothQuads, AReflexCornerGetsTheThirdQuadAnInteriorVertexStoodInFor) {
   SmoothStats st = smooth_quads(bg, without, no_split);
   EXPECT_EQ(st.num_corner_splits, 0);
   EXPECT_EQ(shortest_edge_at(without, corner).second, 2) << "the premise: two quads stay";
-  EXPECT_LT(shortest_edge_at(without, corner).first, 10.0);
+  EXPECT_LT(shortest_edge_at(without, corner).first, 5.0);
 
   QuadMesh m = doubled;
   st = smooth_quads(bg, m, params);
