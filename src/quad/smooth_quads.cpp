@@ -1287,21 +1287,17 @@ std::vector<Point2> split_doubled_corners(const BackgroundMesh& bg, QuadMesh& m,
           found.push_back({m.points[b], m.points[i]});
     }
   }
-  auto convexity = [&](int& nonconvex, double& worst) {
-    nonconvex = 0;
-    worst = 1.0;
-    for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
-      const double c = quad_convexity(m, q);
-      nonconvex += c <= params.min_convexity;
-      worst = std::min(worst, c);
-    }
+  // The flattest quad's convexity (every quad is convex when this pass starts).
+  auto worst_convexity = [&] {
+    double worst = 1.0;
+    for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) worst = std::min(worst, quad_convexity(m, q));
+    return worst;
   };
   // The mesh as it stands (measured again after each kept split).
-  int nonconvex0 = 0;
   double worst0 = 1.0;
   std::size_t crossings0 = 0;
   if (!found.empty()) {
-    convexity(nonconvex0, worst0);
+    worst0 = worst_convexity();
     crossings0 = count_boundary_crossings(m);
   }
   for (const auto& [pb, pi] : found) {
@@ -1319,11 +1315,10 @@ std::vector<Point2> split_doubled_corners(const BackgroundMesh& bg, QuadMesh& m,
     SmoothStats ignored;
     untangle(bg, m, t, lift, ignored, false, &near);
     untangle(bg, m, t, params, stats, true, &near);
-    int nonconvex1;
-    double worst1;
-    convexity(nonconvex1, worst1);
-    const std::size_t crossings1 = nonconvex1 == 0 && worst1 >= worst0 ? count_boundary_crossings(m) : 0;
-    if (nonconvex1 == 0 && worst1 >= worst0 && crossings1 <= crossings0) {
+    // No flatter than before, which was convex: so every quad is convex.
+    const double worst1 = worst_convexity();
+    const std::size_t crossings1 = worst1 >= worst0 ? count_boundary_crossings(m) : 0;
+    if (worst1 >= worst0 && crossings1 <= crossings0) {
       ++stats.num_corner_splits;
       worst0 = worst1;
       crossings0 = crossings1;
