@@ -193,6 +193,10 @@ GeosGeometry GeosContext::intersection(const GeosGeometry& a, const GeosGeometry
                "intersection");
 }
 
+GeosGeometry GeosContext::clone(const GeosGeometry& g) {
+  return check(GEOSGeom_clone_r(state_->handle, static_cast<GEOSGeometry*>(g.get())), "clone");
+}
+
 GeosGeometry GeosContext::difference(const GeosGeometry& a, const GeosGeometry& b) {
   return check(GEOSDifference_r(state_->handle, static_cast<GEOSGeometry*>(a.get()),
                                 static_cast<GEOSGeometry*>(b.get())),

@@ -52,6 +52,9 @@ class GeosContext {
   // Any geometries (polygons, multipolygons) as one collection, e.g. to union them.
   GeosGeometry collection(std::vector<GeosGeometry> parts);
   bool is_empty(const GeosGeometry& g);
+  // A copy owned by this context (geometries are read by one thread at a time: a copy
+  // lets another thread, with its own context, work on the same shape).
+  GeosGeometry clone(const GeosGeometry& g);
   // The polygons of g moved by dx along x.
   GeosGeometry translated(const GeosGeometry& g, double dx);
   GeosValidity validity(const GeosGeometry& g);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "domain/geos_ops.h"
 
 namespace isoquad {
@@ -78,8 +79,16 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
   const GeosGeometry closed = geos.buffer_mitre(
       geos.buffer_mitre(opened, r, params.mitre_limit), -r, params.mitre_limit);
 
-  const std::vector<Polygon> removed = pieces(geos, geos.difference(original, closed), negligible);
-  const std::vector<Polygon> added = pieces(geos, geos.difference(closed, original), negligible);
+  // The two differences at once (on large domains each takes a second or more); the
+  // second works on copies in a context of its own.
+  std::vector<Polygon> removed, added;
+  {
+    GeosContext other;
+    const GeosGeometry original_copy = other.clone(original), closed_copy = other.clone(closed);
+    run_in_parallel(
+        [&] { removed = pieces(geos, geos.difference(original, closed), negligible); },
+        [&] { added = pieces(other, other.difference(closed_copy, original_copy), negligible); });
+  }
   if (removed.empty() && added.empty()) return result;
 
   std::vector<Polygon> polygons = geos.polygons(closed);
@@ -183,28 +192,31 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     // leave slivers and near-zero-width spikes or cracks along them: an opening then a
     // closing far below the width removes those, component by component (a closing of
     // the whole would join components a few eps apart).
-    auto cleaned = [&](const GeosGeometry& current) {
+    // (In the context given: two of these run at once below.)
+    auto cleaned_in = [&](GeosContext& g, const GeosGeometry& current) {
       std::vector<Polygon> out;
-      for (const Polygon& part : geos.polygons(current)) {
-        GeosGeometry g = geos.polygon_with_holes(part);
-        g = geos.buffer_mitre(geos.buffer_mitre(g, -eps, params.mitre_limit), eps, params.mitre_limit);
-        g = geos.buffer_mitre(geos.buffer_mitre(g, eps, params.mitre_limit), -eps, params.mitre_limit);
-        for (Polygon& q : geos.polygons(g)) out.push_back(std::move(q));
+      for (const Polygon& part : g.polygons(current)) {
+        GeosGeometry c = g.polygon_with_holes(part);
+        c = g.buffer_mitre(g.buffer_mitre(c, -eps, params.mitre_limit), eps, params.mitre_limit);
+        c = g.buffer_mitre(g.buffer_mitre(c, eps, params.mitre_limit), -eps, params.mitre_limit);
+        for (Polygon& q : g.polygons(c)) out.push_back(std::move(q));
       }
       return out;
     };
+    auto cleaned = [&](const GeosGeometry& current) { return cleaned_in(geos, current); };
     // The domain with the chosen pieces cut out or filled in.
-    auto overlay = [&](const std::vector<bool>& chosen) {
+    auto overlay_in = [&](GeosContext& g, const std::vector<bool>& chosen) {
       std::vector<GeosGeometry> cut, fill;
       for (std::size_t i = 0; i < accepted.size(); ++i) {
         if (!chosen[i]) continue;
-        (accepted[i].cut ? cut : fill).push_back(geos.polygon_with_holes(*accepted[i].polygon));
+        (accepted[i].cut ? cut : fill).push_back(g.polygon_with_holes(*accepted[i].polygon));
       }
-      GeosGeometry current = geos.domain_multipolygon(domain);
-      if (!cut.empty()) current = geos.difference(current, geos.unary_union(geos.multipolygon(std::move(cut))));
-      if (!fill.empty()) current = geos.union_of(current, geos.unary_union(geos.multipolygon(std::move(fill))));
-      return cleaned(current);
+      GeosGeometry current = g.domain_multipolygon(domain);
+      if (!cut.empty()) current = g.difference(current, g.unary_union(g.multipolygon(std::move(cut))));
+      if (!fill.empty()) current = g.union_of(current, g.unary_union(g.multipolygon(std::move(fill))));
+      return cleaned_in(g, current);
     };
+    auto overlay = [&](const std::vector<bool>& chosen) { return overlay_in(geos, chosen); };
     // Pieces next to each other could still change it together. Fragments and holes
     // smaller than a square of the width are not counted: cuts next to each other can
     // leave slivers of land or water that the contacts saw as one (Canada at 1:10m: 13
@@ -232,17 +244,37 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     };
     // The reference is the domain through the same overlay and cleaning with no piece:
     // the cleaning alone may change it (a hole touching the outer ring at a point would
-    // open there, and every piece be refused for that).
-    ++result.num_domain_checks;
-    try {
-      reference = topology(overlay(std::vector<bool>(accepted.size(), false)), tiny);
-    } catch (const Error&) {
+    // open there, and every piece be refused for that). It and the domain with every
+    // piece (most often the answer) are computed at once.
+    result.num_domain_checks += 2;
+    bool reference_failed = false;
+    std::optional<std::vector<Polygon>> with_all;
+    {
+      GeosContext other;
+      run_in_parallel(
+          [&] {
+            try {
+              reference = topology(overlay(std::vector<bool>(accepted.size(), false)), tiny);
+            } catch (const Error&) {
+              reference_failed = true;
+            }
+          },
+          [&] {
+            try {
+              with_all = overlay_in(other, std::vector<bool>(accepted.size(), true));
+            } catch (const Error&) {  // an overlay GEOS fails on: a change, as in keeps
+            }
+          });
+    }
+    if (reference_failed) {
       result.num_pieces_kept += accepted.size();
       return result;
     }
     std::vector<std::size_t> ids(accepted.size());
     for (std::size_t i = 0; i < ids.size(); ++i) ids[i] = i;
-    if (!keeps(ids, &polygons)) {
+    if (with_all && topology(*with_all, tiny) == reference) {
+      polygons = std::move(*with_all);
+    } else {
       // Only the pieces whose boxes meet no other piece's.
       std::vector<bool> isolated(accepted.size(), true);
       std::vector<std::size_t> order = ids;
