@@ -11,6 +11,7 @@
 #include <limits>
 
 #include "core/error.h"
+#include "core/parallel.h"
 
 namespace isoquad {
 
@@ -245,13 +246,16 @@ BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSize
     if (h < params.max_size_m) sites.push_back({medial[m].x(), medial[m].y(), h});
   }
   impl_->gradation = params.gradation;
-  impl_->build(0.5 * params.lambda_m);
-  if (!narrow_sites.empty()) {
-    narrow_ = std::make_unique<Impl>();
-    narrow_->sites = std::move(narrow_sites);
-    narrow_->gradation = params.gradation;
-    narrow_->build(0.5 * params.lambda_m);
+  if (narrow_sites.empty()) {
+    impl_->build(0.5 * params.lambda_m);
+    return;
   }
+  narrow_ = std::make_unique<Impl>();
+  narrow_->sites = std::move(narrow_sites);
+  narrow_->gradation = params.gradation;
+  // The two grids are independent: built at once on two threads.
+  run_in_parallel([&] { impl_->build(0.5 * params.lambda_m); },
+                  [&] { narrow_->build(0.5 * params.lambda_m); });
 }
 
 BoundaryFeatureSize::~BoundaryFeatureSize() = default;
