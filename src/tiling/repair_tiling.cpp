@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/error.h"
+#include "core/parallel.h"
 #include "tiling/tile_boundary.h"
 
 namespace isoquad {
@@ -104,13 +105,23 @@ class Repairer {
     bool clean = false;  // the last round found nothing to fix: `graph` is current
     for (stats_.rounds = 0; stats_.rounds < params_.max_rounds; ++stats_.rounds) {
       touched_.assign(tiling_.num_tiles(), 0);
-      if (fix_fragments() > 0) continue;
-      const TileBoundaries b = walk_tile_boundaries(mesh_, label_, tiling_.num_tiles());
+      // The fragments, and the tiles' boundaries with the tiles round every vertex, read
+      // the same labels: found at once on two threads. The boundaries and sectors serve
+      // when there is no fragment; the labels change only with a fix, after which the
+      // round ends, so they are those of the labels each fix below reads.
+      FragmentMoves fragments;
+      TileBoundaries b;
+      std::vector<int> sectors;
+      run_in_parallel([&] { fragments = find_fragments(); },
+                      [&] {
+                        b = walk_tile_boundaries(mesh_, label_, tiling_.num_tiles());
+                        sectors = count_vertex_sectors(mesh_, label_);
+                      });
+      if (apply_fragments(fragments) > 0) continue;
       if (fix_holes(b) > 0) continue;
       if (fix_pinches(b) > 0) continue;
-      // Tiles around every vertex; both fixes below read it, the first changes nothing
-      // unless it fixes something (and the round ends).
-      const std::vector<int> sectors = count_vertex_sectors(mesh_, label_);
+      // Both fixes below read the sectors; the first changes nothing unless it fixes
+      // something (and the round ends).
       graph = build_meta_graph(mesh_, tiling_, sectors, b);
       if (fix_small_tiles(b, graph, sectors) > 0) continue;
       if (fix_reflex_corners(sectors) > 0) continue;
@@ -209,12 +220,20 @@ class Repairer {
   }
 
   // Disconnected parts of a tile (other than the one holding its generator, or else the
-  // largest) join the neighbouring tile they share the longest boundary with.
-  int fix_fragments() {
+  // largest) join the neighbouring tile they share the longest boundary with: found from
+  // the labels as they are (read only, so that other readers can run meanwhile), then
+  // moved by apply_fragments.
+  struct FragmentMoves {
+    std::vector<int> order, comp_begin;  // the components' triangles, one after the other
+    std::vector<std::pair<int, int>> moves;  // (component, target tile or -1)
+  };
+  FragmentMoves find_fragments() {
+    FragmentMoves out;
     const int num_faces = static_cast<int>(label_.size());
     const int num_tiles = tiling_.num_tiles();
-    // Components, their triangles stored one after the other.
-    std::vector<int> comp(num_faces, -1), comp_tile, comp_begin, order;
+    std::vector<int> comp(num_faces, -1), comp_tile;
+    std::vector<int>& comp_begin = out.comp_begin;
+    std::vector<int>& order = out.order;
     order.reserve(num_faces);
     for (int f = 0; f < num_faces; ++f) {
       if (comp[f] >= 0) continue;
@@ -228,7 +247,7 @@ class Repairer {
     }
     const int num_comps = static_cast<int>(comp_tile.size());
     comp_begin.push_back(num_faces);
-    if (num_comps == num_tiles) return 0;
+    if (num_comps == num_tiles) return out;
     auto size_of = [&](int c) { return comp_begin[c + 1] - comp_begin[c]; };
     std::vector<int> keep(num_tiles, -1);
     for (int c = 0; c < num_comps; ++c) {
@@ -240,8 +259,6 @@ class Repairer {
         keep[t] = c;
       }
     }
-    // Targets first, from the labels as they are; then relabel.
-    std::vector<std::pair<int, int>> moves;  // (component, target tile)
     SharedLengths shared;
     for (int c = 0; c < num_comps; ++c) {
       if (keep[comp_tile[c]] == c) continue;
@@ -253,14 +270,18 @@ class Repairer {
           if (g >= 0 && label_[g] != comp_tile[c]) shared.add(label_[g], edge_length_m(3 * f + i));
         }
       }
-      moves.push_back({c, shared.longest([](int) { return true; })});
+      out.moves.push_back({c, shared.longest([](int) { return true; })});
     }
-    for (const auto& [c, target] : moves) {
+    return out;
+  }
+  int apply_fragments(const FragmentMoves& found) {
+    for (const auto& [c, target] : found.moves) {
       const int tile = target >= 0 ? target : new_tile();  // alone in its mesh component
-      for (int k = comp_begin[c]; k < comp_begin[c + 1]; ++k) relabel(order[k], tile);
+      for (int k = found.comp_begin[c]; k < found.comp_begin[c + 1]; ++k)
+        relabel(found.order[k], tile);
       ++stats_.fragments_merged;
     }
-    return static_cast<int>(moves.size());
+    return static_cast<int>(found.moves.size());
   }
 
   // Tiles with more than one boundary cycle enclose something: other tiles (merged into
