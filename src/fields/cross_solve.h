@@ -19,10 +19,10 @@ namespace isoquad {
 // Without rotations: one real factorisation, the real and imaginary parts solved at
 // once on two threads. With them: conjugate gradients on H preconditioned by the real
 // factor (its solves on two threads too), up to max_iterations, to a relative residual
-// of 1e-5; failing that, H factorised itself
-// (twice the memory of the real factor). Eigen's simplicial LLT with its AMD ordering,
-// measured against CHOLMOD's supernodal LLT with Debian's OpenBLAS: France automatic
-// (44,542 unknowns) factorised in 0.07 s against 0.24 s, the Arctic Ocean at 1:10m
+// of 1e-5; failing that, H factorised itself (twice the memory of the real factor).
+// Eigen's simplicial LLT with its AMD ordering, measured against CHOLMOD's supernodal
+// LLT with Debian's OpenBLAS: France automatic (44,542 unknowns) factorised in 0.07 s
+// against 0.24 s, the Arctic Ocean at 1:10m
 // (288,610) in 0.63 s against 1.2 s, solves as fast; and no BLAS, whose kernels differ
 // from one CPU to another and with them the last bits of the field.
 //

@@ -41,17 +41,18 @@ struct SmoothParams {
   // Then, every quad convex, the flattest quads (sine of the worst corner turn at most
   // this; 0.26 ~ 15 degrees) are tried one by one for a diagonal collapse, or failing
   // that an edge flip with a neighbour, that makes the mesh's flattest quad less flat
-  // (at most sliver_tries of them; 0 disables it). At 0.17 (10 degrees) before
-  // 2026-12-02: of 12 cases only the Baltic at 1:10m changed, smallest angle 11.0 ->
-  // 14.3 degrees (the United States at 1:50m 12.1 -> 15.3); at 0.34 (20 degrees) some
-  // meshes lose a small angle for a large one (Chile at 1:50m 30.0 -> 25.2). 60 tries
-  // instead of 20: the same meshes on those cases and the 254 countries at 1:10m; the
-  // Arctic Ocean at 1:10m 21 slivers removed instead of 9, smallest angle 10.0 -> 15.1. With the flips: France at hmax 24 km
+  // (at most sliver_tries of them; 0 disables it). With the flips: France at hmax 24 km
   // --simplify 800 5.5 -> 16.3 degrees, Brittany's water at hmax 7 km 2.2 -> 11.6.
   // Sea areas of Natural Earth's 1:10m land, smallest angle before -> after: the Aegean
   // 4.0 -> 15.2 degrees, the Danish straits 4.0 -> 14.5, the Adriatic 2.6 -> 15.3,
   // Scotland 8.7 -> 14.2, the Gulf of Finland 7.8 -> 15.4 (the Mississippi delta keeps
-  // 8.3: its collapse would fold the mesh).
+  // 8.3: its collapse would fold the mesh). 0.26 instead of 0.17 (10 degrees), since
+  // 2026-12-02: of 12 cases only the Baltic at 1:10m changed, smallest angle 11.0 ->
+  // 14.3 degrees (the United States at 1:50m 12.1 -> 15.3; at 1:10m, countries with a
+  // corner under 15 degrees 22 -> 4); at 0.34 (20 degrees) some meshes lose a small
+  // angle for a large one (Chile at 1:50m 30.0 -> 25.2). 60 tries instead of 20: the
+  // same meshes on those cases and both country batches; the Arctic Ocean at 1:10m 21
+  // slivers removed instead of 9, smallest angle 10.0 -> 15.1.
   double sliver_convexity = 0.26;
   int sliver_tries = 60;
   // Failing those, a sliver that ends a thin row of quads (joined by their short sides,
