@@ -1151,6 +1151,12 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
     }
   };
   std::vector<Point2> tried;  // centroids of the slivers tried (ids change on a collapse)
+  // The mesh's counts before a try: the same as before the last one unless that changed
+  // the mesh (a change not kept is undone exactly), so counted again only then.
+  bool changed = true;
+  int slivers0 = 0, nonconvex0 = 0;
+  double worst0 = 1.0;
+  std::size_t crossings0 = 0;
   for (int attempt = 0; attempt < params.sliver_tries; ++attempt) {
     int pick = -1;
     double flattest = params.sliver_convexity;
@@ -1163,15 +1169,19 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
     }
     if (pick < 0) break;
     tried.push_back(quad_centroid(m, pick));
-    int slivers0, nonconvex0;
-    double worst0;
-    scan(slivers0, nonconvex0, worst0);
-    const std::size_t crossings0 = count_boundary_crossings(m);
+    if (changed) {
+      scan(slivers0, nonconvex0, worst0);
+      crossings0 = count_boundary_crossings(m);
+      changed = false;
+    }
     // A change of the topology around the sliver, kept when the mesh is then better.
     auto kept = [&](const std::function<bool()>& change) {
       QuadMesh before = m;
       const SmoothStats stats_before = stats;
-      if (!change()) return false;
+      if (!change()) {
+        changed = true;  // (a change that fails may have begun)
+        return false;
+      }
       const Topology t = topology(m);
       const std::vector<int> near = quads_near(m, t, tried.back(), kSliverRings);
       SmoothStats ignored;
@@ -1181,8 +1191,10 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
       double worst1;
       scan(slivers1, nonconvex1, worst1);
       if (nonconvex1 == 0 && worst1 >= worst0 && (worst1 > worst0 || slivers1 < slivers0) &&
-          count_boundary_crossings(m) <= crossings0)
+          count_boundary_crossings(m) <= crossings0) {
+        changed = true;
         return true;
+      }
       m = std::move(before);
       stats = stats_before;
       return false;
