@@ -424,6 +424,12 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "(fewer quads under SCHISM's angle ratio)")
       ->check(CLI::NonNegativeNumber)
       ->group("Quads");
+  cmd->add_option("--schism-weight", m.mesh.smooth.angle_ratio_weight,
+                  "Weight, in the angle sweeps, of each quad whose smallest angle is under half "
+                  "its largest (SCHISM's angle ratio check; default 0.5; 0: none). More gives "
+                  "fewer such quads at the cost of angles in [75,105] and orientation")
+      ->check(CLI::NonNegativeNumber)
+      ->group("Quads");
   cmd->add_option("--output-format", m.output_formats,
                   "gpkg, vtu, vtk, msh, gr3 or nc: once for every -o, or once per -o in order "
                   "(default: by extension)")

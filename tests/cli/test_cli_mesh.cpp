@@ -521,27 +521,28 @@ TEST(CliMesh, AChannelNarrowerThanHminGetsQuadsNoWiderThanIt) {
   EXPECT_GT(widest_without, 2000.0);  // (aspect ratios of 2 to 7)
 }
 
+// The summary's number after `label` on the line starting with `key`.
+static double summary_number(const std::string& out, const std::string& key, const std::string& label) {
+  const std::size_t line = out.find("\n" + key);
+  EXPECT_NE(line, std::string::npos) << out;
+  if (line == std::string::npos) return std::nan("");
+  const std::size_t at = out.find(label, line);
+  return std::stod(out.substr(at + label.size()));
+}
+
 TEST(CliMesh, OrientationWeightTradesAnglesForOrientation) {
   // Corsica at hmax 4 km, the same tiling each time: a weight of 6 turns the edges
   // nearer the cross field (measured: 9.6 degrees against 13.1 without the term) and
   // costs angles (87.1% in [75,105] against 89.6%).
   TempDir dir;
-  // The summary's number after `label` on the line starting with `key`.
-  auto number = [](const std::string& out, const std::string& key, const std::string& label) {
-    const std::size_t line = out.find("\n" + key);
-    EXPECT_NE(line, std::string::npos) << out;
-    if (line == std::string::npos) return std::nan("");
-    const std::size_t at = out.find(label, line);
-    return std::stod(out.substr(at + label.size()));
-  };
   auto run = [&](const std::string& weight) {
     const CliResult r = run_cli({"mesh", std::string(ISOQUAD_SOURCE_DIR) + "/shapefiles/corsica.shp",
                                  "--hmax", "4000", "--orientation-weight", weight, "-o",
                                  dir.file("mesh.vtu"), "--overwrite"},
                                 dir);
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    return std::make_pair(number(r.out, "orientation:", "mean deviation "),
-                          number(r.out, "angles:", "angles:"));
+    return std::make_pair(summary_number(r.out, "orientation:", "mean deviation "),
+                          summary_number(r.out, "angles:", "angles:"));
   };
   const auto [orientation_0, angles_0] = run("0");
   const auto [orientation_6, angles_6] = run("6");
@@ -550,6 +551,31 @@ TEST(CliMesh, OrientationWeightTradesAnglesForOrientation) {
   EXPECT_GT(angles_6, 80.0);
   const CliResult bad = run_cli({"mesh", std::string(ISOQUAD_SOURCE_DIR) + "/shapefiles/corsica.shp",
                                  "--orientation-weight", "-1", "-o", dir.file("bad.vtu")},
+                                dir);
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+}
+
+TEST(CliMesh, SchismWeightTradesAnglesForFewerSkewedQuads) {
+  // Corsica at hmax 4 km, the same tiling each time: SCHISM's angle ratio weighted 4
+  // instead of 0.5 leaves fewer quads whose smallest angle is under half their largest
+  // (measured: 80 against 143) for fewer angles in [75,105] (88.0% against 89.4%).
+  TempDir dir;
+  auto run = [&](const std::string& weight) {
+    const CliResult r = run_cli({"mesh", std::string(ISOQUAD_SOURCE_DIR) + "/shapefiles/corsica.shp",
+                                 "--hmax", "4000", "--schism-weight", weight, "-o",
+                                 dir.file("mesh.vtu"), "--overwrite"},
+                                dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return std::make_pair(summary_number(r.out, "SCHISM:", "SCHISM:"),
+                          summary_number(r.out, "angles:", "angles:"));
+  };
+  const auto [skewed_default, angles_default] = run("0.5");
+  const auto [skewed_4, angles_4] = run("4");
+  EXPECT_LT(skewed_4, 0.75 * skewed_default);
+  EXPECT_GT(angles_default, angles_4);
+  EXPECT_GT(angles_4, 85.0);
+  const CliResult bad = run_cli({"mesh", std::string(ISOQUAD_SOURCE_DIR) + "/shapefiles/corsica.shp",
+                                 "--schism-weight", "-1", "-o", dir.file("bad.vtu")},
                                 dir);
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
 }
