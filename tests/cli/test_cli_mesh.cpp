@@ -530,52 +530,40 @@ static double summary_number(const std::string& out, const std::string& key, con
   return std::stod(out.substr(at + label.size()));
 }
 
-TEST(CliMesh, OrientationWeightTradesAnglesForOrientation) {
-  // Corsica at hmax 4 km, the same tiling each time: a weight of 6 turns the edges
-  // nearer the cross field (measured: 9.6 degrees against 13.1 without the term) and
-  // costs angles (87.1% in [75,105] against 89.6%).
-  TempDir dir;
-  auto run = [&](const std::string& weight) {
-    const CliResult r = run_cli({"mesh", std::string(ISOQUAD_SOURCE_DIR) + "/shapefiles/corsica.shp",
-                                 "--hmax", "4000", "--orientation-weight", weight, "-o",
-                                 dir.file("mesh.vtu"), "--overwrite"},
-                                dir);
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    return std::make_pair(summary_number(r.out, "orientation:", "mean deviation "),
-                          summary_number(r.out, "angles:", "angles:"));
-  };
-  const auto [orientation_0, angles_0] = run("0");
-  const auto [orientation_6, angles_6] = run("6");
-  EXPECT_LT(orientation_6, orientation_0 - 2.0);
-  EXPECT_GT(angles_0, angles_6);
-  EXPECT_GT(angles_6, 80.0);
-  const CliResult bad = run_cli({"mesh", std::string(ISOQUAD_SOURCE_DIR) + "/shapefiles/corsica.shp",
-                                 "--orientation-weight", "-1", "-o", dir.file("bad.vtu")},
-                                dir);
+// Corsica at hmax 4 km with `option` at `value` (the same tiling for any weight of the
+// sweeps): its summary. A negative value must be refused as a usage error.
+static std::string corsica_with_weight(const TempDir& dir, const std::string& option,
+                                       const std::string& value) {
+  const std::string corsica = std::string(ISOQUAD_SOURCE_DIR) + "/shapefiles/corsica.shp";
+  const CliResult r = run_cli(
+      {"mesh", corsica, "--hmax", "4000", option, value, "-o", dir.file("mesh.vtu"), "--overwrite"}, dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const CliResult bad = run_cli({"mesh", corsica, option, "-1", "-o", dir.file("bad.vtu")}, dir);
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  return r.out;
+}
+
+TEST(CliMesh, OrientationWeightTradesAnglesForOrientation) {
+  // A weight of 6 turns the edges nearer the cross field (measured: 9.6 degrees against
+  // 13.1 without the term) and costs angles (87.1% in [75,105] against 89.6%).
+  TempDir dir;
+  const std::string without = corsica_with_weight(dir, "--orientation-weight", "0");
+  const std::string with = corsica_with_weight(dir, "--orientation-weight", "6");
+  EXPECT_LT(summary_number(with, "orientation:", "mean deviation "),
+            summary_number(without, "orientation:", "mean deviation ") - 2.0);
+  EXPECT_GT(summary_number(without, "angles:", "angles:"), summary_number(with, "angles:", "angles:"));
+  EXPECT_GT(summary_number(with, "angles:", "angles:"), 80.0);
 }
 
 TEST(CliMesh, SchismWeightTradesAnglesForFewerSkewedQuads) {
-  // Corsica at hmax 4 km, the same tiling each time: SCHISM's angle ratio weighted 4
-  // instead of 0.5 leaves fewer quads whose smallest angle is under half their largest
-  // (measured: 80 against 143) for fewer angles in [75,105] (88.0% against 89.4%).
+  // SCHISM's angle ratio weighted 4 instead of 0.5 leaves fewer quads whose smallest
+  // angle is under half their largest (measured: 80 against 143) for fewer angles in
+  // [75,105] (88.0% against 89.4%).
   TempDir dir;
-  auto run = [&](const std::string& weight) {
-    const CliResult r = run_cli({"mesh", std::string(ISOQUAD_SOURCE_DIR) + "/shapefiles/corsica.shp",
-                                 "--hmax", "4000", "--schism-weight", weight, "-o",
-                                 dir.file("mesh.vtu"), "--overwrite"},
-                                dir);
-    EXPECT_EQ(r.exit_code, 0) << r.err;
-    return std::make_pair(summary_number(r.out, "SCHISM:", "SCHISM:"),
-                          summary_number(r.out, "angles:", "angles:"));
-  };
-  const auto [skewed_default, angles_default] = run("0.5");
-  const auto [skewed_4, angles_4] = run("4");
-  EXPECT_LT(skewed_4, 0.75 * skewed_default);
-  EXPECT_GT(angles_default, angles_4);
-  EXPECT_GT(angles_4, 85.0);
-  const CliResult bad = run_cli({"mesh", std::string(ISOQUAD_SOURCE_DIR) + "/shapefiles/corsica.shp",
-                                 "--schism-weight", "-1", "-o", dir.file("bad.vtu")},
-                                dir);
-  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  const std::string standard = corsica_with_weight(dir, "--schism-weight", "0.5");
+  const std::string more = corsica_with_weight(dir, "--schism-weight", "4");
+  EXPECT_LT(summary_number(more, "SCHISM:", "SCHISM:"),
+            0.75 * summary_number(standard, "SCHISM:", "SCHISM:"));
+  EXPECT_GT(summary_number(standard, "angles:", "angles:"), summary_number(more, "angles:", "angles:"));
+  EXPECT_GT(summary_number(more, "angles:", "angles:"), 85.0);
 }
