@@ -42,10 +42,13 @@ std::string format_domain_summary(const DomainSummary& s) {
          << " kept (changing them would cut or join components or holes)";
     os << "\n";
   }
-  if (s.spikes.num_cut)
-    os << "spikes:       " << s.spikes.num_cut << " tip(s) sharper than "
-       << num(SpikeParams{}.max_angle_deg) << " deg cut back to " << num(s.min_width_m)
-       << " m wide: " << num(s.spikes.area_removed_m2 / 1e6, 4) << " km2 removed\n";
+  if (s.spikes.num_cut || s.spikes.num_cut_at_base) {
+    os << "spikes:       " << s.spikes.num_cut + s.spikes.num_cut_at_base << " tip(s) sharper than "
+       << num(SpikeParams{}.max_angle_deg) << " deg cut back to " << num(s.min_width_m) << " m wide";
+    if (s.spikes.num_cut_at_base)
+      os << " (" << s.spikes.num_cut_at_base << " narrower, at the base of a spit)";
+    os << ": " << num(s.spikes.area_removed_m2 / 1e6, 4) << " km2 removed\n";
+  }
   if (s.num_repaired || s.num_rings_closed || s.num_rings_dropped || s.num_points_removed)
     os << "repairs:      " << s.num_repaired << " invalid polygon(s) fixed, " << s.num_rings_closed
        << " ring(s) closed, " << s.num_rings_dropped << " degenerate ring(s) dropped, "
@@ -77,6 +80,7 @@ void add_domain_summary(JsonWriter& j, const DomainSummary& s) {
       .value("narrow_num_changed", s.narrow.num_pieces)
       .value("narrow_num_kept", s.narrow.num_pieces_kept)
       .value("spikes_num_cut", s.spikes.num_cut)
+      .value("spikes_num_cut_at_base", s.spikes.num_cut_at_base)
       .value("spikes_area_removed_m2", s.spikes.area_removed_m2)
       .value("num_islands_dropped", s.dropped.num_islands_dropped)
       .value("num_holes_dropped", s.dropped.num_holes_dropped)

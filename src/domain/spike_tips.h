@@ -19,15 +19,18 @@ struct SpikeParams {
 };
 
 struct SpikeResult {
-  std::size_t num_cut = 0;
-  double area_removed_m2 = 0.0;
+  std::size_t num_cut = 0;          // cut square where min_width wide
+  std::size_t num_cut_at_base = 0;  // spits narrower than that, cut at their base
+  double area_removed_m2 = 0.0;     // by both
 };
 
 // Cuts every convex vertex of the domain's rings whose interior angle is under
 // max_angle_deg: the part of the domain beyond the line across the tip's bisector, at
 // the distance where the tip's two sides are min_width apart, that holds the tip, is
 // removed. A cut that would change the domain's components or holes, or remove more than
-// the tip's triangle could hold, is not made. The result is oriented and sorted by area.
+// the tip's triangle could hold, is not made; where the spike ends before the cut (its
+// side turns away at a vertex nearer the tip), the tip is cut square at that vertex
+// instead. The result is oriented and sorted by area.
 SpikeResult cut_spike_tips(Domain& domain, const SpikeParams& params);
 
 }  // namespace isoquad

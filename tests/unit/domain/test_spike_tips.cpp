@@ -90,3 +90,43 @@ TEST(SpikeTips, WideCornersNotchesAndAnIslandNearbyStay) {
   EXPECT_EQ(cut_spike_tips(notch, params).num_cut, 0u);
   EXPECT_EQ(notch.polygons[0].outer, notch_before.polygons[0].outer);
 }
+
+TEST(SpikeTips, ASpitNarrowerThanTheWidthIsCutAtItsBase) {
+  // At a width of 60 m the square cut would be 904 m from the tip, beyond the spike's
+  // base (600 m, 40 m wide), where the square's side turns away: the spike goes whole.
+  Domain d = square_with_spike(false);
+  const double before = area(d);
+  SpikeParams params;
+  params.min_width_m = 60.0;
+  const SpikeResult r = cut_spike_tips(d, params);
+  EXPECT_EQ(r.num_cut, 0u);
+  EXPECT_EQ(r.num_cut_at_base, 1u);
+  EXPECT_NEAR(r.area_removed_m2, 0.5 * 40 * 600, 1e-6 * before);
+  EXPECT_NEAR(before - area(d), r.area_removed_m2, 1e-6 * before);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_GT(sharpest_convex_corner(d), 45.0);
+  double reach = 0;
+  for (const Point2& q : d.polygons[0].outer) reach = std::max(reach, q.x);
+  EXPECT_NEAR(reach, 1000, 1e-9);
+
+  // One side bends away nearer the tip: the cut goes through that bend, square across.
+  Domain bent;
+  Polygon p;
+  p.outer = {{0, 0}, {1000, 0}, {1000, 480}, {1600, 500}, {1300, 510}, {1000, 700}, {0, 700}};
+  orient_polygon(p);
+  bent.polygons.push_back(p);
+  ASSERT_LT(sharpest_convex_corner(bent), 15.0);
+  const SpikeResult rb = cut_spike_tips(bent, params);
+  EXPECT_EQ(rb.num_cut + rb.num_cut_at_base, 1u);
+  EXPECT_EQ(rb.num_cut_at_base, 1u);
+  EXPECT_GT(sharpest_convex_corner(bent), 45.0);
+  for (const Point2& q : bent.polygons[0].outer) EXPECT_LE(q.x, 1300.5);
+
+  // Where the spike's base is under a quarter of the width wide, the cut would only move
+  // the sharp corner to a shorter edge: the tip stays.
+  Domain thin = square_with_spike(false);
+  params.min_width_m = 200.0;
+  const SpikeResult rt = cut_spike_tips(thin, params);
+  EXPECT_EQ(rt.num_cut + rt.num_cut_at_base, 0u);
+  EXPECT_LT(sharpest_convex_corner(thin), 4.0);
+}
