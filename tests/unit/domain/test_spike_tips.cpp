@@ -122,6 +122,22 @@ TEST(SpikeTips, ASpitNarrowerThanTheWidthIsCutAtItsBase) {
   EXPECT_GT(sharpest_convex_corner(bent), 45.0);
   for (const Point2& q : bent.polygons[0].outer) EXPECT_LE(q.x, 1300.5);
 
+  // The same on a hole's ring: land poking 400 m into a lake, 40 m wide at its base.
+  Domain lake;
+  Polygon with_hole;
+  with_hole.outer = {{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}};
+  with_hole.holes.push_back({{200, 200}, {800, 200}, {800, 480}, {400, 500}, {800, 520}, {800, 800}, {200, 800}});
+  orient_polygon(with_hole);
+  lake.polygons.push_back(with_hole);
+  ASSERT_LT(sharpest_convex_corner(lake), 6.0);
+  const double lake_before = area(lake);
+  const SpikeResult rl = cut_spike_tips(lake, params);
+  EXPECT_EQ(rl.num_cut_at_base, 1u);
+  EXPECT_NEAR(lake_before - area(lake), 0.5 * 40 * 400, 1e-6 * lake_before);
+  ASSERT_EQ(lake.polygons.size(), 1u);
+  ASSERT_EQ(lake.polygons[0].holes.size(), 1u);
+  EXPECT_GT(sharpest_convex_corner(lake), 45.0);
+
   // Where the spike's base is under a quarter of the width wide, the cut would only move
   // the sharp corner to a shorter edge: the tip stays.
   Domain thin = square_with_spike(false);
