@@ -93,6 +93,7 @@ DEFAULT_EXPECTED = {
     "quality.size_ratio_median": {"tol": 0.05},
     "quality.share_size_ratio_08_125": {"tol": 0.05},
     "quality.orientation_mean_deg": {"tol": 1.0},
+    "quality.mesh_area_m2": {"rtol": 0.01},
     "domain.num_components": {"tol": 0},
     "domain.num_holes": {"tol": 0},
 }

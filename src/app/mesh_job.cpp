@@ -215,6 +215,13 @@ std::string format_mesh_summary(const MeshResult& r) {
   std::snprintf(buf, sizeof buf, "orientation:  mean deviation %.2f deg, p90 %.2f deg\n",
                 q.orientation_mean_deg, q.orientation_p90_deg);
   os << buf;
+  std::snprintf(buf, sizeof buf,
+                "coast:        mesh area %.2f%% of the domain's; its boundary departs from the "
+                "domain's by up to %.4g m (%.2f h, near %s), 95%% of its edges by %.2f h or less\n",
+                q.domain_area_m2 > 0 ? 100 * q.mesh_area_m2 / q.domain_area_m2 : 0.0,
+                q.boundary_departure_max_m, q.boundary_departure_max_h,
+                format_point(q.boundary_departure_where).c_str(), q.boundary_departure_p95_h);
+  os << buf;
   std::snprintf(buf, sizeof buf, "regularity:   %.1f%% of interior, %.1f%% of boundary, %.1f%% of all vertices regular\n",
                 100 * q.share_regular_interior, 100 * q.share_regular_boundary, 100 * q.share_regular_all);
   os << buf;
@@ -290,6 +297,13 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("eta_min", q.eta_min)
         .value("schism_angle_ratio_violations", q.schism_angle_ratio_violations)
         .value("schism_aspect_ratio_violations", q.schism_aspect_violations)
+        .value("mesh_area_m2", q.mesh_area_m2)
+        .value("domain_area_m2", q.domain_area_m2)
+        .value("boundary_departure_max_m", q.boundary_departure_max_m)
+        .value("boundary_departure_max_x_m", q.boundary_departure_where.x)
+        .value("boundary_departure_max_y_m", q.boundary_departure_where.y)
+        .value("boundary_departure_max_h", q.boundary_departure_max_h)
+        .value("boundary_departure_p95_h", q.boundary_departure_p95_h)
         .end_object();
     j.begin_object("smoothing")
         .value("tiling_attempts", r.attempts)

@@ -22,6 +22,55 @@ void add_to_histogram(std::vector<int>& h, double value, double lo, double width
   ++h[bin];
 }
 
+// The departures of the domain's boundary from the mesh's (QualitySummary): per boundary
+// edge, in sizes h; the largest in metres and where, into s.
+std::vector<double> boundary_departures(const QuadMesh& m, const BackgroundMesh& bg,
+                                        const SizingField& size, QualitySummary& s) {
+  std::vector<double> in_h;
+  for (const std::array<int, 2>& e : boundary_edges(m)) {
+    const int a = e[0], b = e[1], c = m.chain[a];
+    in_h.push_back(0.0);
+    if (c < 0 || m.chain[b] != c) continue;
+    const BoundaryChain& chain = bg.chains[c];
+    const double length = chain.length_m;
+    if (!(length > 0)) continue;
+    // The chain's stretch between the ends, the shorter way round (the edge runs with the
+    // chain, the mesh and the domain both on its left; the other way only on a ring that
+    // the edge's ends split in two halves or less).
+    auto ahead = [&](double from, double to) {
+      const double d = std::fmod(to - from, length);
+      return d < 0 ? d + length : d;
+    };
+    double from = m.arc_m[a], span = ahead(from, m.arc_m[b]);
+    if (span > 0.5 * length) from = m.arc_m[b], span = length - span;
+    const auto& arcs = chain.arc_length_m;
+    const std::size_t n = arcs.size();
+    std::size_t k = static_cast<std::size_t>(
+        std::upper_bound(arcs.begin(), arcs.end(), std::fmod(from, length)) - arcs.begin());
+    const Point2 &p = m.points[a], &q = m.points[b];
+    const double dx = q.x - p.x, dy = q.y - p.y, l2 = dx * dx + dy * dy;
+    double worst = 0;
+    int worst_vertex = -1;
+    for (std::size_t step = 0; step < n; ++step, ++k) {
+      const std::size_t i = k % n;
+      const double along = ahead(from, arcs[i]);
+      if (along <= 0 || along >= span) break;
+      const Point2& v = bg.points[chain.vertices[i]];
+      const double t = l2 > 0 ? std::clamp(((v.x - p.x) * dx + (v.y - p.y) * dy) / l2, 0.0, 1.0) : 0.0;
+      const double d = std::hypot(v.x - (p.x + t * dx), v.y - (p.y + t * dy));
+      if (d > worst) worst = d, worst_vertex = chain.vertices[i];
+    }
+    if (worst_vertex < 0) continue;
+    const double h = size.size_m[worst_vertex];
+    if (h > 0) in_h.back() = worst / h;
+    if (worst > s.boundary_departure_max_m) {
+      s.boundary_departure_max_m = worst;
+      s.boundary_departure_where = bg.points[worst_vertex];
+    }
+  }
+  return in_h;
+}
+
 }  // namespace
 
 QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, const SizingField& size,
@@ -145,6 +194,17 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
   s.share_regular_boundary = boundary ? static_cast<double>(boundary_regular) / boundary : 0;
   s.share_regular_all =
       interior + boundary ? static_cast<double>(interior_regular + boundary_regular) / (interior + boundary) : 0;
+
+  for (int q = 0; q < nq; ++q) s.mesh_area_m2 += quad_area(m, q);
+  for (const auto& t : bg.triangles) {
+    const Point2 &a = bg.points[t[0]], &b = bg.points[t[1]], &c = bg.points[t[2]];
+    s.domain_area_m2 += 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+  }
+  const std::vector<double> departures = boundary_departures(m, bg, size, s);
+  if (!departures.empty()) {
+    s.boundary_departure_max_h = *std::max_element(departures.begin(), departures.end());
+    s.boundary_departure_p95_h = percentile(departures, 0.95);
+  }
   return s;
 }
 

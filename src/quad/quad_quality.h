@@ -41,6 +41,15 @@ struct QualitySummary {
   double eta_mean = 0, eta_min = 0;
   std::size_t schism_angle_ratio_violations = 0;  // min/max angle < 0.5
   std::size_t schism_aspect_violations = 0;       // longest / shortest edge > 5
+  // How closely the mesh follows the domain: its area against the domain's (the
+  // background mesh's), and how far the domain's boundary lies from the mesh's. Each
+  // boundary edge is a chord of the boundary chain between its two ends; its departure
+  // is the largest distance from the chord of the chain's vertices between them, also
+  // in sizes h (at that vertex).
+  double mesh_area_m2 = 0, domain_area_m2 = 0;
+  double boundary_departure_max_m = 0;
+  Point2 boundary_departure_where{0, 0};  // the chain vertex farthest from its chord
+  double boundary_departure_max_h = 0, boundary_departure_p95_h = 0;
 };
 
 QualitySummary measure_quality(const QuadMesh& mesh, const BackgroundMesh& background,

@@ -103,9 +103,16 @@ double area_of(const OGRGeometry& g) {
 // counter-clockwise, none overlapping another; every boundary vertex within 1e-6 h of
 // the domain's boundary; the quads' union has the domain's components and holes (every
 // island still a hole) and differs from it by less than 1% of its area; the area within
-// 1%.
+// 1%. The report's coast figures agree: its mesh and domain areas with the layers', and
+// no vertex of the domain's boundary lies farther from the mesh's than its departure.
+double report_number(const std::string& report, const std::string& key) {
+  const std::size_t at = report.find("\"" + key + "\": ");
+  EXPECT_NE(at, std::string::npos) << key;
+  return at == std::string::npos ? std::nan("") : std::stod(report.substr(at + key.size() + 4));
+}
+
 void check_mesh_of_domain(const std::string& mesh_gpkg, const std::string& domain_gpkg,
-                          double h_m, int expected_holes) {
+                          const std::string& report, double h_m, int expected_holes) {
   const QuadLayer layer = read_quads(mesh_gpkg);
   EXPECT_EQ(layer.num_other, 0);
   ASSERT_GT(layer.quads.size(), 100u);
@@ -142,7 +149,27 @@ void check_mesh_of_domain(const std::string& mesh_gpkg, const std::string& domai
     worst = std::max(worst, dist);
     if (!(dist <= 1e-6 * h_m)) ++off;
   }
+  // The domain's boundary vertices against the mesh's boundary lines.
+  OGRLayer* bl = m->GetLayerByName("boundary");
+  ASSERT_NE(bl, nullptr);
+  OGRMultiLineString mesh_boundary;
+  for (auto& f : *bl) {
+    const OGRGeometry* g = f->GetGeometryRef();
+    if (const auto* line = dynamic_cast<const OGRLineString*>(g)) mesh_boundary.addGeometry(line);
+    if (const auto* lines = dynamic_cast<const OGRMultiLineString*>(g))
+      for (const OGRLineString* line : *lines) mesh_boundary.addGeometry(line);
+  }
   GDALClose(m);
+  double farthest = 0.0;
+  for (const OGRPolygon* poly : parts)
+    for (const OGRLinearRing* ring : *poly)
+      for (const OGRPoint& p : *ring) farthest = std::max(farthest, mesh_boundary.Distance(&p));
+  const double departure = report_number(report, "boundary_departure_max_m");
+  EXPECT_LE(farthest, departure + 1e-6 * h_m);
+  EXPECT_GT(departure, 0.0);
+  EXPECT_LT(departure, 20 * h_m);
+  EXPECT_NEAR(report_number(report, "mesh_area_m2"), area, 1e-9 * area);
+  EXPECT_NEAR(report_number(report, "domain_area_m2"), domain_area, 1e-6 * domain_area);
   EXPECT_GT(num_boundary, 100);
   EXPECT_EQ(off, 0) << "boundary vertices off the boundary; the farthest is " << worst << " m";
 
@@ -195,7 +222,8 @@ TEST(CliMesh, FranceAndBrittanyWaterFillTheirDomainsWithConvexQuads) {
   for (const Case& c : cases) {
     SCOPED_TRACE(c.input[0]);
     TempDir dir;
-    const std::string domain = dir.file("domain.gpkg"), mesh = dir.file("mesh.gpkg");
+    const std::string domain = dir.file("domain.gpkg"), mesh = dir.file("mesh.gpkg"),
+                      report = dir.file("report.json");
     std::vector<std::string> args = {"domain"};
     args.insert(args.end(), c.input.begin(), c.input.end());
     args.insert(args.end(), c.cleaning.begin(), c.cleaning.end());
@@ -203,12 +231,12 @@ TEST(CliMesh, FranceAndBrittanyWaterFillTheirDomainsWithConvexQuads) {
     mesh_args[0] = "mesh";
     mesh_args.insert(mesh_args.end(), c.sizing.begin(), c.sizing.end());
     args.insert(args.end(), {"-o", domain, "-q"});
-    mesh_args.insert(mesh_args.end(), {"-o", mesh, "-q"});
+    mesh_args.insert(mesh_args.end(), {"-o", mesh, "--report", report, "-q"});
     CliResult r = run_cli(args, dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     r = run_cli(mesh_args, dir);
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    check_mesh_of_domain(mesh, domain, c.hmin_m, c.holes);
+    check_mesh_of_domain(mesh, domain, read_file(report), c.hmin_m, c.holes);
   }
 }
 

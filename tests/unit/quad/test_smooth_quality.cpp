@@ -97,6 +97,46 @@ TEST(QuadQuality, PerfectGridIsPerfect) {
   EXPECT_NEAR(s.eta_min, 1.0, 1e-9);
   EXPECT_EQ(s.schism_angle_ratio_violations, 0u);
   EXPECT_EQ(s.num_boundary_vertices, static_cast<std::size_t>(4 * kN));
+  EXPECT_NEAR(s.mesh_area_m2, kSide * kSide, 1e-6);
+  EXPECT_NEAR(s.domain_area_m2, kSide * kSide, 1e-6);
+  EXPECT_NEAR(s.boundary_departure_max_m, 0.0, 1e-9);
+  EXPECT_NEAR(s.boundary_departure_p95_h, 0.0, 1e-9);
+}
+
+TEST(QuadQuality, MeasuresHowFarTheDomainsBoundaryLiesFromTheMeshs) {
+  // The square with its bottom side bent out to (500, -40), meshed by one quad, the
+  // square: its bottom chord (0,0)-(1000,0) skips the chain vertex (500,-40), 40 m off
+  // it; the other three sides lie on the chain.
+  Domain d;
+  d.polygons.push_back({{{0, 0}, {500, -40}, {1000, 0}, {kSide, kSide}, {0, kSide}}, {}});
+  BackgroundMeshParams p;
+  p.max_edge_m = [](const Point2&) { return 100.0; };
+  const BackgroundMesh bg = build_background_mesh(d, p);
+  ASSERT_EQ(bg.chains.size(), 1u);
+  const BoundaryChain& chain = bg.chains[0];
+  QuadMesh m;
+  for (const Point2& q : {Point2{0, 0}, Point2{1000, 0}, Point2{kSide, kSide}, Point2{0, kSide}}) {
+    int at = -1;
+    for (std::size_t i = 0; i < chain.vertices.size(); ++i)
+      if (bg.points[chain.vertices[i]].x == q.x && bg.points[chain.vertices[i]].y == q.y) at = static_cast<int>(i);
+    ASSERT_GE(at, 0) << q.x << " " << q.y;
+    m.points.push_back(q);
+    m.chain.push_back(0);
+    m.arc_m.push_back(chain.arc_length_m[at]);
+    m.fixed.push_back(1);
+  }
+  m.quads = {{0, 1, 2, 3}};
+  SizingField size;
+  size.size_m.assign(bg.points.size(), 200.0);
+  const QualitySummary s = measure_quality(m, bg, size, constant_cross_field(bg, 0.0));
+  EXPECT_NEAR(s.mesh_area_m2, kSide * kSide, 1e-6);
+  EXPECT_NEAR(s.domain_area_m2, kSide * kSide + 0.5 * 1000 * 40, 1e-6);
+  EXPECT_NEAR(s.boundary_departure_max_m, 40.0, 1e-9);
+  EXPECT_NEAR(s.boundary_departure_where.x, 500.0, 1e-9);
+  EXPECT_NEAR(s.boundary_departure_where.y, -40.0, 1e-9);
+  EXPECT_NEAR(s.boundary_departure_max_h, 0.2, 1e-9);
+  // One edge of four departs: the 95th percentile is that edge's.
+  EXPECT_NEAR(s.boundary_departure_p95_h, 0.2, 1e-9);
 }
 
 TEST(QuadQuality, MeasuresOrientationAndSizeDeviation) {
