@@ -215,12 +215,19 @@ std::string format_mesh_summary(const MeshResult& r) {
   std::snprintf(buf, sizeof buf, "orientation:  mean deviation %.2f deg, p90 %.2f deg\n",
                 q.orientation_mean_deg, q.orientation_p90_deg);
   os << buf;
-  std::snprintf(buf, sizeof buf,
-                "coast:        mesh area %.2f%% of the domain's; its boundary departs from the "
-                "domain's by up to %.4g m (%.2f h, near %s), 95%% of its edges by %.2f h or less\n",
-                q.domain_area_m2 > 0 ? 100 * q.mesh_area_m2 / q.domain_area_m2 : 0.0,
-                q.boundary_departure_max_m, q.boundary_departure_max_h,
-                format_point(q.boundary_departure_where).c_str(), q.boundary_departure_p95_h);
+  const double area_share = q.domain_area_m2 > 0 ? 100 * q.mesh_area_m2 / q.domain_area_m2 : 0.0;
+  if (q.boundary_departure_max_h < 0.005)
+    std::snprintf(buf, sizeof buf,
+                  "coast:        mesh area %.2f%% of the domain's; its boundary follows the domain's "
+                  "within 0.01 h\n",
+                  area_share);
+  else
+    std::snprintf(buf, sizeof buf,
+                  "coast:        mesh area %.2f%% of the domain's; its boundary departs from the "
+                  "domain's by up to %.*f m (%.2f h, near %s), 95%% of its edges by %.2f h or less\n",
+                  area_share, q.boundary_departure_max_m >= 100 ? 0 : 2, q.boundary_departure_max_m,
+                  q.boundary_departure_max_h, format_point(q.boundary_departure_where).c_str(),
+                  q.boundary_departure_p95_h);
   os << buf;
   std::snprintf(buf, sizeof buf, "regularity:   %.1f%% of interior, %.1f%% of boundary, %.1f%% of all vertices regular\n",
                 100 * q.share_regular_interior, 100 * q.share_regular_boundary, 100 * q.share_regular_all);
