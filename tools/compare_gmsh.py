@@ -10,7 +10,9 @@ metrics for both meshes here, independently of isoquad's own report:
   sqrt(area)/H median and share in [0.8,1.25], orientation deviation from isoquad's
   boundary-aligned cross field (mean, p90), regular interior vertices, SCHISM's two
   checks (quads whose smallest over largest angle is under 0.5, and whose longest over
-  shortest side is over 5, as isoquad's report counts them), wall time and
+  shortest side is over 5, as isoquad's report counts them), the mesh's area against the
+  domain's and how far the domain's boundary vertices lie from the mesh's boundary (Gmsh
+  puts a node on every one of them; isoquad's boundary edges are chords), wall time and
   peak memory (each process's own, from GNU time: the wait4 of a process forked from
   this one would count this script's own memory, copied at the fork).
 
@@ -127,7 +129,40 @@ def fields_to_pos(fields_vtu, pos_path, factor):
         out.write("};\n")
 
 
-def metrics(points, quads, triangles, size, cross):
+def domain_vertices_and_area(gpkg):
+    """The domain's boundary vertices (every ring) and its area."""
+    ds = ogr.Open(gpkg)
+    vertices, area = [], 0.0
+    for f in ds.GetLayer(0):
+        g = f.GetGeometryRef()
+        area += g.GetArea()
+        polygons = [g.GetGeometryRef(i) for i in range(g.GetGeometryCount())] \
+            if g.GetGeometryType() in (ogr.wkbMultiPolygon, ogr.wkbMultiPolygon25D) else [g]
+        for poly in polygons:
+            for k in range(poly.GetGeometryCount()):
+                ring = poly.GetGeometryRef(k)
+                vertices += [(ring.GetX(i), ring.GetY(i)) for i in range(ring.GetPointCount())]
+    return np.array(vertices), area
+
+
+def coast_departure(points, quads, domain_vertices):
+    """The farthest any vertex of the domain's boundary lies from the mesh's boundary
+    edges, measured against points every 0.2% of the median boundary edge along them (so
+    within 0.1% of an edge of the exact distance)."""
+    edges = np.sort(np.stack([quads, np.roll(quads, -1, axis=1)], -1).reshape(-1, 2), axis=1)
+    uniq, counts = np.unique(edges, axis=0, return_counts=True)
+    seg = points[uniq[counts == 1]][:, :, :2]  # (m, 2, 2)
+    length = np.linalg.norm(seg[:, 1] - seg[:, 0], axis=1)
+    step = 0.002 * np.median(length)
+    samples = []
+    for (a, b), l in zip(seg, length):
+        t = np.linspace(0.0, 1.0, max(2, int(math.ceil(l / step)) + 1))
+        samples.append(a + t[:, None] * (b - a))
+    d, _ = cKDTree(np.concatenate(samples)).query(domain_vertices)
+    return float(d.max())
+
+
+def metrics(points, quads, triangles, size, cross, domain=None):
     p = points[:, :2]
     q = p[quads]  # (n, 4, 2)
     prev = np.roll(q, 1, axis=1) - q
@@ -157,6 +192,13 @@ def metrics(points, quads, triangles, size, cross):
     degree = np.bincount(quads.ravel(), minlength=len(points))
     used = degree > 0
     interior = used & ~boundary
+    coast = {}
+    if domain is not None:
+        vertices, domain_area = domain
+        coast = {
+            "mesh area / domain area": f"{100 * np.abs(area).sum() / domain_area:.2f}%",
+            "coast: farthest off the mesh (m)": f"{coast_departure(points, quads, vertices):.0f}",
+        }
     return {
         "quads": len(quads),
         "triangles": int(triangles),
@@ -169,6 +211,7 @@ def metrics(points, quads, triangles, size, cross):
         "regular interior vertices": f"{100 * np.mean(degree[interior] == 4):.1f}%",
         "SCHISM: angle ratio < 0.5": under_angle_ratio,
         "SCHISM: aspect ratio > 5": over_aspect,
+        **coast,
     }
 
 
@@ -266,12 +309,14 @@ def main():
         mem_gm = max(mem_gm, mem)
     t_iq, t_gm = float(np.median(times_iq)), float(np.median(times_gm))
 
+    coast = domain_vertices_and_area(domain)
     iq = meshio.read(iq_vtu)
-    iq_metrics = metrics(iq.points, iq.cells_dict["quad"], 0, size, cross)
+    iq_metrics = metrics(iq.points, iq.cells_dict["quad"], 0, size, cross, coast)
     gm = meshio.read(msh)
     gm_quads = gm.cells_dict.get("quad", np.zeros((0, 4), int))
     gm_tris = len(gm.cells_dict.get("triangle", []))
-    gm_metrics = metrics(gm.points, gm_quads, gm_tris, size, cross)
+    # (Gmsh's leftover triangles, if any, are not counted in its area or boundary.)
+    gm_metrics = metrics(gm.points, gm_quads, gm_tris, size, cross, coast if not gm_tris else None)
 
     seconds = "seconds (read to write)" if a.repeat == 1 else f"seconds, median of {a.repeat}"
     rows = list(iq_metrics.keys()) + [seconds, "peak memory (MB)"]
