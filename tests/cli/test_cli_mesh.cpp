@@ -105,6 +105,17 @@ double area_of(const OGRGeometry& g) {
 // island still a hole) and differs from it by less than 1% of its area; the area within
 // 1%. The report's coast figures agree: its mesh and domain areas with the layers', and
 // no vertex of the domain's boundary lies farther from the mesh's than its departure.
+// Every part of the layer's geometries (a Part, or a Multi of them) into `out`.
+template <class Part, class Multi>
+void collect_parts(OGRLayer* layer, Multi& out) {
+  for (auto& f : *layer) {
+    const OGRGeometry* g = f->GetGeometryRef();
+    if (const auto* part = dynamic_cast<const Part*>(g)) out.addGeometry(part);
+    if (const auto* multi = dynamic_cast<const Multi*>(g))
+      for (const Part* part : *multi) out.addGeometry(part);
+  }
+}
+
 double report_number(const std::string& report, const std::string& key) {
   const std::size_t at = report.find("\"" + key + "\": ");
   EXPECT_NE(at, std::string::npos) << key;
@@ -123,12 +134,7 @@ void check_mesh_of_domain(const std::string& mesh_gpkg, const std::string& domai
   OGRLayer* dl = d->GetLayerByName("domain");
   ASSERT_NE(dl, nullptr);
   OGRMultiPolygon parts;
-  for (auto& f : *dl) {
-    const OGRGeometry* g = f->GetGeometryRef();
-    if (const auto* poly = dynamic_cast<const OGRPolygon*>(g)) parts.addGeometry(poly);
-    if (const auto* multi = dynamic_cast<const OGRMultiPolygon*>(g))
-      for (const OGRPolygon* poly : *multi) parts.addGeometry(poly);
-  }
+  collect_parts<OGRPolygon>(dl, parts);
   GDALClose(d);
   const double domain_area = parts.get_Area();
   EXPECT_EQ(num_holes(parts), expected_holes);
@@ -153,12 +159,7 @@ void check_mesh_of_domain(const std::string& mesh_gpkg, const std::string& domai
   OGRLayer* bl = m->GetLayerByName("boundary");
   ASSERT_NE(bl, nullptr);
   OGRMultiLineString mesh_boundary;
-  for (auto& f : *bl) {
-    const OGRGeometry* g = f->GetGeometryRef();
-    if (const auto* line = dynamic_cast<const OGRLineString*>(g)) mesh_boundary.addGeometry(line);
-    if (const auto* lines = dynamic_cast<const OGRMultiLineString*>(g))
-      for (const OGRLineString* line : *lines) mesh_boundary.addGeometry(line);
-  }
+  collect_parts<OGRLineString>(bl, mesh_boundary);
   GDALClose(m);
   double farthest = 0.0;
   for (const OGRPolygon* poly : parts)
