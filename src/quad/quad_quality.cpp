@@ -34,9 +34,9 @@ std::vector<double> boundary_departures(const QuadMesh& m, const BackgroundMesh&
     const BoundaryChain& chain = bg.chains[c];
     const double length = chain.length_m;
     if (!(length > 0)) continue;
-    // The chain's stretch between the ends, the shorter way round (the edge runs with the
-    // chain, the mesh and the domain both on its left; the other way only on a ring that
-    // the edge's ends split in two halves or less).
+    // The chain's stretch between the ends: the edge runs the chain's way (the mesh and
+    // the domain are both on their left) and spans less than half the ring, so the
+    // shorter way round is that one.
     auto ahead = [&](double from, double to) {
       const double d = std::fmod(to - from, length);
       return d < 0 ? d + length : d;
