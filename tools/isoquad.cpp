@@ -483,7 +483,11 @@ std::vector<std::pair<std::string, std::string>> quality_items(const QualitySumm
           {"eta_mean", format_number(q.eta_mean)},
           {"eta_min", format_number(q.eta_min)},
           {"schism_angle_ratio_violations", std::to_string(q.schism_angle_ratio_violations)},
-          {"schism_aspect_violations", std::to_string(q.schism_aspect_violations)}};
+          {"schism_aspect_violations", std::to_string(q.schism_aspect_violations)},
+          {"mesh_area_m2", format_number(q.mesh_area_m2)},
+          {"domain_area_m2", format_number(q.domain_area_m2)},
+          {"boundary_departure_max_m", format_number(q.boundary_departure_max_m)},
+          {"boundary_departure_p95_h", format_number(q.boundary_departure_p95_h)}};
 }
 
 // Depth at every vertex from the --bathymetry raster (bilinear, metres, positive down);

@@ -213,6 +213,10 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
   EXPECT_NE(meta["command_line"].find("--output-crs EPSG:4326"), std::string::npos);
   EXPECT_NE(meta["crs_wkt"].find("WGS 84"), std::string::npos);
   EXPECT_EQ(meta["quality.num_quads"], std::to_string(ne));
+  // The mesh's area against the domain's (a water domain of a bbox with islands).
+  const double mesh_area = std::stod(meta["quality.mesh_area_m2"]);
+  EXPECT_NEAR(mesh_area, std::stod(meta["quality.domain_area_m2"]), 0.01 * mesh_area);
+  EXPECT_GE(std::stod(meta["quality.boundary_departure_max_m"]), 0.0);
   std::set<std::string> styled;
   for (auto& f : *styles) {
     const std::string qml = f->GetFieldAsString("styleQML");
