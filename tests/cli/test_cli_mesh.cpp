@@ -98,13 +98,6 @@ double area_of(const OGRGeometry& g) {
   return 0.0;
 }
 
-// Issue 5's properties of a mesh of a real domain, against the domain `isoquad domain`
-// writes with the same front-end options: only quads, all strictly convex and
-// counter-clockwise, none overlapping another; every boundary vertex within 1e-6 h of
-// the domain's boundary; the quads' union has the domain's components and holes (every
-// island still a hole) and differs from it by less than 1% of its area; the area within
-// 1%. The report's coast figures agree: its mesh and domain areas with the layers', and
-// no vertex of the domain's boundary lies farther from the mesh's than its departure.
 // Every part of the layer's geometries (a Part, or a Multi of them) into `out`.
 template <class Part, class Multi>
 void collect_parts(OGRLayer* layer, Multi& out) {
@@ -116,12 +109,20 @@ void collect_parts(OGRLayer* layer, Multi& out) {
   }
 }
 
+// The number after "key": in a JSON report.
 double report_number(const std::string& report, const std::string& key) {
   const std::size_t at = report.find("\"" + key + "\": ");
   EXPECT_NE(at, std::string::npos) << key;
   return at == std::string::npos ? std::nan("") : std::stod(report.substr(at + key.size() + 4));
 }
 
+// Issue 5's properties of a mesh of a real domain, against the domain `isoquad domain`
+// writes with the same front-end options: only quads, all strictly convex and
+// counter-clockwise, none overlapping another; every boundary vertex within 1e-6 h of
+// the domain's boundary; the quads' union has the domain's components and holes (every
+// island still a hole) and differs from it by less than 1% of its area; the area within
+// 1%. The report's coast figures agree: its mesh and domain areas with the layers', and
+// no vertex of the domain's boundary lies farther from the mesh's than its departure.
 void check_mesh_of_domain(const std::string& mesh_gpkg, const std::string& domain_gpkg,
                           const std::string& report, double h_m, int expected_holes) {
   const QuadLayer layer = read_quads(mesh_gpkg);
