@@ -430,6 +430,13 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "fewer such quads at the cost of angles in [75,105] and orientation")
       ->check(CLI::NonNegativeNumber)
       ->group("Quads");
+  cmd->add_option("--coast-weight", m.mesh.smooth.coast_weight,
+                  "Weight, in the angle sweeps, of how far the coast between a boundary edge's "
+                  "ends lies off it (squared, over the edge's length; default 0: none). More "
+                  "slides boundary vertices onto headlands and the heads of inlets, at the cost "
+                  "of angles")
+      ->check(CLI::NonNegativeNumber)
+      ->group("Quads");
   cmd->add_option("--output-format", m.output_formats,
                   "gpkg, vtu, vtk, msh, gr3 or nc: once for every -o, or once per -o in order "
                   "(default: by extension)")

@@ -23,6 +23,40 @@ Point2 chain_point(const BackgroundMesh& mesh, const BoundaryChain& chain, doubl
   return {p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)};
 }
 
+ChordDeparture chord_departure(const QuadMesh& m, const BackgroundMesh& bg, int a, int b) {
+  ChordDeparture result;
+  const int c = m.chain[a];
+  if (c < 0 || m.chain[b] != c) return result;
+  const BoundaryChain& chain = bg.chains[c];
+  const double length = chain.length_m;
+  if (!(length > 0)) return result;
+  // The chain's stretch between the ends: a boundary edge runs the chain's way (the mesh
+  // and the domain are both on their left) and spans less than half the ring, so the
+  // shorter way round is that one.
+  auto ahead = [&](double from, double to) {
+    const double d = std::fmod(to - from, length);
+    return d < 0 ? d + length : d;
+  };
+  double from = m.arc_m[a], span = ahead(from, m.arc_m[b]);
+  if (span > 0.5 * length) from = m.arc_m[b], span = length - span;
+  const auto& arcs = chain.arc_length_m;
+  const std::size_t n = arcs.size();
+  std::size_t k = static_cast<std::size_t>(
+      std::upper_bound(arcs.begin(), arcs.end(), std::fmod(from, length)) - arcs.begin());
+  const Point2 &p = m.points[a], &q = m.points[b];
+  const double dx = q.x - p.x, dy = q.y - p.y, l2 = dx * dx + dy * dy;
+  for (std::size_t step = 0; step < n; ++step, ++k) {
+    const std::size_t i = k % n;
+    const double along = ahead(from, arcs[i]);
+    if (along <= 0 || along >= span) break;
+    const Point2& v = bg.points[chain.vertices[i]];
+    const double t = l2 > 0 ? std::clamp(((v.x - p.x) * dx + (v.y - p.y) * dy) / l2, 0.0, 1.0) : 0.0;
+    const double d = std::hypot(v.x - (p.x + t * dx), v.y - (p.y + t * dy));
+    if (d > result.distance_m) result = {d, chain.vertices[i]};
+  }
+  return result;
+}
+
 double quad_convexity(const Point2& a, const Point2& b, const Point2& c, const Point2& d) {
   const Point2 v[4] = {a, b, c, d};
   // A side shorter than kDegenerateSide times the longest is no side: its direction is

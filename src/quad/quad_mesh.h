@@ -43,6 +43,16 @@ std::vector<std::array<int, 2>> boundary_edges(const QuadMesh& mesh);
 bool boundary_edges_meet(const QuadMesh& mesh, const std::array<int, 2>& e,
                          const std::array<int, 2>& f);
 
+// How far the boundary chain between the two ends of boundary edge a-b (on one chain)
+// lies from the edge: the largest distance of the chain's vertices between them (the
+// shorter way round), and that vertex (a background vertex id; -1 when none lies between
+// or the ends are on different chains).
+struct ChordDeparture {
+  double distance_m = 0.0;
+  int vertex = -1;
+};
+ChordDeparture chord_departure(const QuadMesh& mesh, const BackgroundMesh& background, int a, int b);
+
 // The four interior angles in degrees.
 std::array<double, 4> quad_angles_deg(const QuadMesh& mesh, int q);
 double quad_area(const QuadMesh& mesh, int q);

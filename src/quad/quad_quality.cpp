@@ -28,44 +28,14 @@ std::vector<double> boundary_departures(const QuadMesh& m, const BackgroundMesh&
                                         const SizingField& size, QualitySummary& s) {
   std::vector<double> in_h;
   for (const std::array<int, 2>& e : boundary_edges(m)) {
-    const int a = e[0], b = e[1], c = m.chain[a];
     in_h.push_back(0.0);
-    if (c < 0 || m.chain[b] != c) continue;
-    const BoundaryChain& chain = bg.chains[c];
-    const double length = chain.length_m;
-    if (!(length > 0)) continue;
-    // The chain's stretch between the ends: the edge runs the chain's way (the mesh and
-    // the domain are both on their left) and spans less than half the ring, so the
-    // shorter way round is that one.
-    auto ahead = [&](double from, double to) {
-      const double d = std::fmod(to - from, length);
-      return d < 0 ? d + length : d;
-    };
-    double from = m.arc_m[a], span = ahead(from, m.arc_m[b]);
-    if (span > 0.5 * length) from = m.arc_m[b], span = length - span;
-    const auto& arcs = chain.arc_length_m;
-    const std::size_t n = arcs.size();
-    std::size_t k = static_cast<std::size_t>(
-        std::upper_bound(arcs.begin(), arcs.end(), std::fmod(from, length)) - arcs.begin());
-    const Point2 &p = m.points[a], &q = m.points[b];
-    const double dx = q.x - p.x, dy = q.y - p.y, l2 = dx * dx + dy * dy;
-    double worst = 0;
-    int worst_vertex = -1;
-    for (std::size_t step = 0; step < n; ++step, ++k) {
-      const std::size_t i = k % n;
-      const double along = ahead(from, arcs[i]);
-      if (along <= 0 || along >= span) break;
-      const Point2& v = bg.points[chain.vertices[i]];
-      const double t = l2 > 0 ? std::clamp(((v.x - p.x) * dx + (v.y - p.y) * dy) / l2, 0.0, 1.0) : 0.0;
-      const double d = std::hypot(v.x - (p.x + t * dx), v.y - (p.y + t * dy));
-      if (d > worst) worst = d, worst_vertex = chain.vertices[i];
-    }
-    if (worst_vertex < 0) continue;
-    const double h = size.size_m[worst_vertex];
-    if (h > 0) in_h.back() = worst / h;
-    if (worst > s.boundary_departure_max_m) {
-      s.boundary_departure_max_m = worst;
-      s.boundary_departure_where = bg.points[worst_vertex];
+    const ChordDeparture d = chord_departure(m, bg, e[0], e[1]);
+    if (d.vertex < 0) continue;
+    const double h = size.size_m[d.vertex];
+    if (h > 0) in_h.back() = d.distance_m / h;
+    if (d.distance_m > s.boundary_departure_max_m) {
+      s.boundary_departure_max_m = d.distance_m;
+      s.boundary_departure_where = bg.points[d.vertex];
     }
   }
   return in_h;

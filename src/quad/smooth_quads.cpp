@@ -708,7 +708,15 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
   auto energy = [&](int v, const std::vector<double>& opposite, double& sharpest) {
     sharpest = M_PI;
     double e = moving_corner_energy(m, t, v, params, area0, opposite.data(), sharpest);
-    if (axis.empty() || !std::isfinite(e)) return e;
+    if (!std::isfinite(e)) return e;
+    if (params.coast_weight > 0 && m.chain[v] >= 0)
+      for (int w : t.boundary_neighbours[v]) {
+        if (w < 0) continue;
+        const double len = distance(m.points[v], m.points[w]);
+        const double d = chord_departure(m, bg, v, w).distance_m;
+        if (len > 0) e += params.coast_weight * (d / len) * (d / len);
+      }
+    if (axis.empty()) return e;
     const Point2 u = axis[v];
     for (int w : t.neighbours[v]) {
       const double dx = m.points[w].x - m.points[v].x, dy = m.points[w].y - m.points[v].y;

@@ -122,6 +122,10 @@ struct SmoothParams {
   double size_range_log_area = 0.40;
   double size_range_softness = 0.03;
   double angle_ratio_weight = 0.5;
+  // Per boundary vertex, coast_weight * (departure / length)^2 over its two boundary
+  // edges (chord_departure: how far the coast between an edge's ends lies off it), so
+  // that boundary vertices slide towards the coast's headlands and inlets' heads. 0: off.
+  double coast_weight = 0.0;
   double min_angle_ratio = 0.5;
   double angle_ratio_softness = 0.02;
   // And no move makes a corner sharper than this, or one already sharper sharper still:
