@@ -122,12 +122,12 @@ struct SmoothParams {
   double size_range_log_area = 0.40;
   double size_range_softness = 0.03;
   double angle_ratio_weight = 0.5;
+  double min_angle_ratio = 0.5;
+  double angle_ratio_softness = 0.02;
   // Per boundary vertex, coast_weight * (departure / length)^2 over its two boundary
   // edges (chord_departure: how far the coast between an edge's ends lies off it), so
   // that boundary vertices slide towards the coast's headlands and inlets' heads. 0: off.
   double coast_weight = 0.0;
-  double min_angle_ratio = 0.5;
-  double angle_ratio_softness = 0.02;
   // And no move makes a corner sharper than this, or one already sharper sharper still:
   // with the counts, one corner of a quad could otherwise give way to the others (Natural
   // Earth's 1:50m Peru: smallest angle 28.9 -> 19.7 degrees without it, 30.0 with it,
