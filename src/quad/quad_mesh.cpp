@@ -30,15 +30,13 @@ ChordDeparture chord_departure(const QuadMesh& m, const BackgroundMesh& bg, int 
   const BoundaryChain& chain = bg.chains[c];
   const double length = chain.length_m;
   if (!(length > 0)) return result;
-  // The chain's stretch between the ends: a boundary edge runs the chain's way (the mesh
-  // and the domain are both on their left) and spans less than half the ring, so the
-  // shorter way round is that one.
+  // The chain's stretch from a to b: the edge runs the chain's way (the mesh and the
+  // domain are both on their left).
   auto ahead = [&](double from, double to) {
     const double d = std::fmod(to - from, length);
     return d < 0 ? d + length : d;
   };
-  double from = m.arc_m[a], span = ahead(from, m.arc_m[b]);
-  if (span > 0.5 * length) from = m.arc_m[b], span = length - span;
+  const double from = m.arc_m[a], span = ahead(from, m.arc_m[b]);
   const auto& arcs = chain.arc_length_m;
   const std::size_t n = arcs.size();
   std::size_t k = static_cast<std::size_t>(

@@ -43,10 +43,11 @@ std::vector<std::array<int, 2>> boundary_edges(const QuadMesh& mesh);
 bool boundary_edges_meet(const QuadMesh& mesh, const std::array<int, 2>& e,
                          const std::array<int, 2>& f);
 
-// How far the boundary chain between the two ends of boundary edge a-b (on one chain)
-// lies from the edge: the largest distance of the chain's vertices between them (the
-// shorter way round), and that vertex (a background vertex id; -1 when none lies between
-// or the ends are on different chains).
+// How far the boundary chain between the two ends of boundary edge a->b (directed with
+// the mesh on its left, as boundary_edges gives them, so that it runs the chain's way)
+// lies from the edge: the largest distance of the chain's vertices between them, and
+// that vertex (a background vertex id; -1 when none lies between or the ends are on
+// different chains).
 struct ChordDeparture {
   double distance_m = 0.0;
   int vertex = -1;

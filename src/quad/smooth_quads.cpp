@@ -712,8 +712,15 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const Topology& t,
     if (params.coast_weight > 0 && m.chain[v] >= 0)
       for (int w : t.boundary_neighbours[v]) {
         if (w < 0) continue;
+        // The edge's way with the mesh on its left: as its quad has it.
+        bool forward = true;
+        for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
+          const auto& c = m.quads[t.quad_items[k]];
+          const int j = c[0] == v ? 0 : c[1] == v ? 1 : c[2] == v ? 2 : 3;
+          if (c[(j + 3) % 4] == w) forward = false;
+        }
         const double len = distance(m.points[v], m.points[w]);
-        const double d = chord_departure(m, bg, v, w).distance_m;
+        const double d = (forward ? chord_departure(m, bg, v, w) : chord_departure(m, bg, w, v)).distance_m;
         if (len > 0) e += params.coast_weight * (d / len) * (d / len);
       }
     if (axis.empty()) return e;
