@@ -103,29 +103,44 @@ TEST(QuadQuality, PerfectGridIsPerfect) {
   EXPECT_NEAR(s.boundary_departure_p95_h, 0.0, 1e-9);
 }
 
+namespace {
+
+// One quad with the given corners (counter-clockwise, each a vertex of the background
+// mesh's one boundary chain), its arcs along the chain.
+QuadMesh one_quad_on_the_chain(const BackgroundMesh& bg, const std::array<Point2, 4>& corners) {
+  const BoundaryChain& chain = bg.chains[0];
+  QuadMesh m;
+  for (const Point2& q : corners) {
+    int at = -1;
+    for (std::size_t i = 0; i < chain.vertices.size(); ++i)
+      if (bg.points[chain.vertices[i]].x == q.x && bg.points[chain.vertices[i]].y == q.y) at = static_cast<int>(i);
+    EXPECT_GE(at, 0) << q.x << " " << q.y;
+    m.points.push_back(q);
+    m.chain.push_back(0);
+    m.arc_m.push_back(at >= 0 ? chain.arc_length_m[at] : 0.0);
+    m.fixed.push_back(1);
+  }
+  m.quads = {{0, 1, 2, 3}};
+  return m;
+}
+
+BackgroundMesh background_of(const Ring& ring) {
+  Domain d;
+  d.polygons.push_back({ring, {}});
+  BackgroundMeshParams p;
+  p.max_edge_m = [](const Point2&) { return 100.0; };
+  return build_background_mesh(d, p);
+}
+
+}  // namespace
+
 TEST(QuadQuality, MeasuresHowFarTheDomainsBoundaryLiesFromTheMeshs) {
   // The square with its bottom side bent out to (500, -40), meshed by one quad, the
   // square: its bottom chord (0,0)-(1000,0) skips the chain vertex (500,-40), 40 m off
   // it; the other three sides lie on the chain.
-  Domain d;
-  d.polygons.push_back({{{0, 0}, {500, -40}, {1000, 0}, {kSide, kSide}, {0, kSide}}, {}});
-  BackgroundMeshParams p;
-  p.max_edge_m = [](const Point2&) { return 100.0; };
-  const BackgroundMesh bg = build_background_mesh(d, p);
+  const BackgroundMesh bg = background_of({{0, 0}, {500, -40}, {1000, 0}, {kSide, kSide}, {0, kSide}});
   ASSERT_EQ(bg.chains.size(), 1u);
-  const BoundaryChain& chain = bg.chains[0];
-  QuadMesh m;
-  for (const Point2& q : {Point2{0, 0}, Point2{1000, 0}, Point2{kSide, kSide}, Point2{0, kSide}}) {
-    int at = -1;
-    for (std::size_t i = 0; i < chain.vertices.size(); ++i)
-      if (bg.points[chain.vertices[i]].x == q.x && bg.points[chain.vertices[i]].y == q.y) at = static_cast<int>(i);
-    ASSERT_GE(at, 0) << q.x << " " << q.y;
-    m.points.push_back(q);
-    m.chain.push_back(0);
-    m.arc_m.push_back(chain.arc_length_m[at]);
-    m.fixed.push_back(1);
-  }
-  m.quads = {{0, 1, 2, 3}};
+  const QuadMesh m = one_quad_on_the_chain(bg, {Point2{0, 0}, {1000, 0}, {kSide, kSide}, {0, kSide}});
   SizingField size;
   size.size_m.assign(bg.points.size(), 200.0);
   const QualitySummary s = measure_quality(m, bg, size, constant_cross_field(bg, 0.0));
@@ -137,6 +152,15 @@ TEST(QuadQuality, MeasuresHowFarTheDomainsBoundaryLiesFromTheMeshs) {
   EXPECT_NEAR(s.boundary_departure_max_h, 0.2, 1e-9);
   // One edge of four departs: the 95th percentile is that edge's.
   EXPECT_NEAR(s.boundary_departure_p95_h, 0.2, 1e-9);
+
+  // A thin strip whose bottom bends 300 m down: the bottom chord spans more than half
+  // the ring, and the coast it skips is still the bent side's, not the other three.
+  const BackgroundMesh strip = background_of({{0, 0}, {500, -300}, {1000, 0}, {1000, 10}, {0, 10}});
+  const QuadMesh thin = one_quad_on_the_chain(strip, {Point2{0, 0}, {1000, 0}, {1000, 10}, {0, 10}});
+  SizingField strip_size;
+  strip_size.size_m.assign(strip.points.size(), 200.0);
+  const QualitySummary t = measure_quality(thin, strip, strip_size, constant_cross_field(strip, 0.0));
+  EXPECT_NEAR(t.boundary_departure_max_m, 300.0, 1e-9);
 }
 
 TEST(QuadQuality, MeasuresOrientationAndSizeDeviation) {
