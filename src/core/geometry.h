@@ -39,6 +39,10 @@ struct Domain {
 
 // Signed area of a ring (positive when counter-clockwise), shoelace formula.
 double signed_area(const Ring& ring);
+// Signed area of the triangle a, b, c (positive when counter-clockwise).
+inline double signed_area(const Point2& a, const Point2& b, const Point2& c) {
+  return 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+}
 // Length of the closed ring.
 double perimeter(const Ring& ring);
 // Area of the polygon: outer area minus the holes' areas (unsigned).

@@ -248,7 +248,7 @@ double predicted_num_quads(const BackgroundMesh& mesh, const SizingField& field)
   double n = 0.0;
   for (const auto& t : mesh.triangles) {
     const Point2 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
-    const double area = 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    const double area = signed_area(a, b, c);
     const double h = (field.size_m[t[0]] + field.size_m[t[1]] + field.size_m[t[2]]) / 3.0;
     n += area / (h * h);
   }

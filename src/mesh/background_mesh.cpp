@@ -502,11 +502,7 @@ BackgroundMesh build_background_mesh(const Domain& domain, const BackgroundMeshP
 
   validate_background_mesh(mesh);
   // The marked faces must cover the domain exactly.
-  double mesh_area_m2 = 0.0;
-  for (const auto& t : mesh.triangles) {
-    const Point2 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
-    mesh_area_m2 += 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
-  }
+  const double mesh_area_m2 = area(mesh);
   const double domain_area_m2 = area(domain);
   if (std::abs(mesh_area_m2 - domain_area_m2) > 1e-6 * domain_area_m2)
     throw Error(ErrorClass::internal, kStage,
@@ -514,6 +510,13 @@ BackgroundMesh build_background_mesh(const Domain& domain, const BackgroundMeshP
                     std::to_string(mesh_area_m2) + " m2, domain area " +
                     std::to_string(domain_area_m2) + " m2)");
   return mesh;
+}
+
+double area(const BackgroundMesh& mesh) {
+  double sum = 0.0;
+  for (const auto& t : mesh.triangles)
+    sum += signed_area(mesh.points[t[0]], mesh.points[t[1]], mesh.points[t[2]]);
+  return sum;
 }
 
 void validate_background_mesh(const BackgroundMesh& mesh) {

@@ -83,6 +83,9 @@ struct VertexTriangles {
 };
 VertexTriangles vertex_triangles(const BackgroundMesh& mesh);
 
+// The sum of the triangles' areas: the domain's area, which they cover exactly.
+double area(const BackgroundMesh& mesh);
+
 // Throws Error(internal) unless every triangle is counter-clockwise with positive area,
 // neighbours are symmetric, and the boundary edges (neighbour -1) are exactly the chain
 // edges, each oriented with the domain on its left.

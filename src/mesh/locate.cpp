@@ -26,7 +26,7 @@ TriangleLocator::TriangleLocator(const BackgroundMesh& mesh) : mesh_(&mesh) {
   double covered = 0.0;
   for (const auto& t : mesh.triangles) {
     const Point2 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
-    covered += 0.5 * std::abs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    covered += std::abs(signed_area(a, b, c));
   }
   const double box = std::max((xmax - xmin) * (ymax - ymin), 1e-300);
   const double n = static_cast<double>(std::max<std::size_t>(nf, 1));

@@ -166,10 +166,7 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
       interior + boundary ? static_cast<double>(interior_regular + boundary_regular) / (interior + boundary) : 0;
 
   for (int q = 0; q < nq; ++q) s.mesh_area_m2 += quad_area(m, q);
-  for (const auto& t : bg.triangles) {
-    const Point2 &a = bg.points[t[0]], &b = bg.points[t[1]], &c = bg.points[t[2]];
-    s.domain_area_m2 += 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
-  }
+  s.domain_area_m2 = area(bg);
   const std::vector<double> departures = boundary_departures(m, bg, size, s);
   if (!departures.empty()) {
     s.boundary_departure_max_h = *std::max_element(departures.begin(), departures.end());

@@ -99,7 +99,7 @@ QuadMesh subdivide_tiles(const BackgroundMesh& bg, const Tiling& tiling, const M
   for (std::size_t f = 0; f < bg.triangles.size(); ++f) {
     const auto& t = bg.triangles[f];
     const Point2 &a = bg.points[t[0]], &b = bg.points[t[1]], &c = bg.points[t[2]];
-    const double ar = 0.5 * ((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+    const double ar = signed_area(a, b, c);
     const int tile = tiling.label[f];
     area[tile] += ar;
     cx[tile] += ar * (a.x + b.x + c.x) / 3;

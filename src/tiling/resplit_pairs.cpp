@@ -21,7 +21,7 @@ namespace {
 double triangle_area(const BackgroundMesh& mesh, int f) {
   const auto& t = mesh.triangles[f];
   const Point2 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
-  return 0.5 * std::abs((b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x));
+  return std::abs(signed_area(a, b, c));
 }
 
 // The largest deviation from 90 degrees of the corners of the quadrilateral a b c d

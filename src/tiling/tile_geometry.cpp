@@ -20,7 +20,7 @@ TriangleGeometry triangle_geometry(const BackgroundMesh& mesh, const SizingField
     const Point2 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
     g.cx[f] = (a.x + b.x + c.x) / 3.0;
     g.cy[f] = (a.y + b.y + c.y) / 3.0;
-    g.area_m2[f] = 0.5 * ((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
+    g.area_m2[f] = signed_area(a, b, c);
     g.size_m[f] = (size.size_m[t[0]] + size.size_m[t[1]] + size.size_m[t[2]]) / 3.0;
   }
   for (int f = 0; f < num_faces; ++f) {
