@@ -229,6 +229,13 @@ std::string format_mesh_summary(const MeshResult& r) {
                   q.boundary_departure_max_h, format_point(q.boundary_departure_where).c_str(),
                   q.boundary_departure_p95_h);
   os << buf;
+  if (q.num_boundary_backtracks > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "              %zu boundary edge(s) run backwards along the domain's boundary "
+                  "(the mesh's boundary turns back over the coast there)\n",
+                  q.num_boundary_backtracks);
+    os << buf;
+  }
   std::snprintf(buf, sizeof buf, "regularity:   %.1f%% of interior, %.1f%% of boundary, %.1f%% of all vertices regular\n",
                 100 * q.share_regular_interior, 100 * q.share_regular_boundary, 100 * q.share_regular_all);
   os << buf;
@@ -311,6 +318,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("boundary_departure_max_y_m", q.boundary_departure_where.y)
         .value("boundary_departure_max_h", q.boundary_departure_max_h)
         .value("boundary_departure_p95_h", q.boundary_departure_p95_h)
+        .value("num_boundary_backtracks", q.num_boundary_backtracks)
         .end_object();
     j.begin_object("smoothing")
         .value("tiling_attempts", r.attempts)

@@ -1,8 +1,9 @@
 #include "quad/quad_mesh.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
+#include <functional>
 #include <limits>
 
 namespace isoquad {
@@ -21,6 +22,44 @@ Point2 chain_point(const BackgroundMesh& mesh, const BoundaryChain& chain, doubl
   const Point2& q = mesh.points[chain.vertices[(i + 1) % n]];
   const double t = a1 > a0 ? (s - a0) / (a1 - a0) : 0.0;
   return {p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)};
+}
+
+std::vector<char> boundary_backtracks(const QuadMesh& m, const BackgroundMesh& bg,
+                                      const std::vector<std::array<int, 2>>& edges) {
+  const std::size_t ne = edges.size();
+  std::vector<char> back(ne, 0), seen(ne, 0);
+  std::vector<int> out_edge(m.points.size(), -1);
+  for (std::size_t i = 0; i < ne; ++i) out_edge[edges[i][0]] = static_cast<int>(i);
+  std::vector<int> loop;
+  for (std::size_t first = 0; first < ne; ++first) {
+    if (seen[first]) continue;
+    loop.clear();
+    for (int e = static_cast<int>(first); e >= 0 && !seen[e]; e = out_edge[edges[e][1]]) {
+      seen[e] = 1;
+      loop.push_back(e);
+    }
+    const int c = m.chain[edges[first][0]];
+    if (c < 0) continue;
+    bool one_chain = true;
+    for (int e : loop)
+      one_chain = one_chain && m.chain[edges[e][0]] == c && m.chain[edges[e][1]] == c;
+    const double length = bg.chains[c].length_m;
+    if (!one_chain || !(length > 0)) continue;
+    std::vector<std::pair<double, int>> spans;
+    double total = 0;
+    for (int e : loop) {
+      double d = std::fmod(m.arc_m[edges[e][1]] - m.arc_m[edges[e][0]], length);
+      if (d < 0) d += length;
+      spans.push_back({d, e});
+      total += d;
+    }
+    const long extra = std::lround(total / length) - 1;
+    if (extra <= 0) continue;
+    std::sort(spans.begin(), spans.end(), std::greater<>());
+    for (long k = 0; k < extra && k < static_cast<long>(spans.size()); ++k)
+      back[spans[k].second] = 1;
+  }
+  return back;
 }
 
 ChordDeparture chord_departure(const QuadMesh& m, const BackgroundMesh& bg, int a, int b) {

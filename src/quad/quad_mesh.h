@@ -43,6 +43,15 @@ std::vector<std::array<int, 2>> boundary_edges(const QuadMesh& mesh);
 bool boundary_edges_meet(const QuadMesh& mesh, const std::array<int, 2>& e,
                          const std::array<int, 2>& f);
 
+// Which boundary edges (as boundary_edges gives them) run backwards along their chain:
+// the mesh's boundary, walked with the mesh on its left, turns back over a stretch of
+// the domain's (around the mouth of an inlet narrower than the quads, say) instead of
+// following it once round. Per boundary loop whose vertices are all on one chain, the
+// forward arc spans of its edges add up to the chain's length once, plus a length for
+// each edge that goes back; those are the loop's longest forward spans.
+std::vector<char> boundary_backtracks(const QuadMesh& mesh, const BackgroundMesh& background,
+                                      const std::vector<std::array<int, 2>>& edges);
+
 // How far the boundary chain between the two ends of boundary edge a->b (directed with
 // the mesh on its left, as boundary_edges gives them, so that it runs the chain's way)
 // lies from the edge: the largest distance of the chain's vertices between them, and

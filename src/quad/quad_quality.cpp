@@ -27,9 +27,14 @@ void add_to_histogram(std::vector<int>& h, double value, double lo, double width
 std::vector<double> boundary_departures(const QuadMesh& m, const BackgroundMesh& bg,
                                         const SizingField& size, QualitySummary& s) {
   std::vector<double> in_h;
-  for (const std::array<int, 2>& e : boundary_edges(m)) {
+  const std::vector<std::array<int, 2>> edges = boundary_edges(m);
+  const std::vector<char> back = boundary_backtracks(m, bg, edges);
+  for (std::size_t i = 0; i < edges.size(); ++i) {
+    const std::array<int, 2>& e = edges[i];
     in_h.push_back(0.0);
-    const ChordDeparture d = chord_departure(m, bg, e[0], e[1]);
+    s.num_boundary_backtracks += back[i];
+    const ChordDeparture d =
+        back[i] ? chord_departure(m, bg, e[1], e[0]) : chord_departure(m, bg, e[0], e[1]);
     if (d.vertex < 0) continue;
     const double h = size.size_m[d.vertex];
     if (h > 0) in_h.back() = d.distance_m / h;

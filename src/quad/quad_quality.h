@@ -50,6 +50,10 @@ struct QualitySummary {
   double boundary_departure_max_m = 0;
   Point2 boundary_departure_where{0, 0};  // the chain vertex farthest from its chord
   double boundary_departure_max_h = 0, boundary_departure_p95_h = 0;
+  // Boundary edges that run backwards along the domain's boundary (boundary_backtracks;
+  // 0 unless the mesh's boundary turns back over the coast). Such an edge's departure is
+  // that of the stretch it runs back over.
+  std::size_t num_boundary_backtracks = 0;
 };
 
 QualitySummary measure_quality(const QuadMesh& mesh, const BackgroundMesh& background,

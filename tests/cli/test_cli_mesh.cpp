@@ -122,7 +122,8 @@ double report_number(const std::string& report, const std::string& key) {
 // the domain's boundary; the quads' union has the domain's components and holes (every
 // island still a hole) and differs from it by less than 1% of its area; the area within
 // 1%. The report's coast figures agree: its mesh and domain areas with the layers', and
-// no vertex of the domain's boundary lies farther from the mesh's than its departure.
+// no vertex of the domain's boundary lies farther from the mesh's than its departure; no
+// boundary edge runs back along the coast.
 void check_mesh_of_domain(const std::string& mesh_gpkg, const std::string& domain_gpkg,
                           const std::string& report, double h_m, int expected_holes) {
   const QuadLayer layer = read_quads(mesh_gpkg);
@@ -170,6 +171,7 @@ void check_mesh_of_domain(const std::string& mesh_gpkg, const std::string& domai
   EXPECT_LE(farthest, departure + 1e-6 * h_m);
   EXPECT_GT(departure, 0.0);
   EXPECT_LT(departure, 20 * h_m);
+  EXPECT_EQ(report_number(report, "num_boundary_backtracks"), 0.0);
   EXPECT_NEAR(report_number(report, "mesh_area_m2"), area, 1e-9 * area);
   EXPECT_NEAR(report_number(report, "domain_area_m2"), domain_area, 1e-6 * domain_area);
   EXPECT_GT(num_boundary, 100);

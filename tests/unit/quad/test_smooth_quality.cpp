@@ -105,12 +105,13 @@ TEST(QuadQuality, PerfectGridIsPerfect) {
 
 namespace {
 
-// One quad with the given corners (counter-clockwise, each a vertex of the background
-// mesh's one boundary chain), its arcs along the chain.
-QuadMesh one_quad_on_the_chain(const BackgroundMesh& bg, const std::array<Point2, 4>& corners) {
+// Quads whose vertices are all vertices of the background mesh's one boundary chain,
+// their arcs along the chain.
+QuadMesh quads_on_the_chain(const BackgroundMesh& bg, const std::vector<Point2>& points,
+                            const std::vector<std::array<int, 4>>& quads) {
   const BoundaryChain& chain = bg.chains[0];
   QuadMesh m;
-  for (const Point2& q : corners) {
+  for (const Point2& q : points) {
     int at = -1;
     for (std::size_t i = 0; i < chain.vertices.size(); ++i)
       if (bg.points[chain.vertices[i]].x == q.x && bg.points[chain.vertices[i]].y == q.y) at = static_cast<int>(i);
@@ -120,8 +121,13 @@ QuadMesh one_quad_on_the_chain(const BackgroundMesh& bg, const std::array<Point2
     m.arc_m.push_back(at >= 0 ? chain.arc_length_m[at] : 0.0);
     m.fixed.push_back(1);
   }
-  m.quads = {{0, 1, 2, 3}};
+  m.quads = quads;
   return m;
+}
+
+// One quad with the given corners (counter-clockwise).
+QuadMesh one_quad_on_the_chain(const BackgroundMesh& bg, const std::array<Point2, 4>& corners) {
+  return quads_on_the_chain(bg, {corners.begin(), corners.end()}, {{0, 1, 2, 3}});
 }
 
 BackgroundMesh background_of(const Ring& ring) {
@@ -161,6 +167,36 @@ TEST(QuadQuality, MeasuresHowFarTheDomainsBoundaryLiesFromTheMeshs) {
   strip_size.size_m.assign(strip.points.size(), 200.0);
   const QualitySummary t = measure_quality(thin, strip, strip_size, constant_cross_field(strip, 0.0));
   EXPECT_NEAR(t.boundary_departure_max_m, 300.0, 1e-9);
+  EXPECT_EQ(s.num_boundary_backtracks, 0u);
+  EXPECT_EQ(t.num_boundary_backtracks, 0u);
+}
+
+TEST(QuadQuality, FindsBoundaryEdgesThatRunBackAlongTheCoast) {
+  // The square with a thin inlet 500 m long off its left side, between y = 490 and 520.
+  // The mesh's boundary goes from the square's top right corner to a, on the inlet's
+  // upper bank, back to b, on the square's left side above the inlet, then across the
+  // inlet's mouth to c on its lower bank: a -> b runs 180 m backwards along the chain.
+  const Point2 a{-100, 517}, b{0, 600}, c{-100, 495};
+  const BackgroundMesh bg = background_of(
+      {{0, 0}, {1000, 0}, {kSide, kSide}, {0, kSide}, b, {0, 520}, a, {-500, 505}, c, {0, 490}});
+  ASSERT_EQ(bg.chains.size(), 1u);
+  const QuadMesh m = quads_on_the_chain(bg, {{0, 0}, {1000, 0}, {kSide, kSide}, a, b, c},
+                                        {{1, 2, 3, 4}, {1, 4, 5, 0}});
+  const std::vector<std::array<int, 2>> edges = boundary_edges(m);
+  ASSERT_EQ(edges.size(), 6u);
+  const std::vector<char> back = boundary_backtracks(m, bg, edges);
+  for (std::size_t i = 0; i < edges.size(); ++i)
+    EXPECT_EQ(back[i] != 0, edges[i][0] == 3 && edges[i][1] == 4)
+        << edges[i][0] << "->" << edges[i][1];
+  SizingField size;
+  size.size_m.assign(bg.points.size(), 200.0);
+  const QualitySummary s = measure_quality(m, bg, size, constant_cross_field(bg, 0.0));
+  EXPECT_EQ(s.num_boundary_backtracks, 1u);
+  // a -> b departs by the stretch it runs back over ((0, 520), 61.6 m off it), not by
+  // the rest of the ring: the farthest is (0, 1000), 402 m off the top right -> a chord.
+  EXPECT_NEAR(s.boundary_departure_max_m, 402.041, 1e-3);
+  EXPECT_NEAR(s.boundary_departure_where.x, 0.0, 1e-9);
+  EXPECT_NEAR(s.boundary_departure_where.y, kSide, 1e-9);
 }
 
 TEST(QuadQuality, MeasuresOrientationAndSizeDeviation) {
