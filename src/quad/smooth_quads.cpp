@@ -77,6 +77,18 @@ double arc_delta(double a, double b, double len) {
   return d;
 }
 
+// Whether boundary vertex v lies strictly between its two boundary neighbours along
+// its chain (false when it has not two on its chain).
+bool between_boundary_neighbours(const BackgroundMesh& bg, const QuadMesh& m, const Topology& t,
+                                 int v) {
+  const auto& bn = t.boundary_neighbours[v];
+  const int c = m.chain[v];
+  if (c < 0 || bn[0] < 0 || bn[1] < 0 || m.chain[bn[0]] != c || m.chain[bn[1]] != c) return false;
+  const double len = bg.chains[c].length_m;
+  const double d0 = arc_delta(m.arc_m[v], m.arc_m[bn[0]], len);
+  return d0 * arc_delta(m.arc_m[v], m.arc_m[bn[1]], len) < 0;
+}
+
 // Tries to move vertex v to `target` (and arc `arc` on the boundary): kept only if the
 // incident quads stay at least as convex as required (or as they were).
 bool try_move(QuadMesh& m, const Topology& t, int v, const Point2& target, double arc,
@@ -172,6 +184,10 @@ void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const Sm
           if (distance(m.points[w], m.points[v]) < floor_side) return true;
         return false;
       };
+      // A boundary vertex between its two boundary neighbours stays between them
+      // (SmoothParams::untangle_keeps_boundary_order).
+      const bool keep_order =
+          params.untangle_keeps_boundary_order && between_boundary_neighbours(bg, m, t, v);
       double best = worst_convexity(m, t, v);
       if (m.chain[v] < 0 && best <= params.min_convexity) {
         // A local search may sit in the wrong part of a non-convex 1-ring: try a grid
@@ -210,7 +226,8 @@ void untangle(const BackgroundMesh& bg, QuadMesh& m, const Topology& t, const Sm
               m.points[v] = {old.x + step * std::cos(a), old.y + step * std::sin(a)};
             }
             const double value = worst_convexity(m, t, v);
-            if (value > best + 1e-12 && !short_edge()) {
+            if (value > best + 1e-12 && !short_edge() &&
+                (!keep_order || between_boundary_neighbours(bg, m, t, v))) {
               best = value;
               improved = true;
             } else {

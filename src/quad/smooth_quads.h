@@ -26,6 +26,12 @@ struct SmoothParams {
   // cases, France default 6 -> 2, the Baltic 81 -> 19 (those at near-pinches of its
   // domain, from the subdivision).
   double untangle_min_side = 0.1;
+  // Untangling slides a boundary vertex that lies between its two boundary neighbours
+  // only as far as stays between them; false: anywhere along its chain, as before
+  // 2026-12-02. Sliding past a neighbour turns the mesh's boundary back over the coast
+  // (boundary_backtracks) or folds it: 7 of 254 countries at 1:10m had such edges (India
+  // kept a 13.8-degree quad by it), the Mediterranean at 1:10m with hmin 1 km four.
+  bool untangle_keeps_boundary_order = true;
   int flip_rounds = 5;  // rounds of quad edge flips when untangling is not enough
   // Rounds of diagonal collapses when flips are not enough either (the last resort before
   // the caller retries the tiling): see SmoothStats::num_collapses.

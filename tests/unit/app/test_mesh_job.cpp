@@ -26,14 +26,15 @@ MeshOptions corsica(double hmax_m) {
 
 // The smoothing without what was added to it after the cases below were found: the
 // sweeps' side ratio terms (aspect_weight, aspect_log_weight), the untangling's side
-// floor (untangle_min_side) and the sweeps again after the repairs
-// (resweep_iterations). With those, their first tilings mesh without the repairs the
-// tests are about.
+// floor (untangle_min_side), the sweeps again after the repairs (resweep_iterations)
+// and the untangling's boundary order (untangle_keeps_boundary_order). With those,
+// their first tilings mesh without the repairs the tests are about.
 void without_the_later_smoothing(MeshOptions& o) {
   o.smooth.aspect_weight = 0.0;
   o.smooth.aspect_log_weight = 0.0;
   o.smooth.untangle_min_side = 0.0;
   o.smooth.resweep_iterations = 0;
+  o.smooth.untangle_keeps_boundary_order = false;
 }
 
 // The domain simplified as before the simplification kept parts of the boundary apart
@@ -257,6 +258,28 @@ TEST(MeshJob, AFlipAndTheSlidesUnfoldAMeshFoldedAtAnInlet) {
   // (the tiling was retried with the sizes halved there). An edge flip of a quad on a
   // crossing edge, followed by the sweeps and the slides, does.
   expect_mended_by_a_flip_in_one_tiling(france(24000.0, 800.0));
+}
+
+TEST(MeshJob, TheUntanglingKeepsTheBoundaryVerticesInTheirOrderAlongTheCoast) {
+  // Cambodia at 1:10m (tests/data/cambodia_10m.geojson: the feature of world-atlas's
+  // countries-10m, Natural Earth, written by ogr2ogr), automatic sizes: the sliver pass's
+  // untangling slid a boundary vertex past its neighbour along the coast, and the mesh's
+  // boundary then ran back over the coast there, 159 m. With the untangling keeping the
+  // order, no edge does.
+  MeshOptions o;
+  o.fields.front.read.path = source_dir() + "/tests/data/cambodia_10m.geojson";
+  o.fields.front.read.src_crs = "EPSG:4326";
+  o.fields.front.read.repair = true;
+  const MeshResult r = build_mesh(o);
+  EXPECT_EQ(r.quality.num_boundary_backtracks, 0u);
+  EXPECT_EQ(r.quality.num_nonconvex, 0u);
+  EXPECT_EQ(r.quality.num_boundary_crossings, 0u);
+  EXPECT_LT(r.quality.boundary_departure_max_h, 2.0);
+
+  o.smooth.untangle_keeps_boundary_order = false;
+  const MeshResult before = build_mesh(o);
+  EXPECT_GE(before.quality.num_boundary_backtracks, 1u)
+      << "the premise: without it an edge runs back";
 }
 
 TEST(MeshJob, NoQuadHasASideOfAFewMetresNextToSidesOfKilometres) {
