@@ -24,6 +24,17 @@ Point2 chain_point(const BackgroundMesh& mesh, const BoundaryChain& chain, doubl
   return {p.x + t * (q.x - p.x), p.y + t * (q.y - p.y)};
 }
 
+namespace {
+
+// How far ahead of arc `from` arc `to` lies along a closed chain of length `length`, in
+// [0, length).
+double arc_ahead(double from, double to, double length) {
+  const double d = std::fmod(to - from, length);
+  return d < 0 ? d + length : d;
+}
+
+}  // namespace
+
 std::vector<char> boundary_backtracks(const QuadMesh& m, const BackgroundMesh& bg,
                                       const std::vector<std::array<int, 2>>& edges) {
   const std::size_t ne = edges.size();
@@ -48,8 +59,7 @@ std::vector<char> boundary_backtracks(const QuadMesh& m, const BackgroundMesh& b
     std::vector<std::pair<double, int>> spans;
     double total = 0;
     for (int e : loop) {
-      double d = std::fmod(m.arc_m[edges[e][1]] - m.arc_m[edges[e][0]], length);
-      if (d < 0) d += length;
+      const double d = arc_ahead(m.arc_m[edges[e][0]], m.arc_m[edges[e][1]], length);
       spans.push_back({d, e});
       total += d;
     }
@@ -71,11 +81,7 @@ ChordDeparture chord_departure(const QuadMesh& m, const BackgroundMesh& bg, int 
   if (!(length > 0)) return result;
   // The chain's stretch from a to b: the edge runs the chain's way (the mesh and the
   // domain are both on their left).
-  auto ahead = [&](double from, double to) {
-    const double d = std::fmod(to - from, length);
-    return d < 0 ? d + length : d;
-  };
-  const double from = m.arc_m[a], span = ahead(from, m.arc_m[b]);
+  const double from = m.arc_m[a], span = arc_ahead(from, m.arc_m[b], length);
   const auto& arcs = chain.arc_length_m;
   const std::size_t n = arcs.size();
   std::size_t k = static_cast<std::size_t>(
@@ -84,7 +90,7 @@ ChordDeparture chord_departure(const QuadMesh& m, const BackgroundMesh& bg, int 
   const double dx = q.x - p.x, dy = q.y - p.y, l2 = dx * dx + dy * dy;
   for (std::size_t step = 0; step < n; ++step, ++k) {
     const std::size_t i = k % n;
-    const double along = ahead(from, arcs[i]);
+    const double along = arc_ahead(from, arcs[i], length);
     if (along <= 0 || along >= span) break;
     const Point2& v = bg.points[chain.vertices[i]];
     const double t = l2 > 0 ? std::clamp(((v.x - p.x) * dx + (v.y - p.y) * dy) / l2, 0.0, 1.0) : 0.0;
