@@ -38,13 +38,12 @@ SingularityCounts count_singularities(const std::vector<Singularity>& singularit
   return c;
 }
 
-}  // namespace
-
-void build_fields_on_domain(const Domain& domain, const FieldsOptions& options,
-                            FieldsResult& r, const Progress& progress) {
-  if (!(options.background_factor > 0 && options.background_factor <= 1))
-    throw Error(ErrorClass::usage, "background", "--background-factor must be in (0, 1]");
-  StageClock timer(r.times);
+// The sizing sources, the background mesh and the sizes at its vertices (stages
+// "sizing sources", "background mesh" and "sizing field"). The sources and the size
+// cache are this function's own: they are gone before the cross field's solve, the
+// largest allocation of a large domain.
+void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, FieldsResult& r,
+                          StageClock& timer, const Progress& progress) {
   progress.report("sizing", 0.0);
   SizingOracle oracle(domain, options.sizing);
   r.sizing = oracle.summary();
@@ -68,11 +67,25 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options,
   bp.max_edge_m = [&cache, factor](const Point2& p) { return factor * cache(p); };
   r.mesh = build_background_mesh(domain, bp);
   r.num_size_cache_leaves = cache.num_leaves();
+  // The triangulation's many small blocks, freed, would otherwise stay resident beside
+  // the cross field's large ones.
+  release_free_memory();
   timer.lap("background mesh");
 
   progress.report("sizing", 0.6);
   r.size = sample_sizing_field(r.mesh, oracle, options.sizing.gradation);
   timer.lap("sizing field");
+}
+
+}  // namespace
+
+void build_fields_on_domain(const Domain& domain, const FieldsOptions& options,
+                            FieldsResult& r, const Progress& progress) {
+  if (!(options.background_factor > 0 && options.background_factor <= 1))
+    throw Error(ErrorClass::usage, "background", "--background-factor must be in (0, 1]");
+  StageClock timer(r.times);
+  build_mesh_and_sizes(domain, options, r, timer, progress);
+  release_free_memory();
 
   progress.report("cross", 0.8);
   switch (options.cross.source) {

@@ -22,6 +22,11 @@ double process_peak_mb();
 // True when stages get their own peaks (resident memory can be sampled here).
 bool stage_peaks_supported();
 
+// Hands the heap's free pages back to the system (glibc's malloc_trim; elsewhere
+// nothing), so that memory a stage freed in many small blocks is not counted resident
+// beside the next stage's large arrays.
+void release_free_memory();
+
 // Starts a stage at construction and at every lap; lap() appends the stage just ended.
 class StageClock {
  public:
