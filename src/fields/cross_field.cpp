@@ -36,6 +36,95 @@ double cotangent(const Point2& apex, const Point2& a, const Point2& b) {
   return (ux * vx + uy * vy) / std::abs(ux * vy - uy * vx);
 }
 
+// An edge of the background mesh once, with its cotan weight (cot / 2 from each
+// incident triangle, at least kMinWeight) and the rotation omega the field is asked to
+// make from the lower vertex id to the higher.
+struct CotanEdge {
+  int lo, hi;
+  double w, omega;
+};
+
+constexpr double kMinWeight = 1e-3;
+
+// The edges in (lo, hi) order. omega is `conformal` times the integral of J grad log h
+// (the rotation of a conformal grid with the sizes), averaged over the edge's triangles;
+// 0 without sizes.
+std::vector<CotanEdge> cotan_edges(const BackgroundMesh& mesh, const std::vector<double>& size_m,
+                                   double conformal, bool connect) {
+  const int num_triangles = static_cast<int>(mesh.triangles.size());
+  std::vector<std::array<double, 2>> gradient(connect ? num_triangles : 0, {0.0, 0.0});
+  for (int f = 0; f < static_cast<int>(gradient.size()); ++f) {
+    const auto& t = mesh.triangles[f];
+    const Point2 &p0 = mesh.points[t[0]], &p1 = mesh.points[t[1]], &p2 = mesh.points[t[2]];
+    const double l0 = std::log(size_m[t[0]]), l1 = std::log(size_m[t[1]]) - l0,
+                 l2 = std::log(size_m[t[2]]) - l0;
+    const double ax = p1.x - p0.x, ay = p1.y - p0.y, bx = p2.x - p0.x, by = p2.y - p0.y;
+    const double det = ax * by - ay * bx;
+    if (det != 0.0) gradient[f] = {(l1 * by - l2 * ay) / det, (ax * l2 - bx * l1) / det};
+  }
+  // Triangle f's share of its edge opposite corner i.
+  auto share = [&](int f, int i, double& w, double& omega) {
+    const auto& t = mesh.triangles[f];
+    const int a = t[(i + 1) % 3], b = t[(i + 2) % 3];
+    w = 0.5 * cotangent(mesh.points[t[i]], mesh.points[a], mesh.points[b]);
+    omega = 0.0;
+    if (!connect) return;
+    const Point2 &lo = mesh.points[std::min(a, b)], &hi = mesh.points[std::max(a, b)];
+    omega = conformal * (gradient[f][0] * (hi.y - lo.y) - gradient[f][1] * (hi.x - lo.x));
+  };
+  std::vector<CotanEdge> edges;
+  edges.reserve(3 * static_cast<std::size_t>(num_triangles) / 2 + mesh.points.size());
+  for (int f = 0; f < num_triangles; ++f)
+    for (int i = 0; i < 3; ++i) {
+      const int g = mesh.neighbours[f][i];
+      if (g >= 0 && g < f) continue;  // taken from g
+      const auto& t = mesh.triangles[f];
+      double w = 0.0, omega = 0.0;
+      share(f, i, w, omega);
+      int count = 1;
+      if (g >= 0) {
+        int j = 0;
+        while (mesh.neighbours[g][j] != f) ++j;
+        double wg = 0.0, omega_g = 0.0;
+        share(g, j, wg, omega_g);
+        w += wg;
+        omega += omega_g;
+        count = 2;
+      }
+      const int a = t[(i + 1) % 3], b = t[(i + 2) % 3];
+      edges.push_back({std::min(a, b), std::max(a, b), std::max(w, kMinWeight), omega / count});
+    }
+  std::sort(edges.begin(), edges.end(), [](const CotanEdge& x, const CotanEdge& y) {
+    return x.lo < y.lo || (x.lo == y.lo && x.hi < y.hi);
+  });
+  return edges;
+}
+
+// The matrix of the energy over the free vertices (`unknown`: vertex -> unknown or -1):
+// `diagonal` on the diagonal, value(edge) at (a, b) and its conjugate at (b, a) for
+// each edge between two unknowns a < b, filled column by column into reserved space.
+template <typename Scalar, typename Value>
+Eigen::SparseMatrix<Scalar> energy_matrix(const std::vector<CotanEdge>& edges,
+                                          const std::vector<int>& unknown,
+                                          const std::vector<double>& diagonal, Value value) {
+  const int n = static_cast<int>(diagonal.size());
+  Eigen::VectorXi per_column = Eigen::VectorXi::Ones(n);
+  for (const CotanEdge& e : edges)
+    if (unknown[e.lo] >= 0 && unknown[e.hi] >= 0) ++per_column[unknown[e.lo]], ++per_column[unknown[e.hi]];
+  Eigen::SparseMatrix<Scalar> m(n, n);
+  m.reserve(per_column);
+  for (int i = 0; i < n; ++i) m.insert(i, i) = diagonal[i];
+  for (const CotanEdge& e : edges) {
+    const int ia = unknown[e.lo], ib = unknown[e.hi];
+    if (ia < 0 || ib < 0) continue;
+    const Scalar v = value(e);
+    m.insert(ia, ib) = v;
+    m.insert(ib, ia) = Eigen::numext::conj(v);
+  }
+  m.makeCompressed();
+  return m;
+}
+
 }  // namespace
 
 double cross_rotation_rad(double from_rad, double to_rad) {
@@ -53,7 +142,6 @@ CrossField constant_cross_field(const BackgroundMesh& mesh, double angle_deg) {
 CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
                                         const std::vector<double>& size_m, double conformal) {
   const int num_vertices = static_cast<int>(mesh.points.size());
-
   // Boundary data: sum of exp(4 i phi) over the two boundary edges of each chain vertex.
   // Averaging in 4-phi space keeps a 90-degree corner's cross aligned with both edges.
   std::vector<double> bc(num_vertices, 0.0), bs(num_vertices, 0.0);
@@ -96,95 +184,42 @@ CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
     // angle; clamping to a small positive weight keeps the matrix an M-matrix, so the
     // solution obeys a maximum principle (no overshoot, |u| <= 1) and stays SPD (with
     // rotations, Hermitian positive definite).
-    const int num_triangles = static_cast<int>(mesh.triangles.size());
-    struct EdgeEntry { int b; double w, omega; };
-    std::vector<std::vector<EdgeEntry>> adjacency(num_vertices);
     // Constant sizes ask for no rotation: the field is then exactly the smoothest one.
     const bool connect = conformal != 0.0 && size_m.size() == mesh.points.size() &&
                          std::adjacent_find(size_m.begin(), size_m.end(),
                                             std::not_equal_to<>()) != size_m.end();
-    for (int f = 0; f < num_triangles; ++f) {
-      const auto& t = mesh.triangles[f];
-      double gx = 0.0, gy = 0.0;  // gradient of log h in the triangle
-      if (connect) {
-        const Point2 &p0 = mesh.points[t[0]], &p1 = mesh.points[t[1]], &p2 = mesh.points[t[2]];
-        const double l0 = std::log(size_m[t[0]]), l1 = std::log(size_m[t[1]]) - l0,
-                     l2 = std::log(size_m[t[2]]) - l0;
-        const double ax = p1.x - p0.x, ay = p1.y - p0.y, bx = p2.x - p0.x, by = p2.y - p0.y;
-        const double det = ax * by - ay * bx;
-        if (det != 0.0) {
-          gx = (l1 * by - l2 * ay) / det;
-          gy = (ax * l2 - bx * l1) / det;
-        }
-      }
-      for (int i = 0; i < 3; ++i) {
-        const int a = t[(i + 1) % 3], b = t[(i + 2) % 3];
-        const double w =
-            0.5 * cotangent(mesh.points[t[i]], mesh.points[a], mesh.points[b]);
-        // Rotation of a conformal grid from lo to hi: the integral of J grad log h.
-        const int lo = std::min(a, b), hi = std::max(a, b);
-        const double ex = mesh.points[hi].x - mesh.points[lo].x, ey = mesh.points[hi].y - mesh.points[lo].y;
-        const double omega = conformal * (gx * ey - gy * ex);
-        adjacency[lo].push_back({hi, w, omega});
-      }
-    }
-    constexpr double kMinWeight = 1e-3;
-    // The real Laplacian (no rotations) and, with rotations, the complex Hermitian
-    // matrix of the energy. Without rotations the real and imaginary parts decouple: one
-    // real factorisation, two right-hand sides.
+    std::vector<CotanEdge> edges = cotan_edges(mesh, size_m, conformal, connect);
     using Complex = std::complex<double>;
-    std::vector<Eigen::Triplet<double>> real_triplets;
-    std::vector<Eigen::Triplet<Complex>> triplets;
     Eigen::VectorXcd rhs = Eigen::VectorXcd::Zero(num_unknowns);
     std::vector<double> diagonal(num_unknowns, 0.0);
-    for (int a = 0; a < num_vertices; ++a) {
-      auto& edges = adjacency[a];
-      std::sort(edges.begin(), edges.end(),
-                [](const EdgeEntry& x, const EdgeEntry& y) { return x.b < y.b; });
-      for (std::size_t k = 0; k < edges.size();) {
-        const int b = edges[k].b;
-        double w = 0.0, omega = 0.0;
-        int count = 0;
-        for (; k < edges.size() && edges[k].b == b; ++k, ++count) {
-          w += edges[k].w;
-          omega += edges[k].omega;
-        }
-        omega /= count;
-        w = std::max(w, kMinWeight);
-        // u_b ~ r u_a with r = exp(4 i omega): the energy w |u_b - r u_a|^2 puts
-        // -w conj(r) at (a, b) and -w r at (b, a).
-        const Complex r = std::polar(1.0, 4.0 * omega);
-        const Complex ua(uc[a], us[a]), ub(uc[b], us[b]);
-        const int ia = unknown[a], ib = unknown[b];
-        if (ia >= 0) diagonal[ia] += w;
-        if (ib >= 0) diagonal[ib] += w;
-        if (ia >= 0 && ib >= 0) {
-          real_triplets.emplace_back(ia, ib, -w);
-          real_triplets.emplace_back(ib, ia, -w);
-          if (connect) {
-            triplets.emplace_back(ia, ib, -w * std::conj(r));
-            triplets.emplace_back(ib, ia, -w * r);
-          }
-        } else if (ia >= 0) {
-          rhs(ia) += w * std::conj(r) * ub;
-        } else if (ib >= 0) {
-          rhs(ib) += w * r * ua;
-        }
-      }
+    for (const CotanEdge& e : edges) {
+      // u_b ~ r u_a with r = exp(4 i omega): the energy w |u_b - r u_a|^2 puts
+      // -w conj(r) at (a, b) and -w r at (b, a).
+      const Complex r = std::polar(1.0, 4.0 * e.omega);
+      const int ia = unknown[e.lo], ib = unknown[e.hi];
+      if (ia >= 0) diagonal[ia] += e.w;
+      if (ib >= 0) diagonal[ib] += e.w;
+      if (ia >= 0 && ib < 0) rhs(ia) += e.w * std::conj(r) * Complex(uc[e.hi], us[e.hi]);
+      if (ib >= 0 && ia < 0) rhs(ib) += e.w * r * Complex(uc[e.lo], us[e.lo]);
     }
-    for (int i = 0; i < num_unknowns; ++i) {
-      real_triplets.emplace_back(i, i, diagonal[i]);
-      if (connect) triplets.emplace_back(i, i, diagonal[i]);
-    }
-    Eigen::SparseMatrix<double> laplacian(num_unknowns, num_unknowns);
-    laplacian.setFromTriplets(real_triplets.begin(), real_triplets.end());
-    Eigen::SparseMatrix<Complex> hermitian(num_unknowns, num_unknowns);
-    if (connect) hermitian.setFromTriplets(triplets.begin(), triplets.end());
-    std::vector<Eigen::Triplet<double>>().swap(real_triplets);
-    std::vector<Eigen::Triplet<Complex>>().swap(triplets);
-    std::vector<std::vector<EdgeEntry>>().swap(adjacency);
-
-    const Eigen::VectorXcd u = solve_cross_system(laplacian, connect ? &hermitian : nullptr, rhs);
+    // The real Laplacian (no rotations), factorised first; with rotations the complex
+    // Hermitian matrix of the energy, built only then (the two and the factor are most
+    // of the memory on large domains). Without rotations the real and imaginary parts
+    // decouple: one real factorisation, two right-hand sides.
+    auto laplacian = energy_matrix<double>(edges, unknown, diagonal,
+                                           [](const CotanEdge& e) { return -e.w; });
+    std::function<Eigen::SparseMatrix<Complex>()> hermitian;
+    if (connect)
+      hermitian = [&] {
+        auto h = energy_matrix<Complex>(edges, unknown, diagonal, [](const CotanEdge& e) {
+          return -e.w * std::conj(std::polar(1.0, 4.0 * e.omega));
+        });
+        std::vector<CotanEdge>().swap(edges);
+        return h;
+      };
+    else
+      std::vector<CotanEdge>().swap(edges);
+    const Eigen::VectorXcd u = solve_cross_system(std::move(laplacian), hermitian, rhs);
     for (int v = 0; v < num_vertices; ++v) {
       if (unknown[v] < 0) continue;
       uc[v] = u(unknown[v]).real();

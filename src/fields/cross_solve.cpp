@@ -11,14 +11,15 @@ namespace {
 const char* const kStage = "cross field";
 }
 
-Eigen::VectorXcd solve_cross_system(const Eigen::SparseMatrix<double>& laplacian,
-                                    const Eigen::SparseMatrix<std::complex<double>>* hermitian,
+Eigen::VectorXcd solve_cross_system(Eigen::SparseMatrix<double> laplacian,
+                                    const std::function<Eigen::SparseMatrix<std::complex<double>>()>& hermitian,
                                     const Eigen::VectorXcd& rhs, int max_iterations) {
   const Eigen::Index n = laplacian.rows();
   const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> solver(laplacian);
   if (solver.info() != Eigen::Success)
     throw Error(ErrorClass::meshing, kStage,
                 "the Laplacian could not be factorised (a mesh component without boundary?)");
+  Eigen::SparseMatrix<double>().swap(laplacian);  // the factor holds what the solves need
   // The real solve of a complex vector: its real and imaginary parts, at once on two
   // threads (the factor is only read; each part is solved exactly as alone).
   auto real_solve = [&](const Eigen::VectorXcd& right) {
@@ -37,7 +38,7 @@ Eigen::VectorXcd solve_cross_system(const Eigen::SparseMatrix<double>& laplacian
 
   // A relative residual of 1e-5 moves crosses by far less than a degree; France
   // automatic: 16 iterations.
-  const Eigen::SparseMatrix<std::complex<double>>& h = *hermitian;
+  const Eigen::SparseMatrix<std::complex<double>> h = hermitian();
   const double target = 1e-5 * rhs.norm();
   Eigen::VectorXcd residual = rhs - h * u;
   Eigen::VectorXcd z = real_solve(residual);

@@ -6,15 +6,18 @@
 #include <Eigen/Sparse>
 
 #include <complex>
+#include <functional>
 
 namespace isoquad {
 
 // Solves H u = rhs for the cross field's unknowns u = exp(4 i theta).
 //
 // `laplacian` is the real cotan Laplacian of the free vertices (symmetric positive
-// definite); `hermitian`, when the field is asked to rotate along edges, is the same
-// matrix with each off-diagonal entry turned by its edge's rotation (Hermitian positive
-// definite); null when there are no rotations, and then H = laplacian.
+// definite); `hermitian`, when the field is asked to rotate along edges, returns the
+// same matrix with each off-diagonal entry turned by its edge's rotation (Hermitian
+// positive definite); empty when there are no rotations, and then H = laplacian. It is
+// called once, after the real factorisation, and `laplacian` (taken by value: move it
+// in) is freed before: the three matrices are never held at once.
 //
 // Without rotations: one real factorisation, the real and imaginary parts solved at
 // once on two threads. With them: conjugate gradients on H preconditioned by the real
@@ -28,8 +31,8 @@ namespace isoquad {
 //
 // Throws Error (meshing) when a factorisation fails (a component without a fixed
 // boundary vertex).
-Eigen::VectorXcd solve_cross_system(const Eigen::SparseMatrix<double>& laplacian,
-                                    const Eigen::SparseMatrix<std::complex<double>>* hermitian,
+Eigen::VectorXcd solve_cross_system(Eigen::SparseMatrix<double> laplacian,
+                                    const std::function<Eigen::SparseMatrix<std::complex<double>>()>& hermitian,
                                     const Eigen::VectorXcd& rhs, int max_iterations = 200);
 
 }  // namespace isoquad
