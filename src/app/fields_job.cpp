@@ -79,8 +79,8 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
 
 }  // namespace
 
-void build_fields_on_domain(const Domain& domain, const FieldsOptions& options,
-                            FieldsResult& r, const Progress& progress) {
+void build_fields_on_domain(const Domain& domain, const FieldsOptions& options, FieldsResult& r,
+                            const Progress& progress) {
   if (!(options.background_factor > 0 && options.background_factor <= 1))
     throw Error(ErrorClass::usage, "background", "--background-factor must be in (0, 1]");
   StageClock timer(r.times);

@@ -110,7 +110,8 @@ Eigen::SparseMatrix<Scalar> energy_matrix(const std::vector<CotanEdge>& edges,
   const int n = static_cast<int>(diagonal.size());
   Eigen::VectorXi per_column = Eigen::VectorXi::Ones(n);
   for (const CotanEdge& e : edges)
-    if (unknown[e.lo] >= 0 && unknown[e.hi] >= 0) ++per_column[unknown[e.lo]], ++per_column[unknown[e.hi]];
+    if (unknown[e.lo] >= 0 && unknown[e.hi] >= 0)
+      ++per_column[unknown[e.lo]], ++per_column[unknown[e.hi]];
   Eigen::SparseMatrix<Scalar> m(n, n);
   m.reserve(per_column);
   for (int i = 0; i < n; ++i) m.insert(i, i) = diagonal[i];
@@ -206,8 +207,8 @@ CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
     // Hermitian matrix of the energy, built only then (the two and the factor are most
     // of the memory on large domains). Without rotations the real and imaginary parts
     // decouple: one real factorisation, two right-hand sides.
-    auto laplacian = energy_matrix<double>(edges, unknown, diagonal,
-                                           [](const CotanEdge& e) { return -e.w; });
+    auto laplacian =
+        energy_matrix<double>(edges, unknown, diagonal, [](const CotanEdge& e) { return -e.w; });
     std::function<Eigen::SparseMatrix<Complex>()> hermitian;
     if (connect)
       hermitian = [&] {

@@ -11,9 +11,10 @@ namespace {
 const char* const kStage = "cross field";
 }
 
-Eigen::VectorXcd solve_cross_system(Eigen::SparseMatrix<double> laplacian,
-                                    const std::function<Eigen::SparseMatrix<std::complex<double>>()>& hermitian,
-                                    const Eigen::VectorXcd& rhs, int max_iterations) {
+Eigen::VectorXcd solve_cross_system(
+    Eigen::SparseMatrix<double> laplacian,
+    const std::function<Eigen::SparseMatrix<std::complex<double>>()>& hermitian,
+    const Eigen::VectorXcd& rhs, int max_iterations) {
   const Eigen::Index n = laplacian.rows();
   const Eigen::SimplicialLLT<Eigen::SparseMatrix<double>> solver(laplacian);
   if (solver.info() != Eigen::Success)

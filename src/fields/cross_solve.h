@@ -31,8 +31,9 @@ namespace isoquad {
 //
 // Throws Error (meshing) when a factorisation fails (a component without a fixed
 // boundary vertex).
-Eigen::VectorXcd solve_cross_system(Eigen::SparseMatrix<double> laplacian,
-                                    const std::function<Eigen::SparseMatrix<std::complex<double>>()>& hermitian,
-                                    const Eigen::VectorXcd& rhs, int max_iterations = 200);
+Eigen::VectorXcd solve_cross_system(
+    Eigen::SparseMatrix<double> laplacian,
+    const std::function<Eigen::SparseMatrix<std::complex<double>>()>& hermitian,
+    const Eigen::VectorXcd& rhs, int max_iterations = 200);
 
 }  // namespace isoquad

@@ -61,7 +61,8 @@ double relative_residual(const Eigen::SparseMatrix<Complex>& h, const Eigen::Vec
 }
 
 // The Hermitian matrix as the solve asks for it, counting the calls (it is built once).
-std::function<Eigen::SparseMatrix<Complex>()> hermitian_of(const GridSystem& s, int* calls = nullptr) {
+std::function<Eigen::SparseMatrix<Complex>()> hermitian_of(const GridSystem& s,
+                                                           int* calls = nullptr) {
   return [&s, calls] {
     if (calls) ++*calls;
     return s.hermitian;
