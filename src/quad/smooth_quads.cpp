@@ -1077,6 +1077,25 @@ std::vector<int> quads_near(const QuadMesh& m, const Topology& t, const Point2& 
   return out;
 }
 
+// Ten Gauss-Seidel sweeps, in vertex order, that put each interior vertex of `quads`
+// (neither on the boundary nor fixed) at the middle of its neighbours; convexity is left
+// to the untangling after.
+void move_to_neighbours_middle(QuadMesh& m, const Topology& t, const std::vector<int>& quads) {
+  std::vector<int> movable;
+  for (int q : quads)
+    for (int v : m.quads[q])
+      if (m.chain[v] < 0 && !m.fixed[v] && !t.neighbours[v].empty()) movable.push_back(v);
+  std::sort(movable.begin(), movable.end());
+  movable.erase(std::unique(movable.begin(), movable.end()), movable.end());
+  for (int sweep = 0; sweep < 10; ++sweep)
+    for (int v : movable) {
+      Point2 c{0, 0};
+      for (int w : t.neighbours[v]) c.x += m.points[w].x, c.y += m.points[w].y;
+      const double k = static_cast<double>(t.neighbours[v].size());
+      m.points[v] = {c.x / k, c.y / k};
+    }
+}
+
 // A thin chord: a row of quads joined by their short sides, from the boundary to the
 // boundary, each quad's short sides under a quarter of its long ones (Croatia at 1:10m:
 // a column 27 m wide and 615 m long, ending in a quad with a side of 0.7 m). No
@@ -1207,7 +1226,10 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
       changed = false;
     }
     // A change of the topology around the sliver, kept when the mesh is then better.
-    auto kept = [&](const std::function<bool()>& change) {
+    // With `relocate`, the interior vertices of the quads next to it first go to the
+    // middle of their neighbours (a change that leaves a vertex of three or five quads
+    // can need it moved further than the untangling's steps take it).
+    auto kept = [&](const std::function<bool()>& change, bool relocate) {
       QuadMesh before = m;
       const SmoothStats stats_before = stats;
       if (!change()) {
@@ -1216,6 +1238,7 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
       }
       const Topology t = topology(m);
       const std::vector<int> near = quads_near(m, t, tried.back(), kSliverRings);
+      if (relocate) move_to_neighbours_middle(m, t, quads_near(m, t, tried.back(), 1));
       SmoothStats ignored;
       untangle(bg, m, t, lift, ignored, false, &near);
       untangle(bg, m, t, params, stats, true, &near);
@@ -1232,27 +1255,41 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
       return false;
     };
     // Each diagonal collapse (shortest diagonal first), then each edge flip with a
-    // neighbour (its hexagon split along another diagonal).
+    // neighbour (its hexagon split along another diagonal); failing all, the same again
+    // with the vertices next to the change relocated (SmoothParams::sliver_relocate).
     bool done = false;
-    for (int choice = 0; choice < 4 && !done; ++choice)
-      if (kept([&] { return collapse_quads(m, [&](int q) { return q == pick; }, choice) > 0; })) {
+    for (int pass = 0; pass < (params.sliver_relocate ? 2 : 1) && !done; ++pass) {
+      const bool relocate = pass == 1;
+      for (int choice = 0; choice < 4 && !done; ++choice)
+        if (kept(
+                [&] {
+                  return collapse_quads(
+                             m, [&](int q) { return q == pick; }, choice) > 0;
+                },
+                relocate)) {
+          ++stats.num_sliver_collapses;
+          done = true;
+        }
+      const std::vector<QuadFlip> flips =
+          done ? std::vector<QuadFlip>{} : flips_of(m, EdgeQuads(m), pick);
+      for (std::size_t k = 0; k < flips.size() && !done; ++k)
+        if (kept(
+                [&] {
+                  m.quads[flips[k].q] = flips[k].a;
+                  m.quads[flips[k].n] = flips[k].b;
+                  return true;
+                },
+                relocate)) {
+          ++stats.num_flips;
+          done = true;
+        }
+      // Failing those, the thin row it ends, collapsed.
+      if (!done && !relocate && params.sliver_row_max > 0 &&
+          kept([&] { return collapse_chord(bg, m, pick, params.sliver_row_max); }, false)) {
         ++stats.num_sliver_collapses;
         done = true;
       }
-    const std::vector<QuadFlip> flips = done ? std::vector<QuadFlip>{} : flips_of(m, EdgeQuads(m), pick);
-    for (std::size_t k = 0; k < flips.size() && !done; ++k)
-      if (kept([&] {
-            m.quads[flips[k].q] = flips[k].a;
-            m.quads[flips[k].n] = flips[k].b;
-            return true;
-          })) {
-        ++stats.num_flips;
-        done = true;
-      }
-    // Failing those, the thin row it ends, collapsed.
-    if (!done && params.sliver_row_max > 0 &&
-        kept([&] { return collapse_chord(bg, m, pick, params.sliver_row_max); }))
-      ++stats.num_sliver_collapses;
+    }
   }
 }
 

@@ -282,6 +282,33 @@ TEST(MeshJob, TheUntanglingKeepsTheBoundaryVerticesInTheirOrderAlongTheCoast) {
       << "the premise: without it an edge runs back";
 }
 
+TEST(MeshJob, ASliverAtACapesTipIsMendedWithItsNeighboursRelocated) {
+  // The Alboran Sea's water at 1:10m (tests/data/alboran_10m.geojson: world-atlas's
+  // land-10m, Natural Earth, clipped by ogr2ogr to a box around --bbox), automatic
+  // sizes: the tip of the Ebro delta, a reflex corner, sat in two quads, one of them a
+  // sliver of 13.9 degrees beside the boundary vertex next to it, in three. No collapse
+  // or flip mended it where the vertices stood; the flip that gives the tip its third
+  // quad does once the interior vertices next to it are moved to their neighbours'
+  // middle.
+  MeshOptions o;
+  o.fields.front.read.path = source_dir() + "/tests/data/alboran_10m.geojson";
+  o.fields.front.read.src_crs = "EPSG:4326";
+  o.fields.front.read.repair = true;
+  o.fields.front.read.bbox = std::array<double, 4>{-5.202, 35.23, 0.798, 41.23};
+  o.fields.front.kind = DomainKind::water;
+  const MeshResult r = build_mesh(o);
+  EXPECT_EQ(r.attempts, 1);
+  EXPECT_EQ(r.quality.num_nonconvex, 0u);
+  EXPECT_EQ(r.quality.num_boundary_crossings, 0u);
+  EXPECT_EQ(r.quality.num_boundary_backtracks, 0u);
+  EXPECT_GT(r.quality.min_angle_deg, 20.0);
+  EXPECT_LT(r.quality.max_angle_deg, 165.0);
+
+  o.smooth.sliver_relocate = false;
+  const MeshResult before = build_mesh(o);
+  EXPECT_LT(before.quality.min_angle_deg, 15.0) << "the premise: without it the sliver stays";
+}
+
 TEST(MeshJob, NoQuadHasASideOfAFewMetresNextToSidesOfKilometres) {
   // France automatic at hmax 28 km (the acceptance case). Measured on 2026-12-02: the
   // untangling, which raised the worst corner turn at any length of side, and the
