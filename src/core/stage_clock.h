@@ -16,7 +16,8 @@ struct StageTime {
   double peak_mb = 0.0;
 };
 
-// The process's peak resident memory since it started, in MB.
+// The process's peak resident memory since it started, in MB (VmHWM; where
+// /proc/self/status is missing, getrusage's ru_maxrss).
 double process_peak_mb();
 
 // True when stages get their own peaks (resident memory can be sampled here).
