@@ -85,7 +85,7 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options, 
     throw Error(ErrorClass::usage, "background", "--background-factor must be in (0, 1]");
   StageClock timer(r.times);
   build_mesh_and_sizes(domain, options, r, timer, progress);
-  release_free_memory();
+  release_free_memory();  // the sources' and the cache's blocks too
 
   progress.report("cross", 0.8);
   switch (options.cross.source) {

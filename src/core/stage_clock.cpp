@@ -79,8 +79,9 @@ class ResidentSampler {
 
 double process_peak_mb() {
   // The kernel's high-water mark of this process image's resident memory. getrusage's
-  // ru_maxrss is not that: it keeps, across exec, what the forked copy of the parent
-  // held (isoquad started from a script holding 500 MB reported 555 MB for any job).
+  // ru_maxrss is not that: it keeps, across exec, the mark of the memory the process had
+  // before, the parent's when started by vfork and exec as Python's subprocess does
+  // (from a script holding 500 MB, France automatic reported 510 MB instead of 93).
   if (std::FILE* f = std::fopen("/proc/self/status", "r")) {
     char line[256];
     long long kb = -1;

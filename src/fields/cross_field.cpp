@@ -143,6 +143,7 @@ CrossField constant_cross_field(const BackgroundMesh& mesh, double angle_deg) {
 CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
                                         const std::vector<double>& size_m, double conformal) {
   const int num_vertices = static_cast<int>(mesh.points.size());
+
   // Boundary data: sum of exp(4 i phi) over the two boundary edges of each chain vertex.
   // Averaging in 4-phi space keeps a 90-degree corner's cross aligned with both edges.
   std::vector<double> bc(num_vertices, 0.0), bs(num_vertices, 0.0);
