@@ -1189,8 +1189,10 @@ bool collapse_chord(const BackgroundMesh& bg, QuadMesh& m, int start, int max_ro
 // leaves fewer slivers without lowering it. At most sliver_tries quads are tried; a
 // collapse not kept is undone. (Sweeps over the whole mesh after each try cost the
 // Arctic Ocean at 1:10m, 39,770 quads, 10 s of its 13 s here; the local ones 0.1 s.)
+// With `relocate` (SmoothParams::sliver_relocate), each try moves the interior vertices
+// next to the change to their neighbours' middle first, and no thin row is collapsed.
 void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
-                      const SmoothParams& lift, SmoothStats& stats) {
+                      const SmoothParams& lift, SmoothStats& stats, bool relocate = false) {
   auto scan = [&](int& slivers, int& nonconvex, double& worst) {
     slivers = nonconvex = 0;
     worst = 1.0;
@@ -1229,7 +1231,7 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
     // With `relocate`, the interior vertices of the quads next to it first go to the
     // middle of their neighbours (a change that leaves a vertex of three or five quads
     // can need it moved further than the untangling's steps take it).
-    auto kept = [&](const std::function<bool()>& change, bool relocate) {
+    auto kept = [&](const std::function<bool()>& change) {
       QuadMesh before = m;
       const SmoothStats stats_before = stats;
       if (!change()) {
@@ -1255,41 +1257,31 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
       return false;
     };
     // Each diagonal collapse (shortest diagonal first), then each edge flip with a
-    // neighbour (its hexagon split along another diagonal); failing all, the same again
-    // with the vertices next to the change relocated (SmoothParams::sliver_relocate).
+    // neighbour (its hexagon split along another diagonal).
     bool done = false;
-    for (int pass = 0; pass < (params.sliver_relocate ? 2 : 1) && !done; ++pass) {
-      const bool relocate = pass == 1;
-      for (int choice = 0; choice < 4 && !done; ++choice)
-        if (kept(
-                [&] {
-                  return collapse_quads(
-                             m, [&](int q) { return q == pick; }, choice) > 0;
-                },
-                relocate)) {
-          ++stats.num_sliver_collapses;
-          done = true;
-        }
-      const std::vector<QuadFlip> flips =
-          done ? std::vector<QuadFlip>{} : flips_of(m, EdgeQuads(m), pick);
-      for (std::size_t k = 0; k < flips.size() && !done; ++k)
-        if (kept(
-                [&] {
-                  m.quads[flips[k].q] = flips[k].a;
-                  m.quads[flips[k].n] = flips[k].b;
-                  return true;
-                },
-                relocate)) {
-          ++stats.num_flips;
-          done = true;
-        }
-      // Failing those, the thin row it ends, collapsed.
-      if (!done && !relocate && params.sliver_row_max > 0 &&
-          kept([&] { return collapse_chord(bg, m, pick, params.sliver_row_max); }, false)) {
+    for (int choice = 0; choice < 4 && !done; ++choice)
+      if (kept([&] {
+            return collapse_quads(
+                       m, [&](int q) { return q == pick; }, choice) > 0;
+          })) {
         ++stats.num_sliver_collapses;
         done = true;
       }
-    }
+    const std::vector<QuadFlip> flips =
+        done ? std::vector<QuadFlip>{} : flips_of(m, EdgeQuads(m), pick);
+    for (std::size_t k = 0; k < flips.size() && !done; ++k)
+      if (kept([&] {
+            m.quads[flips[k].q] = flips[k].a;
+            m.quads[flips[k].n] = flips[k].b;
+            return true;
+          })) {
+        ++stats.num_flips;
+        done = true;
+      }
+    // Failing those, the thin row it ends, collapsed (not again with the relocation).
+    if (!done && !relocate && params.sliver_row_max > 0 &&
+        kept([&] { return collapse_chord(bg, m, pick, params.sliver_row_max); }))
+      ++stats.num_sliver_collapses;
   }
 }
 
@@ -1498,30 +1490,46 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
   std::vector<Point2> split;  // where the corner splits left their quads' vertices
   if (params.doubled_corner_side > 0 && count_nonconvex() == 0)
     split = split_doubled_corners(bg, m, params, lift, stats);
-  if (params.resweep_iterations > 0 && params.angle_iterations > 0 && count_nonconvex() == 0) {
-    // The repairs above move vertices for convexity alone, and flips and collapses leave
-    // new quads unswept: the angle sweeps again (SmoothParams::resweep_iterations) on the
-    // vertices that moved since the sweeps and the ones next to them, undone should they
-    // fold the mesh.
+  // The repairs move vertices for convexity alone, and flips and collapses leave new
+  // quads unswept: the angle sweeps again (SmoothParams::resweep_iterations) on the
+  // vertices that moved since `swept_at` (sorted positions) or stand at `also`, and the
+  // ones next to them, undone should they fold the mesh.
+  auto resweep_moved = [&](const std::vector<Point2>& swept_at, const std::vector<Point2>& also) {
+    if (params.resweep_iterations <= 0 || params.angle_iterations <= 0 || count_nonconvex() > 0)
+      return;
     const Topology t2 = topology(m);
     std::vector<char> only(m.points.size(), 0);
     bool any = false;
     for (std::size_t v = 0; v < m.points.size(); ++v) {
-      if (std::binary_search(swept.begin(), swept.end(), m.points[v], point_less) &&
-          !std::binary_search(split.begin(), split.end(), m.points[v], point_less))
+      if (std::binary_search(swept_at.begin(), swept_at.end(), m.points[v], point_less) &&
+          !std::binary_search(also.begin(), also.end(), m.points[v], point_less))
         continue;
       any = true;
       only[v] = 1;
       for (int w : t2.neighbours[v]) only[w] = 1;
     }
-    if (any) {
-      const std::size_t crossings = count_boundary_crossings(m);
-      QuadMesh before = m;
-      // With the lift's convexity bound: nothing the lift raised falls back.
-      SmoothParams resweep = params;
-      resweep.min_convexity = std::max(params.min_convexity, params.lift_convexity);
-      angle_sweeps(bg, m, t2, resweep, cross, size, &only, params.resweep_iterations);
-      if (count_nonconvex() > 0 || count_boundary_crossings(m) > crossings) m = std::move(before);
+    if (!any) return;
+    const std::size_t crossings = count_boundary_crossings(m);
+    QuadMesh before = m;
+    // With the lift's convexity bound: nothing the lift raised falls back.
+    SmoothParams resweep = params;
+    resweep.min_convexity = std::max(params.min_convexity, params.lift_convexity);
+    angle_sweeps(bg, m, t2, resweep, cross, size, &only, params.resweep_iterations);
+    if (count_nonconvex() > 0 || count_boundary_crossings(m) > crossings) m = std::move(before);
+  };
+  resweep_moved(swept, split);
+  // Slivers left after all that: the sliver pass once more, each try with the vertices
+  // next to the change relocated first (SmoothParams::sliver_relocate), then the sweeps
+  // again where it moved vertices.
+  if (params.sliver_relocate && count_nonconvex() == 0) {
+    bool any_sliver = false;
+    for (int q = 0; q < static_cast<int>(m.quads.size()) && !any_sliver; ++q)
+      any_sliver = quad_convexity(m, q) <= params.sliver_convexity;
+    if (any_sliver) {
+      std::vector<Point2> now = m.points;
+      std::sort(now.begin(), now.end(), point_less);
+      collapse_slivers(bg, m, params, lift, stats, true);
+      resweep_moved(now, {});
     }
   }
   stats.num_nonconvex_after = count_nonconvex();

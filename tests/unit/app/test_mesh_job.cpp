@@ -287,9 +287,9 @@ TEST(MeshJob, ASliverAtACapesTipIsMendedWithItsNeighboursRelocated) {
   // land-10m, Natural Earth, clipped by ogr2ogr to a box around --bbox), automatic
   // sizes: the tip of the Ebro delta, a reflex corner, sat in two quads, one of them a
   // sliver of 13.9 degrees beside the boundary vertex next to it, in three. No collapse
-  // or flip mended it where the vertices stood; the flip that gives the tip its third
-  // quad does once the interior vertices next to it are moved to their neighbours'
-  // middle.
+  // or flip mended it where the vertices stood, nor did the sweeps after; tried again at
+  // the end with the interior vertices next to the change moved to their neighbours'
+  // middle first, a diagonal collapse does (the tip is then in four quads).
   MeshOptions o;
   o.fields.front.read.path = source_dir() + "/tests/data/alboran_10m.geojson";
   o.fields.front.read.src_crs = "EPSG:4326";
