@@ -1,7 +1,8 @@
 // Smoothing of the quad mesh (paper, section 2.7) and the convexity guarantee: Laplacian
 // smoothing where boundary vertices slide along the domain boundary and corners stay
 // fixed, no move allowed to make a quad non-convex; then untangling of any quad that is
-// still not strictly convex.
+// still not strictly convex. The sweeps are in quad_sweeps.h, the local repairs of the
+// topology in quad_repairs.h; smooth_quads runs them in order.
 #pragma once
 
 #include "fields/cross_field.h"

@@ -1,0 +1,557 @@
+#include "quad/quad_sweeps.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <thread>
+
+#include "mesh/locate.h"
+
+namespace isoquad {
+
+namespace {
+
+// Colours of the vertices such that no two vertices of a quad share one (greedy, in vertex
+// order): vertices of a colour are moved independently of each other, each colour's in
+// vertex order.
+std::vector<std::vector<int>> quad_colouring(const QuadMesh& m, const QuadTopology& t) {
+  const int nv = static_cast<int>(m.points.size());
+  std::vector<int> colour(nv, -1);
+  std::vector<std::vector<int>> classes;
+  std::vector<char> taken;
+  for (int v = 0; v < nv; ++v) {
+    taken.assign(classes.size() + 1, 0);
+    for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k)
+      for (int w : m.quads[t.quad_items[k]])
+        if (colour[w] >= 0) taken[colour[w]] = 1;
+    int c = 0;
+    while (taken[c]) ++c;
+    colour[v] = c;
+    if (c == static_cast<int>(classes.size())) classes.emplace_back();
+    classes[c].push_back(v);
+  }
+  return classes;
+}
+
+// Threads for the sweeps (SmoothParams::threads; the result does not depend on it).
+int sweep_threads(const SmoothParams& params) {
+  if (params.threads > 0) return params.threads;
+  return static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, 4u));
+}
+
+// body(begin, end, thread) over [0, n) in `threads` contiguous chunks, in parallel.
+template <class Body>
+void parallel_chunks(int n, int threads, const Body& body) {
+  const int chunk = (n + threads - 1) / std::max(threads, 1);
+  if (threads <= 1 || n < 64) {
+    body(0, n, 0);
+    return;
+  }
+  std::vector<std::thread> pool;
+  for (int k = 1; k < threads; ++k) {
+    const int begin = k * chunk, end = std::min(n, begin + chunk);
+    if (begin < end) pool.emplace_back([&body, begin, end, k] { body(begin, end, k); });
+  }
+  body(0, std::min(n, chunk), 0);
+  for (std::thread& th : pool) th.join();
+}
+
+// The field-aligned sweeps (SmoothParams::aligned_iterations).
+class AlignedSmoother {
+ public:
+  AlignedSmoother(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
+                  const SizingField& size, const CrossField& cross, const SmoothParams& params)
+      : bg_(bg), m_(m), t_(t), size_(size), cross_(cross), params_(params), locator_(bg) {}
+
+  void run() {
+    const int nv = static_cast<int>(m_.points.size());
+    h_.resize(nv);
+    theta_.resize(nv);
+    const int threads = sweep_threads(params_);
+    for (int it = 0; it < params_.aligned_iterations; ++it) {
+      parallel_chunks(nv, threads, [&](int begin, int end, int) {
+        for (int v = begin; v < end; ++v) {
+          const Location loc = locator_.locate(m_.points[v]);
+          h_[v] = loc.triangle >= 0 ? size_.at(bg_, loc.triangle, loc.bary) : 0.0;
+          theta_[v] = loc.triangle >= 0 ? cross_angle_at(bg_, cross_, loc.triangle, loc.bary) : 0.0;
+        }
+      });
+      for (int v = 0; v < nv; ++v) {
+        if (m_.fixed[v]) continue;
+        if (m_.chain[v] >= 0)
+          slide_boundary(v);
+        else
+          move_interior(v);
+      }
+    }
+  }
+
+ private:
+  // A regular vertex: its four neighbours in angular order take the four axes of the
+  // cross at v in the rotation that fits them best; each predicts v one edge length
+  // back along its axis (the mean h of the edge's ends, blended with the current mean
+  // edge length by aligned_keep_length). Other vertices: Laplacian.
+  void move_interior(int v) {
+    const std::vector<int>& nb = t_.neighbours[v];
+    const Point2 p = m_.points[v];
+    Point2 target{0, 0};
+    if (nb.size() != 4 || !(h_[v] > 0.0)) {
+      if (nb.empty()) return;
+      for (int w : nb) target.x += m_.points[w].x, target.y += m_.points[w].y;
+      target.x /= nb.size();
+      target.y /= nb.size();
+    } else {
+      std::array<std::pair<double, int>, 4> around;
+      for (int j = 0; j < 4; ++j)
+        around[j] = {std::atan2(m_.points[nb[j]].y - p.y, m_.points[nb[j]].x - p.x), nb[j]};
+      std::sort(around.begin(), around.end());
+      int best_rotation = 0;
+      double best_cost = std::numeric_limits<double>::infinity();
+      for (int r = 0; r < 4; ++r) {
+        double cost = 0;
+        for (int j = 0; j < 4; ++j)
+          cost +=
+              std::abs(std::remainder(around[j].first - theta_[v] - (r + j) * M_PI / 2, 2 * M_PI));
+        if (cost < best_cost) best_cost = cost, best_rotation = r;
+      }
+      const double keep = params_.aligned_keep_length;
+      double mean_length = 0;
+      for (int w : nb) mean_length += 0.25 * distance(p, m_.points[w]);
+      for (int j = 0; j < 4; ++j) {
+        const int w = around[j].second;
+        const double a = theta_[v] + (best_rotation + j) * M_PI / 2;
+        const double h_edge = h_[w] > 0.0 ? 0.5 * (h_[v] + h_[w]) : h_[v];
+        const double h = (1 - keep) * h_edge + keep * mean_length;
+        target.x += m_.points[w].x - h * std::cos(a);
+        target.y += m_.points[w].y - h * std::sin(a);
+      }
+      target.x /= 4;
+      target.y /= 4;
+    }
+    const double s = params_.aligned_step;
+    try_move(m_, t_, v, {p.x + s * (target.x - p.x), p.y + s * (target.y - p.y)}, m_.arc_m[v],
+             params_.min_convexity);
+  }
+
+  // A boundary vertex with one interior neighbour w slides halfway between the foot of
+  // w on the boundary (an orthogonal inward edge) and the midpoint of its boundary
+  // neighbours.
+  void slide_boundary(int v) {
+    const auto& bn = t_.boundary_neighbours[v];
+    if (bn[0] < 0 || bn[1] < 0) return;
+    const int c = m_.chain[v];
+    if (m_.chain[bn[0]] != c || m_.chain[bn[1]] != c) return;
+    const double len = bg_.chains[c].length_m;
+    const double d0 = arc_delta(m_.arc_m[v], m_.arc_m[bn[0]], len);
+    const double d1 = arc_delta(m_.arc_m[v], m_.arc_m[bn[1]], len);
+    if (d0 * d1 >= 0) return;
+    const int ahead = d0 > 0 ? bn[0] : bn[1], behind = d0 > 0 ? bn[1] : bn[0];
+    double shift = 0.5 * (d0 + d1);
+    int inner = -1;
+    for (int w : t_.neighbours[v])
+      if (w != bn[0] && w != bn[1]) inner = inner < 0 ? w : -2;
+    if (inner >= 0) {
+      const Point2 &pa = m_.points[ahead], &pb = m_.points[behind], &p = m_.points[v];
+      const double tx = pa.x - pb.x, ty = pa.y - pb.y, tl = std::hypot(tx, ty);
+      if (tl > 0.0) {
+        double foot = ((m_.points[inner].x - p.x) * tx + (m_.points[inner].y - p.y) * ty) / tl;
+        const double limit = 0.5 * std::min(std::abs(d0), std::abs(d1));
+        foot = std::max(-limit, std::min(limit, foot));
+        shift = 0.5 * (shift + foot);
+      }
+    }
+    const double arc = m_.arc_m[v] + params_.aligned_step * shift;
+    try_move(m_, t_, v, chain_point(bg_, bg_.chains[c], arc), arc, params_.min_convexity);
+  }
+
+  const BackgroundMesh& bg_;
+  QuadMesh& m_;
+  const QuadTopology& t_;
+  const SizingField& size_;
+  const CrossField& cross_;
+  const SmoothParams& params_;
+  TriangleLocator locator_;
+  std::vector<double> h_, theta_;
+};
+
+// The logistic function: a smooth step from 0 (x << 0) to 1 (x >> 0).
+double smooth_step(double x) {
+  return 1.0 / (1.0 + std::exp(-x));
+}
+
+// The angle at corner o of a quad whose corners run p, o, n counter-clockwise, in (-pi, pi]
+// (negative where the quad folds).
+double corner_angle_rad(const Point2& p, const Point2& o, const Point2& n) {
+  const double ax = p.x - o.x, ay = p.y - o.y, bx = n.x - o.x, by = n.y - o.y;
+  return std::atan2(bx * ay - by * ax, ax * bx + ay * by);
+}
+
+// The angle sweeps' energy at v: over the quads around v, the sum of (angle - 90 deg)^2
+// (rad^2) plus the smooth count of corners out of range (SmoothParams::angle_range_*) of
+// the corners that a move of v changes (at v and at its two neighbours in the quad; the
+// fourth is constant: opposite_angle, per quad of v in order), plus per quad
+// area_weight (log(area / area0))^2, the smooth count of sizes out of range
+// (size_range_*; area0: the target area), of smallest over largest angle under
+// min_angle_ratio and of longest over shortest side over max_aspect; infinite when one
+// of the moving corners turns by less than min_convexity (quad_convexity's measure; the
+// caller has checked the fourth).
+// `sharpest` takes the smallest of the moving corners' angles, if smaller.
+double moving_corner_energy(const QuadMesh& m, const QuadTopology& t, int v,
+                            const SmoothParams& params, const std::vector<double>& area0,
+                            const double* opposite_angle, double& sharpest) {
+  const double range = params.angle_range_deg * M_PI / 180;
+  const double softness = params.angle_range_softness_deg * M_PI / 180;
+  double e = 0;
+  for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
+    const int q = t.quad_items[k];
+    const auto& c = m.quads[q];
+    const int j = c[0] == v ? 0 : c[1] == v ? 1 : c[2] == v ? 2 : 3;
+    double smallest = opposite_angle[k - t.quad_start[v]], largest = smallest;
+    for (int d = 3; d <= 5; ++d) {
+      const int i = (j + d) % 4;
+      const Point2 &p = m.points[c[(i + 3) % 4]], &o = m.points[c[i]],
+                   &n = m.points[c[(i + 1) % 4]];
+      const double ax = p.x - o.x, ay = p.y - o.y, bx = n.x - o.x, by = n.y - o.y;
+      const double cross = bx * ay - by * ax, dot = ax * bx + ay * by;
+      const double angle = std::atan2(cross, dot);
+      smallest = std::min(smallest, angle);
+      largest = std::max(largest, angle);
+      sharpest = std::min(sharpest, angle);
+      // quad_convexity's measure at this corner: the sine of the turn between edges.
+      const double l2 = (ax * ax + ay * ay) * (bx * bx + by * by);
+      if (l2 == 0 || cross <= params.min_convexity * std::sqrt(l2))
+        return std::numeric_limits<double>::infinity();
+      const double a = angle - 0.5 * M_PI;
+      e += a * a;
+      if (params.angle_range_weight > 0)
+        e += params.angle_range_weight * smooth_step((std::abs(a) - range) / softness);
+    }
+    if (params.angle_ratio_weight > 0)
+      e += params.angle_ratio_weight *
+           smooth_step((params.min_angle_ratio - smallest / largest) / params.angle_ratio_softness);
+    if (params.aspect_weight > 0 || params.aspect_log_weight > 0) {
+      double shortest = std::numeric_limits<double>::infinity(), longest = 0;
+      for (int i = 0; i < 4; ++i) {
+        const double l = distance(m.points[c[i]], m.points[c[(i + 1) % 4]]);
+        shortest = std::min(shortest, l), longest = std::max(longest, l);
+      }
+      if (shortest > 0) {
+        const double over = std::log(longest / shortest) - std::log(params.max_aspect);
+        e += params.aspect_weight * smooth_step(over / params.aspect_softness);
+        if (over > 0) e += params.aspect_log_weight * over;
+      }
+    }
+    if (params.angle_area_weight > 0 || params.size_range_weight > 0) {
+      const double r = std::log(quad_area(m, q) / area0[q]);
+      e += params.angle_area_weight * r * r;
+      if (params.size_range_weight > 0)
+        e += params.size_range_weight *
+             smooth_step((std::abs(r) - params.size_range_log_area) / params.size_range_softness);
+    }
+  }
+  return e;
+}
+
+}  // namespace
+
+// Untangling: move the vertices of non-convex quads to maximise the worst convexity
+// around them (pattern search with shrinking steps). When that stalls, the vertices of
+// the quads around them move too, and at last domain corners may slide along the
+// boundary (a cut corner is better than a non-convex quad).
+// With `only`, the quads looked at are those (ascending ids): a local repair after a
+// local change.
+void untangle(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
+              const SmoothParams& params, SmoothStats& stats, bool may_free_corners,
+              const std::vector<int>* only) {
+  const int nq = static_cast<int>(m.quads.size());
+  const int nv = static_cast<int>(m.points.size());
+  std::vector<char> active(nv, 0);
+  int stalled = 0, previous_bad = -1;
+  auto widen_at = [&](int sweep, int stalled_then) {
+    return sweep >= params.untangle_iterations / 10 && stalled_then > 2;
+  };
+  auto free_corners_at = [&](int sweep) {
+    return may_free_corners && sweep >= params.untangle_iterations / 2;
+  };
+  for (int sweep = 0; sweep < params.untangle_iterations; ++sweep) {
+    std::vector<int> bad;
+    if (only) {
+      for (int q : *only)
+        if (quad_convexity(m, q) <= params.min_convexity) bad.push_back(q);
+    } else {
+      for (int q = 0; q < nq; ++q)
+        if (quad_convexity(m, q) <= params.min_convexity) bad.push_back(q);
+    }
+    if (bad.empty()) break;
+    ++stats.num_untangle_sweeps;
+    stalled = static_cast<int>(bad.size()) >= previous_bad && previous_bad >= 0 ? stalled + 1 : 0;
+    previous_bad = static_cast<int>(bad.size());
+    const bool widen = widen_at(sweep, stalled);
+    const bool free_corners = free_corners_at(sweep);
+    bool moved = false;
+    std::fill(active.begin(), active.end(), 0);
+    std::vector<int> order;
+    for (int q : bad)
+      for (int v : m.quads[q]) {
+        if (!active[v]) active[v] = 1, order.push_back(v);
+        if (!widen) continue;
+        for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k)
+          for (int w : m.quads[t.quad_items[k]])
+            if (!active[w]) active[w] = 1, order.push_back(w);
+      }
+    for (int v : order) {
+      if (m.fixed[v] && !(free_corners && m.chain[v] >= 0)) continue;
+      const Point2 was = m.points[v];
+      const double was_arc = m.arc_m[v];
+      double edge = 0, shortest = std::numeric_limits<double>::infinity();
+      for (int w : t.neighbours[v]) {
+        const double l = distance(m.points[w], m.points[v]);
+        edge = std::max(edge, l), shortest = std::min(shortest, l);
+      }
+      // No move shortens an edge at v below untangle_min_side times its longest (or below
+      // its shortest, when that is already shorter).
+      const double floor_side = std::min(shortest, params.untangle_min_side * edge);
+      auto short_edge = [&] {
+        if (floor_side <= 0) return false;
+        for (int w : t.neighbours[v])
+          if (distance(m.points[w], m.points[v]) < floor_side) return true;
+        return false;
+      };
+      // A boundary vertex between its two boundary neighbours stays between them
+      // (SmoothParams::untangle_keeps_boundary_order).
+      const bool keep_order =
+          params.untangle_keeps_boundary_order && between_boundary_neighbours(bg, m, t, v);
+      double best = worst_convexity(m, t, v);
+      if (m.chain[v] < 0 && best <= params.min_convexity) {
+        // A local search may sit in the wrong part of a non-convex 1-ring: try a grid
+        // over the ring's bounding box first.
+        double x0 = m.points[v].x, x1 = x0, y0 = m.points[v].y, y1 = y0;
+        for (int w : t.neighbours[v]) {
+          x0 = std::min(x0, m.points[w].x), x1 = std::max(x1, m.points[w].x);
+          y0 = std::min(y0, m.points[w].y), y1 = std::max(y1, m.points[w].y);
+        }
+        const Point2 start = m.points[v];
+        Point2 best_point = start;
+        constexpr int kGrid = 24;
+        for (int i = 1; i < kGrid; ++i)
+          for (int j = 1; j < kGrid; ++j) {
+            m.points[v] = {x0 + (x1 - x0) * i / kGrid, y0 + (y1 - y0) * j / kGrid};
+            const double value = worst_convexity(m, t, v);
+            if (value > best + 1e-12 && !short_edge()) best = value, best_point = m.points[v];
+          }
+        m.points[v] = best_point;
+      }
+      for (double step = 0.25 * edge; step > 1e-3 * edge; step *= 0.5) {
+        bool improved = true;
+        while (improved) {
+          improved = false;
+          for (int dir = 0; dir < 8; ++dir) {
+            const double a = dir * M_PI / 4;
+            const Point2 old = m.points[v];
+            const double old_arc = m.arc_m[v];
+            if (m.chain[v] >= 0) {
+              // Boundary vertices only slide along the boundary.
+              if (dir >= 2) break;
+              const double arc = old_arc + (dir == 0 ? step : -step);
+              m.points[v] = chain_point(bg, bg.chains[m.chain[v]], arc);
+              m.arc_m[v] = arc;
+            } else {
+              m.points[v] = {old.x + step * std::cos(a), old.y + step * std::sin(a)};
+            }
+            const double value = worst_convexity(m, t, v);
+            if (value > best + 1e-12 && !short_edge() &&
+                (!keep_order || between_boundary_neighbours(bg, m, t, v))) {
+              best = value;
+              improved = true;
+            } else {
+              m.points[v] = old;
+              m.arc_m[v] = old_arc;
+            }
+          }
+        }
+      }
+      moved = moved || m.points[v].x != was.x || m.points[v].y != was.y || m.arc_m[v] != was_arc;
+    }
+    // A sweep that moved nothing is a fixed point: the sweeps after it, with the same
+    // quads bad (stalled one more each) and the same rules, would move nothing either.
+    // Skip to the first one whose rules change (widened, or corners freed), counted.
+    if (!moved) {
+      int next = sweep + 1;
+      while (next < params.untangle_iterations &&
+             widen_at(next, stalled + (next - sweep)) == widen &&
+             free_corners_at(next) == free_corners)
+        ++next;
+      const int skipped = next - sweep - 1;
+      stats.num_untangle_sweeps += skipped;
+      stalled += skipped;
+      sweep += skipped;
+    }
+  }
+}
+
+void aligned_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
+                    const SizingField& size, const CrossField& cross, const SmoothParams& params) {
+  AlignedSmoother(bg, m, t, size, cross, params).run();
+}
+
+// Angle sweeps: every free vertex takes the best of its candidate moves (interior: eight
+// directions; boundary: both ways along its chain, staying between its boundary
+// neighbours), each angle_step of its shortest edge long (0.3 of that in the second
+// half of the sweeps), if that lowers moving_corner_energy (target areas h^2 with a sizing
+// field) plus the orientation term of its edges; convexity never drops below
+// min_convexity. `iterations` sweeps (default angle_iterations); with `only`, the
+// vertices it marks move, the others stay.
+void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
+                  const SmoothParams& params, const CrossField* cross, const SizingField* size,
+                  const std::vector<char>* only, int iterations) {
+  const int nv = static_cast<int>(m.points.size());
+  if (iterations < 0) iterations = params.angle_iterations;
+  const double ow = params.angle_orientation_weight;
+  std::unique_ptr<TriangleLocator> locator;
+  if ((cross && ow > 0) || size) locator = std::make_unique<TriangleLocator>(bg);
+  // The cross at every vertex where the sweeps start: the unit vector of one of its axes.
+  std::vector<Point2> axis;
+  if (cross && ow > 0) {
+    axis.resize(nv);
+    for (int v = 0; v < nv; ++v) {
+      if (only && !(*only)[v]) continue;
+      const Location loc = locator->locate(m.points[v]);
+      const double theta =
+          loc.triangle >= 0 ? cross_angle_at(bg, *cross, loc.triangle, loc.bary) : 0.0;
+      axis[v] = {std::cos(theta), std::sin(theta)};
+    }
+  }
+  // Target areas: h^2 at the quad centroids where the sweeps start (the sizing field),
+  // else the areas there.
+  std::vector<double> area0(m.quads.size());
+  for (std::size_t q = 0; q < m.quads.size(); ++q) {
+    area0[q] = quad_area(m, static_cast<int>(q));
+    if (!size) continue;
+    const Location loc = locator->locate(quad_centroid(m, static_cast<int>(q)));
+    const double h = loc.triangle >= 0 ? size->at(bg, loc.triangle, loc.bary) : 0.0;
+    if (h > 0) area0[q] = h * h;
+  }
+  // moving_corner_energy plus ow (rotation from the nearest cross axis)^2 over the edges at
+  // v: in the frame of the cross, an edge (x, y) is atan(min(|x|, |y|) / max(|x|, |y|))
+  // away from the nearest axis.
+  // `opposite`: the constant corners of v's quads (moving_corner_energy).
+  auto energy = [&](int v, const std::vector<double>& opposite, double& sharpest) {
+    sharpest = M_PI;
+    double e = moving_corner_energy(m, t, v, params, area0, opposite.data(), sharpest);
+    if (!std::isfinite(e)) return e;
+    if (params.coast_weight > 0 && m.chain[v] >= 0)
+      for (int w : t.boundary_neighbours[v]) {
+        if (w < 0) continue;
+        // The edge's way with the mesh on its left: as its quad has it.
+        bool forward = true;
+        for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
+          const auto& c = m.quads[t.quad_items[k]];
+          const int j = c[0] == v ? 0 : c[1] == v ? 1 : c[2] == v ? 2 : 3;
+          if (c[(j + 3) % 4] == w) forward = false;
+        }
+        const double len = distance(m.points[v], m.points[w]);
+        const double d =
+            (forward ? chord_departure(m, bg, v, w) : chord_departure(m, bg, w, v)).distance_m;
+        if (len > 0) e += params.coast_weight * (d / len) * (d / len);
+      }
+    if (axis.empty()) return e;
+    const Point2 u = axis[v];
+    for (int w : t.neighbours[v]) {
+      const double dx = m.points[w].x - m.points[v].x, dy = m.points[w].y - m.points[v].y;
+      const double x = std::abs(dx * u.x + dy * u.y), y = std::abs(dy * u.x - dx * u.y);
+      const double r = std::max(x, y) > 0 ? std::atan(std::min(x, y) / std::max(x, y)) : 0.0;
+      e += ow * r * r;
+    }
+    return e;
+  };
+  // The best move of v (false: it stays where it is).
+  auto move = [&](int v, double step_factor, std::vector<double>& opposite) {
+    const Point2 start = m.points[v];
+    const double start_arc = m.arc_m[v];
+    double shortest = std::numeric_limits<double>::infinity();
+    for (int w : t.neighbours[v]) shortest = std::min(shortest, distance(start, m.points[w]));
+    const double step = step_factor * params.angle_step * shortest;
+    // A vertex with a quad not convex enough (at any corner) stays where it is.
+    if (worst_convexity(m, t, v) <= params.min_convexity) return false;
+    opposite.clear();
+    for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
+      const auto& c = m.quads[t.quad_items[k]];
+      const int i = c[0] == v ? 2 : c[1] == v ? 3 : c[2] == v ? 0 : 1;
+      opposite.push_back(
+          corner_angle_rad(m.points[c[(i + 3) % 4]], m.points[c[i]], m.points[c[(i + 1) % 4]]));
+    }
+    double sharpest = 0;
+    double best = energy(v, opposite, sharpest);
+    // No move makes a corner sharper than angle_floor_deg, or sharper still.
+    const double floor = std::min(sharpest, params.angle_floor_deg * M_PI / 180);
+    if (!std::isfinite(best)) return false;
+    Point2 best_point = start;
+    double best_arc = start_arc;
+    auto consider = [&](const Point2& p, double arc) {
+      m.points[v] = p;
+      m.arc_m[v] = arc;
+      double sharp = 0;
+      const double e = energy(v, opposite, sharp);
+      if (e < best && sharp >= floor) best = e, best_point = p, best_arc = arc;
+    };
+    const int c = m.chain[v];
+    if (c < 0) {
+      for (int k = 0; k < 8; ++k)
+        consider({start.x + step * std::cos(k * M_PI / 4), start.y + step * std::sin(k * M_PI / 4)},
+                 start_arc);
+    } else {
+      // Along the boundary, between the boundary neighbours of the same chain.
+      const auto& bn = t.boundary_neighbours[v];
+      if (bn[0] < 0 || bn[1] < 0 || m.chain[bn[0]] != c || m.chain[bn[1]] != c) return false;
+      const double len = bg.chains[c].length_m;
+      const double d0 = arc_delta(start_arc, m.arc_m[bn[0]], len);
+      const double d1 = arc_delta(start_arc, m.arc_m[bn[1]], len);
+      if (d0 * d1 >= 0) return false;
+      for (double d : {-step, step})
+        if (std::abs(d) < 0.5 * std::min(std::abs(d0), std::abs(d1)))
+          consider(chain_point(bg, bg.chains[c], start_arc + d), start_arc + d);
+    }
+    m.points[v] = best_point;
+    m.arc_m[v] = best_arc;
+    return best_point.x != start.x || best_point.y != start.y;
+  };
+  // Which vertices need another look: one that stayed where it was stays again until a
+  // vertex of its quads moves (its energy and moves depend on nothing else), or the steps
+  // shorten. Times count the colours swept.
+  std::vector<long> moved_at(nv, -1), stayed_at(nv, -1);
+  auto unchanged = [&](int v) {
+    if (stayed_at[v] < 0) return false;
+    for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k)
+      for (int w : m.quads[t.quad_items[k]])
+        if (moved_at[w] > stayed_at[v]) return false;
+    return true;
+  };
+  // The vertices of one colour move independently, so in parallel.
+  const std::vector<std::vector<int>> colours = quad_colouring(m, t);
+  const int threads = sweep_threads(params);
+  std::vector<std::vector<double>> scratch(threads);
+  long time = 0;
+  for (int it = 0; it < iterations; ++it) {
+    // The second half of the sweeps refines with steps 0.3 as long.
+    const bool refine = 2 * it >= iterations;
+    if (refine && 2 * (it - 1) < iterations) std::fill(stayed_at.begin(), stayed_at.end(), -1);
+    for (const std::vector<int>& colour : colours) {
+      ++time;
+      parallel_chunks(
+          static_cast<int>(colour.size()), threads, [&](int begin, int end, int thread) {
+            for (int i = begin; i < end; ++i) {
+              const int v = colour[i];
+              if (m.fixed[v] || t.neighbours[v].empty() || (only && !(*only)[v]) || unchanged(v))
+                continue;
+              if (move(v, refine ? 0.3 : 1.0, scratch[thread]))
+                moved_at[v] = time, stayed_at[v] = -1;
+              else
+                stayed_at[v] = time;
+            }
+          });
+    }
+  }
+}
+
+}  // namespace isoquad

@@ -1,0 +1,36 @@
+// The smoothing's sweeps over the quad mesh's vertices (paper, section 2.7): the
+// untangling that makes quads convex, the field-aligned sweeps and the angle sweeps.
+// Every move keeps the quads around the vertex convex. The parameters and their
+// measurements are SmoothParams' (smooth_quads.h).
+#pragma once
+
+#include <vector>
+
+#include "fields/cross_field.h"
+#include "fields/sizing_field.h"
+#include "mesh/background_mesh.h"
+#include "quad/quad_mesh.h"
+#include "quad/quad_topology.h"
+#include "quad/smooth_quads.h"
+
+namespace isoquad {
+
+// Moves the vertices of quads not more convex than params.min_convexity until they are
+// (params.untangle_iterations sweeps at most); with `only`, just those quads (ascending
+// ids). With may_free_corners, domain corners may slide along the boundary at last.
+void untangle(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
+              const SmoothParams& params, SmoothStats& stats, bool may_free_corners = true,
+              const std::vector<int>* only = nullptr);
+
+// The field-aligned sweeps (SmoothParams::aligned_iterations).
+void aligned_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
+                    const SizingField& size, const CrossField& cross, const SmoothParams& params);
+
+// The angle sweeps (SmoothParams::angle_iterations, or `iterations`); with `only`, the
+// vertices it marks move, the others stay. The mesh is the same with any number of
+// threads.
+void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
+                  const SmoothParams& params, const CrossField* cross, const SizingField* size,
+                  const std::vector<char>* only = nullptr, int iterations = -1);
+
+}  // namespace isoquad
