@@ -5,12 +5,9 @@
 #include <CLI/CLI.hpp>
 #include <array>
 #include <chrono>
-#include <cmath>
-#include <filesystem>
-#include <memory>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
+#include <filesystem>
 #include <iostream>
 #include <limits>
 #include <sstream>
@@ -19,15 +16,13 @@
 #include "app/fields_job.h"
 #include "app/front_end.h"
 #include "app/mesh_job.h"
+#include "app/mesh_outputs.h"
 #include "app/summary.h"
 #include "core/error.h"
 #include "gis/atomic_output.h"
 #include "gis/write_domain.h"
 #include "io/write_fields.h"
-#include "gis/raster_field.h"
 #include "io/write_mesh.h"
-#include "plot/plot_mesh.h"
-#include "plot/plot_tiling.h"
 #include "plot/plot_fields.h"
 
 namespace {
@@ -266,17 +261,6 @@ void finish_front_end_args(CommonArgs& a) {
   if (a.min_width_m >= 0) a.fe.min_width_m = a.min_width_m;
 }
 
-void write_text_atomically(const std::string& path, const std::string& text, bool overwrite) {
-  AtomicOutput out(path, overwrite);
-  {
-    std::ofstream f(out.temp_path());
-    f << text;
-    f.close();
-    if (!f) throw Error(ErrorClass::output, "write", "'" + path + "': cannot write");
-  }
-  out.commit();
-}
-
 int run_domain(CommonArgs& a) {
   finish_front_end_args(a);
   // Fail before any work when an output cannot be written.
@@ -289,12 +273,15 @@ int run_domain(CommonArgs& a) {
 
   const auto t0 = std::chrono::steady_clock::now();
   FrontEndResult r = build_planar_domain(a.fe, Progress(make_progress(a.quiet)));
+  // The domain and the report are moved into place together, when both are complete.
+  OutputSet set;
   WriteDomainParams wp;
-  wp.path = a.output;
-  wp.overwrite = a.overwrite;
+  wp.path = set.add(a.output, a.overwrite);
+  wp.overwrite = true;
   write_domain_gpkg(r.domain, wp);
   if (!a.report_path.empty())
-    write_text_atomically(a.report_path, domain_summary_json(r.summary), a.overwrite);
+    write_text_file(set.add(a.report_path, a.overwrite), domain_summary_json(r.summary), true);
+  set.commit_all();
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
@@ -317,15 +304,20 @@ int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
   const FieldsOptions options = fields_options(a, f);
   const auto t0 = std::chrono::steady_clock::now();
   FieldsResult r = build_fields(options, Progress(make_progress(a.quiet)));
-  write_fields(r.mesh, r.size, r.cross, r.front.domain.crs_wkt, a.output, a.overwrite);
+  // The fields, the plot and the report are moved into place together, when all are
+  // complete.
+  OutputSet set;
+  write_fields(r.mesh, r.size, r.cross, r.front.domain.crs_wkt, set.add(a.output, a.overwrite),
+               true);
   if (!f.plot_path.empty()) {
     PlotFieldsParams pp;
-    pp.path = f.plot_path;
-    pp.overwrite = a.overwrite;
+    pp.path = set.add(f.plot_path, a.overwrite);
+    pp.overwrite = true;
     plot_fields(r.mesh, r.size, r.cross, r.singularities, pp);
   }
   if (!a.report_path.empty())
-    write_text_atomically(a.report_path, fields_report_json(r, command_line), a.overwrite);
+    write_text_file(set.add(a.report_path, a.overwrite), fields_report_json(r, command_line), true);
+  set.commit_all();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
     std::cout << format_domain_summary(r.front.summary) << format_fields_summary(r);
@@ -470,48 +462,6 @@ std::vector<MeshOutput> mesh_outputs(const CommonArgs& a, const MeshArgs& m) {
   return outs;
 }
 
-std::string format_number(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
-
-std::vector<std::pair<std::string, std::string>> quality_items(const QualitySummary& q) {
-  return {{"num_quads", std::to_string(q.num_quads)},
-          {"num_vertices", std::to_string(q.num_vertices)},
-          {"num_nonconvex", std::to_string(q.num_nonconvex)},
-          {"min_angle_deg", format_number(q.min_angle_deg)},
-          {"max_angle_deg", format_number(q.max_angle_deg)},
-          {"share_angles_75_105", format_number(q.share_angles_75_105)},
-          {"size_ratio_median", format_number(q.size_ratio_median)},
-          {"share_size_08_125", format_number(q.share_size_08_125)},
-          {"orientation_mean_deg", format_number(q.orientation_mean_deg)},
-          {"share_regular_interior", format_number(q.share_regular_interior)},
-          {"eta_mean", format_number(q.eta_mean)},
-          {"eta_min", format_number(q.eta_min)},
-          {"schism_angle_ratio_violations", std::to_string(q.schism_angle_ratio_violations)},
-          {"schism_aspect_violations", std::to_string(q.schism_aspect_violations)},
-          {"mesh_area_m2", format_number(q.mesh_area_m2)},
-          {"domain_area_m2", format_number(q.domain_area_m2)},
-          {"boundary_departure_max_m", format_number(q.boundary_departure_max_m)},
-          {"boundary_departure_p95_h", format_number(q.boundary_departure_p95_h)}};
-}
-
-// Depth at every vertex from the --bathymetry raster (bilinear, metres, positive down);
-// 0 where the raster has no value. Returns the number of such vertices.
-std::size_t sample_depths(const std::string& path, const Domain& domain, const QuadMesh& mesh,
-                          std::vector<double>& depth) {
-  const RasterField raster(path, "--bathymetry", CrsInfo{domain.crs_wkt, domain.crs_name});
-  std::size_t missing = 0;
-  depth.resize(mesh.points.size());
-  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    const double d = raster.sample(mesh.points[i]);
-    depth[i] = std::isfinite(d) ? d : 0.0;
-    missing += !std::isfinite(d);
-  }
-  return missing;
-}
-
 std::string joined_command_line(int argc, char** argv) {
   std::string s;
   for (int i = 0; i < argc; ++i) s += (i ? " " : "") + std::string(argv[i]);
@@ -552,52 +502,18 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
                                                           : TilingStep::none;
   const auto t0 = std::chrono::steady_clock::now();
   MeshResult r = build_mesh(options, Progress(make_progress(a.quiet)));
-  // Every output of the run (mesh files, plot, report) is moved into place only when all
-  // are complete.
-  OutputSet set;
-  std::size_t num_open_edges = 0, num_land_edges = 0;
-  if (r.has_quads) {
-    const FrontEndResult& front = r.fields.front;
-    MeshOutputData data;
-    data.mesh = &r.quads;
-    data.metrics = &r.metrics;
-    data.crs_wkt = front.domain.crs_wkt;
-    // Boundary parts on the projected bbox (within the front end's tolerance, plus
-    // rounding) are open.
-    double extent = 0.0;
-    if (front.open_boundary_ring)
-      for (const Point2& p : *front.open_boundary_ring)
-        extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
-    data.boundary = extract_boundary(r.quads, front.open_boundary_ring,
-                                     front.open_boundary_tolerance_m + 1e-7 * extent);
-    num_open_edges = data.boundary.num_open_edges;
-    num_land_edges = data.boundary.num_land_edges;
-    if (!bathymetry.empty()) {
-      const std::size_t missing = sample_depths(bathymetry, front.domain, r.quads, data.depth);
-      if (missing && !a.quiet)
-        std::cerr << "isoquad: warning: " << missing
-                  << " vertices lie outside the bathymetry (or on nodata); their depth is 0\n";
-    }
-    data.command_line = command_line;
-    data.quality = quality_items(r.quality);
-    write_mesh_outputs(data, outputs, write_options, set);
-  }
-  if (!f.plot_path.empty()) {
-    if (r.has_quads) {
-      PlotMeshParams pp;
-      pp.path = set.add(f.plot_path, a.overwrite);
-      pp.overwrite = true;
-      plot_mesh(r.quads, r.metrics, r.quality, pp);
-    } else {
-      PlotTilingParams pp;
-      pp.path = set.add(f.plot_path, a.overwrite);
-      pp.overwrite = true;
-      plot_tiling(r.fields.mesh, r.tiling.tiling, r.tiling.graph, pp);
-    }
-  }
-  if (!a.report_path.empty())
-    write_text_atomically(set.add(a.report_path, a.overwrite), mesh_report_json(r, command_line), true);
-  set.commit_all();
+  MeshJobOutputs job;
+  job.meshes = outputs;
+  job.write = write_options;
+  job.bathymetry_path = bathymetry;
+  job.plot_path = f.plot_path;
+  job.report_path = a.report_path;
+  job.overwrite = a.overwrite;
+  job.command_line = command_line;
+  const MeshJobWritten written = write_mesh_job_outputs(r, job);
+  if (written.num_without_depth && !a.quiet)
+    std::cerr << "isoquad: warning: " << written.num_without_depth
+              << " vertices lie outside the bathymetry (or on nodata); their depth is 0\n";
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
     std::cout << format_domain_summary(r.fields.front.summary) << format_fields_summary(r.fields)
@@ -606,8 +522,8 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
       std::cout << "output:      ";
       for (const MeshOutput& o : outputs)
         for (const std::string& file : mesh_output_files(o)) std::cout << " " << file;
-      std::cout << "\nboundary:     " << num_open_edges << " open edges, " << num_land_edges
-                << " land edges\n";
+      std::cout << "\nboundary:     " << written.num_open_edges << " open edges, "
+                << written.num_land_edges << " land edges\n";
     }
     if (!f.plot_path.empty()) std::cout << "plot:         " << f.plot_path << "\n";
     std::printf("time:         %.3f s, peak memory %.0f MB\n", seconds, process_peak_mb());

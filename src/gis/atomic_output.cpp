@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 
 #include "core/error.h"
 
@@ -69,6 +70,17 @@ void AtomicOutput::commit() {
                 "cannot move the finished output to " + quote(final_path_) + ": " +
                     std::strerror(errno));
   committed_ = true;
+}
+
+void write_text_file(const std::string& path, const std::string& text, bool overwrite) {
+  AtomicOutput out(path, overwrite);
+  {
+    std::ofstream f(out.temp_path());
+    f << text;
+    f.close();
+    if (!f) throw Error(ErrorClass::output, "write", quote(path) + ": cannot write");
+  }
+  out.commit();
 }
 
 const std::string& OutputSet::add(const std::string& final_path, bool overwrite) {

@@ -12,6 +12,9 @@ namespace isoquad {
 // directory does not exist or is not writable. Call before any long work.
 void check_output_path(const std::string& path, bool overwrite);
 
+// Writes `text` to `path` through an AtomicOutput. Throws Error(output).
+void write_text_file(const std::string& path, const std::string& text, bool overwrite);
+
 class AtomicOutput {
  public:
   AtomicOutput(std::string final_path, bool overwrite);

@@ -1,0 +1,104 @@
+#include "app/mesh_outputs.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "gis/atomic_output.h"
+#include "gis/raster_field.h"
+#include "io/mesh_boundary.h"
+#include "plot/plot_mesh.h"
+#include "plot/plot_tiling.h"
+
+namespace isoquad {
+
+namespace {
+
+std::string format_number(double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> quality_items(const QualitySummary& q) {
+  return {{"num_quads", std::to_string(q.num_quads)},
+          {"num_vertices", std::to_string(q.num_vertices)},
+          {"num_nonconvex", std::to_string(q.num_nonconvex)},
+          {"min_angle_deg", format_number(q.min_angle_deg)},
+          {"max_angle_deg", format_number(q.max_angle_deg)},
+          {"share_angles_75_105", format_number(q.share_angles_75_105)},
+          {"size_ratio_median", format_number(q.size_ratio_median)},
+          {"share_size_08_125", format_number(q.share_size_08_125)},
+          {"orientation_mean_deg", format_number(q.orientation_mean_deg)},
+          {"share_regular_interior", format_number(q.share_regular_interior)},
+          {"eta_mean", format_number(q.eta_mean)},
+          {"eta_min", format_number(q.eta_min)},
+          {"schism_angle_ratio_violations", std::to_string(q.schism_angle_ratio_violations)},
+          {"schism_aspect_violations", std::to_string(q.schism_aspect_violations)},
+          {"mesh_area_m2", format_number(q.mesh_area_m2)},
+          {"domain_area_m2", format_number(q.domain_area_m2)},
+          {"boundary_departure_max_m", format_number(q.boundary_departure_max_m)},
+          {"boundary_departure_p95_h", format_number(q.boundary_departure_p95_h)}};
+}
+
+std::size_t sample_depths(const std::string& path, const Domain& domain, const QuadMesh& mesh,
+                          std::vector<double>& depth) {
+  const RasterField raster(path, "--bathymetry", CrsInfo{domain.crs_wkt, domain.crs_name});
+  std::size_t missing = 0;
+  depth.resize(mesh.points.size());
+  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
+    const double d = raster.sample(mesh.points[i]);
+    depth[i] = std::isfinite(d) ? d : 0.0;
+    missing += !std::isfinite(d);
+  }
+  return missing;
+}
+
+MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs& o) {
+  OutputSet set;
+  MeshJobWritten written;
+  if (r.has_quads) {
+    const FrontEndResult& front = r.fields.front;
+    MeshOutputData data;
+    data.mesh = &r.quads;
+    data.metrics = &r.metrics;
+    data.crs_wkt = front.domain.crs_wkt;
+    // Boundary parts on the projected bbox (within the front end's tolerance, plus
+    // rounding) are open.
+    double extent = 0.0;
+    if (front.open_boundary_ring)
+      for (const Point2& p : *front.open_boundary_ring)
+        extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
+    data.boundary = extract_boundary(r.quads, front.open_boundary_ring,
+                                     front.open_boundary_tolerance_m + 1e-7 * extent);
+    written.num_open_edges = data.boundary.num_open_edges;
+    written.num_land_edges = data.boundary.num_land_edges;
+    if (!o.bathymetry_path.empty())
+      written.num_without_depth =
+          sample_depths(o.bathymetry_path, front.domain, r.quads, data.depth);
+    data.command_line = o.command_line;
+    data.quality = quality_items(r.quality);
+    write_mesh_outputs(data, o.meshes, o.write, set);
+  }
+  if (!o.plot_path.empty()) {
+    if (r.has_quads) {
+      PlotMeshParams pp;
+      pp.path = set.add(o.plot_path, o.overwrite);
+      pp.overwrite = true;
+      plot_mesh(r.quads, r.metrics, r.quality, pp);
+    } else {
+      PlotTilingParams pp;
+      pp.path = set.add(o.plot_path, o.overwrite);
+      pp.overwrite = true;
+      plot_tiling(r.fields.mesh, r.tiling.tiling, r.tiling.graph, pp);
+    }
+  }
+  if (!o.report_path.empty())
+    write_text_file(set.add(o.report_path, o.overwrite), mesh_report_json(r, o.command_line), true);
+  set.commit_all();
+  return written;
+}
+
+}  // namespace isoquad
