@@ -153,6 +153,7 @@ struct FieldArgs {
   std::string cross_raster;
   double cross_conformal = CrossParams{}.conformal;
   double background_factor = 0.25;
+  double max_quads = FieldsOptions{}.max_quads;
   std::string plot_path;
 };
 
@@ -223,6 +224,11 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
                   "Background triangles are at most this fraction of the tile size 2h (default 0.25)")
       ->check(CLI::Range(0.001, 1.0))
       ->group("Background mesh");
+  cmd->add_option("--max-quads", f.max_quads,
+                  "Stop before meshing when the sizes ask for more quads than this (about 10 KB "
+                  "of memory each; default 1000000; 0: no limit)")
+      ->check(CLI::NonNegativeNumber)
+      ->group("Background mesh");
   cmd->add_option("--plot", f.plot_path, "Also draw a PNG")->group("Output");
 }
 
@@ -245,6 +251,7 @@ FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {
   }
   o.cross.conformal = f.cross_conformal;
   o.background_factor = f.background_factor;
+  o.max_quads = f.max_quads;
   return o;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <sstream>
 
 #include "app/summary.h"
@@ -38,6 +39,20 @@ SingularityCounts count_singularities(const std::vector<Singularity>& singularit
   return c;
 }
 
+// Error(usage) when `quads` is over options.max_quads (`how`: how they were counted;
+// `smallest`: the smallest size counted).
+void check_quad_budget(double quads, const char* how, double smallest, const Domain& domain,
+                       const FieldsOptions& options) {
+  if (!(options.max_quads > 0) || !(quads > options.max_quads)) return;
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "the sizes ask for about %.3g quads (%s; %.6g km2, sizes from %.6g m), over the "
+                "limit of %.0f (--max-quads; 0: none). A quad takes about 10 KB of memory at the "
+                "peak: check the sizes' units (metres), or raise --max-quads",
+                quads, how, area(domain) / 1e6, smallest, options.max_quads);
+  throw Error(ErrorClass::usage, "sizing", buf);
+}
+
 // The sizing sources, the background mesh and the sizes at its vertices (stages
 // "sizing sources", "background mesh" and "sizing field"). The sources and the size
 // cache are this function's own: they are gone before the cross field's solve, the
@@ -47,6 +62,13 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
   progress.report("sizing", 0.0);
   SizingOracle oracle(domain, options.sizing);
   r.sizing = oracle.summary();
+  double smallest = std::numeric_limits<double>::infinity();
+  const double estimate = estimate_num_quads(domain, [&oracle, &smallest](const Point2& p) {
+    const double h = oracle(p);
+    smallest = std::min(smallest, h);
+    return h;
+  });
+  check_quad_budget(estimate, "estimated on a grid", smallest, domain, options);
   timer.lap("sizing sources");
 
   progress.report("background", 0.2);
@@ -74,6 +96,10 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
 
   progress.report("sizing", 0.6);
   r.size = sample_sizing_field(r.mesh, oracle, options.sizing.gradation);
+  if (!r.size.size_m.empty())
+    check_quad_budget(
+        predicted_num_quads(r.mesh, r.size), "the graded sizes on the background mesh",
+        *std::min_element(r.size.size_m.begin(), r.size.size_m.end()), domain, options);
   timer.lap("sizing field");
 }
 

@@ -40,6 +40,12 @@ struct FieldsOptions {
   // of pairs, 0.25 too (within a point on every sample but the square, which keeps 98%
   // quadrangle tiles instead of 100%), in 70% of the time of 0.2.
   double background_factor = 0.25;
+  // The run stops (Error(usage)) before the background mesh when the sizes ask for more
+  // quads than this (estimate_num_quads), and again before the cross field when the
+  // background mesh predicts more (predicted_num_quads); 0: no limit. A mistyped size
+  // (--size 10 for 10 km over France: 5 billion quads) otherwise fills the memory: a
+  // quad costs about 10 KB at the peak (the Mediterranean at 1:10m, 90,000 quads, 768 MB).
+  double max_quads = 1e6;
 };
 
 struct FieldsResult {

@@ -255,6 +255,42 @@ double predicted_num_quads(const BackgroundMesh& mesh, const SizingField& field)
   return n;
 }
 
+double estimate_num_quads(const Domain& domain, const std::function<double(const Point2&)>& size,
+                          int cells_across) {
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  std::vector<const Ring*> rings;
+  for (const Polygon& poly : domain.polygons) {
+    rings.push_back(&poly.outer);
+    for (const Ring& hole : poly.holes) rings.push_back(&hole);
+    for (const Point2& p : poly.outer)
+      x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x),
+      y1 = std::max(y1, p.y);
+  }
+  if (rings.empty() || !(x1 > x0 && y1 > y0)) return 0.0;
+  const double cell = std::max(x1 - x0, y1 - y0) / cells_across;
+  double n = 0.0;
+  std::vector<double> crossings;
+  for (double y = y0 + 0.5 * cell; y < y1; y += cell) {
+    // Where the row's line crosses the rings: between the 1st and 2nd crossing, the 3rd
+    // and 4th..., it is inside (holes and components included, by parity).
+    crossings.clear();
+    for (const Ring* ring : rings)
+      for (std::size_t i = 0, j = ring->size() - 1; i < ring->size(); j = i++) {
+        const Point2 &a = (*ring)[j], &b = (*ring)[i];
+        if ((a.y > y) != (b.y > y))
+          crossings.push_back(a.x + (y - a.y) / (b.y - a.y) * (b.x - a.x));
+      }
+    std::sort(crossings.begin(), crossings.end());
+    for (std::size_t k = 0; k + 1 < crossings.size(); k += 2)
+      for (double x = x0 + (std::ceil((crossings[k] - x0) / cell - 0.5) + 0.5) * cell;
+           x < crossings[k + 1]; x += cell) {
+        const double h = size({x, y});
+        if (h > 0) n += cell * cell / (h * h);
+      }
+  }
+  return n;
+}
+
 SizingField sample_sizing_field(const BackgroundMesh& mesh, const SizingOracle& oracle,
                                 double gradation) {
   SizingField field;

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
@@ -99,6 +100,13 @@ struct SizingField {
 // The number of quads of size h that cover the mesh: the integral of 1 / h^2 over the
 // domain (one quad of side h(x) per h(x)^2 of area), by the midpoint rule per triangle.
 double predicted_num_quads(const BackgroundMesh& mesh, const SizingField& field);
+
+// The same before any mesh: the integral of 1 / size^2 over the domain by the midpoint
+// rule on a grid of cells_across x cells_across cells over its bounding box (the cells
+// whose centre is inside). Coarse where sizes change within a cell; an order of
+// magnitude for a guard, not a count (see FieldsOptions::max_quads).
+double estimate_num_quads(const Domain& domain, const std::function<double(const Point2&)>& size,
+                          int cells_across = 128);
 
 // Samples the oracle at every vertex and limits the gradient: afterwards
 // |h_u - h_v| <= K |u - v| holds on every background edge (Dijkstra-like sweep from

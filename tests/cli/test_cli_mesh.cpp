@@ -386,6 +386,19 @@ TEST(CliMesh, TilingStepNeedsSomethingToShowIt) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("m.gpkg")));
 }
 
+// A size in the wrong unit (10 m instead of 10 km over France: 5 billion quads) stops
+// at once with the estimate and the option that allows it, instead of filling the memory.
+TEST(CliMesh, ASizeThatAsksForBillionsOfQuadsStopsBeforeTheMeshing) {
+  TempDir dir;
+  const CliResult r = run_cli({"mesh", sample("france.shp"), "--size", "10", "-o",
+                               dir.file("m.gpkg"), "--report", dir.file("m.json")},
+                              dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("about 5.39e+09 quads"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--max-quads"), std::string::npos) << r.err;
+  EXPECT_TRUE(dir.entries().empty());
+}
+
 TEST(CliMesh, StopAfterButterflyReportsTheTilingAndWritesNoMesh) {
   TempDir dir;
   const std::string report = dir.file("tiles.json"), png = dir.file("tiles.png");

@@ -347,3 +347,37 @@ TEST(MeshJob, NoQuadHasASideOfAFewMetresNextToSidesOfKilometres) {
   EXPECT_LT(shortest, 0.05) << "the premise: without them a side is shorter";
   EXPECT_GT(ratio, 40.0);
 }
+
+// A size that asks for too many quads stops the job before the background mesh (the
+// estimate on a grid), or before the cross field (the prediction on the background mesh,
+// with the gradation's smaller sizes), with an error that names --max-quads.
+TEST(MeshJob, SizesThatAskForTooManyQuadsStopTheJobBeforeTheMeshing) {
+  FieldsOptions o = corsica(8000.0).fields;
+  // Sizes growing by 0.5 m per metre from the island's middle: the gradation (0.2) makes
+  // them smaller, so the background mesh predicts more quads than the grid estimates.
+  o.sizing.automatic = false;
+  o.sizing.expression = "200+0.5*abs(x)";
+  o.max_quads = 0;  // no limit
+  const FieldsResult r = build_fields(o);
+  const double predicted = predicted_num_quads(r.mesh, r.size);
+  const SizingOracle oracle(r.front.domain, o.sizing);
+  const double estimate =
+      estimate_num_quads(r.front.domain, [&](const Point2& p) { return oracle(p); });
+  ASSERT_GT(predicted, 1.5 * estimate);  // the gradation's smaller sizes
+  auto message = [&o](double max_quads) {
+    o.max_quads = max_quads;
+    try {
+      build_fields(o);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.error_class(), ErrorClass::usage);
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string before_mesh = message(0.5 * estimate);
+  EXPECT_NE(before_mesh.find("estimated on a grid"), std::string::npos) << before_mesh;
+  EXPECT_NE(before_mesh.find("--max-quads"), std::string::npos) << before_mesh;
+  const std::string on_mesh = message(0.5 * (estimate + predicted));
+  EXPECT_NE(on_mesh.find("on the background mesh"), std::string::npos) << on_mesh;
+  EXPECT_EQ(message(1.01 * predicted), "no error");
+}

@@ -338,3 +338,25 @@ TEST(SizingField, ChannelsTooNarrowForHminGetOneElementAcross) {
   EXPECT_EQ(square.summary().num_narrow_sites, 0u);
   EXPECT_GE(square({100, 100}), 800.0);
 }
+
+// The estimate before any mesh: the integral of 1 / h^2 over the domain on a grid, with
+// the holes and every component counted (a square with a square hole, and a second
+// square beside it), constant and graded sizes. Within 4%: the cells (3000 / 128 m)
+// whose centre is inside count whole, a third of a cell more along each side here.
+TEST(SizingField, TheQuadsEstimatedBeforeTheMeshAreTheAreaOverTheSizeSquared) {
+  Domain d = rectangle(1000, 1000);
+  d.polygons[0].holes.push_back({{250, 250}, {250, 750}, {750, 750}, {750, 250}});
+  d.polygons.push_back({{{2000, 0}, {3000, 0}, {3000, 1000}, {2000, 1000}}, {}});
+  const double area = 2 * 1000.0 * 1000.0 - 500.0 * 500.0;
+  EXPECT_NEAR(estimate_num_quads(d, [](const Point2&) { return 50.0; }), area / 2500.0,
+              0.04 * area / 2500.0);
+  // h = 10 + x / 100 over the first square without its hole, the second square:
+  // integral of 1 / h^2 over x in [a, b] is 100 (1 / h(a) - 1 / h(b)), times the height.
+  auto graded = [](const Point2& p) { return 10.0 + p.x / 100.0; };
+  auto band = [](double a, double b) {
+    return 100.0 * (1.0 / (10 + a / 100) - 1.0 / (10 + b / 100));
+  };
+  const double exact = 1000 * band(0, 1000) - 500 * band(250, 750) + 1000 * band(2000, 3000);
+  EXPECT_NEAR(estimate_num_quads(d, graded), exact, 0.04 * exact);
+  EXPECT_EQ(estimate_num_quads(Domain{}, graded), 0.0);
+}
