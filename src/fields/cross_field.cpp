@@ -28,9 +28,6 @@ double reduce_cross_angle(double angle_rad) {
   return a;
 }
 
-// theta = arg(u) / 4, as a cross representative.
-double cross_angle_of(double c, double s) { return reduce_cross_angle(std::atan2(s, c) / 4.0); }
-
 double cotangent(const Point2& apex, const Point2& a, const Point2& b) {
   const double ux = a.x - apex.x, uy = a.y - apex.y, vx = b.x - apex.x, vy = b.y - apex.y;
   return (ux * vx + uy * vy) / std::abs(ux * vy - uy * vx);
@@ -128,6 +125,10 @@ Eigen::SparseMatrix<Scalar> energy_matrix(const std::vector<CotanEdge>& edges,
 
 }  // namespace
 
+double cross_angle_of(double c, double s) {
+  return reduce_cross_angle(std::atan2(s, c) / 4.0);
+}
+
 double cross_rotation_rad(double from_rad, double to_rad) {
   double d = std::fmod(to_rad - from_rad + kPi / 4.0, kQuarterTurn);
   if (d < 0.0) d += kQuarterTurn;
@@ -140,12 +141,10 @@ CrossField constant_cross_field(const BackgroundMesh& mesh, double angle_deg) {
   return field;
 }
 
-CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
-                                        const std::vector<double>& size_m, double conformal) {
+BoundaryCrosses boundary_crosses(const BackgroundMesh& mesh) {
   const int num_vertices = static_cast<int>(mesh.points.size());
-
-  // Boundary data: sum of exp(4 i phi) over the two boundary edges of each chain vertex.
-  // Averaging in 4-phi space keeps a 90-degree corner's cross aligned with both edges.
+  // Sum of exp(4 i phi) over the two boundary edges of each chain vertex. Averaging in
+  // 4-phi space keeps a 90-degree corner's cross aligned with both edges.
   std::vector<double> bc(num_vertices, 0.0), bs(num_vertices, 0.0);
   std::vector<char> is_boundary(num_vertices, 0);
   for (const BoundaryChain& chain : mesh.chains) {
@@ -163,15 +162,27 @@ CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
   }
   // A vertex is fixed when its two edges agree on a cross; at a 45-degree (mod 90)
   // corner the sum vanishes and any cross is as good, so the vertex is left free.
-  std::vector<char> is_fixed(num_vertices, 0);
-  std::vector<double> uc(num_vertices, 0.0), us(num_vertices, 0.0);
+  BoundaryCrosses b;
+  b.is_fixed.assign(num_vertices, 0);
+  b.uc.assign(num_vertices, 0.0);
+  b.us.assign(num_vertices, 0.0);
   for (int v = 0; v < num_vertices; ++v) {
     const double norm = std::hypot(bc[v], bs[v]);
     if (!is_boundary[v] || norm < 1e-6) continue;
-    is_fixed[v] = 1;
-    uc[v] = bc[v] / norm;
-    us[v] = bs[v] / norm;
+    b.is_fixed[v] = 1;
+    b.uc[v] = bc[v] / norm;
+    b.us[v] = bs[v] / norm;
   }
+  return b;
+}
+
+CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
+                                        const std::vector<double>& size_m, double conformal) {
+  const int num_vertices = static_cast<int>(mesh.points.size());
+  BoundaryCrosses boundary = boundary_crosses(mesh);
+  const std::vector<char>& is_fixed = boundary.is_fixed;
+  std::vector<double>& uc = boundary.uc;
+  std::vector<double>& us = boundary.us;
 
   // Unknown numbering for free vertices.
   std::vector<int> unknown(num_vertices, -1);

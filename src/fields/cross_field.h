@@ -33,6 +33,16 @@ CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
                                         const std::vector<double>& size_m = {},
                                         double conformal = 0.0);
 
+// The boundary data of that field: per vertex, whether it is fixed, and its u there.
+struct BoundaryCrosses {
+  std::vector<char> is_fixed;  // #V
+  std::vector<double> uc, us;  // #V cos and sin of 4 theta (0 where not fixed)
+};
+BoundaryCrosses boundary_crosses(const BackgroundMesh& mesh);
+
+// theta = arg(u) / 4 for u = c + i s, as the cross's representative in [0, pi/2).
+double cross_angle_of(double c, double s);
+
 // The same cross at every vertex; angle_deg is any angle, reduced modulo 90 degrees.
 CrossField constant_cross_field(const BackgroundMesh& mesh, double angle_deg);
 
