@@ -98,14 +98,6 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
   bp.max_edge_m = [&cache, factor](const Point2& p) { return factor * cache(p); };
   r.mesh = build_background_mesh(domain, bp);
   r.num_size_cache_leaves = cache.num_leaves();
-  // A large background mesh: a coarse one too, with edges up to kCoarseEdge times the
-  // sizes, for the cross field's solve (boundary_field).
-  if (options.coarse_cross_above > 0 && r.mesh.points.size() > options.coarse_cross_above &&
-      options.cross.source != CrossSource::constant) {
-    BackgroundMeshParams coarse_params;
-    coarse_params.max_edge_m = [&cache](const Point2& p) { return kCoarseEdge * cache(p); };
-    coarse = build_background_mesh(domain, coarse_params);
-  }
   // The triangulation's many small blocks, freed, would otherwise stay resident beside
   // the cross field's large ones.
   release_free_memory();
@@ -118,6 +110,15 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
         predicted_num_quads(r.mesh, r.size), "the graded sizes on the background mesh",
         *std::min_element(r.size.size_m.begin(), r.size.size_m.end()), domain, options);
   timer.lap("sizing field");
+  // A large background mesh, within the budget: a coarse one too, with edges up to
+  // kCoarseEdge times the sizes, for the cross field's solve (boundary_field).
+  if (options.coarse_cross_above > 0 && r.mesh.points.size() > options.coarse_cross_above &&
+      options.cross.source != CrossSource::constant) {
+    BackgroundMeshParams coarse_params;
+    coarse_params.max_edge_m = [&cache](const Point2& p) { return kCoarseEdge * cache(p); };
+    coarse = build_background_mesh(domain, coarse_params);
+    timer.lap("coarse mesh");
+  }
 }
 
 // The boundary-aligned field. With a coarse mesh of the domain, solved there and
