@@ -28,17 +28,19 @@ class SizeCache {
   // Bilinear interpolation in the leaf containing p (clamped to the box).
   double operator()(const Point2& p) const;
 
-  std::size_t num_leaves() const { return num_leaves_; }
-  std::size_t num_evaluations() const { return corner_value_.size(); }
+  std::size_t num_leaves() const { return leaf_corner_.size(); }
+  // Exact evaluations of the size function made by the build (each lattice point once).
+  std::size_t num_evaluations() const { return num_evaluations_; }
 
  private:
-  struct Node {
-    int child = -1;  // index of the first of 4 children, -1 for a leaf
-    std::array<double, 4> corner{};  // values at (x0,y0), (x1,y0), (x0,y1), (x1,y1)
-  };
-  double corner(long long i, long long j, const std::function<double(const Point2&)>& size);
+  // The values at the lattice points evaluated so far, during the build only (a cell's
+  // corners are shared with up to three other cells): millions of entries for fine
+  // sizes, which stayed resident beside the background mesh when the cache kept them.
+  using CornerTable = std::unordered_map<long long, double>;
+  double corner(long long i, long long j, const std::function<double(const Point2&)>& size,
+                CornerTable& table);
   void build(int node, int depth, long long i0, long long j0, long long span,
-             const std::function<double(const Point2&)>& size);
+             const std::function<double(const Point2&)>& size, CornerTable& table);
 
   bool overlaps_region(long long i0, long long j0, long long span) const;
 
@@ -47,9 +49,11 @@ class SizeCache {
   double cell_ratio_ = 0.5;
   int max_depth_ = 18;
   long long resolution_ = 1;  // lattice points per side at max depth
-  std::vector<Node> nodes_;
-  std::unordered_map<long long, double> corner_value_;
-  std::size_t num_leaves_ = 0;
+  // Per node: the index of the first of its 4 children, or -1 - (its leaf's index).
+  std::vector<int> child_;
+  // Per leaf: the values at (x0,y0), (x1,y0), (x0,y1), (x1,y1).
+  std::vector<std::array<double, 4>> leaf_corner_;
+  std::size_t num_evaluations_ = 0;
 };
 
 }  // namespace isoquad

@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 
 #include "core/error.h"
 #include "fields/feature_size.h"
@@ -281,6 +282,37 @@ TEST(SizeCache, RefinesOnlyOverTheRegionsItIsGiven) {
     EXPECT_NEAR(islands(p), 1000.0, 1e-9);
     EXPECT_NEAR(everywhere(p), 1000.0, 1e-9);
   }
+}
+
+TEST(SizeCache, EvaluatesEachCornerOnceAndInterpolatesTheSizes) {
+  // Sizes growing away from a point at K = 0.2: the cells split near it. The build asks
+  // the function once per distinct cell corner, and the cache is within the bilinear
+  // interpolation's error of the function everywhere (cells at most half the size, so
+  // a few percent where the distance's cone is sharpest).
+  const auto exact = [](const Point2& p) {
+    return 100.0 + 0.2 * std::hypot(p.x - 2000.0, p.y - 3000.0);
+  };
+  std::set<std::pair<double, double>> asked;
+  std::size_t calls = 0;
+  const SizeCache cache(
+      {0.0, 0.0, 1.0e4, 1.0e4},
+      [&](const Point2& p) {
+        ++calls;
+        asked.insert({p.x, p.y});
+        return exact(p);
+      },
+      0.5, 18);
+  EXPECT_EQ(calls, asked.size());
+  EXPECT_EQ(cache.num_evaluations(), asked.size());
+  EXPECT_GT(cache.num_leaves(), 1000u);
+  double worst = 0.0;
+  for (int i = 0; i <= 200; ++i)
+    for (int j = 0; j <= 200; ++j) {
+      const Point2 p{50.0 * i + 0.37, 50.0 * j + 0.61};
+      worst = std::max(worst, std::abs(cache(p) - exact(p)) / exact(p));
+    }
+  EXPECT_LT(worst, 0.05);
+  EXPECT_GT(worst, 0.0);  // interpolated, not the function itself
 }
 
 TEST(FeatureSize, NearlyFlatTrianglesOfTheSamplesAreSkipped) {
