@@ -126,13 +126,17 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
 CrossField boundary_field(const BackgroundMesh& mesh, const SizingField& size, double conformal,
                           const BackgroundMesh* coarse) {
   if (!coarse) return boundary_aligned_cross_field(mesh, size.size_m, conformal);
-  const TriangleLocator fine(mesh), locator(*coarse);
+  // Each locator lives only while used: the solve between them is the stage's peak.
   std::vector<double> coarse_size(coarse->points.size());
-  for (std::size_t v = 0; v < coarse->points.size(); ++v) {
-    const Location l = fine.locate(coarse->points[v]);
-    coarse_size[v] = size.at(mesh, l.triangle, l.bary);
+  {
+    const TriangleLocator fine(mesh);
+    for (std::size_t v = 0; v < coarse->points.size(); ++v) {
+      const Location l = fine.locate(coarse->points[v]);
+      coarse_size[v] = size.at(mesh, l.triangle, l.bary);
+    }
   }
   const CrossField solved = boundary_aligned_cross_field(*coarse, coarse_size, conformal);
+  const TriangleLocator locator(*coarse);
   const BoundaryCrosses boundary = boundary_crosses(mesh);
   CrossField field;
   field.angle_rad.resize(mesh.points.size());

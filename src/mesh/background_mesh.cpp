@@ -411,41 +411,50 @@ BackgroundMesh build_background_mesh(const Domain& domain, const BackgroundMeshP
   // --- Flat arrays, vertices and triangles in Hilbert curve order: later stages walk
   // the mesh by adjacency (floods, smoothing), and neighbours close in memory keep that
   // cache-friendly. The median policy is deterministic.
+  // The sort keys and orders are freed as soon as read: at this point the triangulation
+  // holds most of the memory, and they would add to the peak beside the flat arrays.
   BackgroundMesh mesh;
-  std::vector<VertexHandle> used_vertices;
   std::vector<FaceHandle> domain_faces;
-  for (auto v = ct.finite_vertices_begin(); v != ct.finite_vertices_end(); ++v) v->info() = -1;
-  for (auto f = ct.finite_faces_begin(); f != ct.finite_faces_end(); ++f) {
-    f->info().id = -1;
-    if (!f->is_in_domain()) continue;
-    domain_faces.push_back(f);
-    for (int i = 0; i < 3; ++i) {
-      if (f->vertex(i)->info() == -1) used_vertices.push_back(f->vertex(i));
-      f->vertex(i)->info() = 0;
+  {
+    std::vector<VertexHandle> used_vertices;
+    for (auto v = ct.finite_vertices_begin(); v != ct.finite_vertices_end(); ++v) v->info() = -1;
+    for (auto f = ct.finite_faces_begin(); f != ct.finite_faces_end(); ++f) {
+      f->info().id = -1;
+      if (!f->is_in_domain()) continue;
+      domain_faces.push_back(f);
+      for (int i = 0; i < 3; ++i) {
+        if (f->vertex(i)->info() == -1) used_vertices.push_back(f->vertex(i));
+        f->vertex(i)->info() = 0;
+      }
+    }
+    std::vector<K::Point_2> keys;
+    keys.reserve(used_vertices.size());
+    for (VertexHandle v : used_vertices) keys.push_back(v->point());
+    const std::vector<std::size_t> vertex_order = hilbert_order(keys);
+    mesh.points.resize(used_vertices.size());
+    for (std::size_t k = 0; k < vertex_order.size(); ++k) {
+      VertexHandle v = used_vertices[vertex_order[k]];
+      v->info() = static_cast<int>(k);
+      mesh.points[k] = {v->point().x(), v->point().y()};
     }
   }
-  std::vector<K::Point_2> keys;
-  keys.reserve(used_vertices.size());
-  for (VertexHandle v : used_vertices) keys.push_back(v->point());
-  const std::vector<std::size_t> vertex_order = hilbert_order(keys);
-  mesh.points.resize(used_vertices.size());
-  for (std::size_t k = 0; k < vertex_order.size(); ++k) {
-    VertexHandle v = used_vertices[vertex_order[k]];
-    v->info() = static_cast<int>(k);
-    mesh.points[k] = {v->point().x(), v->point().y()};
+  {
+    std::vector<K::Point_2> keys;
+    keys.reserve(domain_faces.size());
+    for (FaceHandle f : domain_faces)
+      keys.push_back(
+          CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()));
+    const std::vector<std::size_t> face_order = hilbert_order(keys);
+    for (std::size_t k = 0; k < face_order.size(); ++k)
+      domain_faces[face_order[k]]->info().id = static_cast<int>(k);
   }
-  keys.clear();
-  for (FaceHandle f : domain_faces)
-    keys.push_back(
-        CGAL::centroid(f->vertex(0)->point(), f->vertex(1)->point(), f->vertex(2)->point()));
-  const std::vector<std::size_t> face_order = hilbert_order(keys);
-  for (std::size_t k = 0; k < face_order.size(); ++k)
-    domain_faces[face_order[k]]->info().id = static_cast<int>(k);
   const int num_faces = static_cast<int>(domain_faces.size());
+  std::vector<FaceHandle>().swap(domain_faces);
   mesh.triangles.resize(num_faces);
   mesh.neighbours.resize(num_faces);
-  for (FaceHandle f : domain_faces) {
+  for (auto f = ct.finite_faces_begin(); f != ct.finite_faces_end(); ++f) {
     const int id = f->info().id;
+    if (id < 0) continue;
     for (int i = 0; i < 3; ++i) {
       mesh.triangles[id][i] = f->vertex(i)->info();
       FaceHandle n = f->neighbor(i);
