@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -86,18 +87,25 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
   // Refinement evaluates the size many times, at scattered points: it reads a quadtree
   // cache (cells at most half the local size; bilinear values there are close to the
   // graded field, which changes by at most K times the cell side) instead of the sources.
-  std::vector<std::array<double, 4>> components;
-  for (const Polygon& poly : domain.polygons) {
-    std::array<double, 4> b{poly.outer[0].x, poly.outer[0].y, poly.outer[0].x, poly.outer[0].y};
-    for (const Point2& p : poly.outer)
-      b = {std::min(b[0], p.x), std::min(b[1], p.y), std::max(b[2], p.x), std::max(b[3], p.y)};
-    components.push_back(b);
+  // A uniform size has nothing to cache (France at 1.5 km: 4 million cells, 150 MB).
+  std::optional<SizeCache> cache;
+  if (!oracle.is_uniform()) {
+    std::vector<std::array<double, 4>> components;
+    for (const Polygon& poly : domain.polygons) {
+      std::array<double, 4> b{poly.outer[0].x, poly.outer[0].y, poly.outer[0].x, poly.outer[0].y};
+      for (const Point2& p : poly.outer)
+        b = {std::min(b[0], p.x), std::min(b[1], p.y), std::max(b[2], p.x), std::max(b[3], p.y)};
+      components.push_back(b);
+    }
+    cache.emplace(
+        bounding_box(domain), [&oracle](const Point2& p) { return oracle(p); }, 0.5, 18,
+        std::move(components));
   }
-  const SizeCache cache(bounding_box(domain), [&oracle](const Point2& p) { return oracle(p); },
-                        0.5, 18, std::move(components));
-  bp.max_edge_m = [&cache, factor](const Point2& p) { return factor * cache(p); };
+  const std::function<double(const Point2&)> size_at = [&cache, &oracle](const Point2& p) {
+    return cache ? (*cache)(p) : oracle(p);
+  };
+  bp.max_edge_m = [&size_at, factor](const Point2& p) { return factor * size_at(p); };
   r.mesh = build_background_mesh(domain, bp);
-  r.num_size_cache_leaves = cache.num_leaves();
   // The triangulation's many small blocks, freed, would otherwise stay resident beside
   // the cross field's large ones.
   release_free_memory();
@@ -115,7 +123,7 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
   if (options.coarse_cross_above > 0 && r.mesh.points.size() > options.coarse_cross_above &&
       options.cross.source != CrossSource::constant) {
     BackgroundMeshParams coarse_params;
-    coarse_params.max_edge_m = [&cache](const Point2& p) { return kCoarseEdge * cache(p); };
+    coarse_params.max_edge_m = [&size_at](const Point2& p) { return kCoarseEdge * size_at(p); };
     coarse = build_background_mesh(domain, coarse_params);
     timer.lap("coarse mesh");
   }

@@ -67,7 +67,6 @@ struct FieldsResult {
   CrossField cross;
   std::vector<Singularity> singularities;
   std::vector<StageTime> times;
-  std::size_t num_size_cache_leaves = 0;
 };
 
 // Front end, then the background mesh refined to the sizing, the sizing field on its

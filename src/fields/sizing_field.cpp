@@ -114,6 +114,11 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
 
 SizingOracle::~SizingOracle() = default;
 
+bool SizingOracle::is_uniform() const {
+  return params_.constant_m && !automatic_ && !expression_ && !raster_ && !bathymetry_ &&
+         params_.refinements.empty();
+}
+
 double SizingOracle::operator()(const Point2& p) const {
   double h = std::numeric_limits<double>::infinity();
   if (params_.constant_m) h = std::min(h, *params_.constant_m);

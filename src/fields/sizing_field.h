@@ -76,6 +76,9 @@ class SizingOracle {
 
   double operator()(const Point2& x) const;
   const SizingSummary& summary() const { return summary_; }
+  // The same size everywhere: --size alone (clamped to hmin and hmax), no other source
+  // and no local refinement.
+  bool is_uniform() const;
 
  private:
   struct Expression;

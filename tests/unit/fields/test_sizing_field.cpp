@@ -74,6 +74,26 @@ TEST(SizingField, ConstantSizeIsReproducedAtVertices) {
   EXPECT_NEAR(predicted_num_quads(mesh, f), 1000.0 * 500.0 / (50.0 * 50.0), 1e-6);
 }
 
+// Only --size alone is uniform (the background mesh then reads it without the cache):
+// any other source or a local refinement makes sizes vary.
+TEST(SizingField, OnlyAConstantSizeAloneIsUniform) {
+  const Domain d = rectangle(1000, 500);
+  SizingParams p;
+  p.automatic = false;
+  p.constant_m = 50.0;
+  p.hmin_m = 60.0;  // clamped: still the same everywhere
+  EXPECT_TRUE(SizingOracle(d, p).is_uniform());
+  SizingParams refined = p;
+  refined.refinements.push_back({{500, 250}, 10.0, 20.0});
+  EXPECT_FALSE(SizingOracle(d, refined).is_uniform());
+  SizingParams expression = p;
+  expression.expression = "50";
+  EXPECT_FALSE(SizingOracle(d, expression).is_uniform());
+  SizingParams automatic = p;
+  automatic.automatic = true;
+  EXPECT_FALSE(SizingOracle(d, automatic).is_uniform());
+}
+
 // The paper's Figure 12 field on the unit square; its slope (0.19) is below K = 1, so
 // gradation leaves it unchanged.
 TEST(SizingField, ExpressionIsReproducedAtVertices) {
