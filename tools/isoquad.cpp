@@ -225,8 +225,8 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
       ->check(CLI::Range(0.001, 1.0))
       ->group("Background mesh");
   cmd->add_option("--max-quads", f.max_quads,
-                  "Stop before meshing when the sizes ask for more quads than this (about 5 KB "
-                  "of memory each; default 1000000; 0: no limit)")
+                  "Stop before meshing when the sizes ask for more quads than this (about 3 to 5 "
+                  "KB of memory each; default 1000000; 0: no limit)")
       ->check(CLI::NonNegativeNumber)
       ->group("Background mesh");
   cmd->add_option("--plot", f.plot_path, "Also draw a PNG")->group("Output");
