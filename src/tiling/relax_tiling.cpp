@@ -66,9 +66,9 @@ class Relocator {
       double w = 0.0, sx = 0.0, sy = 0.0;
       for (std::size_t k = 0; k < members_.size(); ++k) {
         const int f = members_[k];
-        w += geom_.weight[f];
-        sx += geom_.weight[f] * geom_.cx[f];
-        sy += geom_.weight[f] * geom_.cy[f];
+        w += geom_.area_m2[f];
+        sx += geom_.area_m2[f] * geom_.cx[f];
+        sy += geom_.area_m2[f] * geom_.cy[f];
         for (int g : mesh_.neighbours[f])
           if (g >= 0 && label[g] == t && stamp_[g] != current_) {
             stamp_[g] = current_;

@@ -13,7 +13,6 @@ TriangleGeometry triangle_geometry(const BackgroundMesh& mesh, const SizingField
   g.cy.resize(num_faces);
   g.area_m2.resize(num_faces);
   g.size_m.resize(num_faces);
-  g.weight.resize(num_faces);
   g.mass.resize(num_faces);
   for (int f = 0; f < num_faces; ++f) {
     const auto& t = mesh.triangles[f];
@@ -24,7 +23,6 @@ TriangleGeometry triangle_geometry(const BackgroundMesh& mesh, const SizingField
     g.size_m[f] = (size.size_m[t[0]] + size.size_m[t[1]] + size.size_m[t[2]]) / 3.0;
   }
   for (int f = 0; f < num_faces; ++f) {
-    g.weight[f] = g.area_m2[f];
     g.mass[f] = g.area_m2[f] / (4.0 * g.size_m[f] * g.size_m[f]);
   }
   return g;
@@ -43,7 +41,7 @@ TileCentroids tile_centroids(const TriangleGeometry& geom, const std::vector<int
   const int num_faces = geom.num_triangles();
   for (int f = 0; f < num_faces; ++f) {
     const int t = label[f];
-    const double w = geom.weight[f];
+    const double w = geom.area_m2[f];
     c.x[t] += w * geom.cx[f];
     c.y[t] += w * geom.cy[f];
     c.weight[t] += w;
@@ -106,7 +104,7 @@ double tiling_energy(const BackgroundMesh& mesh, const TriangleGeometry& geom,
     if (tiling.generator[t] < 0) continue;
     const double dx = geom.cx[f] - gx[t], dy = geom.cy[f] - gy[t];
     const double d = std::max(std::abs(dx * cu[t] + dy * su[t]), std::abs(dy * cu[t] - dx * su[t]));
-    h += geom.weight[f] * d;
+    h += geom.area_m2[f] * d;
   }
   return h;
 }

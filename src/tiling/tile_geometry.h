@@ -15,14 +15,13 @@ namespace isoquad {
 
 struct TriangleGeometry {
   std::vector<double> cx, cy;     // #F centroid, metres
-  std::vector<double> area_m2;    // #F
-  std::vector<double> size_m;     // #F h at the centroid (mean of the vertex sizes)
-  // #F rho * area, the relocation weight of 2.3, with rho = 1. The paper's rho = h^-4
+  // #F. Also the relocation weight of 2.3, rho * area with rho = 1. The paper's rho = h^-4
   // sizes the tiles of its plain L-infinity flood; ours measures distances in units of
   // h (flood_tiling.h), which sizes tiles by h already, and h^-4 on top of it pulled
   // generators into small-h regions twice: on France with automatic sizing, coastal
   // quads came out at 0.6 h and 8 points fewer angles in [75,105] degrees.
-  std::vector<double> weight;
+  std::vector<double> area_m2;
+  std::vector<double> size_m;  // #F h at the centroid (mean of the vertex sizes)
   // #F area / (2h)^2: the share of one ideally sized tile (tiles are 2h wide).
   std::vector<double> mass;
   // #F bit i set: no flood or merge crosses the edge opposite triangles[f][i]
