@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <functional>
 #include <limits>
 #include <optional>
 #include <sstream>
@@ -101,7 +100,7 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
         bounding_box(domain), [&oracle](const Point2& p) { return oracle(p); }, 0.5, 18,
         std::move(components));
   }
-  const std::function<double(const Point2&)> size_at = [&cache, &oracle](const Point2& p) {
+  const auto size_at = [&cache, &oracle](const Point2& p) {
     return cache ? (*cache)(p) : oracle(p);
   };
   bp.max_edge_m = [&size_at, factor](const Point2& p) { return factor * size_at(p); };
