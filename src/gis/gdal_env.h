@@ -1,7 +1,10 @@
 // GDAL/OGR set-up shared by every reader and writer.
 #pragma once
 
+#include <memory>
 #include <string>
+
+class GDALDataset;
 
 namespace isoquad {
 
@@ -18,5 +21,15 @@ class GdalErrorCapture {
   GdalErrorCapture& operator=(const GdalErrorCapture&) = delete;
   std::string last_message() const;
 };
+
+struct GdalDatasetCloser {
+  void operator()(GDALDataset* ds) const;
+};
+using GdalDataset = std::unique_ptr<GDALDataset, GdalDatasetCloser>;
+
+// Opens a vector data set read-only, with at least one layer. Throws Error(input) that
+// names the file and `stage`: no such file, an empty file, not a vector format GDAL
+// reads (with GDAL's reason), no layer.
+GdalDataset open_vector_dataset(const std::string& path, const std::string& stage);
 
 }  // namespace isoquad

@@ -4,7 +4,6 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
-#include <sys/stat.h>
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -16,10 +15,6 @@
 namespace isoquad {
 
 namespace {
-
-struct DatasetCloser {
-  void operator()(GDALDataset* ds) const { GDALClose(ds); }
-};
 
 std::string quote(const std::string& s) { return "'" + s + "'"; }
 
@@ -69,25 +64,7 @@ class Reader {
     throw Error(cls, "read", quote(p_.path) + ": " + what);
   }
 
-  void open() {
-    ensure_gdal_registered();
-    struct stat st {};
-    // /vsi paths (zip, curl...) are GDAL's business; plain paths we check ourselves.
-    if (p_.path.rfind("/vsi", 0) != 0) {
-      if (stat(p_.path.c_str(), &st) != 0) fail(ErrorClass::input, "no such file or directory");
-      if (S_ISREG(st.st_mode) && st.st_size == 0) fail(ErrorClass::input, "file is empty");
-    }
-    GdalErrorCapture capture;
-    ds_.reset(static_cast<GDALDataset*>(
-        GDALOpenEx(p_.path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
-    if (!ds_) {
-      std::string why = capture.last_message();
-      fail(ErrorClass::input, "cannot read as a vector data set" +
-                                  (why.empty() ? std::string(" (unknown or corrupt format)")
-                                               : " (" + why + ")"));
-    }
-    if (ds_->GetLayerCount() == 0) fail(ErrorClass::input, "contains no vector layer");
-  }
+  void open() { ds_ = open_vector_dataset(p_.path, "read"); }
 
   void choose_layer() {
     if (!p_.layer.empty()) {
@@ -349,7 +326,7 @@ class Reader {
 
   const ReadParams& p_;
   std::vector<OGREnvelope> filters_;  // the bbox's extent in the source CRS (and wrapped)
-  std::unique_ptr<GDALDataset, DatasetCloser> ds_;
+  GdalDataset ds_;
   OGRLayer* layer_ = nullptr;
   std::size_t part_count_ = 0;
   SourceData out_;
