@@ -340,6 +340,7 @@ struct MeshArgs {
   std::vector<std::string> output_formats;
   std::string msh_version = "4.1";
   std::string output_crs;
+  std::string open_boundary;  // --open-boundary FILE
   std::string stop_after;  // empty: the whole job
   std::string conform_rule = "lattice";
   std::string init = "front";
@@ -450,6 +451,11 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "Write coordinates in this CRS (e.g. EPSG:4326); SCHISM .gr3 stays in the "
                   "meshing CRS (its .ll is in lon/lat)")
       ->group("Output");
+  cmd->add_option("--open-boundary", m.open_boundary,
+                  "Vector file (any format, with a CRS) of lines drawn along the domain's edge "
+                  "(or polygons, by their rings): the boundary they follow is open (sea), the "
+                  "rest land, in every output; replaces a water domain's bbox sides")
+      ->group("Output");
 }
 
 std::vector<MeshOutput> mesh_outputs(const CommonArgs& a, const MeshArgs& m) {
@@ -477,6 +483,7 @@ std::string joined_command_line(int argc, char** argv) {
 
 int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& command_line) {
   finish_front_end_args(a);
+  a.fe.open_boundary_path = m.open_boundary;
   const bool tiling_only = !m.stop_after.empty();
   const std::vector<MeshOutput> outputs = mesh_outputs(a, m);
   MeshWriteOptions write_options;

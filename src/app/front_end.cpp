@@ -7,8 +7,53 @@
 #include "core/error.h"
 #include "domain/separate_rings.h"
 #include "gis/crs.h"
+#include "gis/read_lines.h"
 
 namespace isoquad {
+
+namespace {
+
+struct ProjectedLines {
+  std::vector<std::vector<Point2>> lines;
+  double sag_m = 0.0;     // the largest gap between a projected segment and its chord
+  long failed_line = -1;  // the first line with a point that cannot be transformed
+};
+
+// Each segment cut into 16, so that the lines follow the segments' curved images, then
+// transformed.
+ProjectedLines project_lines(const std::vector<std::vector<Point2>>& lines, const CrsInfo& from,
+                             const CrsInfo& to) {
+  constexpr int kPieces = 16;
+  ProjectedLines out;
+  CrsTransform t(from, to);
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    const auto& line = lines[l];
+    std::vector<Point2> dense;
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      const Point2 &a = line[i], &b = line[i + 1];
+      for (int k = 0; k < kPieces; ++k)
+        dense.push_back({a.x + (b.x - a.x) * k / kPieces, a.y + (b.y - a.y) * k / kPieces});
+    }
+    dense.push_back(line.back());
+    if (t.transform(dense) >= 0) {
+      out.failed_line = static_cast<long>(l);
+      return out;
+    }
+    for (std::size_t i = 0; i + kPieces < dense.size(); i += kPieces) {
+      const Point2 &a = dense[i], &b = dense[i + kPieces];
+      const double len = std::hypot(b.x - a.x, b.y - a.y);
+      for (int k = 1; k < kPieces && len > 0; ++k) {
+        const Point2& p = dense[i + k];
+        out.sag_m = std::max(out.sag_m,
+                             std::abs((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / len);
+      }
+    }
+    out.lines.push_back(std::move(dense));
+  }
+  return out;
+}
+
+}  // namespace
 
 FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progress& progress) {
   FrontEndResult result;
@@ -43,31 +88,26 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   s.automatic_crs = projected.local.has_value();
   s.local = projected.local;
   s.meshing_crs_proj = crs_proj_string(CrsInfo{result.domain.crs_wkt, result.domain.crs_name});
-  if (options.kind == DomainKind::water && source.bbox_ring) {
-    // Every domain vertex that came from the bbox lies on a straight segment of the
-    // source bbox ring; 16 points per segment follow its curved image closely.
-    const Ring& box = *source.bbox_ring;
-    Ring dense;
-    for (std::size_t i = 0; i < box.size(); ++i) {
-      const Point2& a = box[i];
-      const Point2& b = box[(i + 1) % box.size()];
-      for (int k = 0; k < 16; ++k)
-        dense.push_back({a.x + (b.x - a.x) * k / 16.0, a.y + (b.y - a.y) * k / 16.0});
-    }
-    CrsTransform t(source.crs, CrsInfo{result.domain.crs_wkt, result.domain.crs_name});
-    if (t.transform(dense) < 0) {
-      double sag = 0.0;
-      for (std::size_t i = 0; i < dense.size(); i += 16) {
-        const Point2& a = dense[i];
-        const Point2& b = dense[(i + 16) % dense.size()];
-        const double len = std::hypot(b.x - a.x, b.y - a.y);
-        for (std::size_t k = 1; k < 16 && len > 0; ++k) {
-          const Point2& p = dense[i + k];
-          sag = std::max(sag, std::abs((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / len);
-        }
-      }
-      result.open_boundary_ring = std::move(dense);
-      result.open_boundary_tolerance_m = 2.0 * sag;  // the simplification tolerance added below
+  const CrsInfo meshing_crs{result.domain.crs_wkt, result.domain.crs_name};
+  if (!options.open_boundary_path.empty()) {
+    const SourceLines lines = read_lines(options.open_boundary_path, "", "open boundary");
+    s.open_boundary_path = options.open_boundary_path;
+    s.open_boundary_num_lines = lines.lines.size();
+    const ProjectedLines p = project_lines(lines.lines, lines.crs, meshing_crs);
+    if (p.failed_line >= 0)
+      throw Error(ErrorClass::crs, "open boundary",
+                  "'" + options.open_boundary_path + "': a point of line " +
+                      std::to_string(p.failed_line + 1) + " cannot be transformed from " +
+                      lines.crs.name + " to the meshing CRS");
+    result.open_boundary_lines = p.lines;
+    result.open_boundary_tolerance_m = 2.0 * p.sag_m;  // the simplification tolerance added below
+  } else if (options.kind == DomainKind::water && source.bbox_ring) {
+    Ring box = *source.bbox_ring;
+    box.push_back(box.front());
+    const ProjectedLines p = project_lines({box}, source.crs, meshing_crs);
+    if (p.failed_line < 0) {
+      result.open_boundary_lines = p.lines;
+      result.open_boundary_tolerance_m = 2.0 * p.sag_m;  // the simplification tolerance added below
     }
   }
 
@@ -173,7 +213,30 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
                          " point(s) where rings touched were cut apart (a " + width +
                          " m wide gap each)");
   }
-  if (result.open_boundary_ring) result.open_boundary_tolerance_m += 1.01 * simp.tolerance_m;
+  if (!result.open_boundary_lines.empty())
+    result.open_boundary_tolerance_m += 1.01 * simp.tolerance_m;
+  if (!options.open_boundary_path.empty()) {
+    // Lines that follow none of the domain's boundary would leave it all land: an
+    // ocean model without a sea boundary.
+    const PolylineIndex index(result.open_boundary_lines);
+    for (const Polygon& polygon : result.domain.polygons) {
+      for (const Point2& p : polygon.outer)
+        s.open_boundary_num_vertices += index.near(p, result.open_boundary_tolerance_m);
+      for (const Ring& hole : polygon.holes)
+        for (const Point2& p : hole)
+          s.open_boundary_num_vertices += index.near(p, result.open_boundary_tolerance_m);
+    }
+    if (s.open_boundary_num_vertices < 2) {
+      char tolerance[32];
+      std::snprintf(tolerance, sizeof tolerance, "%.4g", result.open_boundary_tolerance_m);
+      throw Error(ErrorClass::input, "open boundary",
+                  "'" + options.open_boundary_path +
+                      "': its lines follow none of the domain's boundary (" +
+                      std::to_string(s.open_boundary_num_vertices) + " of its vertices within " +
+                      tolerance +
+                      " m of them); draw them along the domain's edge (snapped to its vertices)");
+    }
+  }
 
   s.num_components = result.domain.polygons.size();
   s.num_holes = num_holes(result.domain);

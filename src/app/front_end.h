@@ -36,6 +36,9 @@ struct FrontEndOptions {
   std::optional<double> simplify_clearance_m;
   std::optional<double> min_island_area_m2;  // default: target_size_m^2, or 0
   std::optional<double> min_width_m;         // default: target_size_m / 4, or off
+  // A vector file of lines (or polygons, by their rings) along the domain's edge: the
+  // boundary they follow is open, the rest land, instead of a water domain's bbox.
+  std::string open_boundary_path;
 };
 
 // What the front end did, for the summary and the report.
@@ -67,19 +70,24 @@ struct DomainSummary {
   NarrowResult narrow;
   SpikeResult spikes;  // tips sharper than SpikeParams::max_angle_deg cut back
   CleanResult dropped;
+  // --open-boundary: the file, its lines, and the domain's boundary vertices near them.
+  std::string open_boundary_path;
+  std::size_t open_boundary_num_lines = 0;
+  std::size_t open_boundary_num_vertices = 0;
   std::vector<std::string> warnings;
 };
 
 struct FrontEndResult {
   Domain domain;
   DomainSummary summary;
-  // For a water domain: the bbox ring in the meshing CRS, densified so that it follows
-  // the projected bbox edges. Boundary parts lying on it are the open (sea) boundary;
-  // the rest is land. Empty for a land domain.
-  std::optional<Ring> open_boundary_ring;
-  // How far the domain's boundary may lie from that ring where it follows it: the
-  // simplification tolerance plus the largest gap between a projected bbox segment and
-  // its chord (the domain's bbox vertices are joined by chords).
+  // Polylines in the meshing CRS (a closed one repeats its first point), densified so
+  // that they follow their projected segments: the lines of --open-boundary, or else
+  // for a water domain its bbox. Boundary parts lying on them are the open (sea)
+  // boundary; the rest is land. Empty for a land domain without --open-boundary.
+  std::vector<std::vector<Point2>> open_boundary_lines;
+  // How far the domain's boundary may lie from those lines where it follows them: the
+  // simplification tolerance plus twice the largest gap between a projected segment and
+  // its chord (the domain's vertices are joined by chords).
   double open_boundary_tolerance_m = 0.0;
 };
 

@@ -65,13 +65,12 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
     data.mesh = &r.quads;
     data.metrics = &r.metrics;
     data.crs_wkt = front.domain.crs_wkt;
-    // Boundary parts on the projected bbox (within the front end's tolerance, plus
-    // rounding) are open.
+    // Boundary parts on the open boundary's lines (the projected bbox, or the lines of
+    // --open-boundary; within the front end's tolerance, plus rounding) are open.
     double extent = 0.0;
-    if (front.open_boundary_ring)
-      for (const Point2& p : *front.open_boundary_ring)
-        extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
-    data.boundary = extract_boundary(r.quads, front.open_boundary_ring,
+    for (const auto& line : front.open_boundary_lines)
+      for (const Point2& p : line) extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
+    data.boundary = extract_boundary(r.quads, PolylineIndex(front.open_boundary_lines),
                                      front.open_boundary_tolerance_m + 1e-7 * extent);
     written.num_open_edges = data.boundary.num_open_edges;
     written.num_land_edges = data.boundary.num_land_edges;

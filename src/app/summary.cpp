@@ -53,6 +53,9 @@ std::string format_domain_summary(const DomainSummary& s) {
     os << "repairs:      " << s.num_repaired << " invalid polygon(s) fixed, " << s.num_rings_closed
        << " ring(s) closed, " << s.num_rings_dropped << " degenerate ring(s) dropped, "
        << s.num_points_removed << " duplicate or spike point(s) removed\n";
+  if (!s.open_boundary_path.empty())
+    os << "open bound.:  " << s.open_boundary_path << ": " << s.open_boundary_num_lines
+       << " line(s), " << s.open_boundary_num_vertices << " domain boundary vertices on them\n";
   return os.str();
 }
 
@@ -87,8 +90,12 @@ void add_domain_summary(JsonWriter& j, const DomainSummary& s) {
       .value("num_components_dropped", s.dropped.num_components_dropped)
       .value("num_repaired", s.num_repaired)
       .value("num_rings_closed", s.num_rings_closed)
-      .value("num_points_removed", s.num_points_removed)
-      .array("warnings", s.warnings);
+      .value("num_points_removed", s.num_points_removed);
+  if (!s.open_boundary_path.empty())
+    j.value("open_boundary", s.open_boundary_path)
+        .value("open_boundary_num_lines", s.open_boundary_num_lines)
+        .value("open_boundary_num_vertices", s.open_boundary_num_vertices);
+  j.array("warnings", s.warnings);
 }
 
 std::string domain_summary_json(const DomainSummary& s) {

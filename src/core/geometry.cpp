@@ -143,4 +143,45 @@ void sort_by_area(std::vector<Polygon>& polygons) {
   });
 }
 
+double distance_to_segment(const Point2& p, const Point2& a, const Point2& b) {
+  const double dx = b.x - a.x, dy = b.y - a.y;
+  const double len2 = dx * dx + dy * dy;
+  double t = len2 > 0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / len2 : 0.0;
+  t = std::clamp(t, 0.0, 1.0);
+  return std::hypot(p.x - (a.x + t * dx), p.y - (a.y + t * dy));
+}
+
+PolylineIndex::PolylineIndex(std::vector<std::vector<Point2>> lines) : lines_(std::move(lines)) {
+  constexpr int kRun = 32;
+  for (std::size_t l = 0; l < lines_.size(); ++l) {
+    const auto& line = lines_[l];
+    const int segments = static_cast<int>(line.size()) - 1;
+    for (int first = 0; first < segments; first += kRun) {
+      Run r;
+      r.line = static_cast<int>(l);
+      r.first = first;
+      r.last = std::min(segments, first + kRun);
+      r.xmin = r.xmax = line[first].x;
+      r.ymin = r.ymax = line[first].y;
+      for (int i = first + 1; i <= r.last; ++i) {
+        r.xmin = std::min(r.xmin, line[i].x), r.xmax = std::max(r.xmax, line[i].x);
+        r.ymin = std::min(r.ymin, line[i].y), r.ymax = std::max(r.ymax, line[i].y);
+      }
+      runs_.push_back(r);
+    }
+  }
+}
+
+bool PolylineIndex::near(const Point2& p, double tolerance) const {
+  for (const Run& r : runs_) {
+    if (p.x < r.xmin - tolerance || p.x > r.xmax + tolerance || p.y < r.ymin - tolerance ||
+        p.y > r.ymax + tolerance)
+      continue;
+    const auto& line = lines_[r.line];
+    for (int i = r.first; i < r.last; ++i)
+      if (distance_to_segment(p, line[i], line[i + 1]) <= tolerance) return true;
+  }
+  return false;
+}
+
 }  // namespace isoquad

@@ -72,4 +72,26 @@ std::string format_point(const Point2& p);
 // order is deterministic and the largest comes first.
 void sort_by_area(std::vector<Polygon>& polygons);
 
+// Polylines (a closed one repeats its first point at the end), indexed by runs of
+// segments with their bounding boxes, for "is this point near them" queries.
+class PolylineIndex {
+ public:
+  explicit PolylineIndex(std::vector<std::vector<Point2>> lines = {});
+  const std::vector<std::vector<Point2>>& lines() const { return lines_; }
+  bool empty() const { return lines_.empty(); }
+  // Whether p lies within `tolerance` of a segment.
+  bool near(const Point2& p, double tolerance) const;
+
+ private:
+  struct Run {
+    int line = 0, first = 0, last = 0;  // segments first .. last - 1 of the line
+    double xmin = 0, ymin = 0, xmax = 0, ymax = 0;
+  };
+  std::vector<std::vector<Point2>> lines_;
+  std::vector<Run> runs_;
+};
+
+// Distance from p to the segment ab.
+double distance_to_segment(const Point2& p, const Point2& a, const Point2& b);
+
 }  // namespace isoquad

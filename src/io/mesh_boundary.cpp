@@ -8,27 +8,9 @@
 
 namespace isoquad {
 
-namespace {
-
-double distance_to_segment(const Point2& p, const Point2& a, const Point2& b) {
-  const double dx = b.x - a.x, dy = b.y - a.y;
-  const double len2 = dx * dx + dy * dy;
-  double t = len2 > 0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / len2 : 0.0;
-  t = std::clamp(t, 0.0, 1.0);
-  return std::hypot(p.x - (a.x + t * dx), p.y - (a.y + t * dy));
-}
-
-bool near_ring(const Point2& p, const Ring& ring, double tol) {
-  for (std::size_t i = 0; i < ring.size(); ++i)
-    if (distance_to_segment(p, ring[i], ring[(i + 1) % ring.size()]) <= tol) return true;
-  return false;
-}
-
-}  // namespace
-
 const char* boundary_kind_name(BoundaryKind k) { return k == BoundaryKind::open ? "open" : "land"; }
 
-MeshBoundary extract_boundary(const QuadMesh& mesh, const std::optional<Ring>& open_ring,
+MeshBoundary extract_boundary(const QuadMesh& mesh, const PolylineIndex& open_lines,
                               double tolerance_m) {
   // Directed edges of the counter-clockwise quads; a boundary edge has no twin.
   std::map<std::pair<int, int>, int> count;
@@ -44,10 +26,10 @@ MeshBoundary extract_boundary(const QuadMesh& mesh, const std::optional<Ring>& o
   }
   MeshBoundary b;
   std::vector<char> on_open(mesh.points.size(), 0);
-  if (open_ring && open_ring->size() >= 2)
+  if (!open_lines.empty())
     for (const auto& [v, w] : next) {
       (void)w;
-      on_open[v] = near_ring(mesh.points[v], *open_ring, tolerance_m);
+      on_open[v] = open_lines.near(mesh.points[v], tolerance_m);
     }
   std::map<int, char> seen;
   for (const auto& [start, w] : next) {  // increasing vertex id: deterministic order
@@ -73,7 +55,7 @@ MeshBoundary extract_boundary(const QuadMesh& mesh, const std::optional<Ring>& o
       // length^2 / (8 radius): 1% of the length allows radii down to 12.5 lengths.
       const double length = std::hypot(mesh.points[c].x - mesh.points[a].x,
                                        mesh.points[c].y - mesh.points[a].y);
-      if (on_open[a] && on_open[c] && near_ring(mid, *open_ring, tolerance_m + 0.01 * length))
+      if (on_open[a] && on_open[c] && open_lines.near(mid, tolerance_m + 0.01 * length))
         kinds[i] = BoundaryKind::open;
       ++(kinds[i] == BoundaryKind::open ? b.num_open_edges : b.num_land_edges);
     }

@@ -3,7 +3,6 @@
 // (a coastline), and cut into segments of one kind, as SCHISM and Gmsh want them.
 #pragma once
 
-#include <optional>
 #include <vector>
 
 #include "core/geometry.h"
@@ -36,12 +35,12 @@ struct MeshBoundary {
   std::size_t num_open_edges = 0, num_land_edges = 0;
 };
 
-// `open_ring`: a closed polyline (meshing CRS) whose neighbourhood within `tolerance_m`
-// is open boundary; an edge is open when both its ends are that close and its midpoint
-// within `tolerance_m` plus 1% of the edge's length (a chord of a curved side).
-// Without it every edge is land. Throws Error(internal) when the boundary is not a set of
-// simple loops.
-MeshBoundary extract_boundary(const QuadMesh& mesh, const std::optional<Ring>& open_ring,
+// `open_lines`: polylines (meshing CRS) whose neighbourhood within `tolerance_m` is open
+// boundary (a water domain's bbox, or the lines of --open-boundary); an edge is open
+// when both its ends are that close and its midpoint within `tolerance_m` plus 1% of
+// the edge's length (a chord of a curved side). Without lines every edge is land.
+// Throws Error(internal) when the boundary is not a set of simple loops.
+MeshBoundary extract_boundary(const QuadMesh& mesh, const PolylineIndex& open_lines,
                               double tolerance_m);
 
 }  // namespace isoquad

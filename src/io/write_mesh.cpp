@@ -237,7 +237,7 @@ void write_mesh(const QuadMesh& mesh, const QuadMetrics& metrics, const std::str
   d.mesh = &mesh;
   d.metrics = &metrics;
   d.crs_wkt = crs_wkt;
-  d.boundary = extract_boundary(mesh, std::nullopt, 0.0);
+  d.boundary = extract_boundary(mesh, PolylineIndex(), 0.0);
   write_mesh_outputs(d, {output});
 }
 

@@ -271,6 +271,54 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
               dir.file("m.nc")});
 }
 
+TEST(CliOutputs, OpenBoundaryLinesGiveTheSeaBoundary) {
+  // The water box with --open-boundary: a line along its west side only. That side is
+  // the one open segment (every point on it), the bbox's other sides are land; lines
+  // that follow none of the domain's boundary stop the run before anything is written.
+  TempDir dir;
+  const std::string input = water_input(dir);
+  const std::string west = dir.file("west.geojson");
+  write_file(west,
+             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+             R"("geometry":{"type":"LineString","coordinates":[[-4.6,48.35],[-4.6,48.2]]}}]})");
+  const std::vector<std::string> base = {
+      "mesh",   input, "--domain", "water",        "--bbox",   "-4.6,48.2,-4.4,48.35",
+      "--size", "800", "-q",       "--output-crs", "EPSG:4326"};
+  auto with = [&base](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = base;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return args;
+  };
+  CliResult r = run_cli(with({"--open-boundary", west, "-o", dir.file("m.gpkg")}), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  isoquad::ensure_gdal_registered();
+  std::unique_ptr<GDALDataset> ds(GDALDataset::Open(dir.file("m.gpkg").c_str(), GDAL_OF_VECTOR));
+  ASSERT_TRUE(ds);
+  OGRLayer* boundary = ds->GetLayerByName("boundary");
+  ASSERT_NE(boundary, nullptr);
+  int open = 0, open_points = 0;
+  for (auto& f : *boundary) {
+    if (std::string(f->GetFieldAsString("kind")) != "open") continue;
+    ++open;
+    const OGRLineString* line = f->GetGeometryRef()->toLineString();
+    open_points = line->getNumPoints();
+    for (int i = 0; i < line->getNumPoints(); ++i) EXPECT_NEAR(line->getX(i), -4.6, 1e-4) << i;
+    // Counter-clockwise round the sea: down the west side.
+    EXPECT_GT(line->getY(0), line->getY(line->getNumPoints() - 1));
+  }
+  EXPECT_EQ(open, 1);
+  EXPECT_GE(open_points, 15);  // 16.7 km of side at 800 m
+
+  const std::string off = dir.file("off.geojson");
+  write_file(off,
+             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+             R"("geometry":{"type":"LineString","coordinates":[[-4.58,48.3],[-4.5,48.3]]}}]})");
+  r = run_cli(with({"--open-boundary", off, "-o", dir.file("n.gpkg")}), dir);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("follow none of the domain's boundary"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("n.gpkg")));
+}
+
 TEST(CliOutputs, UnwritableSecondOutputLeavesNothing) {
   TempDir dir;
   const std::string input = water_input(dir);

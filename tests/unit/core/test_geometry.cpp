@@ -48,3 +48,27 @@ TEST(Geometry, SortByAreaPutsLargestFirst) {
   EXPECT_DOUBLE_EQ(area(ps[1]), 4.0);
   EXPECT_DOUBLE_EQ(area(ps[2]), 1.0);
 }
+
+TEST(Geometry, PolylineIndexFindsPointsNearAnySegment) {
+  // A staircase of 100 segments (several runs of the index) and a short second line:
+  // points at 0.4 from a segment are near at a tolerance of 0.5 and not at 0.3, wherever
+  // the segment lies; a point beside the staircase's bounding box is near nothing.
+  std::vector<Point2> stairs{{0, 0}};
+  for (int i = 0; i < 50; ++i) {
+    stairs.push_back({i + 1.0, static_cast<double>(i)});
+    stairs.push_back({i + 1.0, i + 1.0});
+  }
+  const PolylineIndex index({stairs, {{-10, 0}, {-10, 5}}});
+  for (int i : {0, 17, 33, 49}) {
+    const Point2 p{i + 0.5, i - 0.4};  // below the horizontal step (i, i) -> (i + 1, i)
+    EXPECT_TRUE(index.near(p, 0.5)) << i;
+    EXPECT_FALSE(index.near(p, 0.3)) << i;
+  }
+  EXPECT_TRUE(index.near({-9.6, 2.5}, 0.5));
+  EXPECT_FALSE(index.near({-9.6, 2.5}, 0.3));
+  EXPECT_FALSE(index.near({60, 0}, 5.0));
+  EXPECT_FALSE(PolylineIndex().near({0, 0}, 1.0));
+  EXPECT_DOUBLE_EQ(distance_to_segment({2, 1}, {0, 0}, {4, 0}), 1.0);
+  EXPECT_DOUBLE_EQ(distance_to_segment({7, 4}, {0, 0}, {4, 0}), 5.0);
+  EXPECT_DOUBLE_EQ(distance_to_segment({3, 4}, {0, 0}, {0, 0}), 5.0);
+}

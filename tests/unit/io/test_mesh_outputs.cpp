@@ -30,7 +30,12 @@ struct Fixture {
   QuadMesh mesh;
   QuadMetrics metrics;
   std::string crs_wkt = parse_crs("EPSG:32631", "test").wkt;
-  Ring open_ring{{kX0 - 1000, kY0}, {kX0 + 4000, kY0}, {kX0 + 4000, kY0 - 9000}, {kX0 - 1000, kY0 - 9000}};
+  // A closed polyline (its first point repeated) round the mesh's bottom side.
+  std::vector<Point2> open_ring{{kX0 - 1000, kY0},
+                                {kX0 + 4000, kY0},
+                                {kX0 + 4000, kY0 - 9000},
+                                {kX0 - 1000, kY0 - 9000},
+                                {kX0 - 1000, kY0}};
 
   Fixture() {
     for (int j = 0; j < 4; ++j)
@@ -64,7 +69,7 @@ struct Fixture {
     d.mesh = &mesh;
     d.metrics = &metrics;
     d.crs_wkt = crs_wkt;
-    d.boundary = extract_boundary(mesh, open_ring, 1.0);
+    d.boundary = extract_boundary(mesh, PolylineIndex({open_ring}), 1.0);
     if (with_depth)
       for (std::size_t i = 0; i < mesh.points.size(); ++i) d.depth.push_back(10.0 + 0.5 * i);
     d.command_line = "isoquad mesh test";
@@ -147,7 +152,7 @@ Gr3 parse_gr3(const std::string& text) {
 
 TEST(MeshBoundary, LoopsKindsAndSegments) {
   const Fixture f;
-  const MeshBoundary b = extract_boundary(f.mesh, f.open_ring, 1.0);
+  const MeshBoundary b = extract_boundary(f.mesh, PolylineIndex({f.open_ring}), 1.0);
   ASSERT_EQ(b.loops.size(), 2u);
   EXPECT_EQ(b.loops[0], (std::vector<int>{0, 1, 2, 3, 7, 11, 15, 14, 13, 12, 8, 4}));
   EXPECT_EQ(b.loops[1].size(), 4u);
@@ -166,12 +171,35 @@ TEST(MeshBoundary, LoopsKindsAndSegments) {
   EXPECT_EQ(std::set<int>(b.segments[2].nodes.begin(), b.segments[2].nodes.end()),
             (std::set<int>{5, 6, 9, 10}));
 
-  // Without a ring everything is land; a ring too far away (tolerance) changes nothing.
-  EXPECT_EQ(extract_boundary(f.mesh, std::nullopt, 1.0).num_open_edges, 0u);
-  Ring shifted = f.open_ring;
+  // Without lines everything is land; a ring too far away (tolerance) changes nothing.
+  EXPECT_EQ(extract_boundary(f.mesh, PolylineIndex(), 1.0).num_open_edges, 0u);
+  std::vector<Point2> shifted = f.open_ring;
   for (Point2& p : shifted) p.y -= 5.0;
-  EXPECT_EQ(extract_boundary(f.mesh, shifted, 1.0).num_open_edges, 0u);
-  EXPECT_EQ(extract_boundary(f.mesh, shifted, 6.0).num_open_edges, 3u);
+  EXPECT_EQ(extract_boundary(f.mesh, PolylineIndex({shifted}), 1.0).num_open_edges, 0u);
+  EXPECT_EQ(extract_boundary(f.mesh, PolylineIndex({shifted}), 6.0).num_open_edges, 3u);
+}
+
+TEST(MeshBoundary, OpenPolylinesMarkOnlyTheEdgesAlongThem) {
+  // Two open lines (not rings): one along the left side from the bottom corner to
+  // halfway up the mesh, one along the top side's middle edge. Only the edges with both
+  // ends and the midpoint on a line are open; the vertices at the lines' ends start and
+  // end the open segments, and the corner between the two lines' sides stays land.
+  const Fixture f;
+  const std::vector<Point2> left{{kX0, kY0 + 0.3}, {kX0, kY0 + 2 * kStep}};
+  const std::vector<Point2> top{{kX0 + kStep, kY0 + 3 * kStep}, {kX0 + 2 * kStep, kY0 + 3 * kStep}};
+  const MeshBoundary b = extract_boundary(f.mesh, PolylineIndex({left, top}), 1.0);
+  EXPECT_EQ(b.num_open_edges, 3u);
+  EXPECT_EQ(b.num_land_edges, 9u + 4u);
+  std::vector<std::vector<int>> open;
+  for (const BoundarySegment& s : b.segments)
+    if (s.kind == BoundaryKind::open) open.push_back(s.nodes);
+  std::sort(open.begin(), open.end());
+  // Counter-clockwise round the domain: down the left side (8 -> 4 -> 0), and along the
+  // top from right to left (14 -> 13).
+  EXPECT_EQ(open, (std::vector<std::vector<int>>{{8, 4, 0}, {14, 13}}));
+  // A hole's edge lies on no line: the island stays land.
+  for (const BoundarySegment& s : b.segments)
+    if (s.island) EXPECT_EQ(s.kind, BoundaryKind::land);
 }
 
 TEST(MeshOutputs, Gr3MatchesGoldenAndParses) {

@@ -77,12 +77,4 @@ inline Point2 centroid(const BackgroundMesh& m, int f) {
           (m.points[t[0]].y + m.points[t[1]].y + m.points[t[2]].y) / 3.0};
 }
 
-// Distance from p to segment [a, b].
-inline double distance_to_segment(const Point2& p, const Point2& a, const Point2& b) {
-  const double dx = b.x - a.x, dy = b.y - a.y;
-  double t = ((p.x - a.x) * dx + (p.y - a.y) * dy) / (dx * dx + dy * dy);
-  t = std::max(0.0, std::min(1.0, t));
-  return distance(p, {a.x + t * dx, a.y + t * dy});
-}
-
 }  // namespace isoquad::test
