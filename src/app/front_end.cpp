@@ -15,14 +15,15 @@ namespace {
 
 struct ProjectedLines {
   std::vector<std::vector<Point2>> lines;
-  double sag_m = 0.0;     // the largest gap between a projected segment and its chord
-  long failed_line = -1;  // the first line with a point that cannot be transformed
+  std::vector<double> sag_m;  // by line: the largest gap between a projected segment and its chord
+  long failed_line = -1;      // the first line with a point that cannot be transformed
 };
 
 // Each segment cut into 16, so that the lines follow the segments' curved images, then
-// transformed.
+// transformed. With `by_segment`, each segment of the input becomes two lines of its
+// own, its curved image and the chord between its ends, both with its sag.
 ProjectedLines project_lines(const std::vector<std::vector<Point2>>& lines, const CrsInfo& from,
-                             const CrsInfo& to) {
+                             const CrsInfo& to, bool by_segment) {
   constexpr int kPieces = 16;
   ProjectedLines out;
   CrsTransform t(from, to);
@@ -39,16 +40,27 @@ ProjectedLines project_lines(const std::vector<std::vector<Point2>>& lines, cons
       out.failed_line = static_cast<long>(l);
       return out;
     }
+    std::vector<double> sags;
     for (std::size_t i = 0; i + kPieces < dense.size(); i += kPieces) {
       const Point2 &a = dense[i], &b = dense[i + kPieces];
       const double len = std::hypot(b.x - a.x, b.y - a.y);
+      double sag = 0.0;
       for (int k = 1; k < kPieces && len > 0; ++k) {
         const Point2& p = dense[i + k];
-        out.sag_m = std::max(out.sag_m,
-                             std::abs((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / len);
+        sag = std::max(sag, std::abs((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x)) / len);
       }
+      sags.push_back(sag);
     }
-    out.lines.push_back(std::move(dense));
+    if (by_segment) {
+      for (std::size_t i = 0; i < sags.size(); ++i) {
+        out.lines.emplace_back(dense.begin() + i * kPieces, dense.begin() + (i + 1) * kPieces + 1);
+        out.lines.push_back({dense[i * kPieces], dense[(i + 1) * kPieces]});
+        out.sag_m.insert(out.sag_m.end(), 2, sags[i]);
+      }
+    } else {
+      out.lines.push_back(std::move(dense));
+      out.sag_m.push_back(*std::max_element(sags.begin(), sags.end()));
+    }
   }
   return out;
 }
@@ -93,21 +105,31 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     const SourceLines lines = read_lines(options.open_boundary_path, "", "open boundary");
     s.open_boundary_path = options.open_boundary_path;
     s.open_boundary_num_lines = lines.lines.size();
-    const ProjectedLines p = project_lines(lines.lines, lines.crs, meshing_crs);
+    // Each segment on its own, with its own sag: a long segment's (500 m for 150 km of a
+    // line in lon/lat) would otherwise widen the tolerance round the short ones, and
+    // beyond the lines' ends. The domain's boundary along a segment runs from vertex to
+    // vertex of its curved image: along the whole chord where the segment is one edge of
+    // the domain, along shorter chords where the domain has vertices between its ends.
+    // Each such chord lies within 0.64 sag of the curve or of the whole chord (a chord
+    // over a fraction f of the segment lies within f^2 sag of the curve, and its far end
+    // 4 f (1 - f) sag from the whole chord): 0.7 sag is enough.
+    const ProjectedLines p = project_lines(lines.lines, lines.crs, meshing_crs, true);
     if (p.failed_line >= 0)
       throw Error(ErrorClass::crs, "open boundary",
                   "'" + options.open_boundary_path + "': a point of line " +
                       std::to_string(p.failed_line + 1) + " cannot be transformed from " +
                       lines.crs.name + " to the meshing CRS");
     result.open_boundary_lines = p.lines;
-    result.open_boundary_tolerance_m = 2.0 * p.sag_m;  // the simplification tolerance added below
+    for (double sag : p.sag_m) result.open_boundary_slack_m.push_back(0.7 * sag);
+    result.open_boundary_chord_share = 0.2;
   } else if (options.kind == DomainKind::water && source.bbox_ring) {
     Ring box = *source.bbox_ring;
     box.push_back(box.front());
-    const ProjectedLines p = project_lines({box}, source.crs, meshing_crs);
+    const ProjectedLines p = project_lines({box}, source.crs, meshing_crs, false);
     if (p.failed_line < 0) {
       result.open_boundary_lines = p.lines;
-      result.open_boundary_tolerance_m = 2.0 * p.sag_m;  // the simplification tolerance added below
+      result.open_boundary_tolerance_m =
+          2.0 * p.sag_m[0];  // the simplification tolerance added below
     }
   }
 
@@ -218,7 +240,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   if (!options.open_boundary_path.empty()) {
     // Lines that follow none of the domain's boundary would leave it all land: an
     // ocean model without a sea boundary.
-    const PolylineIndex index(result.open_boundary_lines);
+    const PolylineIndex index(result.open_boundary_lines, result.open_boundary_slack_m);
     for (const Polygon& polygon : result.domain.polygons) {
       for (const Point2& p : polygon.outer)
         s.open_boundary_num_vertices += index.near(p, result.open_boundary_tolerance_m);

@@ -86,9 +86,18 @@ struct FrontEndResult {
   // boundary; the rest is land. Empty for a land domain without --open-boundary.
   std::vector<std::vector<Point2>> open_boundary_lines;
   // How far the domain's boundary may lie from those lines where it follows them: the
-  // simplification tolerance plus twice the largest gap between a projected segment and
-  // its chord (the domain's vertices are joined by chords).
+  // simplification tolerance plus an allowance for the gap between a projected segment
+  // and its chord (the domain's vertices are joined by chords): for the bbox, twice the
+  // largest over its sides, included here; for --open-boundary, each segment's own, in
+  // open_boundary_slack_m (one per line: each segment of the file gives two, its curved
+  // image and its chord).
   double open_boundary_tolerance_m = 0.0;
+  std::vector<double> open_boundary_slack_m;
+  // How far, in edge lengths, a boundary edge's midpoint may lie from the lines beyond
+  // that (extract_boundary's chord_share): 1% for the bbox's curved sides (its corners
+  // are the mesh's corners); 20% for --open-boundary, whose lines may turn by up to 45
+  // degrees (--corner-angle's default) at a vertex that the mesh's edges cut across.
+  double open_boundary_chord_share = 0.01;
 };
 
 FrontEndResult build_planar_domain(const FrontEndOptions& options,

@@ -151,8 +151,10 @@ double distance_to_segment(const Point2& p, const Point2& a, const Point2& b) {
   return std::hypot(p.x - (a.x + t * dx), p.y - (a.y + t * dy));
 }
 
-PolylineIndex::PolylineIndex(std::vector<std::vector<Point2>> lines) : lines_(std::move(lines)) {
+PolylineIndex::PolylineIndex(std::vector<std::vector<Point2>> lines, std::vector<double> slack)
+    : lines_(std::move(lines)), slack_(std::move(slack)) {
   constexpr int kRun = 32;
+  slack_.resize(lines_.size(), 0.0);
   for (std::size_t l = 0; l < lines_.size(); ++l) {
     const auto& line = lines_[l];
     const int segments = static_cast<int>(line.size()) - 1;
@@ -174,12 +176,11 @@ PolylineIndex::PolylineIndex(std::vector<std::vector<Point2>> lines) : lines_(st
 
 bool PolylineIndex::near(const Point2& p, double tolerance) const {
   for (const Run& r : runs_) {
-    if (p.x < r.xmin - tolerance || p.x > r.xmax + tolerance || p.y < r.ymin - tolerance ||
-        p.y > r.ymax + tolerance)
-      continue;
+    const double t = slack_[r.line] > 0.0 ? tolerance + slack_[r.line] : tolerance;
+    if (p.x < r.xmin - t || p.x > r.xmax + t || p.y < r.ymin - t || p.y > r.ymax + t) continue;
     const auto& line = lines_[r.line];
     for (int i = r.first; i < r.last; ++i)
-      if (distance_to_segment(p, line[i], line[i + 1]) <= tolerance) return true;
+      if (distance_to_segment(p, line[i], line[i + 1]) <= t) return true;
   }
   return false;
 }

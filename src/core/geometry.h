@@ -73,13 +73,14 @@ std::string format_point(const Point2& p);
 void sort_by_area(std::vector<Polygon>& polygons);
 
 // Polylines (a closed one repeats its first point at the end), indexed by runs of
-// segments with their bounding boxes, for "is this point near them" queries.
+// segments with their bounding boxes, for "is this point near them" queries. `slack`
+// (empty, or one per line) widens the tolerance of each line by its own amount.
 class PolylineIndex {
  public:
-  explicit PolylineIndex(std::vector<std::vector<Point2>> lines = {});
-  const std::vector<std::vector<Point2>>& lines() const { return lines_; }
+  explicit PolylineIndex(std::vector<std::vector<Point2>> lines = {},
+                         std::vector<double> slack = {});
   bool empty() const { return lines_.empty(); }
-  // Whether p lies within `tolerance` of a segment.
+  // Whether p lies within `tolerance` (plus the line's slack) of a segment.
   bool near(const Point2& p, double tolerance) const;
 
  private:
@@ -88,6 +89,7 @@ class PolylineIndex {
     double xmin = 0, ymin = 0, xmax = 0, ymax = 0;
   };
   std::vector<std::vector<Point2>> lines_;
+  std::vector<double> slack_;
   std::vector<Run> runs_;
 };
 

@@ -11,7 +11,7 @@ namespace isoquad {
 const char* boundary_kind_name(BoundaryKind k) { return k == BoundaryKind::open ? "open" : "land"; }
 
 MeshBoundary extract_boundary(const QuadMesh& mesh, const PolylineIndex& open_lines,
-                              double tolerance_m) {
+                              double tolerance_m, double chord_share) {
   // Directed edges of the counter-clockwise quads; a boundary edge has no twin.
   std::map<std::pair<int, int>, int> count;
   for (const auto& q : mesh.quads)
@@ -52,10 +52,12 @@ MeshBoundary extract_boundary(const QuadMesh& mesh, const PolylineIndex& open_li
       const Point2 mid{0.5 * (mesh.points[a].x + mesh.points[c].x),
                        0.5 * (mesh.points[a].y + mesh.points[c].y)};
       // A chord of a curved open side (a projected parallel) sags away from it by about
-      // length^2 / (8 radius): 1% of the length allows radii down to 12.5 lengths.
+      // length^2 / (8 radius): 1% of the length allows radii down to 12.5 lengths. One
+      // across a corner that turns by a, from one side to the other, passes up to
+      // length sin(a/2) / 2 from it (19% at 45 degrees).
       const double length = std::hypot(mesh.points[c].x - mesh.points[a].x,
                                        mesh.points[c].y - mesh.points[a].y);
-      if (on_open[a] && on_open[c] && open_lines.near(mid, tolerance_m + 0.01 * length))
+      if (on_open[a] && on_open[c] && open_lines.near(mid, tolerance_m + chord_share * length))
         kinds[i] = BoundaryKind::open;
       ++(kinds[i] == BoundaryKind::open ? b.num_open_edges : b.num_land_edges);
     }

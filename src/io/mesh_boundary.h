@@ -37,10 +37,11 @@ struct MeshBoundary {
 
 // `open_lines`: polylines (meshing CRS) whose neighbourhood within `tolerance_m` is open
 // boundary (a water domain's bbox, or the lines of --open-boundary); an edge is open
-// when both its ends are that close and its midpoint within `tolerance_m` plus 1% of
-// the edge's length (a chord of a curved side). Without lines every edge is land.
-// Throws Error(internal) when the boundary is not a set of simple loops.
+// when both its ends are that close and its midpoint within `tolerance_m` plus
+// `chord_share` of the edge's length (1%: a chord of a curved side; more for a chord
+// across a corner of the lines). Without lines every edge is land. Throws
+// Error(internal) when the boundary is not a set of simple loops.
 MeshBoundary extract_boundary(const QuadMesh& mesh, const PolylineIndex& open_lines,
-                              double tolerance_m);
+                              double tolerance_m, double chord_share = 0.01);
 
 }  // namespace isoquad

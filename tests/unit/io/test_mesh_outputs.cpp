@@ -202,6 +202,23 @@ TEST(MeshBoundary, OpenPolylinesMarkOnlyTheEdgesAlongThem) {
     if (s.island) EXPECT_EQ(s.kind, BoundaryKind::land);
 }
 
+TEST(MeshBoundary, AnEdgeAcrossACornerOfTheLinesIsOpenWithItsChordShare) {
+  // A line through the bottom side's first edge (0 -> 1, 1 km) that bends 150 m away
+  // at the edge's middle (a corner turning by 33 degrees): the edge's midpoint lies
+  // 150 m off, so it is open only when the chord share allows 15% of its length.
+  const Fixture f;
+  const std::vector<Point2> bent{
+      {kX0 - 1, kY0}, {kX0 + 0.5 * kStep, kY0 - 150}, {kX0 + kStep + 1, kY0}};
+  EXPECT_EQ(extract_boundary(f.mesh, PolylineIndex({bent}), 1.0).num_open_edges, 0u);
+  EXPECT_EQ(extract_boundary(f.mesh, PolylineIndex({bent}), 1.0, 0.2).num_open_edges, 1u);
+  // A line's slack widens its own tolerance only.
+  const std::vector<Point2> below{{kX0, kY0 - 20}, {kX0 + 3 * kStep, kY0 - 20}};
+  EXPECT_EQ(extract_boundary(f.mesh, PolylineIndex({below, bent}, {25.0, 0.0}), 1.0).num_open_edges,
+            3u);
+  EXPECT_EQ(extract_boundary(f.mesh, PolylineIndex({below, bent}, {0.0, 25.0}), 1.0).num_open_edges,
+            0u);
+}
+
 TEST(MeshOutputs, Gr3MatchesGoldenAndParses) {
   const Fixture f;
   TempDir dir;
