@@ -340,7 +340,8 @@ struct MeshArgs {
   std::vector<std::string> output_formats;
   std::string msh_version = "4.1";
   std::string output_crs;
-  std::string open_boundary;  // --open-boundary FILE
+  std::string open_boundary;        // --open-boundary FILE
+  std::string open_boundary_layer;  // --open-boundary-layer NAME
   std::string stop_after;  // empty: the whole job
   std::string conform_rule = "lattice";
   std::string init = "front";
@@ -456,6 +457,10 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "(or polygons, by their rings): the boundary they follow is open (sea), the "
                   "rest land, in every output; replaces a water domain's bbox sides")
       ->group("Output");
+  cmd->add_option("--open-boundary-layer", m.open_boundary_layer,
+                  "Layer of --open-boundary to read (default: its first layer of lines, or its "
+                  "first layer)")
+      ->group("Output");
 }
 
 std::vector<MeshOutput> mesh_outputs(const CommonArgs& a, const MeshArgs& m) {
@@ -484,6 +489,9 @@ std::string joined_command_line(int argc, char** argv) {
 int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& command_line) {
   finish_front_end_args(a);
   a.fe.open_boundary_path = m.open_boundary;
+  a.fe.open_boundary_layer = m.open_boundary_layer;
+  if (!m.open_boundary_layer.empty() && m.open_boundary.empty())
+    throw Error(ErrorClass::usage, "options", "--open-boundary-layer needs --open-boundary");
   const bool tiling_only = !m.stop_after.empty();
   const std::vector<MeshOutput> outputs = mesh_outputs(a, m);
   MeshWriteOptions write_options;

@@ -39,6 +39,7 @@ struct FrontEndOptions {
   // A vector file of lines (or polygons, by their rings) along the domain's edge: the
   // boundary they follow is open, the rest land, instead of a water domain's bbox.
   std::string open_boundary_path;
+  std::string open_boundary_layer;  // empty: its first layer of lines, or its first layer
 };
 
 // What the front end did, for the summary and the report.

@@ -52,8 +52,24 @@ SourceLines read_lines(const std::string& path, const std::string& layer_name,
   auto fail = [&](ErrorClass cls, const std::string& why) {
     throw Error(cls, what, "'" + path + "': " + why);
   };
-  OGRLayer* layer = layer_name.empty() ? ds->GetLayer(0) : ds->GetLayerByName(layer_name.c_str());
-  if (!layer) fail(ErrorClass::input, "no layer '" + layer_name + "'");
+  OGRLayer* layer = nullptr;
+  if (!layer_name.empty()) {
+    layer = ds->GetLayerByName(layer_name.c_str());
+    if (!layer) {
+      std::string names;
+      for (int i = 0; i < ds->GetLayerCount(); ++i)
+        names += (i ? ", " : "") + std::string(ds->GetLayer(i)->GetName());
+      fail(ErrorClass::usage, "no layer '" + layer_name + "' (layers: " + names + ")");
+    }
+  } else {
+    // The first layer of lines (a project's GeoPackage may hold the domain's polygons
+    // first), else the first layer.
+    for (int i = 0; i < ds->GetLayerCount() && !layer; ++i)
+      if (OGR_GT_IsCurve(wkbFlatten(ds->GetLayer(i)->GetGeomType())) ||
+          OGR_GT_IsSubClassOf(wkbFlatten(ds->GetLayer(i)->GetGeomType()), wkbMultiCurve))
+        layer = ds->GetLayer(i);
+    if (!layer) layer = ds->GetLayer(0);
+  }
   SourceLines out;
   out.layer_name = layer->GetName();
   const OGRSpatialReference* srs = layer->GetSpatialRef();

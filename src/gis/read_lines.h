@@ -19,10 +19,11 @@ struct SourceLines {
   std::size_t num_features = 0;  // with a line or polygon geometry
 };
 
-// Reads every line, multi-line, polygon ring and curve (linearised) of the data set's
-// first layer (or the layer named `layer`). `what` names the option in messages.
-// Throws Error(input) for a missing or unreadable file, a point geometry or no line at
-// all (naming the file and feature), Error(crs) for a layer without a CRS.
+// Reads every line, multi-line, polygon ring and curve (linearised) of the layer named
+// `layer`, or else of the data set's first layer of lines, or else its first layer.
+// `what` names the option in messages. Throws Error(input) for a missing or unreadable
+// file, a point geometry or no line at all (naming the file and feature), Error(usage)
+// for no such layer, Error(crs) for a layer without a CRS.
 SourceLines read_lines(const std::string& path, const std::string& layer, const std::string& what);
 
 }  // namespace isoquad

@@ -1,8 +1,11 @@
 #include "gis/read_lines.h"
 
+#include <gdal_priv.h>
 #include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
 
 #include "core/error.h"
+#include "gis/gdal_env.h"
 #include "support/fixtures.h"
 
 using namespace isoquad;
@@ -58,6 +61,46 @@ TEST(ReadLines, LinesMultiLinesAndPolygonRings) {
   EXPECT_DOUBLE_EQ(s.lines[3].front().x, s.lines[3].back().x);
   EXPECT_DOUBLE_EQ(s.lines[3].front().y, s.lines[3].back().y);
   EXPECT_DOUBLE_EQ(s.lines[2][2].x, 5.0);
+}
+
+TEST(ReadLines, TheFirstLayerOfLinesUnlessOneIsNamed) {
+  // A project's GeoPackage: the domain's polygon first, the open boundary's line second.
+  TempDir dir;
+  const std::string path = dir.file("project.gpkg");
+  ensure_gdal_registered();
+  {
+    GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GPKG")->Create(path.c_str(), 0, 0, 0,
+                                                                              GDT_Unknown, nullptr);
+    ASSERT_NE(ds, nullptr);
+    OGRSpatialReference srs;
+    srs.importFromEPSG(32631);
+    const std::pair<const char*, const char*> layers[] = {
+        {"domain", "POLYGON ((0 0,10 0,10 10,0 10,0 0))"}, {"open", "LINESTRING (0 0,10 0)"}};
+    for (const auto& [name, wkt] : layers) {
+      OGRGeometry* g = nullptr;
+      OGRGeometryFactory::createFromWkt(wkt, nullptr, &g);
+      OGRLayer* l = ds->CreateLayer(name, &srs, wkbFlatten(g->getGeometryType()), nullptr);
+      OGRFeature f(l->GetLayerDefn());
+      f.SetGeometryDirectly(g);
+      ASSERT_EQ(l->CreateFeature(&f), OGRERR_NONE);
+    }
+    GDALClose(ds);
+  }
+  SourceLines s = read_lines(path, "", "open boundary");
+  EXPECT_EQ(s.layer_name, "open");
+  ASSERT_EQ(s.lines.size(), 1u);
+  EXPECT_EQ(s.lines[0].size(), 2u);
+  EXPECT_TRUE(s.crs.projected);
+  s = read_lines(path, "domain", "open boundary");
+  ASSERT_EQ(s.lines.size(), 1u);
+  EXPECT_EQ(s.lines[0].size(), 5u);  // the ring, closed
+  try {
+    read_lines(path, "nope", "open boundary");
+    ADD_FAILURE() << "no error for a missing layer";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::usage);
+    EXPECT_NE(std::string(e.what()).find("layers: domain, open"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ReadLines, BadInputsNameTheFileAndTheProblem) {
