@@ -54,7 +54,7 @@ std::string format_domain_summary(const DomainSummary& s) {
        << " ring(s) closed, " << s.num_rings_dropped << " degenerate ring(s) dropped, "
        << s.num_points_removed << " duplicate or spike point(s) removed\n";
   if (!s.open_boundary_path.empty())
-    os << "open bound.:  " << s.open_boundary_path << ": " << s.open_boundary_num_lines
+    os << "open lines:   " << s.open_boundary_path << ": " << s.open_boundary_num_lines
        << " line(s), " << s.open_boundary_num_vertices << " domain boundary vertices on them\n";
   return os.str();
 }

@@ -176,7 +176,7 @@ PolylineIndex::PolylineIndex(std::vector<std::vector<Point2>> lines, std::vector
 
 bool PolylineIndex::near(const Point2& p, double tolerance) const {
   for (const Run& r : runs_) {
-    const double t = slack_[r.line] > 0.0 ? tolerance + slack_[r.line] : tolerance;
+    const double t = tolerance + slack_[r.line];
     if (p.x < r.xmin - t || p.x > r.xmax + t || p.y < r.ymin - t || p.y > r.ymax + t) continue;
     const auto& line = lines_[r.line];
     for (int i = r.first; i < r.last; ++i)
