@@ -95,6 +95,12 @@ SourceLines read_lines(const std::string& path, const std::string& layer_name,
   }
   if (out.lines.empty())
     fail(ErrorClass::input, "layer '" + out.layer_name + "' has no line or polygon");
+  // In longitudes, a segment goes the short way round: one drawn across the
+  // antimeridian (179.5 to -179.5) ends at 180.5, as a domain across it is read.
+  if (out.crs.geographic)
+    for (auto& line : out.lines)
+      for (std::size_t i = 1; i < line.size(); ++i)
+        line[i].x += 360.0 * std::round((line[i - 1].x - line[i].x) / 360.0);
   return out;
 }
 

@@ -20,7 +20,9 @@ struct SourceLines {
 };
 
 // Reads every line, multi-line, polygon ring and curve (linearised) of the layer named
-// `layer`, or else of the data set's first layer of lines, or else its first layer.
+// `layer`, or else of the data set's first layer of lines, or else its first layer. In
+// longitudes, each segment goes the short way round (its end moved by 360 degrees
+// where needed).
 // `what` names the option in messages. Throws Error(input) for a missing or unreadable
 // file, a point geometry or no line at all (naming the file and feature), Error(usage)
 // for no such layer, Error(crs) for a layer without a CRS.

@@ -103,6 +103,21 @@ TEST(ReadLines, TheFirstLayerOfLinesUnlessOneIsNamed) {
   }
 }
 
+TEST(ReadLines, SegmentsAcrossTheAntimeridianGoTheShortWay) {
+  TempDir dir;
+  const std::string path = dir.file("fiji.geojson");
+  write_file(
+      path,
+      collection(
+          {R"({"type":"LineString","coordinates":[[179.5,-17],[-179.5,-17],[-179,-18],[179,-18]]})"}));
+  const SourceLines s = read_lines(path, "", "open boundary");
+  ASSERT_EQ(s.lines.size(), 1u);
+  ASSERT_EQ(s.lines[0].size(), 4u);
+  EXPECT_DOUBLE_EQ(s.lines[0][1].x, 180.5);
+  EXPECT_DOUBLE_EQ(s.lines[0][2].x, 181.0);
+  EXPECT_DOUBLE_EQ(s.lines[0][3].x, 179.0);
+}
+
 TEST(ReadLines, BadInputsNameTheFileAndTheProblem) {
   TempDir dir;
   expect_error(dir.file("missing.geojson"), ErrorClass::input, "no such file");
