@@ -240,23 +240,37 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     result.open_boundary_tolerance_m += 1.01 * simp.tolerance_m;
   if (!options.open_boundary_path.empty()) {
     // Lines that follow none of the domain's boundary would leave it all land: an
-    // ocean model without a sea boundary.
+    // ocean model without a sea boundary. The length they follow: each edge of the
+    // domain sampled about every tolerance (at most 256 pieces), a piece counted when
+    // both its ends lie within the tolerance of the lines.
+    const double tolerance = result.open_boundary_tolerance_m;
     const PolylineIndex index(result.open_boundary_lines, result.open_boundary_slack_m);
+    auto follow = [&](const Ring& ring) {
+      for (std::size_t i = 0; i < ring.size(); ++i) {
+        const Point2 &a = ring[i], &b = ring[(i + 1) % ring.size()];
+        const double length = distance(a, b);
+        const int pieces =
+            static_cast<int>(std::clamp(std::ceil(length / std::max(tolerance, 1e-9)), 1.0, 256.0));
+        bool previous = index.near(a, tolerance);
+        for (int k = 1; k <= pieces; ++k) {
+          const double t = static_cast<double>(k) / pieces;
+          const bool near = index.near({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)}, tolerance);
+          if (previous && near) s.open_boundary_length_m += length / pieces;
+          previous = near;
+        }
+      }
+    };
     for (const Polygon& polygon : result.domain.polygons) {
-      for (const Point2& p : polygon.outer)
-        s.open_boundary_num_vertices += index.near(p, result.open_boundary_tolerance_m);
-      for (const Ring& hole : polygon.holes)
-        for (const Point2& p : hole)
-          s.open_boundary_num_vertices += index.near(p, result.open_boundary_tolerance_m);
+      follow(polygon.outer);
+      for (const Ring& hole : polygon.holes) follow(hole);
     }
-    if (s.open_boundary_num_vertices < 2) {
-      char tolerance[32];
-      std::snprintf(tolerance, sizeof tolerance, "%.4g", result.open_boundary_tolerance_m);
+    if (!(s.open_boundary_length_m > 0.0)) {
+      char text[32];
+      std::snprintf(text, sizeof text, "%.4g", tolerance);
       throw Error(ErrorClass::input, "open boundary",
                   "'" + options.open_boundary_path +
-                      "': its lines follow none of the domain's boundary (" +
-                      std::to_string(s.open_boundary_num_vertices) + " of its vertices within " +
-                      tolerance +
+                      "': its lines follow none of the domain's boundary (none of it lies within " +
+                      text +
                       " m of them); draw them along the domain's edge (snapped to its vertices)");
     }
   }

@@ -71,10 +71,11 @@ struct DomainSummary {
   NarrowResult narrow;
   SpikeResult spikes;  // tips sharper than SpikeParams::max_angle_deg cut back
   CleanResult dropped;
-  // --open-boundary: the file, its lines, and the domain's boundary vertices near them.
+  // --open-boundary: the file, its lines, and the length of the domain's boundary
+  // along them.
   std::string open_boundary_path;
   std::size_t open_boundary_num_lines = 0;
-  std::size_t open_boundary_num_vertices = 0;
+  double open_boundary_length_m = 0.0;
   std::vector<std::string> warnings;
 };
 

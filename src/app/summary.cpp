@@ -55,7 +55,8 @@ std::string format_domain_summary(const DomainSummary& s) {
        << s.num_points_removed << " duplicate or spike point(s) removed\n";
   if (!s.open_boundary_path.empty())
     os << "open lines:   " << s.open_boundary_path << ": " << s.open_boundary_num_lines
-       << " line(s), " << s.open_boundary_num_vertices << " domain boundary vertices on them\n";
+       << " line(s), along " << num(s.open_boundary_length_m / 1e3, 6)
+       << " km of the domain's boundary\n";
   return os.str();
 }
 
@@ -94,7 +95,7 @@ void add_domain_summary(JsonWriter& j, const DomainSummary& s) {
   if (!s.open_boundary_path.empty())
     j.value("open_boundary", s.open_boundary_path)
         .value("open_boundary_num_lines", s.open_boundary_num_lines)
-        .value("open_boundary_num_vertices", s.open_boundary_num_vertices);
+        .value("open_boundary_length_m", s.open_boundary_length_m);
   j.array("warnings", s.warnings);
 }
 

@@ -309,6 +309,29 @@ TEST(CliOutputs, OpenBoundaryLinesGiveTheSeaBoundary) {
   EXPECT_EQ(open, 1);
   EXPECT_GE(open_points, 15);  // 16.7 km of side at 800 m
 
+  // A line that stops halfway along the side: the open segment stops there too, at a
+  // mesh vertex within the tolerance (the simplification's, 200 m) of the line's end.
+  const std::string half = dir.file("half.geojson");
+  write_file(half,
+             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+             R"("geometry":{"type":"LineString","coordinates":[[-4.6,48.275],[-4.6,48.2]]}}]})");
+  r = run_cli(with({"--open-boundary", half, "-o", dir.file("h.gpkg")}), dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::unique_ptr<GDALDataset> hds(GDALDataset::Open(dir.file("h.gpkg").c_str(), GDAL_OF_VECTOR));
+  ASSERT_TRUE(hds);
+  open = 0;
+  for (auto& f : *hds->GetLayerByName("boundary")) {
+    if (std::string(f->GetFieldAsString("kind")) != "open") continue;
+    ++open;
+    const OGRLineString* line = f->GetGeometryRef()->toLineString();
+    EXPECT_GE(line->getNumPoints(), 7);  // 8.3 km at 800 m
+    for (int i = 0; i < line->getNumPoints(); ++i) {
+      EXPECT_NEAR(line->getX(i), -4.6, 1e-4) << i;
+      EXPECT_LT(line->getY(i), 48.275 + 0.0019) << i;  // 210 m
+    }
+  }
+  EXPECT_EQ(open, 1);
+
   const std::string off = dir.file("off.geojson");
   write_file(off,
              R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
