@@ -277,66 +277,58 @@ TEST(CliOutputs, OpenBoundaryLinesGiveTheSeaBoundary) {
   // that follow none of the domain's boundary stop the run before anything is written.
   TempDir dir;
   const std::string input = water_input(dir);
-  const std::string west = dir.file("west.geojson");
-  write_file(west,
-             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
-             R"("geometry":{"type":"LineString","coordinates":[[-4.6,48.35],[-4.6,48.2]]}}]})");
-  const std::vector<std::string> base = {
-      "mesh",   input, "--domain", "water",        "--bbox",   "-4.6,48.2,-4.4,48.35",
-      "--size", "800", "-q",       "--output-crs", "EPSG:4326"};
-  auto with = [&base](const std::vector<std::string>& extra) {
-    std::vector<std::string> args = base;
-    args.insert(args.end(), extra.begin(), extra.end());
-    return args;
+  auto line_file = [&dir](const std::string& name, const std::string& coordinates) {
+    const std::string path = dir.file(name);
+    write_file(path, R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+                     R"("geometry":{"type":"LineString","coordinates":)" +
+                         coordinates + "}}]}");
+    return path;
   };
-  CliResult r = run_cli(with({"--open-boundary", west, "-o", dir.file("m.gpkg")}), dir);
+  auto run = [&](const std::string& lines, const std::string& output) {
+    return run_cli(
+        {"mesh", input, "--domain", "water", "--bbox", "-4.6,48.2,-4.4,48.35", "--size", "800",
+         "-q", "--output-crs", "EPSG:4326", "--open-boundary", lines, "-o", dir.file(output)},
+        dir);
+  };
+  // The open boundary's segments in the GeoPackage, as lon/lat points.
+  auto open_segments = [&dir](const std::string& output) {
+    isoquad::ensure_gdal_registered();
+    std::unique_ptr<GDALDataset> ds(GDALDataset::Open(dir.file(output).c_str(), GDAL_OF_VECTOR));
+    std::vector<std::vector<std::pair<double, double>>> segments;
+    EXPECT_TRUE(ds);
+    if (!ds) return segments;
+    for (auto& f : *ds->GetLayerByName("boundary")) {
+      if (std::string(f->GetFieldAsString("kind")) != "open") continue;
+      const OGRLineString* line = f->GetGeometryRef()->toLineString();
+      segments.emplace_back();
+      for (int i = 0; i < line->getNumPoints(); ++i)
+        segments.back().emplace_back(line->getX(i), line->getY(i));
+    }
+    return segments;
+  };
+
+  CliResult r = run(line_file("west.geojson", "[[-4.6,48.35],[-4.6,48.2]]"), "m.gpkg");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  isoquad::ensure_gdal_registered();
-  std::unique_ptr<GDALDataset> ds(GDALDataset::Open(dir.file("m.gpkg").c_str(), GDAL_OF_VECTOR));
-  ASSERT_TRUE(ds);
-  OGRLayer* boundary = ds->GetLayerByName("boundary");
-  ASSERT_NE(boundary, nullptr);
-  int open = 0, open_points = 0;
-  for (auto& f : *boundary) {
-    if (std::string(f->GetFieldAsString("kind")) != "open") continue;
-    ++open;
-    const OGRLineString* line = f->GetGeometryRef()->toLineString();
-    open_points = line->getNumPoints();
-    for (int i = 0; i < line->getNumPoints(); ++i) EXPECT_NEAR(line->getX(i), -4.6, 1e-4) << i;
-    // Counter-clockwise round the sea: down the west side.
-    EXPECT_GT(line->getY(0), line->getY(line->getNumPoints() - 1));
-  }
-  EXPECT_EQ(open, 1);
-  EXPECT_GE(open_points, 15);  // 16.7 km of side at 800 m
+  auto segments = open_segments("m.gpkg");
+  ASSERT_EQ(segments.size(), 1u);
+  EXPECT_GE(segments[0].size(), 15u);  // 16.7 km of side at 800 m
+  for (const auto& [lon, lat] : segments[0]) EXPECT_NEAR(lon, -4.6, 1e-4) << lat;
+  // Counter-clockwise round the sea: down the west side.
+  EXPECT_GT(segments[0].front().second, segments[0].back().second);
 
   // A line that stops halfway along the side: the open segment stops there too, at a
   // mesh vertex within the tolerance (the simplification's, 200 m) of the line's end.
-  const std::string half = dir.file("half.geojson");
-  write_file(half,
-             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
-             R"("geometry":{"type":"LineString","coordinates":[[-4.6,48.275],[-4.6,48.2]]}}]})");
-  r = run_cli(with({"--open-boundary", half, "-o", dir.file("h.gpkg")}), dir);
+  r = run(line_file("half.geojson", "[[-4.6,48.275],[-4.6,48.2]]"), "h.gpkg");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  std::unique_ptr<GDALDataset> hds(GDALDataset::Open(dir.file("h.gpkg").c_str(), GDAL_OF_VECTOR));
-  ASSERT_TRUE(hds);
-  open = 0;
-  for (auto& f : *hds->GetLayerByName("boundary")) {
-    if (std::string(f->GetFieldAsString("kind")) != "open") continue;
-    ++open;
-    const OGRLineString* line = f->GetGeometryRef()->toLineString();
-    EXPECT_GE(line->getNumPoints(), 7);  // 8.3 km at 800 m
-    for (int i = 0; i < line->getNumPoints(); ++i) {
-      EXPECT_NEAR(line->getX(i), -4.6, 1e-4) << i;
-      EXPECT_LT(line->getY(i), 48.275 + 0.0019) << i;  // 210 m
-    }
+  segments = open_segments("h.gpkg");
+  ASSERT_EQ(segments.size(), 1u);
+  EXPECT_GE(segments[0].size(), 7u);  // 8.3 km at 800 m
+  for (const auto& [lon, lat] : segments[0]) {
+    EXPECT_NEAR(lon, -4.6, 1e-4) << lat;
+    EXPECT_LT(lat, 48.275 + 0.0019);  // 210 m
   }
-  EXPECT_EQ(open, 1);
 
-  const std::string off = dir.file("off.geojson");
-  write_file(off,
-             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
-             R"("geometry":{"type":"LineString","coordinates":[[-4.58,48.3],[-4.5,48.3]]}}]})");
-  r = run_cli(with({"--open-boundary", off, "-o", dir.file("n.gpkg")}), dir);
+  r = run(line_file("off.geojson", "[[-4.58,48.3],[-4.5,48.3]]"), "n.gpkg");
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_NE(r.err.find("follow none of the domain's boundary"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("n.gpkg")));
