@@ -198,8 +198,11 @@ TEST(MeshBoundary, OpenPolylinesMarkOnlyTheEdgesAlongThem) {
   // top from right to left (14 -> 13).
   EXPECT_EQ(open, (std::vector<std::vector<int>>{{8, 4, 0}, {14, 13}}));
   // A hole's edge lies on no line: the island stays land.
-  for (const BoundarySegment& s : b.segments)
-    if (s.island) EXPECT_EQ(s.kind, BoundaryKind::land);
+  for (const BoundarySegment& s : b.segments) {
+    if (s.island) {
+      EXPECT_EQ(s.kind, BoundaryKind::land);
+    }
+  }
 }
 
 TEST(MeshBoundary, AnEdgeAcrossACornerOfTheLinesIsOpenWithItsChordShare) {
