@@ -83,7 +83,8 @@ def update(case, isoquad):
     print(f"updated {path}")
 
 
-# What `init` records, with its tolerances: the counts and shares of the quality report.
+# What `init` records, with its tolerances: the counts and shares of the quality report,
+# the domain's components and holes, and the open boundary (edges, and segments).
 DEFAULT_EXPECTED = {
     "quality.num_quads": {"rtol": 0.1},
     "quality.num_triangles": {"tol": 0},
@@ -96,6 +97,8 @@ DEFAULT_EXPECTED = {
     "quality.mesh_area_m2": {"rtol": 0.01},
     "domain.num_components": {"tol": 0},
     "domain.num_holes": {"tol": 0},
+    "boundary.num_open_edges": {"rtol": 0.1},
+    "boundary.num_open_segments": {"tol": 0},
 }
 
 

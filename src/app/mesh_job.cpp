@@ -245,7 +245,8 @@ std::string format_mesh_summary(const MeshResult& r) {
   return os.str();
 }
 
-std::string mesh_report_json(const MeshResult& r, const std::string& command_line) {
+std::string mesh_report_json(const MeshResult& r, const std::string& command_line,
+                             const MeshBoundary* boundary) {
   JsonWriter j;
   j.begin_object();
   j.value("isoquad_version", ISOQUAD_VERSION).value("command_line", command_line);
@@ -320,6 +321,17 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("boundary_departure_p95_h", q.boundary_departure_p95_h)
         .value("num_boundary_backtracks", q.num_boundary_backtracks)
         .end_object();
+    if (boundary) {
+      std::size_t open = 0, land = 0;
+      for (const BoundarySegment& segment : boundary->segments)
+        ++(segment.kind == BoundaryKind::open ? open : land);
+      j.begin_object("boundary")
+          .value("num_open_edges", boundary->num_open_edges)
+          .value("num_land_edges", boundary->num_land_edges)
+          .value("num_open_segments", open)
+          .value("num_land_segments", land)
+          .end_object();
+    }
     j.begin_object("smoothing")
         .value("tiling_attempts", r.attempts)
         .array("tiling_variants", r.tiling_variants)

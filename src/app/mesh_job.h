@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "app/fields_job.h"
+#include "io/mesh_boundary.h"
 #include "quad/quad_mesh.h"
 #include "quad/quad_quality.h"
 #include "quad/smooth_quads.h"
@@ -57,6 +58,9 @@ std::vector<LocalRefinement> refinements_at(const FieldsResult& fields, const st
 MeshResult build_mesh(const MeshOptions& options, const Progress& progress = Progress());
 
 std::string format_mesh_summary(const MeshResult& r);
-std::string mesh_report_json(const MeshResult& r, const std::string& command_line);
+// The JSON report; with `boundary` (extract_boundary() of the quads, as the outputs
+// have it), its open and land edges and segments too.
+std::string mesh_report_json(const MeshResult& r, const std::string& command_line,
+                             const MeshBoundary* boundary = nullptr);
 
 }  // namespace isoquad

@@ -59,9 +59,9 @@ std::size_t sample_depths(const std::string& path, const Domain& domain, const Q
 MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs& o) {
   OutputSet set;
   MeshJobWritten written;
+  MeshOutputData data;
   if (r.has_quads) {
     const FrontEndResult& front = r.fields.front;
-    MeshOutputData data;
     data.mesh = &r.quads;
     data.metrics = &r.metrics;
     data.crs_wkt = front.domain.crs_wkt;
@@ -96,7 +96,9 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
     }
   }
   if (!o.report_path.empty())
-    write_text_file(set.add(o.report_path, o.overwrite), mesh_report_json(r, o.command_line), true);
+    write_text_file(set.add(o.report_path, o.overwrite),
+                    mesh_report_json(r, o.command_line, r.has_quads ? &data.boundary : nullptr),
+                    true);
   set.commit_all();
   return written;
 }

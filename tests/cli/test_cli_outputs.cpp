@@ -285,10 +285,10 @@ TEST(CliOutputs, OpenBoundaryLinesGiveTheSeaBoundary) {
     return path;
   };
   auto run = [&](const std::string& lines, const std::string& output) {
-    return run_cli(
-        {"mesh", input, "--domain", "water", "--bbox", "-4.6,48.2,-4.4,48.35", "--size", "800",
-         "-q", "--output-crs", "EPSG:4326", "--open-boundary", lines, "-o", dir.file(output)},
-        dir);
+    return run_cli({"mesh", input, "--domain", "water", "--bbox", "-4.6,48.2,-4.4,48.35", "--size",
+                    "800", "-q", "--output-crs", "EPSG:4326", "--open-boundary", lines, "-o",
+                    dir.file(output), "--report", dir.file(output + ".json")},
+                   dir);
   };
   // The open boundary's segments in the GeoPackage, as lon/lat points.
   auto open_segments = [&dir](const std::string& output) {
@@ -315,6 +315,11 @@ TEST(CliOutputs, OpenBoundaryLinesGiveTheSeaBoundary) {
   for (const auto& [lon, lat] : segments[0]) EXPECT_NEAR(lon, -4.6, 1e-4) << lat;
   // Counter-clockwise round the sea: down the west side.
   EXPECT_GT(segments[0].front().second, segments[0].back().second);
+  // The report counts them.
+  const std::string report = read_file(dir.file("m.gpkg.json"));
+  EXPECT_NE(report.find("\"num_open_segments\": 1,"), std::string::npos) << report;
+  EXPECT_NE(report.find("\"num_open_edges\": " + std::to_string(segments[0].size() - 1) + ","),
+            std::string::npos);
 
   // A line that stops halfway along the side: the open segment stops there too, at a
   // mesh vertex within the tolerance (the simplification's, 200 m) of the line's end.
