@@ -261,6 +261,8 @@ void finish_front_end_args(CommonArgs& a) {
     throw Error(ErrorClass::usage, "options", "this subcommand writes one output: give -o once");
   a.output = a.outputs.front();
   a.fe.read.path = a.input;
+  if (!a.fe.open_boundary_layer.empty() && a.fe.open_boundary_path.empty())
+    throw Error(ErrorClass::usage, "options", "--open-boundary-layer needs --open-boundary");
   if (!a.bbox.empty()) a.fe.read.bbox = parse_bbox(a.bbox);
   a.fe.kind = a.domain_kind == "water" ? DomainKind::water : DomainKind::land;
   if (a.simplify_m >= 0) a.fe.simplify_m = a.simplify_m;
@@ -340,12 +342,23 @@ struct MeshArgs {
   std::vector<std::string> output_formats;
   std::string msh_version = "4.1";
   std::string output_crs;
-  std::string open_boundary;        // --open-boundary FILE
-  std::string open_boundary_layer;  // --open-boundary-layer NAME
   std::string stop_after;  // empty: the whole job
   std::string conform_rule = "lattice";
   std::string init = "front";
 };
+
+// For `domain` (its summary says how much of the boundary the lines follow) and `mesh`.
+void add_open_boundary_options(CLI::App* cmd, FrontEndOptions& fe) {
+  cmd->add_option("--open-boundary", fe.open_boundary_path,
+                  "Vector file (any format, with a CRS) of lines drawn along the domain's edge "
+                  "(or polygons, by their rings): the boundary they follow is open (sea), the "
+                  "rest land, in every output; replaces a water domain's bbox sides")
+      ->group("Output");
+  cmd->add_option("--open-boundary-layer", fe.open_boundary_layer,
+                  "Layer of --open-boundary to read (default: its first layer of lines, or its "
+                  "first layer)")
+      ->group("Output");
+}
 
 void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
   const char* g = "Tiling (paper, sections 2.2 to 2.5)";
@@ -452,15 +465,6 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "Write coordinates in this CRS (e.g. EPSG:4326); SCHISM .gr3 stays in the "
                   "meshing CRS (its .ll is in lon/lat)")
       ->group("Output");
-  cmd->add_option("--open-boundary", m.open_boundary,
-                  "Vector file (any format, with a CRS) of lines drawn along the domain's edge "
-                  "(or polygons, by their rings): the boundary they follow is open (sea), the "
-                  "rest land, in every output; replaces a water domain's bbox sides")
-      ->group("Output");
-  cmd->add_option("--open-boundary-layer", m.open_boundary_layer,
-                  "Layer of --open-boundary to read (default: its first layer of lines, or its "
-                  "first layer)")
-      ->group("Output");
 }
 
 std::vector<MeshOutput> mesh_outputs(const CommonArgs& a, const MeshArgs& m) {
@@ -488,10 +492,6 @@ std::string joined_command_line(int argc, char** argv) {
 
 int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& command_line) {
   finish_front_end_args(a);
-  a.fe.open_boundary_path = m.open_boundary;
-  a.fe.open_boundary_layer = m.open_boundary_layer;
-  if (!m.open_boundary_layer.empty() && m.open_boundary.empty())
-    throw Error(ErrorClass::usage, "options", "--open-boundary-layer needs --open-boundary");
   const bool tiling_only = !m.stop_after.empty();
   const std::vector<MeshOutput> outputs = mesh_outputs(a, m);
   MeshWriteOptions write_options;
@@ -571,6 +571,7 @@ int main(int argc, char** argv) {
       "Read, select, project, repair and simplify polygons; write the planar domain (in the "
       "meshing CRS) as a GeoPackage and print a summary.");
   add_front_end_options(domain_cmd, domain_args);
+  add_open_boundary_options(domain_cmd, domain_args.fe);
   domain_cmd->footer(kExitCodes);
 
   CommonArgs fields_args;
@@ -598,6 +599,7 @@ int main(int argc, char** argv) {
   add_front_end_options(mesh_cmd, mesh_args);
   add_field_options(mesh_cmd, mesh_field_args);
   add_mesh_options(mesh_cmd, mesh_extra);
+  add_open_boundary_options(mesh_cmd, mesh_args.fe);
   mesh_cmd->footer(kExitCodes);
 
   try {

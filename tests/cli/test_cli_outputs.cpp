@@ -333,6 +333,18 @@ TEST(CliOutputs, OpenBoundaryLinesGiveTheSeaBoundary) {
     EXPECT_LT(lat, 48.275 + 0.0019);  // 210 m
   }
 
+  // `domain` says, before any meshing, how much of the boundary the lines follow: the
+  // west side's 16.68 km, and up to the tolerance (202 m) round each corner.
+  r = run_cli({"domain", input, "--domain", "water", "--bbox", "-4.6,48.2,-4.4,48.35", "--size",
+               "800", "--open-boundary", dir.file("west.geojson"), "-o", dir.file("d.gpkg")},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::size_t along = r.out.find("1 line(s), along ");
+  ASSERT_NE(along, std::string::npos) << r.out;
+  const double km = std::stod(r.out.substr(along + 17));
+  EXPECT_GE(km, 16.6) << r.out;
+  EXPECT_LE(km, 16.68 + 2 * 0.21) << r.out;
+
   r = run(line_file("off.geojson", "[[-4.58,48.3],[-4.5,48.3]]"), "n.gpkg");
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_NE(r.err.find("follow none of the domain's boundary"), std::string::npos) << r.err;
