@@ -171,17 +171,67 @@ PolylineIndex::PolylineIndex(std::vector<std::vector<Point2>> lines, std::vector
       }
       runs_.push_back(r);
     }
+    max_slack_ = std::max(max_slack_, slack_[l]);
+  }
+  if (runs_.empty()) return;
+  // About one run per cell, at most 256 x 256 cells.
+  double x1 = runs_[0].xmax, y1 = runs_[0].ymax;
+  x0_ = runs_[0].xmin, y0_ = runs_[0].ymin;
+  for (const Run& r : runs_) {
+    x0_ = std::min(x0_, r.xmin - slack_[r.line]), y0_ = std::min(y0_, r.ymin - slack_[r.line]);
+    x1 = std::max(x1, r.xmax + slack_[r.line]), y1 = std::max(y1, r.ymax + slack_[r.line]);
+  }
+  const int n =
+      static_cast<int>(std::clamp(std::sqrt(static_cast<double>(runs_.size())), 1.0, 256.0));
+  cell_ = std::max({(x1 - x0_) / n, (y1 - y0_) / n, 1e-9});
+  nx_ = std::max(1, static_cast<int>(std::ceil((x1 - x0_) / cell_)));
+  ny_ = std::max(1, static_cast<int>(std::ceil((y1 - y0_) / cell_)));
+  auto range = [&](const Run& r, int& i0, int& i1, int& j0, int& j1) {
+    const double w = slack_[r.line];
+    i0 = std::clamp(static_cast<int>((r.xmin - w - x0_) / cell_), 0, nx_ - 1);
+    i1 = std::clamp(static_cast<int>((r.xmax + w - x0_) / cell_), 0, nx_ - 1);
+    j0 = std::clamp(static_cast<int>((r.ymin - w - y0_) / cell_), 0, ny_ - 1);
+    j1 = std::clamp(static_cast<int>((r.ymax + w - y0_) / cell_), 0, ny_ - 1);
+  };
+  cell_start_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
+  int i0, i1, j0, j1;
+  for (const Run& r : runs_) {
+    range(r, i0, i1, j0, j1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i) ++cell_start_[static_cast<std::size_t>(j) * nx_ + i + 1];
+  }
+  for (std::size_t c = 1; c < cell_start_.size(); ++c) cell_start_[c] += cell_start_[c - 1];
+  cell_runs_.resize(cell_start_.back());
+  std::vector<int> fill(cell_start_.begin(), cell_start_.end() - 1);
+  for (std::size_t k = 0; k < runs_.size(); ++k) {
+    range(runs_[k], i0, i1, j0, j1);
+    for (int j = j0; j <= j1; ++j)
+      for (int i = i0; i <= i1; ++i)
+        cell_runs_[fill[static_cast<std::size_t>(j) * nx_ + i]++] = static_cast<int>(k);
   }
 }
 
 bool PolylineIndex::near(const Point2& p, double tolerance) const {
-  for (const Run& r : runs_) {
-    const double t = tolerance + slack_[r.line];
-    if (p.x < r.xmin - t || p.x > r.xmax + t || p.y < r.ymin - t || p.y > r.ymax + t) continue;
-    const auto& line = lines_[r.line];
-    for (int i = r.first; i < r.last; ++i)
-      if (distance_to_segment(p, line[i], line[i + 1]) <= t) return true;
-  }
+  if (runs_.empty()) return false;
+  // The cells that a run within reach of p can meet.
+  const double reach = tolerance + max_slack_;
+  const double fx0 = (p.x - reach - x0_) / cell_, fx1 = (p.x + reach - x0_) / cell_;
+  const double fy0 = (p.y - reach - y0_) / cell_, fy1 = (p.y + reach - y0_) / cell_;
+  if (fx1 < 0 || fy1 < 0 || fx0 >= nx_ || fy0 >= ny_) return false;
+  const int i0 = std::max(0, static_cast<int>(fx0)), i1 = std::min(nx_ - 1, static_cast<int>(fx1));
+  const int j0 = std::max(0, static_cast<int>(fy0)), j1 = std::min(ny_ - 1, static_cast<int>(fy1));
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      const std::size_t c = static_cast<std::size_t>(j) * nx_ + i;
+      for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+        const Run& r = runs_[cell_runs_[k]];
+        const double t = tolerance + slack_[r.line];
+        if (p.x < r.xmin - t || p.x > r.xmax + t || p.y < r.ymin - t || p.y > r.ymax + t) continue;
+        const auto& line = lines_[r.line];
+        for (int s = r.first; s < r.last; ++s)
+          if (distance_to_segment(p, line[s], line[s + 1]) <= t) return true;
+      }
+    }
   return false;
 }
 

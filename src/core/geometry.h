@@ -73,8 +73,9 @@ std::string format_point(const Point2& p);
 void sort_by_area(std::vector<Polygon>& polygons);
 
 // Polylines (a closed one repeats its first point at the end), indexed by runs of
-// segments with their bounding boxes, for "is this point near them" queries. `slack`
-// (empty, or one per line) widens the tolerance of each line by its own amount.
+// segments with their bounding boxes in a uniform grid, for "is this point near them"
+// queries. `slack` (empty, or one per line) widens the tolerance of each line by its
+// own amount.
 class PolylineIndex {
  public:
   explicit PolylineIndex(std::vector<std::vector<Point2>> lines = {},
@@ -91,6 +92,12 @@ class PolylineIndex {
   std::vector<std::vector<Point2>> lines_;
   std::vector<double> slack_;
   std::vector<Run> runs_;
+  // Grid of cells over the runs' boxes (widened by their slack): cell (i, j) lists the
+  // runs whose box meets it, in cell_runs_[cell_start_[c] .. cell_start_[c + 1]).
+  double x0_ = 0, y0_ = 0, cell_ = 1;
+  int nx_ = 0, ny_ = 0;
+  double max_slack_ = 0;
+  std::vector<int> cell_start_, cell_runs_;
 };
 
 // Distance from p to the segment ab.
