@@ -67,6 +67,17 @@ TEST(Geometry, PolylineIndexFindsPointsNearAnySegment) {
   EXPECT_TRUE(index.near({-9.6, 2.5}, 0.5));
   EXPECT_FALSE(index.near({-9.6, 2.5}, 0.3));
   EXPECT_FALSE(index.near({60, 0}, 5.0));
+  // Beyond the index's extent, within the tolerance of its last segment (x = 50).
+  EXPECT_TRUE(index.near({50.3, 49.5}, 0.5));
+  EXPECT_FALSE(index.near({50.3, 49.5}, 0.2));
+  // Every cell of the grid answers as a plain search of every segment would.
+  for (double x = -12; x <= 52; x += 0.7)
+    for (double y = -2; y <= 52; y += 0.9) {
+      double nearest = distance_to_segment({x, y}, {-10, 0}, {-10, 5});
+      for (std::size_t i = 0; i + 1 < stairs.size(); ++i)
+        nearest = std::min(nearest, distance_to_segment({x, y}, stairs[i], stairs[i + 1]));
+      EXPECT_EQ(index.near({x, y}, 0.45), nearest <= 0.45) << x << " " << y;
+    }
   EXPECT_FALSE(PolylineIndex().near({0, 0}, 1.0));
   EXPECT_DOUBLE_EQ(distance_to_segment({2, 1}, {0, 0}, {4, 0}), 1.0);
   EXPECT_DOUBLE_EQ(distance_to_segment({7, 4}, {0, 0}, {4, 0}), 5.0);
