@@ -65,6 +65,39 @@ ProjectedLines project_lines(const std::vector<std::vector<Point2>>& lines, cons
   return out;
 }
 
+// The domain's edges are projected as chords between their ends; lines with more
+// vertices than such an edge run along its curved image (500 m off the chord of a
+// 150 km edge in lon/lat). A domain edge whose ends lie on the lines and the image of
+// whose middle (in the source CRS) does too is added to them as it is, a chord.
+void add_domain_chords(FrontEndResult& result, const CrsInfo& source_crs,
+                       const CrsInfo& meshing_crs) {
+  const double tolerance = result.open_boundary_tolerance_m;
+  const PolylineIndex index(result.open_boundary_lines, result.open_boundary_slack_m);
+  const CrsTransform to_source(meshing_crs, source_crs), from_source(source_crs, meshing_crs);
+  std::vector<std::vector<Point2>> chords;
+  auto visit = [&](const Ring& ring) {
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point2 &a = ring[i], &b = ring[(i + 1) % ring.size()];
+      if (!index.near(a, tolerance) || !index.near(b, tolerance) ||
+          index.near({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}, tolerance))
+        continue;
+      Point2 sa = a, sb = b;
+      if (!to_source.transform(sa) || !to_source.transform(sb)) continue;
+      if (source_crs.geographic) sb.x += 360.0 * std::round((sa.x - sb.x) / 360.0);
+      Point2 middle{0.5 * (sa.x + sb.x), 0.5 * (sa.y + sb.y)};
+      if (from_source.transform(middle) && index.near(middle, tolerance)) chords.push_back({a, b});
+    }
+  };
+  for (const Polygon& polygon : result.domain.polygons) {
+    visit(polygon.outer);
+    for (const Ring& hole : polygon.holes) visit(hole);
+  }
+  for (auto& chord : chords) {
+    result.open_boundary_lines.push_back(std::move(chord));
+    result.open_boundary_slack_m.push_back(0.0);
+  }
+}
+
 }  // namespace
 
 FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progress& progress) {
@@ -244,6 +277,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     // domain sampled about every tolerance (at most 256 pieces), a piece counted when
     // both its ends lie within the tolerance of the lines.
     const double tolerance = result.open_boundary_tolerance_m;
+    add_domain_chords(result, source.crs, meshing_crs);
     const PolylineIndex index(result.open_boundary_lines, result.open_boundary_slack_m);
     auto follow = [&](const Ring& ring) {
       for (std::size_t i = 0; i < ring.size(); ++i) {

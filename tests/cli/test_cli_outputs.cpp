@@ -351,6 +351,35 @@ TEST(CliOutputs, OpenBoundaryLinesGiveTheSeaBoundary) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("n.gpkg")));
 }
 
+TEST(CliOutputs, AnOpenBoundaryDenserThanTheDomainsEdgeTakesTheWholeEdge) {
+  // A 2 x 1.5 degree box whose south side is one edge of 151 km, projected as a chord
+  // that the side's curved image leaves by 470 m; the open boundary drawn along it in
+  // 200 pieces follows the curve. Every boundary edge on that side is open all the same:
+  // 50 at 3 km, in one segment (the simplification's 100 m leaves the chord alone).
+  TempDir dir;
+  const std::string box = dir.file("box.geojson");
+  write_file(box, geojson_polygons({"[[[-6,47],[-4,47],[-4,48.5],[-6,48.5],[-6,47]]]"}));
+  std::string points;
+  for (int k = 0; k <= 200; ++k)
+    points += (k ? "," : "") + ("[" + std::to_string(-6.0 + 2.0 * k / 200) + ",47]");
+  const std::string south = dir.file("south.geojson");
+  write_file(south, R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+                    R"("geometry":{"type":"LineString","coordinates":[)" +
+                        points + "]}}]}");
+  const CliResult r =
+      run_cli({"mesh", box, "--size", "3000", "--simplify", "100", "--open-boundary", south, "-o",
+               dir.file("m.gpkg"), "--report", dir.file("m.json"), "-q"},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string report = read_file(dir.file("m.json"));
+  EXPECT_NE(report.find("\"num_open_segments\": 1,"), std::string::npos) << report;
+  const std::size_t at = report.find("\"num_open_edges\": ");
+  ASSERT_NE(at, std::string::npos);
+  const int open = std::stoi(report.substr(at + 18));
+  EXPECT_GE(open, 48);
+  EXPECT_LE(open, 52);
+}
+
 TEST(CliOutputs, UnwritableSecondOutputLeavesNothing) {
   TempDir dir;
   const std::string input = water_input(dir);
