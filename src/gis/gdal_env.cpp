@@ -5,6 +5,7 @@
 #include <gdal.h>
 #include <gdal_priv.h>
 #include <ogr_api.h>
+#include <ogrsf_frmts.h>
 #include <sys/stat.h>
 
 #include <mutex>
@@ -64,6 +65,13 @@ GdalDataset open_vector_dataset(const std::string& path, const std::string& stag
   }
   if (ds->GetLayerCount() == 0) fail("contains no vector layer");
   return ds;
+}
+
+std::string layer_names(GDALDataset& ds) {
+  std::string names;
+  for (int i = 0; i < ds.GetLayerCount(); ++i)
+    names += (i ? ", " : "") + std::string(ds.GetLayer(i)->GetName());
+  return names;
 }
 
 }  // namespace isoquad

@@ -32,4 +32,7 @@ using GdalDataset = std::unique_ptr<GDALDataset, GdalDatasetCloser>;
 // reads (with GDAL's reason), no layer.
 GdalDataset open_vector_dataset(const std::string& path, const std::string& stage);
 
+// "name1, name2, ...": the data set's layers, for a message about a missing one.
+std::string layer_names(GDALDataset& ds);
+
 }  // namespace isoquad

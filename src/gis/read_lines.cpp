@@ -55,12 +55,8 @@ SourceLines read_lines(const std::string& path, const std::string& layer_name,
   OGRLayer* layer = nullptr;
   if (!layer_name.empty()) {
     layer = ds->GetLayerByName(layer_name.c_str());
-    if (!layer) {
-      std::string names;
-      for (int i = 0; i < ds->GetLayerCount(); ++i)
-        names += (i ? ", " : "") + std::string(ds->GetLayer(i)->GetName());
-      fail(ErrorClass::usage, "no layer '" + layer_name + "' (layers: " + names + ")");
-    }
+    if (!layer)
+      fail(ErrorClass::usage, "no layer '" + layer_name + "' (layers: " + layer_names(*ds) + ")");
   } else {
     // The first layer of lines (a project's GeoPackage may hold the domain's polygons
     // first), else the first layer.

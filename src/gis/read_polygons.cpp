@@ -70,10 +70,8 @@ class Reader {
     if (!p_.layer.empty()) {
       layer_ = ds_->GetLayerByName(p_.layer.c_str());
       if (!layer_) {
-        std::string names;
-        for (int i = 0; i < ds_->GetLayerCount(); ++i)
-          names += (i ? ", " : "") + std::string(ds_->GetLayer(i)->GetName());
-        fail(ErrorClass::usage, "no layer " + quote(p_.layer) + " (layers: " + names + ")");
+        fail(ErrorClass::usage,
+             "no layer " + quote(p_.layer) + " (layers: " + layer_names(*ds_) + ")");
       }
     } else if (ds_->GetLayerCount() == 1) {
       layer_ = ds_->GetLayer(0);
