@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Acceptance of the mesh outputs (issue 6): a sea area with islands (Brittany) meshed
 # and written to every format in one run, each file loaded by its reader (GDAL, gmsh,
-# meshio, python3-netcdf4, our gr3 check) and the GeoPackage rendered by QGIS with its
-# embedded styles. Writes into out/acceptance/ (or $1); needs build/isoquad.
+# meshio, python3-netcdf4, our gr3 check, QGIS's mesh reader for .2dm) and the GeoPackage
+# rendered by QGIS with its embedded styles. Writes into out/acceptance/ (or $1); needs build/isoquad.
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 OUT=${1:-$ROOT/out/acceptance}
@@ -13,7 +13,7 @@ time build/isoquad mesh shapefiles/brittany_land.shp --domain water \
   --bbox -5.3,46.8,-1.95,49.35 --hmax 8000 --overwrite \
   -o "$OUT/brittany.gpkg" -o "$OUT/brittany.msh" -o "$OUT/hgrid.gr3" \
   -o "$OUT/brittany.vtk" -o "$OUT/brittany.vtu" -o "$OUT/brittany.nc" \
-  --report "$OUT/brittany.json"
+  -o "$OUT/brittany.2dm" --report "$OUT/brittany.json"
 
 echo "== GDAL"
 ogrinfo -q "$OUT/brittany.gpkg" -sql "SELECT kind, COUNT(*) AS segments, SUM(num_nodes) AS nodes FROM boundary GROUP BY kind"
@@ -36,6 +36,18 @@ print("brittany.nc", mesh.cf_role, {k: v.size for k, v in d.dimensions.items()},
 lines = open(f"{out}/hgrid.gr3").read().split("\n")
 ne, np_ = map(int, lines[1].split())
 print("hgrid.gr3", ne, "quads,", np_, "nodes;", *(l for l in lines if "Number of open boundaries" in l or "Number of land boundaries" in l))
+PYEOF
+echo "== QGIS: the .2dm as a mesh layer (MDAL)"
+"$PY" - "$OUT/brittany.2dm" 2> >(grep -v QStandardPaths >&2) <<'PYEOF'
+import os, sys
+os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
+from qgis.core import QgsApplication, QgsMesh, QgsMeshLayer
+app = QgsApplication([], False)
+app.initQgis()
+layer = QgsMeshLayer(sys.argv[1], "m", "mdal")
+mesh = QgsMesh()
+layer.dataProvider().populateMesh(mesh)
+print("brittany.2dm valid", layer.isValid(), mesh.vertexCount(), "vertices,", mesh.faceCount(), "faces")
 PYEOF
 echo "== QGIS"
 "$PY" tools/render_gpkg_qgis.py "$OUT/brittany.gpkg" "$OUT/brittany.png" 2> >(grep -v QStandardPaths >&2)

@@ -25,5 +25,6 @@ void write_gr3_file(const MeshView& v, const std::vector<Point2>& points,
                     const std::string& path, const std::string& what);
 void write_vtk_legacy_file(const MeshView& v, const std::string& path, const std::string& what);
 void write_ugrid_file(const MeshView& v, const std::string& path, const std::string& what);
+void write_2dm_file(const MeshView& v, const std::string& path, const std::string& what);
 
 }  // namespace isoquad

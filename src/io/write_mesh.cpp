@@ -23,7 +23,8 @@ std::string lower(std::string s) {
 const std::map<std::string, MeshFormat>& format_names() {
   static const std::map<std::string, MeshFormat> names = {
       {"gpkg", MeshFormat::gpkg}, {"vtu", MeshFormat::vtu}, {"vtk", MeshFormat::vtk},
-      {"msh", MeshFormat::msh},   {"gr3", MeshFormat::gr3}, {"nc", MeshFormat::nc}};
+      {"msh", MeshFormat::msh},   {"gr3", MeshFormat::gr3}, {"nc", MeshFormat::nc},
+      {"2dm", MeshFormat::sms2dm}};
   return names;
 }
 
@@ -149,9 +150,9 @@ MeshFormat mesh_output_format(const MeshOutput& out) {
     throw Error(ErrorClass::usage, "options",
                 out.format.empty()
                     ? "'" + out.path + "': unknown mesh format '" + ext +
-                          "'; use .gpkg, .vtu, .vtk, .msh, .gr3 or .nc (or --output-format)"
+                          "'; use .gpkg, .vtu, .vtk, .msh, .gr3, .nc or .2dm (or --output-format)"
                     : "unknown --output-format '" + out.format +
-                          "'; use gpkg, vtu, vtk, msh, gr3 or nc");
+                          "'; use gpkg, vtu, vtk, msh, gr3, nc or 2dm");
   return it->second;
 }
 
@@ -211,6 +212,9 @@ void write_mesh_outputs(const MeshOutputData& data, const std::vector<MeshOutput
       case MeshFormat::vtk: write_vtk_legacy_file(*view, tmp, o.path); break;
       case MeshFormat::msh: write_msh_file(*view, tmp, o.path, options.msh_version); break;
       case MeshFormat::nc: write_ugrid_file(*view, tmp, o.path); break;
+      case MeshFormat::sms2dm:
+        write_2dm_file(*view, tmp, o.path);
+        break;
       case MeshFormat::gr3: {
         write_gr3_file(native, native.points, tmp, o.path);
         if (lonlat.empty()) {

@@ -6,7 +6,8 @@
 //   msh   Gmsh 4.1 ASCII (or 2.2), physical groups land (1), open (2), domain (3);
 //   gr3   SCHISM hgrid.gr3 (quads, depth positive down, open and land boundaries) and its
 //         lon/lat companion (same name, extension .ll);
-//   nc    UGRID-1.0 netCDF.
+//   nc    UGRID-1.0 netCDF;
+//   2dm   SMS generic 2D mesh (elevation z, boundary segments as nodestrings).
 // Several outputs are written as one transaction (gis/atomic_output.h: OutputSet).
 #pragma once
 
@@ -20,11 +21,11 @@
 
 namespace isoquad {
 
-enum class MeshFormat { gpkg, vtu, vtk, msh, gr3, nc };
+enum class MeshFormat { gpkg, vtu, vtk, msh, gr3, nc, sms2dm };
 
 struct MeshOutput {
   std::string path;
-  std::string format;  // gpkg, vtu, vtk, msh, gr3, nc; empty: by the path's extension
+  std::string format;  // gpkg, vtu, vtk, msh, gr3, nc, 2dm; empty: by the path's extension
   bool overwrite = false;
 };
 

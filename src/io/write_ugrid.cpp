@@ -1,10 +1,12 @@
 // UGRID-1.0 netCDF (CF-1.8): mesh topology variable `mesh` with node coordinates, face
-// node connectivity (0-based, fill value -1), edge node connectivity, the CRS as a
-// grid-mapping variable (crs_wkt, and the CF attributes for common projections),
-// per-face metrics and depth on nodes when known.
+// node connectivity (1-based, fill value -1), edge node connectivity, the CRS as a
+// grid-mapping variable (crs_wkt, the CF attributes for common projections, the EPSG
+// code as its value), per-face metrics, and depth and bed level on nodes when known:
+// a net file for D-Flow FM too.
 #include <netcdf.h>
 #include <ogr_spatialref.h>
 
+#include <cstdlib>
 #include <cstring>
 #include <map>
 
@@ -117,6 +119,16 @@ void write_cf_grid_mapping(NcFile& nc, int var, const std::string& wkt) {
   }
 }
 
+// The EPSG code of a CRS that has one, else 0.
+int epsg_code(const std::string& wkt) {
+  OGRSpatialReference srs;
+  if (wkt.empty() || srs.importFromWkt(wkt.c_str()) != OGRERR_NONE) return 0;
+  const char* authority = srs.GetAuthorityName(nullptr);
+  const char* code = srs.GetAuthorityCode(nullptr);
+  if (!authority || !code || std::strcmp(authority, "EPSG") != 0) return 0;
+  return std::atoi(code);
+}
+
 }  // namespace
 
 void write_ugrid_file(const MeshView& v, const std::string& path, const std::string& what) {
@@ -157,8 +169,13 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
 
   const int crs = nc.var("crs", NC_INT, {});
   nc.text(crs, "crs_wkt", v.crs_wkt);
-  nc.text(crs, "spatial_ref", v.crs_wkt);
+  nc.text(crs, "spatial_ref", v.crs_wkt);  // GDAL's name
+  nc.text(crs, "wkt", v.crs_wkt);          // Deltares' name, which QGIS's reader (MDAL) reads
   write_cf_grid_mapping(nc, crs, v.crs_wkt);
+  // D-Flow FM reads the EPSG code from the variable's value, then from this attribute
+  // (0: none; it treats every CRS but EPSG:4326 as Cartesian).
+  const int epsg = epsg_code(v.crs_wkt);
+  nc.integer(crs, "epsg", epsg);
 
   const int vx = nc.var("mesh_node_x", NC_DOUBLE, {dn});
   const int vy = nc.var("mesh_node_y", NC_DOUBLE, {dn});
@@ -176,13 +193,14 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
   const int vf = nc.var("mesh_face_nodes", NC_INT, {df, d4});
   nc.text(vf, "cf_role", "face_node_connectivity");
   nc.text(vf, "long_name", "Maps every face to its corner nodes (counter-clockwise)");
-  nc.integer(vf, "start_index", 0);
+  // Numbered from 1, as D-Flow FM's older readers assume (the others read start_index).
+  nc.integer(vf, "start_index", 1);
   const int fill = -1;
   nc.check(nc_def_var_fill(nc.id(), vf, 0, &fill), "fill value");
   const int ve = nc.var("mesh_edge_nodes", NC_INT, {de, d2});
   nc.text(ve, "cf_role", "edge_node_connectivity");
   nc.text(ve, "long_name", "Maps every edge to the two nodes it connects");
-  nc.integer(ve, "start_index", 0);
+  nc.integer(ve, "start_index", 1);
 
   struct FaceVar {
     const char* name;
@@ -201,7 +219,7 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
     nc.text(fv.id, "location", "face");
     nc.text(fv.id, "units", fv.units);
   }
-  int vd = -1;
+  int vd = -1, vz = -1;
   if (!v.data->depth.empty()) {
     vd = nc.var("depth", NC_DOUBLE, {dn});
     nc.text(vd, "standard_name", "sea_floor_depth_below_geoid");
@@ -210,6 +228,15 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
     nc.text(vd, "mesh", "mesh");
     nc.text(vd, "location", "node");
     nc.text(vd, "grid_mapping", "crs");
+    // The bed level by the name D-Flow FM's and HYDROLIB's net readers look for.
+    vz = nc.var("mesh_node_z", NC_DOUBLE, {dn});
+    nc.text(vz, "standard_name", "altitude");
+    nc.text(vz, "long_name", "bed level (minus the depth)");
+    nc.text(vz, "units", "m");
+    nc.text(vz, "positive", "up");
+    nc.text(vz, "mesh", "mesh");
+    nc.text(vz, "location", "node");
+    nc.text(vz, "grid_mapping", "crs");
   }
   nc.check(nc_enddef(nc.id()), "cannot finish the header");
 
@@ -217,13 +244,21 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
   for (const Point2& p : v.points) xs.push_back(p.x), ys.push_back(p.y);
   nc.check(nc_put_var_double(nc.id(), vx, xs.data()), "node x");
   nc.check(nc_put_var_double(nc.id(), vy, ys.data()), "node y");
+  nc.check(nc_put_var_int(nc.id(), crs, &epsg), "crs");
   std::vector<int> faces;
-  for (const auto& c : m.quads) faces.insert(faces.end(), c.begin(), c.end());
+  for (const auto& c : m.quads)
+    for (int n : c) faces.push_back(n + 1);
+  for (int& n : edges) ++n;
   if (!faces.empty()) nc.check(nc_put_var_int(nc.id(), vf, faces.data()), "faces");
   if (!edges.empty()) nc.check(nc_put_var_int(nc.id(), ve, edges.data()), "edges");
   for (const FaceVar& fv : face_vars)
     if (!fv.values->empty()) nc.check(nc_put_var_double(nc.id(), fv.id, fv.values->data()), fv.name);
-  if (vd >= 0) nc.check(nc_put_var_double(nc.id(), vd, v.data->depth.data()), "depth");
+  if (vd >= 0) {
+    nc.check(nc_put_var_double(nc.id(), vd, v.data->depth.data()), "depth");
+    std::vector<double> z;
+    for (double d : v.data->depth) z.push_back(-d + 0.0);
+    nc.check(nc_put_var_double(nc.id(), vz, z.data()), "bed level");
+  }
   nc.close();
 }
 

@@ -8,6 +8,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <iomanip>
 #include <map>
 #include <set>
 #include <sstream>
@@ -254,21 +255,24 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
 
   // Legacy VTK and VTU in meshio, UGRID in netCDF4: the same counts, lon/lat, depth.
   python_check(dir,
-             "import sys, meshio, netCDF4, numpy as np\n"
-             "np_, ne = int(sys.argv[3]), int(sys.argv[4])\n"
-             "for f in sys.argv[1:3]:\n"
-             "    m = meshio.read(f)\n"
-             "    assert m.points.shape[0] == np_ and m.cells_dict['quad'].shape == (ne, 4), f\n"
-             "    assert -4.61 < m.points[:, 0].min() and m.points[:, 0].max() < -4.39, f\n"
-             "    assert np.ravel(m.point_data['depth']).min() > 100, f\n"
-             "d = netCDF4.Dataset(sys.argv[5])\n"
-             "assert d.dimensions['n_node'].size == np_ and d.dimensions['n_face'].size == ne\n"
-             "assert d['mesh_node_x'].standard_name == 'longitude'\n"
-             "assert 'WGS 84' in d['crs'].crs_wkt\n"
-             "assert d['crs'].grid_mapping_name == 'latitude_longitude'\n"
-             "assert d['mesh_face_nodes'][:].max() == np_ - 1\n",
-             {dir.file("m.vtk"), dir.file("m.vtu"), std::to_string(np), std::to_string(ne),
-              dir.file("m.nc")});
+               "import sys, meshio, netCDF4, numpy as np\n"
+               "np_, ne = int(sys.argv[3]), int(sys.argv[4])\n"
+               "for f in sys.argv[1:3]:\n"
+               "    m = meshio.read(f)\n"
+               "    assert m.points.shape[0] == np_ and m.cells_dict['quad'].shape == (ne, 4), f\n"
+               "    assert -4.61 < m.points[:, 0].min() and m.points[:, 0].max() < -4.39, f\n"
+               "    assert np.ravel(m.point_data['depth']).min() > 100, f\n"
+               "d = netCDF4.Dataset(sys.argv[5])\n"
+               "assert d.dimensions['n_node'].size == np_ and d.dimensions['n_face'].size == ne\n"
+               "assert d['mesh_node_x'].standard_name == 'longitude'\n"
+               "assert 'WGS 84' in d['crs'].crs_wkt\n"
+               "assert d['crs'].grid_mapping_name == 'latitude_longitude'\n"
+               "faces = d['mesh_face_nodes'][:]\n"
+               "assert faces.min() == 1 and faces.max() == np_\n"
+               "assert d['crs'][:] == 4326 and d['crs'].epsg == 4326\n"
+               "assert np.allclose(d['mesh_node_z'][:], -d['depth'][:])\n",
+               {dir.file("m.vtk"), dir.file("m.vtu"), std::to_string(np), std::to_string(ne),
+                dir.file("m.nc")});
 }
 
 TEST(CliOutputs, OpenBoundaryLinesGiveTheSeaBoundary) {
@@ -477,6 +481,114 @@ TEST(CliOutputs, QgisRendersTheEmbeddedStyles) {
   EXPECT_GT(fill, 600 * 600 / 4) << out;  // the styled quads cover much of the picture
   EXPECT_GT(pixels["land"], 100) << out;
   EXPECT_GT(pixels["open"], 100) << out;
+}
+
+// SMS .2dm: the same nodes, elements and boundary as hgrid.gr3 of the same run, z the
+// elevation (minus the depth), one nodestring per boundary segment (open ones first, an
+// island closed by its first node). Then QGIS's mesh reader (MDAL) opens it and the
+// UGRID file of the same run, in its CRS (the automatic projection, from the `crs`
+// variable), the first node at hgrid.ll's first node (skipped without python3-qgis).
+TEST(CliOutputs, Sms2dmHoldsTheGr3sMeshWithElevationsAndNodestrings) {
+  TempDir dir;
+  const CliResult r =
+      run_cli({"mesh", water_input(dir), "--domain", "water", "--bbox", "-4.6,48.2,-4.4,48.35",
+               "--size", "800", "--bathymetry", bathymetry(dir), "-o", dir.file("m.2dm"), "-o",
+               dir.file("hgrid.gr3"), "-o", dir.file("m.nc"), "-q"},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 g = parse_gr3(dir.file("hgrid.gr3"));
+  std::istringstream in(read_file(dir.file("m.2dm")));
+  std::string line;
+  ASSERT_TRUE(std::getline(in, line));
+  EXPECT_EQ(line, "MESH2D");
+  std::vector<std::array<double, 3>> nodes;
+  std::size_t elements = 0;
+  std::vector<std::vector<int>> strings(1);
+  while (std::getline(in, line)) {
+    std::istringstream card(line);
+    std::string name;
+    card >> name;
+    if (name == "E4Q") {
+      int id = 0, n = 0, material = 0;
+      card >> id;
+      EXPECT_EQ(id, static_cast<int>(++elements));
+      for (int k = 0; k < 4; ++k) {
+        card >> n;
+        EXPECT_TRUE(n >= 1 && n <= static_cast<int>(g.nodes.size())) << line;
+      }
+      card >> material;
+      EXPECT_EQ(material, 1) << line;
+    } else if (name == "ND") {
+      int id = 0;
+      std::array<double, 3> p;
+      card >> id >> p[0] >> p[1] >> p[2];
+      EXPECT_EQ(id, static_cast<int>(nodes.size() + 1));
+      nodes.push_back(p);
+    } else if (name == "NS") {
+      for (int id = 0; card >> id;) {
+        strings.back().push_back(std::abs(id));
+        if (id < 0) strings.emplace_back();
+      }
+    } else {
+      EXPECT_EQ(line, "NUM_MATERIALS_PER_ELEM 1");
+    }
+    EXPECT_FALSE(card.fail() && !card.eof()) << line;
+  }
+  EXPECT_TRUE(strings.back().empty());  // the last nodestring ended with a negative id
+  strings.pop_back();
+  EXPECT_EQ(elements, g.num_elements);
+  ASSERT_EQ(nodes.size(), g.nodes.size());
+  double deepest = 0;
+  for (std::size_t i = 0; i < nodes.size(); ++i) {
+    EXPECT_NEAR(nodes[i][0], g.nodes[i][0], 1e-6);
+    EXPECT_NEAR(nodes[i][1], g.nodes[i][1], 1e-6);
+    EXPECT_NEAR(nodes[i][2], -g.nodes[i][2], 1e-6);
+    deepest = std::min(deepest, nodes[i][2]);
+  }
+  EXPECT_LT(deepest, -100.0);
+  std::vector<std::vector<int>> expected = g.open;
+  for (std::size_t s = 0; s < g.land.size(); ++s) {
+    expected.push_back(g.land[s]);
+    if (g.land_flags[s]) expected.back().push_back(g.land[s].front());  // an island, closed
+  }
+  EXPECT_EQ(strings, expected);
+  ASSERT_EQ(strings.size(), 3u);  // one open segment, the mainland coast and the island
+
+  if (run_cli_program("/usr/bin/python3", {"-c", "import qgis.core"}, dir).exit_code != 0)
+    GTEST_SKIP() << "python3-qgis is not installed";
+  const std::string out = python_check(
+      dir,
+      "import os, sys\n"
+      "os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')\n"
+      "from qgis.core import *\n"
+      "app = QgsApplication([], False)\n"
+      "app.initQgis()\n"
+      "for path in sys.argv[1:]:\n"
+      "    layer = QgsMeshLayer(path, 'm', 'mdal')\n"
+      "    assert layer.isValid()\n"
+      "    mesh = QgsMesh()\n"
+      "    layer.dataProvider().populateMesh(mesh)\n"
+      "    sides = {len(mesh.face(i)) for i in range(mesh.faceCount())}\n"
+      "    low = min(mesh.vertex(i).z() for i in range(mesh.vertexCount()))\n"
+      "    print(mesh.vertexCount(), mesh.faceCount(), sorted(sides), '%.3f' % low)\n"
+      "to = QgsCoordinateTransform(layer.crs(), QgsCoordinateReferenceSystem('EPSG:4326'),\n"
+      "                            QgsProject.instance())\n"
+      "p = to.transform(QgsPointXY(mesh.vertex(0).x(), mesh.vertex(0).y()))\n"
+      "print('lonlat %.7f %.7f' % (p.x(), p.y()))\n",
+      {dir.file("m.2dm"), dir.file("m.nc")});
+  double low = 0;
+  for (const auto& n : nodes) low = std::min(low, n[2]);
+  std::ostringstream want;
+  want << nodes.size() << " " << elements << " [4] " << std::fixed << std::setprecision(3) << low;
+  EXPECT_NE(out.find(want.str() + "\n" + want.str() + "\n"), std::string::npos) << out;
+  const Gr3 ll = parse_gr3(dir.file("hgrid.ll"));
+  const std::size_t at = out.find("lonlat ");
+  ASSERT_NE(at, std::string::npos) << out;
+  std::istringstream lonlat(out.substr(at + 7));
+  double lon = 0, lat = 0;
+  lonlat >> lon >> lat;
+  EXPECT_NEAR(lon, ll.nodes[0][0], 1e-7) << out;
+  EXPECT_NEAR(lat, ll.nodes[0][1], 1e-7) << out;
 }
 
 // Open and land whatever the simplification: without it the bbox sides keep every

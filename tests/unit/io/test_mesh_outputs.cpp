@@ -359,42 +359,50 @@ TEST(MeshOutputs, UgridNetcdfHasTheRequiredAttributes) {
   const Fixture f;
   TempDir dir;
   write_mesh_outputs(f.data(), {{dir.file("m.nc"), "", false}});
-  python_check(dir,
-             "import sys, netCDF4, numpy as np\n"
-             "d = netCDF4.Dataset(sys.argv[1])\n"
-             "assert 'UGRID-1.0' in d.Conventions\n"
-             "m = d['mesh']\n"
-             "assert m.cf_role == 'mesh_topology' and m.topology_dimension == 2\n"
-             "x, y = (d[v] for v in m.node_coordinates.split())\n"
-             "assert len(x) == 16 and x.units == 'm' and x.grid_mapping == 'crs'\n"
-             "fn = d[m.face_node_connectivity]\n"
-             "assert fn.cf_role == 'face_node_connectivity' and fn.start_index == 0\n"
-             "assert fn._FillValue == -1 and fn.shape == (8, 4)\n"
-             "assert fn.dimensions[0] == m.face_dimension\n"
-             "faces = fn[:]\n"
-             "assert faces[0].tolist() == [0, 1, 5, 4] and faces[7].tolist() == [10, 11, 15, 14]\n"
-             "en = d[m.edge_node_connectivity]\n"
-             "assert en.cf_role == 'edge_node_connectivity' and en.shape == (24, 2)\n"
-             "assert en.dimensions[0] == m.edge_dimension\n"
-             "edges = {tuple(sorted(e)) for e in en[:].tolist()}\n"
-             "want = {tuple(sorted((f[i], f[(i + 1) % 4]))) for f in faces.tolist() for i in range(4)}\n"
-             "assert edges == want, (edges ^ want)\n"
-             "c = d['crs']\n"
-             "assert 'UTM zone 31N' in c.crs_wkt\n"
-             "assert c.grid_mapping_name == 'transverse_mercator', c.grid_mapping_name\n"
-             "assert c.longitude_of_central_meridian == 3 and c.scale_factor_at_central_meridian == 0.9996\n"
-             "assert c.false_easting == 500000 and c.semi_major_axis == 6378137\n"
-             "dep = d['depth']\n"
-             "assert dep.location == 'node' and dep.mesh == 'mesh' and dep.positive == 'down'\n"
-             "assert np.allclose(dep[:], 10 + 0.5 * np.arange(16))\n"
-             "assert d['size_ratio'].location == 'face' and len(d['size_ratio']) == 8\n",
-             {dir.file("m.nc")});
+  python_check(
+      dir,
+      "import sys, netCDF4, numpy as np\n"
+      "d = netCDF4.Dataset(sys.argv[1])\n"
+      "assert 'UGRID-1.0' in d.Conventions\n"
+      "m = d['mesh']\n"
+      "assert m.cf_role == 'mesh_topology' and m.topology_dimension == 2\n"
+      "x, y = (d[v] for v in m.node_coordinates.split())\n"
+      "assert len(x) == 16 and x.units == 'm' and x.grid_mapping == 'crs'\n"
+      "fn = d[m.face_node_connectivity]\n"
+      "assert fn.cf_role == 'face_node_connectivity' and fn.start_index == 1\n"
+      "assert fn._FillValue == -1 and fn.shape == (8, 4)\n"
+      "assert fn.dimensions[0] == m.face_dimension\n"
+      "faces = fn[:]\n"
+      "assert faces[0].tolist() == [1, 2, 6, 5] and faces[7].tolist() == [11, 12, 16, 15]\n"
+      "en = d[m.edge_node_connectivity]\n"
+      "assert en.cf_role == 'edge_node_connectivity' and en.shape == (24, 2) and en.start_index == "
+      "1\n"
+      "assert en.dimensions[0] == m.edge_dimension\n"
+      "edges = {tuple(sorted(e)) for e in en[:].tolist()}\n"
+      "want = {tuple(sorted((f[i], f[(i + 1) % 4]))) for f in faces.tolist() for i in range(4)}\n"
+      "assert edges == want, (edges ^ want)\n"
+      "c = d['crs']\n"
+      "assert 'UTM zone 31N' in c.crs_wkt\n"
+      "assert c.grid_mapping_name == 'transverse_mercator', c.grid_mapping_name\n"
+      "assert c.longitude_of_central_meridian == 3 and c.scale_factor_at_central_meridian == "
+      "0.9996\n"
+      "assert c.false_easting == 500000 and c.semi_major_axis == 6378137\n"
+      "assert c[:] == 32631 and c.epsg == 32631, (c[:], c.epsg)\n"
+      "dep = d['depth']\n"
+      "assert dep.location == 'node' and dep.mesh == 'mesh' and dep.positive == 'down'\n"
+      "assert np.allclose(dep[:], 10 + 0.5 * np.arange(16))\n"
+      "z = d['mesh_node_z']\n"
+      "assert z.standard_name == 'altitude' and z.location == 'node' and z.mesh == 'mesh'\n"
+      "assert np.allclose(z[:], -dep[:])\n"
+      "assert d['size_ratio'].location == 'face' and len(d['size_ratio']) == 8\n",
+      {dir.file("m.nc")});
 }
 
 TEST(MeshOutputs, FormatByExtensionOrName) {
   EXPECT_EQ(mesh_output_format({"a.GPKG", "", false}), MeshFormat::gpkg);
   EXPECT_EQ(mesh_output_format({"a.msh", "", false}), MeshFormat::msh);
   EXPECT_EQ(mesh_output_format({"a.dat", "gr3", false}), MeshFormat::gr3);
+  EXPECT_EQ(mesh_output_format({"a.2DM", "", false}), MeshFormat::sms2dm);
   EXPECT_EQ(mesh_output_files({"d/hgrid.gr3", "", false}),
             (std::vector<std::string>{"d/hgrid.gr3", "d/hgrid.ll"}));
   EXPECT_THROW(mesh_output_format({"a.dat", "", false}), Error);
