@@ -58,10 +58,11 @@ struct CommonArgs {
 void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
   cmd->add_option("INPUT", a.input, "Input vector file (shapefile, GeoJSON, TopoJSON, GeoPackage...)")
       ->required();
-  cmd->add_option("-o,--output", a.outputs,
-                  a.many_outputs
-                      ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm); repeat for several"
-                      : "Output file (.gpkg)")
+  cmd->add_option(
+         "-o,--output", a.outputs,
+         a.many_outputs
+             ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .pli); repeat for several"
+             : "Output file (.gpkg)")
       ->required()
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
@@ -452,12 +453,13 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "of angles")
       ->check(CLI::NonNegativeNumber)
       ->group("Quads");
-  cmd->add_option("--output-format", m.output_formats,
-                  "gpkg, vtu, vtk, msh, gr3, nc or 2dm: once for every -o, or once per -o in order "
-                  "(default: by extension)")
+  cmd->add_option(
+         "--output-format", m.output_formats,
+         "gpkg, vtu, vtk, msh, gr3, nc, 2dm or pli: once for every -o, or once per -o in order "
+         "(default: by extension)")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-      ->check(CLI::IsMember({"gpkg", "vtu", "vtk", "msh", "gr3", "nc", "2dm"}))
+      ->check(CLI::IsMember({"gpkg", "vtu", "vtk", "msh", "gr3", "nc", "2dm", "pli"}))
       ->group("Output");
   cmd->add_option("--msh-version", m.msh_version, "Gmsh file version: 4.1 (default) or 2.2")
       ->check(CLI::IsMember({"4.1", "2.2"}))
@@ -500,6 +502,14 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
   write_options.output_crs = m.output_crs;
   if (!tiling_only) check_mesh_outputs(outputs, write_options);
   else check_output_path(a.output, a.overwrite);
+  const bool has_open_boundary =
+      !a.fe.open_boundary_path.empty() || (a.fe.kind == DomainKind::water && !a.bbox.empty());
+  for (const MeshOutput& o : outputs)
+    if (!tiling_only && !has_open_boundary && mesh_output_format(o) == MeshFormat::pli)
+      throw Error(ErrorClass::usage, "options",
+                  "'" + o.path +
+                      "': a .pli holds the open boundary, and this domain has none: give "
+                      "--open-boundary FILE, or --domain water with --bbox");
   // --bathymetry alone gives the depths of the outputs; with a wavelength or slope rule
   // it also sets the sizing.
   const std::string bathymetry = f.sizing.bathymetry_path;
@@ -543,8 +553,7 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
               << format_mesh_summary(r);
     if (r.has_quads) {
       std::cout << "output:      ";
-      for (const MeshOutput& o : outputs)
-        for (const std::string& file : mesh_output_files(o)) std::cout << " " << file;
+      for (const std::string& file : written.files) std::cout << " " << file;
       std::cout << "\nboundary:     " << written.num_open_edges << " open edges, "
                 << written.num_land_edges << " land edges\n";
     }
@@ -593,7 +602,8 @@ int main(int argc, char** argv) {
       "mesh",
       "The main job: an isotropic all-quadrangle mesh of the domain that follows the sizing "
       "and cross fields, with a quality summary; outputs for GIS and ocean models (.gpkg, "
-      ".vtu, .vtk, .msh, .gr3, .nc, .2dm), several in one run. Every quad written is strictly "
+      ".vtu, .vtk, .msh, .gr3, .nc, .2dm, .pli), several in one run. Every quad written is "
+      "strictly "
       "convex and none overlap: a tiling that leaves one otherwise is retried (up to 6 "
       "tilings, each with the sizes halved where the one before failed), and the run stops "
       "without writing when all fail.");

@@ -80,7 +80,7 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
           sample_depths(o.bathymetry_path, front.domain, r.quads, data.depth);
     data.command_line = o.command_line;
     data.quality = quality_items(r.quality);
-    write_mesh_outputs(data, o.meshes, o.write, set);
+    written.files = write_mesh_outputs(data, o.meshes, o.write, set);
   }
   if (!o.plot_path.empty()) {
     if (r.has_quads) {

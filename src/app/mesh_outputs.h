@@ -27,6 +27,7 @@ struct MeshJobOutputs {
 struct MeshJobWritten {
   std::size_t num_open_edges = 0, num_land_edges = 0;  // extract_boundary()
   std::size_t num_without_depth = 0;  // vertices outside the bathymetry or on nodata
+  std::vector<std::string> files;     // the mesh files written
 };
 
 // Writes them all or none (Error(output) when one cannot be written).

@@ -26,5 +26,8 @@ void write_gr3_file(const MeshView& v, const std::vector<Point2>& points,
 void write_vtk_legacy_file(const MeshView& v, const std::string& path, const std::string& what);
 void write_ugrid_file(const MeshView& v, const std::string& path, const std::string& what);
 void write_2dm_file(const MeshView& v, const std::string& path, const std::string& what);
+// One open boundary segment as a D-Flow FM polyline, named after the stem of `what`.
+void write_pli_file(const MeshView& v, const BoundarySegment& segment, const std::string& path,
+                    const std::string& what);
 
 }  // namespace isoquad

@@ -22,9 +22,9 @@ std::string lower(std::string s) {
 
 const std::map<std::string, MeshFormat>& format_names() {
   static const std::map<std::string, MeshFormat> names = {
-      {"gpkg", MeshFormat::gpkg}, {"vtu", MeshFormat::vtu}, {"vtk", MeshFormat::vtk},
-      {"msh", MeshFormat::msh},   {"gr3", MeshFormat::gr3}, {"nc", MeshFormat::nc},
-      {"2dm", MeshFormat::sms2dm}};
+      {"gpkg", MeshFormat::gpkg},  {"vtu", MeshFormat::vtu}, {"vtk", MeshFormat::vtk},
+      {"msh", MeshFormat::msh},    {"gr3", MeshFormat::gr3}, {"nc", MeshFormat::nc},
+      {"2dm", MeshFormat::sms2dm}, {"pli", MeshFormat::pli}};
   return names;
 }
 
@@ -124,6 +124,29 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
   w.commit();
 }
 
+// A .pli output: a file per open segment (in hgrid.gr3's order), the path itself for
+// one, else the path's stem numbered from 1.
+std::vector<std::string> write_open_boundary_polylines(const MeshView& v, const MeshOutput& o,
+                                                       OutputSet& set) {
+  std::vector<const BoundarySegment*> open;
+  for (const BoundarySegment& s : v.data->boundary.segments)
+    if (s.kind == BoundaryKind::open) open.push_back(&s);
+  if (open.empty())
+    throw Error(ErrorClass::meshing, "write",
+                "'" + o.path +
+                    "': the mesh has no open boundary to write (give --open-boundary FILE, or "
+                    "--domain water with --bbox)");
+  std::vector<std::string> files;
+  for (std::size_t k = 0; k < open.size(); ++k) {
+    std::filesystem::path p(o.path);
+    if (open.size() > 1)
+      p.replace_filename(p.stem().string() + "_" + std::to_string(k + 1) + p.extension().string());
+    files.push_back(p.string());
+    write_pli_file(v, *open[k], set.add(files.back(), o.overwrite), files.back());
+  }
+  return files;
+}
+
 void write_vtu_mesh(const MeshView& mv, const std::string& path) {
   const QuadMetrics& q = *mv.data->metrics;
   VtuMesh v;
@@ -147,12 +170,13 @@ MeshFormat mesh_output_format(const MeshOutput& out) {
   const std::string name = out.format.empty() ? (ext.empty() ? "" : ext.substr(1)) : lower(out.format);
   const auto it = format_names().find(name);
   if (it == format_names().end())
-    throw Error(ErrorClass::usage, "options",
-                out.format.empty()
-                    ? "'" + out.path + "': unknown mesh format '" + ext +
-                          "'; use .gpkg, .vtu, .vtk, .msh, .gr3, .nc or .2dm (or --output-format)"
-                    : "unknown --output-format '" + out.format +
-                          "'; use gpkg, vtu, vtk, msh, gr3, nc or 2dm");
+    throw Error(
+        ErrorClass::usage, "options",
+        out.format.empty()
+            ? "'" + out.path + "': unknown mesh format '" + ext +
+                  "'; use .gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm or .pli (or --output-format)"
+            : "unknown --output-format '" + out.format +
+                  "'; use gpkg, vtu, vtk, msh, gr3, nc, 2dm or pli");
   return it->second;
 }
 
@@ -173,15 +197,18 @@ void check_mesh_outputs(const std::vector<MeshOutput>& outputs, const MeshWriteO
     for (const std::string& f : mesh_output_files(o)) probe.add(f, o.overwrite);
 }
 
-void write_mesh_outputs(const MeshOutputData& data, const std::vector<MeshOutput>& outputs,
-                        const MeshWriteOptions& options) {
+std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
+                                            const std::vector<MeshOutput>& outputs,
+                                            const MeshWriteOptions& options) {
   OutputSet set;
-  write_mesh_outputs(data, outputs, options, set);
+  std::vector<std::string> files = write_mesh_outputs(data, outputs, options, set);
   set.commit_all();
+  return files;
 }
 
-void write_mesh_outputs(const MeshOutputData& data, const std::vector<MeshOutput>& outputs,
-                        const MeshWriteOptions& options, OutputSet& set) {
+std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
+                                            const std::vector<MeshOutput>& outputs,
+                                            const MeshWriteOptions& options, OutputSet& set) {
   check_mesh_outputs(outputs, options);
   MeshView native;
   native.data = &data;
@@ -203,9 +230,15 @@ void write_mesh_outputs(const MeshOutputData& data, const std::vector<MeshOutput
     view = &reprojected;
   }
   std::vector<Point2> lonlat;
+  std::vector<std::string> files;
   for (const MeshOutput& o : outputs) {
     const MeshFormat fmt = mesh_output_format(o);
+    if (fmt == MeshFormat::pli) {
+      for (const std::string& f : write_open_boundary_polylines(*view, o, set)) files.push_back(f);
+      continue;
+    }
     const std::string tmp = set.add(o.path, o.overwrite);
+    files.push_back(o.path);
     switch (fmt) {
       case MeshFormat::gpkg: write_gpkg(*view, tmp, o.path); break;
       case MeshFormat::vtu: write_vtu_mesh(*view, tmp); break;
@@ -229,10 +262,14 @@ void write_mesh_outputs(const MeshOutputData& data, const std::vector<MeshOutput
         ll.geographic = true;
         const std::string ll_path = companion_ll(o.path);
         write_gr3_file(ll, lonlat, set.add(ll_path, o.overwrite), ll_path);
+        files.push_back(ll_path);
         break;
       }
+      case MeshFormat::pli:
+        break;  // above
     }
   }
+  return files;
 }
 
 void write_mesh(const QuadMesh& mesh, const QuadMetrics& metrics, const std::string& crs_wkt,

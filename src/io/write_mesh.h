@@ -7,7 +7,9 @@
 //   gr3   SCHISM hgrid.gr3 (quads, depth positive down, open and land boundaries) and its
 //         lon/lat companion (same name, extension .ll);
 //   nc    UGRID-1.0 netCDF;
-//   2dm   SMS generic 2D mesh (elevation z, boundary segments as nodestrings).
+//   2dm   SMS generic 2D mesh (elevation z, boundary segments as nodestrings);
+//   pli   D-Flow FM polylines of the open boundary: one file per open segment, the path
+//         itself for one, else STEM_1.pli, STEM_2.pli... (Error(meshing) without any).
 // Several outputs are written as one transaction (gis/atomic_output.h: OutputSet).
 #pragma once
 
@@ -21,11 +23,11 @@
 
 namespace isoquad {
 
-enum class MeshFormat { gpkg, vtu, vtk, msh, gr3, nc, sms2dm };
+enum class MeshFormat { gpkg, vtu, vtk, msh, gr3, nc, sms2dm, pli };
 
 struct MeshOutput {
   std::string path;
-  std::string format;  // gpkg, vtu, vtk, msh, gr3, nc, 2dm; empty: by the path's extension
+  std::string format;  // gpkg, vtu, vtk, msh, gr3, nc, 2dm, pli; empty: by the path's extension
   bool overwrite = false;
 };
 
@@ -51,7 +53,8 @@ struct MeshWriteOptions {
 
 // The format of an output (Error(usage) for an unknown extension or format name).
 MeshFormat mesh_output_format(const MeshOutput& output);
-// Every file an output writes (gr3: also the .ll companion).
+// Every file an output writes (gr3: also the .ll companion; pli: the path, as for one
+// open segment).
 std::vector<std::string> mesh_output_files(const MeshOutput& output);
 // Fails early (Error(usage) or Error(output)) for an unknown format or an output that
 // cannot be written. Call before any long work.
@@ -59,13 +62,16 @@ void check_mesh_outputs(const std::vector<MeshOutput>& outputs, const MeshWriteO
 // Fails early for an extension write_mesh does not know.
 void check_mesh_output_format(const std::string& path);
 
-// Writes every output, all or none. Throws Error(usage|crs|output).
-void write_mesh_outputs(const MeshOutputData& data, const std::vector<MeshOutput>& outputs,
-                        const MeshWriteOptions& options = MeshWriteOptions());
+// Writes every output, all or none; returns the files written. Throws
+// Error(usage|crs|output), or Error(meshing) for a .pli of a mesh without open boundary.
+std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
+                                            const std::vector<MeshOutput>& outputs,
+                                            const MeshWriteOptions& options = MeshWriteOptions());
 // The same, adding the outputs to `set`, whose commit_all() the caller calls (so that
 // other outputs of the run, e.g. a plot or a report, join the same all-or-nothing set).
-void write_mesh_outputs(const MeshOutputData& data, const std::vector<MeshOutput>& outputs,
-                        const MeshWriteOptions& options, OutputSet& set);
+std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
+                                            const std::vector<MeshOutput>& outputs,
+                                            const MeshWriteOptions& options, OutputSet& set);
 
 // One output, land boundary only, no depth (kept for simple callers).
 void write_mesh(const QuadMesh& mesh, const QuadMetrics& metrics, const std::string& crs_wkt,

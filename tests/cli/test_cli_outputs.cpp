@@ -591,6 +591,85 @@ TEST(CliOutputs, Sms2dmHoldsTheGr3sMeshWithElevationsAndNodestrings) {
   EXPECT_NEAR(lat, ll.nodes[0][1], 1e-7) << out;
 }
 
+// D-Flow FM .pli: a polyline file per open segment, named after its file (the prefix of
+// its support points in .bc forcing files), holding the segment's nodes as hgrid.gr3 of
+// the same run has them; one segment writes the path given, two write STEM_1 and
+// STEM_2. A domain without open boundary stops the run before meshing.
+TEST(CliOutputs, PliFilesHoldTheOpenBoundarySegments) {
+  TempDir dir;
+  const std::string input = water_input(dir);
+  struct Pli {
+    std::string name;
+    std::vector<std::array<double, 2>> points;
+  };
+  auto parse_pli = [](const std::string& path) {
+    std::istringstream in(read_file(path));
+    Pli p;
+    std::size_t rows = 0, cols = 0;
+    std::getline(in, p.name);
+    in >> rows >> cols;
+    EXPECT_EQ(cols, 2u) << path;
+    p.points.resize(rows);
+    for (auto& xy : p.points) in >> xy[0] >> xy[1];
+    std::string rest;
+    in >> rest;
+    EXPECT_TRUE(in.eof() && rest.empty()) << path << ": " << rest;
+    return p;
+  };
+  auto expect_segment = [](const Pli& p, const std::vector<int>& nodes, const Gr3& g) {
+    ASSERT_EQ(p.points.size(), nodes.size());
+    for (std::size_t i = 0; i < nodes.size(); ++i) {
+      EXPECT_NEAR(p.points[i][0], g.nodes[nodes[i] - 1][0], 1e-6) << p.name << " " << i;
+      EXPECT_NEAR(p.points[i][1], g.nodes[nodes[i] - 1][1], 1e-6) << p.name << " " << i;
+    }
+  };
+  auto mesh = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"mesh",   input,    "--domain",
+                                     "water",  "--bbox", "-4.6,48.2,-4.4,48.35",
+                                     "--size", "800",    "-q"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args, dir);
+  };
+  // The bbox: one open segment, round by north, west and south.
+  CliResult r = mesh({"-o", dir.file("open.pli"), "-o", dir.file("one.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 one = parse_gr3(dir.file("one.gr3"));
+  ASSERT_EQ(one.open.size(), 1u);
+  const Pli bbox = parse_pli(dir.file("open.pli"));
+  EXPECT_EQ(bbox.name, "open");
+  expect_segment(bbox, one.open[0], one);
+
+  // Lines along the west side and the east side north of the peninsula: two segments.
+  const std::string lines = dir.file("lines.geojson");
+  write_file(lines, R"({"type":"FeatureCollection","features":[)"
+                    R"({"type":"Feature","properties":{},"geometry":{"type":"LineString",)"
+                    R"("coordinates":[[-4.6,48.2],[-4.6,48.35]]}},)"
+                    R"({"type":"Feature","properties":{},"geometry":{"type":"LineString",)"
+                    R"("coordinates":[[-4.4,48.3],[-4.4,48.35]]}}]})");
+  r = mesh({"--open-boundary", lines, "-o", dir.file("sea.pli"), "-o", dir.file("two.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 two = parse_gr3(dir.file("two.gr3"));
+  ASSERT_EQ(two.open.size(), 2u);
+  EXPECT_FALSE(std::filesystem::exists(dir.file("sea.pli")));
+  for (std::size_t k = 0; k < 2; ++k) {
+    const std::string stem = "sea_" + std::to_string(k + 1);
+    const Pli p = parse_pli(dir.file(stem + ".pli"));
+    EXPECT_EQ(p.name, stem);
+    expect_segment(p, two.open[k], two);
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("sea_3.pli")));
+
+  // A land domain has no open boundary: exit 2 before meshing, nothing written.
+  r = run_cli({"mesh", input, "--size", "800", "-q", "-o", dir.file("land.pli"), "-o",
+               dir.file("land.gpkg")},
+              dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("'" + dir.file("land.pli") + "': a .pli holds the open boundary"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("land.gpkg")));
+}
+
 // Open and land whatever the simplification: without it the bbox sides keep every
 // densified vertex (and the quads' boundary vertices lie on chords of the projected,
 // curved parallels); with it the sides may be chords of up to the tolerance.
