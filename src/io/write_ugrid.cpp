@@ -177,18 +177,20 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
   const int epsg = epsg_code(v.crs_wkt);
   nc.integer(crs, "epsg", epsg);
 
-  const int vx = nc.var("mesh_node_x", NC_DOUBLE, {dn});
-  const int vy = nc.var("mesh_node_y", NC_DOUBLE, {dn});
-  nc.text(vx, "standard_name", v.geographic ? "longitude" : "projection_x_coordinate");
-  nc.text(vy, "standard_name", v.geographic ? "latitude" : "projection_y_coordinate");
-  nc.text(vx, "units", v.geographic ? "degrees_east" : "m");
-  nc.text(vy, "units", v.geographic ? "degrees_north" : "m");
-  nc.text(vx, "mesh", "mesh");
-  nc.text(vy, "mesh", "mesh");
-  nc.text(vx, "location", "node");
-  nc.text(vy, "location", "node");
-  nc.text(vx, "grid_mapping", "crs");
-  nc.text(vy, "grid_mapping", "crs");
+  // A variable on the nodes, in the CRS of `crs`.
+  auto node_var = [&](const char* name, const char* standard_name, const char* units) {
+    const int id = nc.var(name, NC_DOUBLE, {dn});
+    nc.text(id, "standard_name", standard_name);
+    nc.text(id, "units", units);
+    nc.text(id, "mesh", "mesh");
+    nc.text(id, "location", "node");
+    nc.text(id, "grid_mapping", "crs");
+    return id;
+  };
+  const int vx = node_var("mesh_node_x", v.geographic ? "longitude" : "projection_x_coordinate",
+                          v.geographic ? "degrees_east" : "m");
+  const int vy = node_var("mesh_node_y", v.geographic ? "latitude" : "projection_y_coordinate",
+                          v.geographic ? "degrees_north" : "m");
 
   const int vf = nc.var("mesh_face_nodes", NC_INT, {df, d4});
   nc.text(vf, "cf_role", "face_node_connectivity");
@@ -221,22 +223,12 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
   }
   int vd = -1, vz = -1;
   if (!v.data->depth.empty()) {
-    vd = nc.var("depth", NC_DOUBLE, {dn});
-    nc.text(vd, "standard_name", "sea_floor_depth_below_geoid");
-    nc.text(vd, "units", "m");
+    vd = node_var("depth", "sea_floor_depth_below_geoid", "m");
     nc.text(vd, "positive", "down");
-    nc.text(vd, "mesh", "mesh");
-    nc.text(vd, "location", "node");
-    nc.text(vd, "grid_mapping", "crs");
     // The bed level by the name D-Flow FM's and HYDROLIB's net readers look for.
-    vz = nc.var("mesh_node_z", NC_DOUBLE, {dn});
-    nc.text(vz, "standard_name", "altitude");
+    vz = node_var("mesh_node_z", "altitude", "m");
     nc.text(vz, "long_name", "bed level (minus the depth)");
-    nc.text(vz, "units", "m");
     nc.text(vz, "positive", "up");
-    nc.text(vz, "mesh", "mesh");
-    nc.text(vz, "location", "node");
-    nc.text(vz, "grid_mapping", "crs");
   }
   nc.check(nc_enddef(nc.id()), "cannot finish the header");
 
