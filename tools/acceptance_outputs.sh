@@ -13,7 +13,7 @@ time build/isoquad mesh shapefiles/brittany_land.shp --domain water \
   --bbox -5.3,46.8,-1.95,49.35 --hmax 8000 --overwrite \
   -o "$OUT/brittany.gpkg" -o "$OUT/brittany.msh" -o "$OUT/hgrid.gr3" \
   -o "$OUT/brittany.vtk" -o "$OUT/brittany.vtu" -o "$OUT/brittany.nc" \
-  -o "$OUT/brittany.2dm" --report "$OUT/brittany.json"
+  -o "$OUT/brittany.2dm" -o "$OUT/brittany.slf" --report "$OUT/brittany.json"
 
 echo "== GDAL"
 ogrinfo -q "$OUT/brittany.gpkg" -sql "SELECT kind, COUNT(*) AS segments, SUM(num_nodes) AS nodes FROM boundary GROUP BY kind"
@@ -37,18 +37,22 @@ lines = open(f"{out}/hgrid.gr3").read().split("\n")
 ne, np_ = map(int, lines[1].split())
 print("hgrid.gr3", ne, "quads,", np_, "nodes;", *(l for l in lines if "Number of open boundaries" in l or "Number of land boundaries" in l))
 PYEOF
-echo "== QGIS: the .2dm as a mesh layer (MDAL)"
-"$PY" - "$OUT/brittany.2dm" 2> >(grep -v QStandardPaths >&2) <<'PYEOF'
+echo "== QGIS: the .2dm, .nc and .slf as mesh layers (MDAL)"
+"$PY" - "$OUT"/brittany.{2dm,nc,slf} 2> >(grep -v "QStandardPaths\|HDF5\|^ *#\|major:\|minor:" >&2) <<'PYEOF'
 import os, sys
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 from qgis.core import QgsApplication, QgsMesh, QgsMeshLayer
 app = QgsApplication([], False)
 app.initQgis()
-layer = QgsMeshLayer(sys.argv[1], "m", "mdal")
-mesh = QgsMesh()
-layer.dataProvider().populateMesh(mesh)
-print("brittany.2dm valid", layer.isValid(), mesh.vertexCount(), "vertices,", mesh.faceCount(), "faces")
+for path in sys.argv[1:]:
+    layer = QgsMeshLayer(path, "m", "mdal")
+    mesh = QgsMesh()
+    layer.dataProvider().populateMesh(mesh)
+    print(os.path.basename(path), "valid", layer.isValid(), mesh.vertexCount(), "vertices,",
+          mesh.faceCount(), "faces, CRS", layer.crs().description() or "none")
 PYEOF
+echo "== TELEMAC boundary conditions: lines by codes"
+awk '{print $1, $2, $3}' "$OUT/brittany.cli" | sort | uniq -c
 echo "== QGIS"
 "$PY" tools/render_gpkg_qgis.py "$OUT/brittany.gpkg" "$OUT/brittany.png" 2> >(grep -v QStandardPaths >&2)
 echo "wrote $OUT/brittany.png"

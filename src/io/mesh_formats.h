@@ -26,6 +26,9 @@ void write_gr3_file(const MeshView& v, const std::vector<Point2>& points,
 void write_vtk_legacy_file(const MeshView& v, const std::string& path, const std::string& what);
 void write_ugrid_file(const MeshView& v, const std::string& path, const std::string& what);
 void write_2dm_file(const MeshView& v, const std::string& path, const std::string& what);
+// TELEMAC-2D: the geometry (the quads cut into triangles) and its boundary conditions.
+void write_slf_file(const MeshView& v, const std::string& path, const std::string& what);
+void write_cli_file(const MeshView& v, const std::string& path, const std::string& what);
 // One open boundary segment as a D-Flow FM polyline, named after the stem of `what`.
 void write_pli_file(const MeshView& v, const BoundarySegment& segment, const std::string& path,
                     const std::string& what);

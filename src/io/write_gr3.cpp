@@ -2,30 +2,18 @@
 // down), elements (type 4 for quads), then the open boundary segments and the land
 // boundary segments (flag 0 on the exterior boundary, 1 on an island) in SCHISM's layout.
 #include <cstdio>
-#include <memory>
 
-#include "core/error.h"
 #include "io/mesh_formats.h"
+#include "io/output_file.h"
 
 namespace isoquad {
-
-namespace {
-
-struct FileCloser {
-  void operator()(std::FILE* f) const {
-    if (f) std::fclose(f);
-  }
-};
-
-}  // namespace
 
 void write_gr3_file(const MeshView& v, const std::vector<Point2>& points, const std::string& path,
                     const std::string& what) {
   const QuadMesh& m = *v.data->mesh;
   const auto& depth = v.data->depth;
-  std::FILE* raw = std::fopen(path.c_str(), "w");
-  if (!raw) throw Error(ErrorClass::output, "write", "'" + what + "': cannot create");
-  std::unique_ptr<std::FILE, FileCloser> f(raw);
+  OutputFile f(path, what);
+  std::FILE* raw = f.get();
   const char* xy = v.geographic ? "%zu %.10f %.10f %.6f\n" : "%zu %.6f %.6f %.6f\n";
   std::fprintf(raw, "isoquad mesh (depth in metres, positive down)\n");
   std::fprintf(raw, "%zu %zu\n", m.quads.size(), points.size());
@@ -56,9 +44,7 @@ void write_gr3_file(const MeshView& v, const std::vector<Point2>& points, const 
                  land[k]->island ? 1 : 0, k + 1);
     for (int n : land[k]->nodes) std::fprintf(raw, "%d\n", n + 1);
   }
-  const bool bad = std::ferror(raw) != 0;
-  if (std::fclose(f.release()) != 0 || bad)
-    throw Error(ErrorClass::output, "write", "'" + what + "': cannot write");
+  f.close();
 }
 
 }  // namespace isoquad

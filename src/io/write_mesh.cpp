@@ -24,12 +24,12 @@ const std::map<std::string, MeshFormat>& format_names() {
   static const std::map<std::string, MeshFormat> names = {
       {"gpkg", MeshFormat::gpkg},  {"vtu", MeshFormat::vtu}, {"vtk", MeshFormat::vtk},
       {"msh", MeshFormat::msh},    {"gr3", MeshFormat::gr3}, {"nc", MeshFormat::nc},
-      {"2dm", MeshFormat::sms2dm}, {"pli", MeshFormat::pli}};
+      {"2dm", MeshFormat::sms2dm}, {"pli", MeshFormat::pli}, {"slf", MeshFormat::slf}};
   return names;
 }
 
-std::string companion_ll(const std::string& path) {
-  return std::filesystem::path(path).replace_extension(".ll").string();
+std::string companion(const std::string& path, const char* extension) {
+  return std::filesystem::path(path).replace_extension(extension).string();
 }
 
 void write_gpkg(const MeshView& v, const std::string& path, const std::string& what) {
@@ -170,18 +170,19 @@ MeshFormat mesh_output_format(const MeshOutput& out) {
   const std::string name = out.format.empty() ? (ext.empty() ? "" : ext.substr(1)) : lower(out.format);
   const auto it = format_names().find(name);
   if (it == format_names().end())
-    throw Error(
-        ErrorClass::usage, "options",
-        out.format.empty()
-            ? "'" + out.path + "': unknown mesh format '" + ext +
-                  "'; use .gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm or .pli (or --output-format)"
-            : "unknown --output-format '" + out.format +
-                  "'; use gpkg, vtu, vtk, msh, gr3, nc, 2dm or pli");
+    throw Error(ErrorClass::usage, "options",
+                out.format.empty() ? "'" + out.path + "': unknown mesh format '" + ext +
+                                         "'; use .gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .pli or "
+                                         ".slf (or --output-format)"
+                                   : "unknown --output-format '" + out.format +
+                                         "'; use gpkg, vtu, vtk, msh, gr3, nc, 2dm, pli or slf");
   return it->second;
 }
 
 std::vector<std::string> mesh_output_files(const MeshOutput& out) {
-  if (mesh_output_format(out) == MeshFormat::gr3) return {out.path, companion_ll(out.path)};
+  const MeshFormat f = mesh_output_format(out);
+  if (f == MeshFormat::gr3) return {out.path, companion(out.path, ".ll")};
+  if (f == MeshFormat::slf) return {out.path, companion(out.path, ".cli")};
   return {out.path};
 }
 
@@ -260,9 +261,16 @@ std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
         }
         MeshView ll = native;
         ll.geographic = true;
-        const std::string ll_path = companion_ll(o.path);
+        const std::string ll_path = companion(o.path, ".ll");
         write_gr3_file(ll, lonlat, set.add(ll_path, o.overwrite), ll_path);
         files.push_back(ll_path);
+        break;
+      }
+      case MeshFormat::slf: {
+        write_slf_file(*view, tmp, o.path);
+        const std::string cli = companion(o.path, ".cli");
+        write_cli_file(*view, set.add(cli, o.overwrite), cli);
+        files.push_back(cli);
         break;
       }
       case MeshFormat::pli:

@@ -9,7 +9,9 @@
 //   nc    UGRID-1.0 netCDF;
 //   2dm   SMS generic 2D mesh (elevation z, boundary segments as nodestrings);
 //   pli   D-Flow FM polylines of the open boundary: one file per open segment, the path
-//         itself for one, else STEM_1.pli, STEM_2.pli... (Error(meshing) without any).
+//         itself for one, else STEM_1.pli, STEM_2.pli... (Error(meshing) without any);
+//   slf   TELEMAC-2D geometry (Selafin, the quads cut into triangles) and its boundary
+//         conditions (same name, extension .cli).
 // Several outputs are written as one transaction (gis/atomic_output.h: OutputSet).
 #pragma once
 
@@ -23,11 +25,12 @@
 
 namespace isoquad {
 
-enum class MeshFormat { gpkg, vtu, vtk, msh, gr3, nc, sms2dm, pli };
+enum class MeshFormat { gpkg, vtu, vtk, msh, gr3, nc, sms2dm, pli, slf };
 
 struct MeshOutput {
   std::string path;
-  std::string format;  // gpkg, vtu, vtk, msh, gr3, nc, 2dm, pli; empty: by the path's extension
+  std::string
+      format;  // gpkg, vtu, vtk, msh, gr3, nc, 2dm, pli, slf; empty: by the path's extension
   bool overwrite = false;
 };
 
@@ -53,8 +56,8 @@ struct MeshWriteOptions {
 
 // The format of an output (Error(usage) for an unknown extension or format name).
 MeshFormat mesh_output_format(const MeshOutput& output);
-// Every file an output writes (gr3: also the .ll companion; pli: the path, as for one
-// open segment).
+// Every file an output writes (gr3: also the .ll companion; slf: the .cli; pli: the
+// path, as for one open segment).
 std::vector<std::string> mesh_output_files(const MeshOutput& output);
 // Fails early (Error(usage) or Error(output)) for an unknown format or an output that
 // cannot be written. Call before any long work.

@@ -4,10 +4,9 @@
 // segment in order (domain on the left); a closed segment repeats its first node.
 #include <cstdio>
 #include <filesystem>
-#include <memory>
 
-#include "core/error.h"
 #include "io/mesh_formats.h"
+#include "io/output_file.h"
 
 namespace isoquad {
 
@@ -15,15 +14,12 @@ void write_pli_file(const MeshView& v, const BoundarySegment& segment, const std
                     const std::string& what) {
   std::vector<int> nodes = segment.nodes;
   if (segment.closed && !nodes.empty()) nodes.push_back(nodes.front());
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> f(std::fopen(path.c_str(), "w"), &std::fclose);
-  if (!f) throw Error(ErrorClass::output, "write", "'" + what + "': cannot create");
+  OutputFile f(path, what);
   const char* xy = v.geographic ? "    %.10f    %.10f\n" : "    %.6f    %.6f\n";
   std::fprintf(f.get(), "%s\n%zu    2\n", std::filesystem::path(what).stem().string().c_str(),
                nodes.size());
   for (int n : nodes) std::fprintf(f.get(), xy, v.points[n].x, v.points[n].y);
-  const bool bad = std::ferror(f.get()) != 0;
-  if (std::fclose(f.release()) != 0 || bad)
-    throw Error(ErrorClass::output, "write", "'" + what + "': cannot write");
+  f.close();
 }
 
 }  // namespace isoquad

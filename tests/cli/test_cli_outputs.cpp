@@ -120,6 +120,33 @@ bool on_bbox(double lon, double lat, double tol) {
          std::abs(lat - kBox[1]) < tol || std::abs(lat - kBox[3]) < tol;
 }
 
+// QGIS's mesh reader (MDAL) on each file: a line "vertices faces [sides] lowest-z" per
+// file, then "lonlat X Y": the last file's first vertex in EPSG:4326 (by the file's CRS).
+// Empty without python3-qgis.
+std::string read_mesh_layers_in_qgis(const TempDir& dir, const std::vector<std::string>& paths) {
+  if (run_cli_program("/usr/bin/python3", {"-c", "import qgis.core"}, dir).exit_code != 0)
+    return "";
+  return python_check(
+      dir,
+      "import os, sys\n"
+      "os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')\n"
+      "from qgis.core import *\n"
+      "app = QgsApplication([], False)\n"
+      "app.initQgis()\n"
+      "for path in sys.argv[1:]:\n"
+      "    layer = QgsMeshLayer(path, 'm', 'mdal')\n"
+      "    assert layer.isValid()\n"
+      "    mesh = QgsMesh()\n"
+      "    layer.dataProvider().populateMesh(mesh)\n"
+      "    sides = {len(mesh.face(i)) for i in range(mesh.faceCount())}\n"
+      "    low = min(mesh.vertex(i).z() for i in range(mesh.vertexCount()))\n"
+      "    print(mesh.vertexCount(), mesh.faceCount(), sorted(sides), '%.3f' % low)\n"
+      "to = QgsCoordinateTransform(layer.crs(), QgsCoordinateReferenceSystem('EPSG:4326'),\n"
+      "                            QgsProject.instance())\n"
+      "p = to.transform(QgsPointXY(mesh.vertex(0).x(), mesh.vertex(0).y()))\n"
+      "print('lonlat %.7f %.7f' % (p.x(), p.y()))\n",
+      paths);
+}
 
 }  // namespace
 
@@ -554,28 +581,8 @@ TEST(CliOutputs, Sms2dmHoldsTheGr3sMeshWithElevationsAndNodestrings) {
   EXPECT_EQ(strings, expected);
   ASSERT_EQ(strings.size(), 3u);  // one open segment, the mainland coast and the island
 
-  if (run_cli_program("/usr/bin/python3", {"-c", "import qgis.core"}, dir).exit_code != 0)
-    GTEST_SKIP() << "python3-qgis is not installed";
-  const std::string out = python_check(
-      dir,
-      "import os, sys\n"
-      "os.environ.setdefault('QT_QPA_PLATFORM', 'offscreen')\n"
-      "from qgis.core import *\n"
-      "app = QgsApplication([], False)\n"
-      "app.initQgis()\n"
-      "for path in sys.argv[1:]:\n"
-      "    layer = QgsMeshLayer(path, 'm', 'mdal')\n"
-      "    assert layer.isValid()\n"
-      "    mesh = QgsMesh()\n"
-      "    layer.dataProvider().populateMesh(mesh)\n"
-      "    sides = {len(mesh.face(i)) for i in range(mesh.faceCount())}\n"
-      "    low = min(mesh.vertex(i).z() for i in range(mesh.vertexCount()))\n"
-      "    print(mesh.vertexCount(), mesh.faceCount(), sorted(sides), '%.3f' % low)\n"
-      "to = QgsCoordinateTransform(layer.crs(), QgsCoordinateReferenceSystem('EPSG:4326'),\n"
-      "                            QgsProject.instance())\n"
-      "p = to.transform(QgsPointXY(mesh.vertex(0).x(), mesh.vertex(0).y()))\n"
-      "print('lonlat %.7f %.7f' % (p.x(), p.y()))\n",
-      {dir.file("m.2dm"), dir.file("m.nc")});
+  const std::string out = read_mesh_layers_in_qgis(dir, {dir.file("m.2dm"), dir.file("m.nc")});
+  if (out.empty()) GTEST_SKIP() << "python3-qgis is not installed";
   double low = 0;
   for (const auto& n : nodes) low = std::min(low, n[2]);
   std::ostringstream want;
@@ -668,6 +675,130 @@ TEST(CliOutputs, PliFilesHoldTheOpenBoundarySegments) {
             std::string::npos)
       << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("land.gpkg")));
+}
+
+// TELEMAC-2D: the Selafin geometry, read record by record (big-endian, double
+// precision), holds two counter-clockwise triangles per quad covering the mesh's area,
+// BOTTOM = minus the depth of hgrid.gr3's nodes, IPOBO = each boundary node's .cli
+// line; the .cli lists every boundary node once (13 fields, K its line), walls on land
+// and prescribed elevation on the open segments, the outer contour counter-clockwise
+// from its south-west node, then the island clockwise. QGIS's mesh reader opens the
+// geometry (skipped without python3-qgis).
+TEST(CliOutputs, TelemacGeometryAndBoundaryConditions) {
+  TempDir dir;
+  const CliResult r =
+      run_cli({"mesh", water_input(dir), "--domain", "water", "--bbox", "-4.6,48.2,-4.4,48.35",
+               "--size", "800", "--bathymetry", bathymetry(dir), "-o", dir.file("geo.slf"), "-o",
+               dir.file("hgrid.gr3"), "--report", dir.file("r.json"), "-q"},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 g = parse_gr3(dir.file("hgrid.gr3"));
+
+  // The .cli.
+  std::istringstream in(read_file(dir.file("geo.cli")));
+  std::vector<int> nodes;
+  std::vector<bool> open;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream fields(line);
+    std::vector<std::string> f;
+    for (std::string s; fields >> s;) f.push_back(s);
+    ASSERT_EQ(f.size(), 13u) << line;
+    EXPECT_EQ(std::stoul(f[12]), nodes.size() + 1) << line;
+    const std::string codes = f[0] + f[1] + f[2] + f[7];
+    EXPECT_TRUE(codes == "2222" || codes == "5444") << line;
+    nodes.push_back(std::stoi(f[11]));
+    open.push_back(codes == "5444");
+  }
+  std::set<int> open_nodes, boundary_nodes;
+  for (const auto& s : g.open)
+    for (int n : s) open_nodes.insert(n), boundary_nodes.insert(n);
+  for (const auto& s : g.land) boundary_nodes.insert(s.begin(), s.end());
+  EXPECT_EQ(std::set<int>(nodes.begin(), nodes.end()), boundary_nodes);
+  ASSERT_EQ(nodes.size(), boundary_nodes.size());  // each once
+  for (std::size_t k = 0; k < nodes.size(); ++k)
+    EXPECT_EQ(open[k], open_nodes.count(nodes[k]) > 0) << k;
+  // The island (the land segment flagged 1) comes last; the outer contour first, from its
+  // south-west node, counter-clockwise.
+  std::size_t island = 0;
+  for (std::size_t s = 0; s < g.land.size(); ++s)
+    if (g.land_flags[s]) island = g.land[s].size();
+  ASSERT_GT(island, 3u);
+  auto signed_area = [&](std::size_t from, std::size_t to) {
+    double a = 0;
+    for (std::size_t k = from; k < to; ++k) {
+      const auto &p = g.nodes[nodes[k] - 1], &q = g.nodes[nodes[k + 1 < to ? k + 1 : from] - 1];
+      a += 0.5 * (p[0] * q[1] - q[0] * p[1]);
+    }
+    return a;
+  };
+  const std::size_t outer = nodes.size() - island;
+  EXPECT_GT(signed_area(0, outer), 0.0);
+  EXPECT_LT(signed_area(outer, nodes.size()), 0.0);
+  for (std::size_t k = 1; k < outer; ++k) {
+    const auto &first = g.nodes[nodes[0] - 1], &p = g.nodes[nodes[k] - 1];
+    EXPECT_LE(first[0] + first[1], p[0] + p[1]) << k;
+  }
+
+  // The geometry, and the mesh's area from the report.
+  const std::string report = read_file(dir.file("r.json"));
+  const std::size_t at = report.find("\"mesh_area_m2\":");
+  ASSERT_NE(at, std::string::npos);
+  const double mesh_area = std::stod(report.substr(at + 15));
+  std::ostringstream cli_nodes, depths;
+  for (int n : nodes) cli_nodes << n << " ";
+  for (const auto& n : g.nodes) depths << n[2] << " ";
+  write_file(dir.file("nodes.txt"), cli_nodes.str());
+  write_file(dir.file("depths.txt"), depths.str());
+  python_check(dir,
+               "import struct, sys\n"
+               "import numpy as np\n"
+               "data = open(sys.argv[1], 'rb').read()\n"
+               "pos = 0\n"
+               "def record():\n"
+               "    global pos\n"
+               "    (n,) = struct.unpack('>i', data[pos:pos + 4])\n"
+               "    body = data[pos + 4:pos + 4 + n]\n"
+               "    assert struct.unpack('>i', data[pos + 4 + n:pos + 8 + n]) == (n,)\n"
+               "    pos += n + 8\n"
+               "    return body\n"
+               "ints = lambda b: np.frombuffer(b, '>i4')\n"
+               "reals = lambda b: np.frombuffer(b, '>f8')\n"
+               "title = record()\n"
+               "assert len(title) == 80 and title.endswith(b'SERAFIND'), title\n"
+               "assert ints(record()).tolist() == [1, 0]\n"
+               "assert record() == b'BOTTOM'.ljust(16) + b'M'.ljust(16)\n"
+               "iparam = ints(record())\n"
+               "nelem, npoin, ndp, one = ints(record())\n"
+               "assert ndp == 3 and one == 1 and nelem == 2 * int(sys.argv[3])\n"
+               "ikle = ints(record()).reshape(nelem, 3) - 1\n"
+               "ipobo = ints(record())\n"
+               "x, y = reals(record()), reals(record())\n"
+               "assert reals(record()).tolist() == [0.0]\n"
+               "bottom = reals(record())\n"
+               "assert pos == len(data)\n"
+               "cli = [int(n) - 1 for n in open(sys.argv[4]).read().split()]\n"
+               "assert iparam[7] == len(cli) and len(ipobo) == npoin\n"
+               "want = np.zeros(npoin, int)\n"
+               "want[cli] = np.arange(1, len(cli) + 1)\n"
+               "assert (ipobo == want).all()\n"
+               "depth = np.array(open(sys.argv[5]).read().split(), float)\n"
+               "assert len(depth) == npoin and np.allclose(bottom, -depth, atol=1e-6) and "
+               "bottom.min() < -100\n"
+               "a, b, c = ikle[:, 0], ikle[:, 1], ikle[:, 2]\n"
+               "area = 0.5 * ((x[b] - x[a]) * (y[c] - y[a]) - (x[c] - x[a]) * (y[b] - y[a]))\n"
+               "assert area.min() > 0, area.min()\n"
+               "assert abs(area.sum() - float(sys.argv[2])) < 1e-6 * area.sum(), (area.sum(), "
+               "sys.argv[2])\n",
+               {dir.file("geo.slf"), std::to_string(mesh_area), std::to_string(g.num_elements),
+                dir.file("nodes.txt"), dir.file("depths.txt")});
+
+  const std::string out = read_mesh_layers_in_qgis(dir, {dir.file("geo.slf")});
+  if (out.empty()) GTEST_SKIP() << "python3-qgis is not installed";
+  // (MDAL reads BOTTOM as a data set, not as the vertices' z.)
+  const std::string want =
+      std::to_string(g.nodes.size()) + " " + std::to_string(2 * g.num_elements) + " [3] ";
+  EXPECT_EQ(out.substr(0, want.size()), want) << out;
 }
 
 // Open and land whatever the simplification: without it the bbox sides keep every

@@ -398,11 +398,39 @@ TEST(MeshOutputs, UgridNetcdfHasTheRequiredAttributes) {
       {dir.file("m.nc")});
 }
 
+// TELEMAC's .cli: the mesh turned by 180 degrees, so that its first vertex is the
+// north-east corner: the lines still start at the south-west corner and run
+// counter-clockwise round the outer contour, then clockwise round the island from its
+// south-west node; the bottom side (on the open ring) has the open boundary's codes.
+TEST(MeshOutputs, TelemacBoundaryRunsFromTheSouthWestNode) {
+  Fixture f;
+  for (Point2& p : f.mesh.points) p = {2 * kX0 + 3 * kStep - p.x, 2 * kY0 + 3 * kStep - p.y};
+  TempDir dir;
+  write_mesh_outputs(f.data(), {{dir.file("m.slf"), "", false}});
+  std::istringstream in(read_file(dir.file("m.cli")));
+  std::vector<int> nodes;
+  std::vector<std::string> codes;
+  for (std::string line; std::getline(in, line);) {
+    std::istringstream fields(line);
+    std::string a, b, c, n, k;
+    fields >> a >> b >> c;
+    for (int i = 0; i < 9; ++i) fields >> n;
+    fields >> k;
+    codes.push_back(a + b + c);
+    nodes.push_back(std::stoi(n));
+    EXPECT_EQ(std::stoul(k), nodes.size());
+  }
+  EXPECT_EQ(nodes, (std::vector<int>{16, 15, 14, 13, 9, 5, 1, 2, 3, 4, 8, 12, 11, 7, 6, 10}));
+  for (std::size_t k = 0; k < codes.size(); ++k) EXPECT_EQ(codes[k], k < 4 ? "544" : "222") << k;
+}
+
 TEST(MeshOutputs, FormatByExtensionOrName) {
   EXPECT_EQ(mesh_output_format({"a.GPKG", "", false}), MeshFormat::gpkg);
   EXPECT_EQ(mesh_output_format({"a.msh", "", false}), MeshFormat::msh);
   EXPECT_EQ(mesh_output_format({"a.dat", "gr3", false}), MeshFormat::gr3);
   EXPECT_EQ(mesh_output_format({"a.2DM", "", false}), MeshFormat::sms2dm);
+  EXPECT_EQ(mesh_output_files({"d/geo.slf", "", false}),
+            (std::vector<std::string>{"d/geo.slf", "d/geo.cli"}));
   EXPECT_EQ(mesh_output_files({"d/hgrid.gr3", "", false}),
             (std::vector<std::string>{"d/hgrid.gr3", "d/hgrid.ll"}));
   EXPECT_THROW(mesh_output_format({"a.dat", "", false}), Error);

@@ -1,0 +1,177 @@
+// TELEMAC-2D geometry (Selafin, double precision: "SERAFIND") and boundary conditions
+// (.cli). TELEMAC-2D computes on linear triangles only, so each quad is cut along its
+// shorter diagonal into two counter-clockwise triangles. The geometry holds one
+// variable, BOTTOM (the bed level: minus the depth, 0 when unknown), at time 0, and
+// IPOBO, each boundary node's line in the .cli (0 inside). Records are Fortran
+// sequential (a 4-byte length before and after), big-endian, TELEMAC's default.
+//
+// The .cli has a line per boundary node, 13 fields: LIHBOR LIUBOR LIVBOR HBOR UBOR VBOR
+// AUBOR LITBOR TBOR ATBOR BTBOR N K, with 2 2 2 ... 2 (a wall) on land and 5 4 4 ... 4
+// (prescribed elevation, free velocity and tracer) on the open boundary (an open
+// segment's two end nodes included), N the node, K the line. The lines run as TELEMAC's
+// manual asks: each outer contour counter-clockwise, then each island clockwise, each
+// from its south-west node (the smallest x + y, then y), contours in that node's order.
+#include <algorithm>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+
+#include "io/mesh_formats.h"
+#include "io/output_file.h"
+
+namespace isoquad {
+
+namespace {
+
+struct CliNode {
+  int node = 0;
+  bool open = false;
+};
+
+// The boundary nodes in the .cli's order.
+std::vector<CliNode> cli_order(const MeshView& v) {
+  const MeshBoundary& b = v.data->boundary;
+  const std::vector<Point2>& p = v.points;
+  struct Contour {
+    bool outer = true;
+    std::size_t start = 0;  // its south-west node's place in the loop
+    std::size_t loop = 0;
+  };
+  auto south_west = [&p](int a, int c) {
+    const double sa = p[a].x + p[a].y, sc = p[c].x + p[c].y;
+    return sa != sc ? sa < sc : p[a].y < p[c].y;
+  };
+  std::vector<Contour> contours;
+  for (std::size_t l = 0; l < b.loops.size(); ++l) {
+    const auto& loop = b.loops[l];
+    double area2 = 0;
+    const auto& m = v.data->mesh->points;  // the meshing CRS: orientation as meshed
+    for (std::size_t i = 0; i < loop.size(); ++i) {
+      const Point2 &a = m[loop[i]], &c = m[loop[(i + 1) % loop.size()]];
+      area2 += a.x * c.y - c.x * a.y;
+    }
+    Contour k;
+    k.outer = area2 > 0;
+    k.loop = l;
+    for (std::size_t i = 1; i < loop.size(); ++i)
+      if (south_west(loop[i], loop[k.start])) k.start = i;
+    contours.push_back(k);
+  }
+  std::stable_sort(contours.begin(), contours.end(), [&](const Contour& a, const Contour& c) {
+    if (a.outer != c.outer) return a.outer;
+    return south_west(b.loops[a.loop][a.start], b.loops[c.loop][c.start]);
+  });
+  std::vector<CliNode> order;
+  for (const Contour& k : contours) {
+    const auto& loop = b.loops[k.loop];
+    const auto& kind = b.edge_kind[k.loop];
+    const std::size_t n = loop.size();
+    for (std::size_t j = 0; j < n; ++j) {
+      const std::size_t i = (k.start + j) % n;
+      const bool open =
+          kind[i] == BoundaryKind::open || kind[(i + n - 1) % n] == BoundaryKind::open;
+      order.push_back({loop[i], open});
+    }
+  }
+  return order;
+}
+
+// Big-endian Fortran sequential records.
+class RecordWriter {
+ public:
+  RecordWriter(const std::string& path, const std::string& what) : f_(path, what, "wb") {}
+  void begin(std::size_t bytes) {
+    bytes_ = static_cast<std::uint32_t>(bytes);
+    u32(bytes_);
+  }
+  void end() { u32(bytes_); }
+  void u32(std::uint32_t x) {
+    const unsigned char b[4] = {static_cast<unsigned char>(x >> 24),
+                                static_cast<unsigned char>(x >> 16),
+                                static_cast<unsigned char>(x >> 8), static_cast<unsigned char>(x)};
+    std::fwrite(b, 1, 4, f_.get());
+  }
+  void i32(int x) { u32(static_cast<std::uint32_t>(x)); }
+  void f64(double x) {
+    std::uint64_t u;
+    std::memcpy(&u, &x, 8);
+    u32(static_cast<std::uint32_t>(u >> 32));
+    u32(static_cast<std::uint32_t>(u));
+  }
+  void text(const std::string& s, std::size_t width) {
+    std::string padded = s.substr(0, width);
+    padded.resize(width, ' ');
+    std::fwrite(padded.data(), 1, width, f_.get());
+  }
+  void ints(const std::vector<int>& xs) {
+    begin(4 * xs.size());
+    for (int x : xs) i32(x);
+    end();
+  }
+  void doubles(const std::vector<double>& xs) {
+    begin(8 * xs.size());
+    for (double x : xs) f64(x);
+    end();
+  }
+  void close() { f_.close(); }
+
+ private:
+  OutputFile f_;
+  std::uint32_t bytes_ = 0;
+};
+
+}  // namespace
+
+void write_slf_file(const MeshView& v, const std::string& path, const std::string& what) {
+  const QuadMesh& m = *v.data->mesh;
+  const std::vector<CliNode> boundary = cli_order(v);
+  const int np = static_cast<int>(v.points.size());
+  std::vector<int> ipobo(np, 0);
+  for (std::size_t k = 0; k < boundary.size(); ++k)
+    ipobo[boundary[k].node] = static_cast<int>(k + 1);
+  // Each quad a, b, c, d as two triangles across its shorter diagonal (in the meshing
+  // CRS, as meshed).
+  std::vector<int> ikle;
+  for (const auto& q : m.quads) {
+    const int s =
+        distance(m.points[q[0]], m.points[q[2]]) <= distance(m.points[q[1]], m.points[q[3]]) ? 0
+                                                                                             : 1;
+    for (int t : {s, s + 1, s + 2, s, s + 2, s + 3}) ikle.push_back(q[t % 4] + 1);
+  }
+  RecordWriter w(path, what);
+  w.begin(80);
+  w.text("isoquad " ISOQUAD_VERSION " mesh (quads cut into triangles)", 72);
+  w.text("SERAFIND", 8);
+  w.end();
+  w.ints({1, 0});
+  w.begin(32);
+  w.text("BOTTOM", 16);
+  w.text("M", 16);
+  w.end();
+  w.ints({1, 0, 0, 0, 0, 0, 0, static_cast<int>(boundary.size()), 0, 0});
+  w.ints({static_cast<int>(ikle.size() / 3), np, 3, 1});
+  w.ints(ikle);
+  w.ints(ipobo);
+  std::vector<double> xs, ys, bottom(np, 0.0);
+  for (const Point2& p : v.points) xs.push_back(p.x), ys.push_back(p.y);
+  if (!v.data->depth.empty())
+    for (int i = 0; i < np; ++i) bottom[i] = -v.data->depth[i] + 0.0;
+  w.doubles(xs);
+  w.doubles(ys);
+  w.doubles({0.0});  // the time step's time
+  w.doubles(bottom);
+  w.close();
+}
+
+void write_cli_file(const MeshView& v, const std::string& path, const std::string& what) {
+  OutputFile f(path, what);
+  const std::vector<CliNode> boundary = cli_order(v);
+  for (std::size_t k = 0; k < boundary.size(); ++k) {
+    const bool open = boundary[k].open;
+    std::fprintf(f.get(), "%s 0.000 0.000 0.000 0.000 %d 0.000 0.000 0.000 %d %zu\n",
+                 open ? "5 4 4" : "2 2 2", open ? 4 : 2, boundary[k].node + 1, k + 1);
+  }
+  f.close();
+}
+
+}  // namespace isoquad
