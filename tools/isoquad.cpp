@@ -170,6 +170,18 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
       ->group(g);
   cmd->add_option("--size-raster", f.sizing.raster_path, "GDAL raster of sizes in metres, any CRS")
       ->group(g);
+  cmd->add_option("--refine", f.sizing.refine_path,
+                  "Vector file (any format, with a CRS) of polygons, lines or points whose "
+                  "attribute --refine-field gives a size in metres: at most that inside the "
+                  "polygons and on the lines and points, growing by --gradation away from "
+                  "them (not limited by --hmin)")
+      ->group(g);
+  cmd->add_option("--refine-field", f.sizing.refine_field,
+                  "Attribute of --refine holding the sizes (default: size)")
+      ->group(g);
+  cmd->add_option("--refine-layer", f.sizing.refine_layer,
+                  "Layer of --refine to read (default: its first)")
+      ->group(g);
   cmd->add_option("--bathymetry", f.sizing.bathymetry_path,
                   "GDAL raster of depths in metres, positive down: vertex depths of the mesh outputs; "
                   "with --wavelength-period or --slope-factor also the sizing")

@@ -12,7 +12,9 @@
 
 #include "core/error.h"
 #include "fields/feature_size.h"
+#include "fields/size_features.h"
 #include "gis/raster_field.h"
+#include "gis/read_size_features.h"
 #include "mesh/background_mesh.h"
 
 namespace isoquad {
@@ -89,6 +91,29 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
     bathymetry_ = std::make_unique<RasterField>(params.bathymetry_path, "--bathymetry", crs);
     summary_.sources.push_back("bathymetry " + params.bathymetry_path);
   }
+  if (!params.refine_path.empty()) {
+    SizeFeatures in = read_size_features(params.refine_path, params.refine_layer,
+                                         params.refine_field, "--refine");
+    CrsTransform to_mesh(in.crs, crs);
+    double smallest = INFINITY, largest = 0;
+    for (SizeFeature& f : in.features) {
+      bool ok = true;
+      for (auto* parts : {&f.rings, &f.lines})
+        for (auto& part : *parts) ok = ok && to_mesh.transform(part) < 0;
+      ok = ok && to_mesh.transform(f.points) < 0;
+      if (!ok)
+        throw Error(ErrorClass::crs, "--refine",
+                    "'" + params.refine_path + "': feature " + std::to_string(f.fid) +
+                        " has a point that cannot be transformed to the meshing CRS");
+      smallest = std::min(smallest, f.size_m), largest = std::max(largest, f.size_m);
+    }
+    features_ = std::make_unique<FeatureSizes>(in.features, params.gradation);
+    std::ostringstream s;
+    s << "features " << params.refine_path << " (" << in.features.size() << ", " << smallest;
+    if (largest > smallest) s << " to " << largest;
+    s << " m)";
+    summary_.sources.push_back(s.str());
+  }
   if (automatic) {
     FeatureSizeParams fp;
     fp.cells_across = params.cells_across;
@@ -116,7 +141,7 @@ SizingOracle::~SizingOracle() = default;
 
 bool SizingOracle::is_uniform() const {
   return params_.constant_m && !automatic_ && !expression_ && !raster_ && !bathymetry_ &&
-         params_.refinements.empty();
+         !features_ && params_.refinements.empty();
 }
 
 double SizingOracle::operator()(const Point2& p) const {
@@ -171,6 +196,7 @@ double SizingOracle::operator()(const Point2& p) const {
                 "no size at " + format_point(p) + " (outside every raster); give --hmax or --size");
   h = std::clamp(h, hmin_, hmax_);
   if (automatic_) h = std::min(h, automatic_->narrow(p));
+  if (features_) h = features_->limit(p, h);
   for (const LocalRefinement& r : params_.refinements) {
     const double d = std::hypot(p.x - r.centre.x, p.y - r.centre.y);
     h = std::min(h, r.size_m + gradation_ * std::max(0.0, d - r.radius_m));

@@ -17,6 +17,7 @@ namespace isoquad {
 
 struct BackgroundMesh;
 class BoundaryFeatureSize;
+class FeatureSizes;
 class RasterField;
 
 // A place where the sizes must be smaller than the sources say: at most size_m within
@@ -41,6 +42,10 @@ struct SizingParams {
   double cells_per_wavelength = 0.0;  // --cells-per-wavelength N: h <= T sqrt(g d) / N
   double slope_factor = 0.0;          // --slope-factor R: h <= 2 pi d / (R |grad d|) (0: off)
   double min_depth_m = 1.0;           // depths below this (and dry land) count as this
+  // --refine: vector features (any OGR format with a CRS) whose attribute refine_field
+  // gives the size in metres inside their polygons and on their lines and points,
+  // growing by the gradation away from them; not clamped to hmin.
+  std::string refine_path, refine_layer, refine_field = "size";
 
   double cells_across = 2.0;  // --cells-across: elements across a narrow channel
   bool narrow_sizes = true;   // one element across narrower ones, down to hmin/2
@@ -64,7 +69,8 @@ struct SizingSummary {
 };
 
 // h(x) before gradation: the minimum of the sources, clamped to [hmin, hmax], then of the
-// narrow features' sizes (automatic sizing; down to hmin/2) and the local refinements.
+// narrow features' sizes (automatic sizing; down to hmin/2), the --refine features' and
+// the local refinements.
 // Not thread-safe. Throws Error(input) for a bad source (unreadable raster, expression
 // that does not parse) and Error(meshing) for a non-positive size.
 class SizingOracle {
@@ -90,6 +96,7 @@ class SizingOracle {
   std::unique_ptr<Expression> expression_;
   std::unique_ptr<RasterField> raster_;
   std::unique_ptr<RasterField> bathymetry_;
+  std::unique_ptr<FeatureSizes> features_;
   double gradient_step_m_ = 1.0;
 };
 

@@ -117,3 +117,67 @@ TEST(CliFields, BadSizingOptionsFailCleanly) {
     EXPECT_FALSE(std::filesystem::exists(out)) << extra[0];
   }
 }
+
+// --refine: a square of lon/lat on the equator meshed in Web Mercator (so that the
+// features' rectangle stays a rectangle) at 3 km, with a rectangle asking for 600 m and
+// a point asking for 400 m. At every background vertex the size is at most each
+// feature's size plus the gradation times the distance to it (0 inside the rectangle),
+// equals 600 well inside the rectangle and 3 km far from both. A size attribute that is
+// missing or not positive stops the run, naming it.
+TEST(CliFields, RefineFeaturesSetTheSizesAroundThem) {
+  TempDir dir;
+  const std::string domain = dir.file("square.geojson");
+  write_file(domain, geojson_polygons({"[[[0,0],[0.5,0],[0.5,0.5],[0,0.5],[0,0]]]"}));
+  const std::string refine = dir.file("refine.geojson");
+  write_file(
+      refine,
+      R"({"type":"FeatureCollection","features":[)"
+      R"({"type":"Feature","properties":{"size":600},"geometry":{"type":"Polygon",)"
+      R"("coordinates":[[[0.05,0.05],[0.15,0.05],[0.15,0.12],[0.05,0.12],[0.05,0.05]]]}},)"
+      R"({"type":"Feature","properties":{"size":400},"geometry":{"type":"Point","coordinates":[0.4,0.3]}}]})");
+  const std::string vtu = dir.file("f.vtu");
+  CliResult r = run_cli(
+      {"fields", domain, "--dst-crs", "EPSG:3857", "--size", "3000", "--refine", refine, "-o", vtu},
+      dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("features " + refine + " (2, 400 to 600 m)"), std::string::npos) << r.out;
+  python_check(
+      dir,
+      "import sys, meshio, numpy as np\n"
+      "from osgeo import osr\n"
+      "m = meshio.read(sys.argv[1])\n"
+      "x, y, h = m.points[:, 0], m.points[:, 1], m.point_data['size']\n"
+      "src = osr.SpatialReference(); src.ImportFromEPSG(4326)\n"
+      "dst = osr.SpatialReference(); dst.ImportFromEPSG(3857)\n"
+      "for s in (src, dst): s.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)\n"
+      "ct = osr.CoordinateTransformation(src, dst)\n"
+      "x0, y0, _ = ct.TransformPoint(0.05, 0.05); x1, y1, _ = ct.TransformPoint(0.15, 0.12)\n"
+      "px, py, _ = ct.TransformPoint(0.4, 0.3)\n"
+      "d_rect = np.hypot(np.maximum.reduce([x0 - x, 0 * x, x - x1]), np.maximum.reduce([y0 - y, 0 "
+      "* y, y - y1]))\n"
+      "d_pt = np.hypot(x - px, y - py)\n"
+      "bound = np.minimum.reduce([3000 + 0 * x, 600 + 0.2 * d_rect, 400 + 0.2 * d_pt])\n"
+      "assert (h <= bound * (1 + 1e-9)).all(), (h - bound).max()\n"
+      "inner = (x > x0 + 2000) & (x < x1 - 2000) & (y > y0 + 2000) & (y < y1 - 2000)\n"
+      "assert inner.sum() > 20 and np.allclose(h[inner], 600), h[inner].max()\n"
+      "far = (d_rect > 15000) & (d_pt > 15000)\n"
+      "assert far.sum() > 20 and np.allclose(h[far], 3000)\n"
+      "near = d_pt < 100\n"
+      "assert near.sum() >= 1 and h[near].max() < 430, h[near]\n",
+      {vtu});
+  // Bad sizes.
+  write_file(dir.file("bad.geojson"),
+             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{"size":0},)"
+             R"("geometry":{"type":"Point","coordinates":[0.1,0.1]}}]})");
+  r = run_cli({"fields", domain, "--size", "3000", "--refine", dir.file("bad.geojson"), "-o", vtu,
+               "--overwrite"},
+              dir);
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("feature 0 has size '0'"), std::string::npos) << r.err;
+  r = run_cli({"fields", domain, "--size", "3000", "--refine", refine, "--refine-field", "h", "-o",
+               vtu, "--overwrite"},
+              dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no attribute 'h' for the sizes (attributes: size)"), std::string::npos)
+      << r.err;
+}

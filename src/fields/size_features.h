@@ -1,0 +1,43 @@
+// Sizes asked for by vector features (--refine): at most a feature's size inside its
+// polygons and on its lines and points, growing by the gradation K with the distance
+// from them (a graded cone, as the sizing field's gradation would make it).
+#pragma once
+
+#include <vector>
+
+#include "core/geometry.h"
+
+namespace isoquad {
+
+struct SizeFeature;
+
+class FeatureSizes {
+ public:
+  // `features` in the meshing CRS.
+  FeatureSizes(const std::vector<SizeFeature>& features, double gradation);
+  // min(h, the smallest of size + K * distance over the features): features whose
+  // bound cannot go below h are skipped.
+  double limit(const Point2& p, double h) const;
+
+ private:
+  struct Run {  // up to kRun consecutive segments of one polyline, with their box
+    int polyline = 0, first = 0, last = 0;
+    double xmin = 0, ymin = 0, xmax = 0, ymax = 0;
+  };
+  struct Item {
+    double size_m = 0.0;
+    double xmin = 0, ymin = 0, xmax = 0, ymax = 0;
+    int first_ring = 0, last_ring = 0;  // polylines [first_ring, last_ring) are rings
+    int first_run = 0, last_run = 0;    // runs of its rings and lines
+    int first_point = 0, last_point = 0;
+  };
+  bool inside(const Item& item, const Point2& p) const;
+
+  double gradation_ = 0.2;
+  std::vector<std::vector<Point2>> polylines_;
+  std::vector<Point2> points_;
+  std::vector<Run> runs_;
+  std::vector<Item> items_;
+};
+
+}  // namespace isoquad

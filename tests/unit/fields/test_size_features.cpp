@@ -1,0 +1,120 @@
+// The --refine features' sizes: FeatureSizes against a plain computation over a lattice
+// of points (inside polygons by the even-odd rule, distances to every segment and
+// point), and the reader's messages for bad files.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+
+#include "core/error.h"
+#include "fields/size_features.h"
+#include "gis/read_size_features.h"
+#include "support/test_support.h"
+
+using namespace isoquad;
+using namespace isoquad::test;
+
+namespace {
+
+double plain_distance(const SizeFeature& f, const Point2& p) {
+  bool in = false;
+  for (const auto& ring : f.rings)
+    for (std::size_t i = 0; i + 1 < ring.size(); ++i) {
+      const Point2 &a = ring[i], &b = ring[i + 1];
+      if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
+        in = !in;
+    }
+  if (in) return 0.0;
+  double d = INFINITY;
+  for (const auto* parts : {&f.rings, &f.lines})
+    for (const auto& line : *parts)
+      for (std::size_t i = 0; i + 1 < line.size(); ++i)
+        d = std::min(d, distance_to_segment(p, line[i], line[i + 1]));
+  for (const Point2& q : f.points) d = std::min(d, distance(p, q));
+  return d;
+}
+
+}  // namespace
+
+TEST(FeatureSizes, TheSmallestGradedSizeOfAnyFeature) {
+  std::vector<SizeFeature> features(3);
+  // A square with a square hole, size 500.
+  features[0].size_m = 500;
+  features[0].rings = {{{0, 0}, {4000, 0}, {4000, 4000}, {0, 4000}, {0, 0}},
+                       {{1000, 1000}, {1000, 3000}, {3000, 3000}, {3000, 1000}, {1000, 1000}}};
+  // A long polyline of 100 segments (several runs), size 800.
+  features[1].size_m = 800;
+  features[1].lines.emplace_back();
+  for (int i = 0; i <= 100; ++i)
+    features[1].lines[0].push_back({6000.0 + 200 * i, 1000.0 + 300 * std::sin(0.3 * i)});
+  // Two points, size 300.
+  features[2].size_m = 300;
+  features[2].points = {{-3000, 9000}, {15000, -4000}};
+  const double k = 0.2, h0 = 3000;
+  const FeatureSizes sizes(features, k);
+  int below = 0;
+  for (int i = -40; i <= 140; ++i)
+    for (int j = -40; j <= 80; ++j) {
+      const Point2 p{250.0 * i + 7, 250.0 * j + 3};
+      double want = h0;
+      for (const SizeFeature& f : features)
+        want = std::min(want, f.size_m + k * plain_distance(f, p));
+      ASSERT_NEAR(sizes.limit(p, h0), want, 1e-9) << p.x << " " << p.y;
+      below += want < h0;
+    }
+  EXPECT_GT(below, 1000);
+  EXPECT_EQ(sizes.limit({2000, 2000}, h0), 500 + k * 1000);  // in the hole: 1000 m from the square
+  EXPECT_EQ(sizes.limit({500, 500}, h0), 500);               // inside
+  EXPECT_EQ(sizes.limit({500, 500}, 400), 400);              // never above h
+}
+
+TEST(FeatureSizes, TheReaderNamesWhatIsWrong) {
+  TempDir dir;
+  auto file = [&dir](const std::string& name, const std::string& properties,
+                     const std::string& crs = "") {
+    const std::string path = dir.file(name);
+    write_file(path, R"({"type":"FeatureCollection",)" + crs +
+                         R"("features":[{"type":"Feature","properties":)" + properties +
+                         R"(,"geometry":{"type":"Point","coordinates":[1,2]}}]})");
+    return path;
+  };
+  const SizeFeatures ok =
+      read_size_features(file("ok.geojson", R"({"size":250,"name":"x"})"), "", "size", "--refine");
+  ASSERT_EQ(ok.features.size(), 1u);
+  EXPECT_EQ(ok.features[0].size_m, 250);
+  EXPECT_EQ(ok.features[0].points.size(), 1u);
+  EXPECT_TRUE(ok.crs.geographic);
+  auto message = [](const std::function<void()>& f, ErrorClass cls) {
+    try {
+      f();
+    } catch (const Error& e) {
+      EXPECT_EQ(e.error_class(), cls) << e.what();
+      return std::string(e.what());
+    }
+    ADD_FAILURE() << "no error";
+    return std::string();
+  };
+  const std::string no_field = file("a.geojson", R"({"h":250,"name":"x"})");
+  EXPECT_NE(
+      message([&] { read_size_features(no_field, "", "size", "--refine"); }, ErrorClass::usage)
+          .find("has no attribute 'size' for the sizes (attributes: h, name)"),
+      std::string::npos);
+  const std::string negative = file("b.geojson", R"({"size":-5})");
+  EXPECT_NE(
+      message([&] { read_size_features(negative, "", "size", "--refine"); }, ErrorClass::input)
+          .find("feature 0 has size '-5'; sizes are positive numbers of metres"),
+      std::string::npos);
+  const std::string text = file("c.geojson", R"({"size":"big"})");
+  EXPECT_NE(message([&] { read_size_features(text, "", "size", "--refine"); }, ErrorClass::input)
+                .find("has size 'big'"),
+            std::string::npos);
+  EXPECT_NE(
+      message([&] { read_size_features(no_field, "nope", "size", "--refine"); }, ErrorClass::usage)
+          .find("no layer 'nope'"),
+      std::string::npos);
+  EXPECT_NE(
+      message([&] { read_size_features(dir.file("missing.geojson"), "", "size", "--refine"); },
+              ErrorClass::input)
+          .find("missing.geojson"),
+      std::string::npos);
+}
