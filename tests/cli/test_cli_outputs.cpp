@@ -120,6 +120,16 @@ bool on_bbox(double lon, double lat, double tol) {
          std::abs(lat - kBox[1]) < tol || std::abs(lat - kBox[3]) < tol;
 }
 
+// `isoquad mesh` on the water box at 800 m with the bathymetry (depths), quiet, with the
+// `extra` arguments (the outputs).
+CliResult mesh_water_box(const TempDir& dir, const std::vector<std::string>& extra) {
+  std::vector<std::string> args = {"mesh",         water_input(dir),       "--domain", "water",
+                                   "--bbox",       "-4.6,48.2,-4.4,48.35", "--size",   "800",
+                                   "--bathymetry", bathymetry(dir),        "-q"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return run_cli(args, dir);
+}
+
 // QGIS's mesh reader (MDAL) on each file: a line "vertices faces [sides] lowest-z" per
 // file, then "lonlat X Y": the last file's first vertex in EPSG:4326 (by the file's CRS).
 // Empty without python3-qgis.
@@ -517,11 +527,8 @@ TEST(CliOutputs, QgisRendersTheEmbeddedStyles) {
 // variable), the first node at hgrid.ll's first node (skipped without python3-qgis).
 TEST(CliOutputs, Sms2dmHoldsTheGr3sMeshWithElevationsAndNodestrings) {
   TempDir dir;
-  const CliResult r =
-      run_cli({"mesh", water_input(dir), "--domain", "water", "--bbox", "-4.6,48.2,-4.4,48.35",
-               "--size", "800", "--bathymetry", bathymetry(dir), "-o", dir.file("m.2dm"), "-o",
-               dir.file("hgrid.gr3"), "-o", dir.file("m.nc"), "-q"},
-              dir);
+  const CliResult r = mesh_water_box(
+      dir, {"-o", dir.file("m.2dm"), "-o", dir.file("hgrid.gr3"), "-o", dir.file("m.nc")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Gr3 g = parse_gr3(dir.file("hgrid.gr3"));
   std::istringstream in(read_file(dir.file("m.2dm")));
@@ -686,11 +693,8 @@ TEST(CliOutputs, PliFilesHoldTheOpenBoundarySegments) {
 // geometry (skipped without python3-qgis).
 TEST(CliOutputs, TelemacGeometryAndBoundaryConditions) {
   TempDir dir;
-  const CliResult r =
-      run_cli({"mesh", water_input(dir), "--domain", "water", "--bbox", "-4.6,48.2,-4.4,48.35",
-               "--size", "800", "--bathymetry", bathymetry(dir), "-o", dir.file("geo.slf"), "-o",
-               dir.file("hgrid.gr3"), "--report", dir.file("r.json"), "-q"},
-              dir);
+  const CliResult r = mesh_water_box(dir, {"-o", dir.file("geo.slf"), "-o", dir.file("hgrid.gr3"),
+                                           "--report", dir.file("r.json")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Gr3 g = parse_gr3(dir.file("hgrid.gr3"));
 
