@@ -4,6 +4,7 @@
 #include <ogrsf_frmts.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <memory>
 
 #include "core/error.h"
