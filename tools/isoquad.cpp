@@ -4,12 +4,14 @@
 
 #include <CLI/CLI.hpp>
 #include <array>
+#include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <string>
 
@@ -20,6 +22,7 @@
 #include "app/summary.h"
 #include "core/error.h"
 #include "gis/atomic_output.h"
+#include "gis/read_polygons.h"
 #include "gis/write_domain.h"
 #include "io/write_fields.h"
 #include "io/write_mesh.h"
@@ -358,6 +361,7 @@ struct MeshArgs {
   std::string stop_after;  // empty: the whole job
   std::string conform_rule = "lattice";
   std::string init = "front";
+  std::string each;  // --each FIELD: a mesh per value of the attribute
 };
 
 // For `domain` (its summary says how much of the boundary the lines follow) and `mesh`.
@@ -374,6 +378,11 @@ void add_open_boundary_options(CLI::App* cmd, FrontEndOptions& fe) {
 }
 
 void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
+  cmd->add_option("--each", m.each,
+                  "A mesh per value of this attribute over the selected features (each value's "
+                  "features together): {} in -o, --report and --plot stands for the value; a "
+                  "region that fails does not stop the others")
+      ->group("Selection");
   const char* g = "Tiling (paper, sections 2.2 to 2.5)";
   cmd->add_option("--init", m.init,
                   "How tiles start: front (default; seeds one tile apart along the cross field, "
@@ -576,6 +585,103 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
   return 0;
 }
 
+// --each FIELD: run_mesh once per value of the attribute, with the value's features
+// (and --where's) selected and {} in the output paths replaced by the value (made safe
+// for a file name). Failures are reported and the others go on; the exit code is the
+// first failure's.
+int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
+                  const std::string& command_line) {
+  const std::string placeholder = "{}";
+  auto has = [&](const std::string& path) { return path.find(placeholder) != std::string::npos; };
+  for (const std::string& o : a.outputs)
+    if (!has(o))
+      throw Error(ErrorClass::usage, "options",
+                  "with --each, every -o needs {} for the value (e.g. -o out/{}.gpkg): '" + o +
+                      "' has none");
+  if ((!a.report_path.empty() && !has(a.report_path)) ||
+      (!f.plot_path.empty() && !has(f.plot_path)))
+    throw Error(ErrorClass::usage, "options",
+                "with --each, --report and --plot need {} for the value");
+  if (!m.stop_after.empty())
+    throw Error(ErrorClass::usage, "options", "--each meshes: no --stop-after");
+  CommonArgs base = a;
+  finish_front_end_args(base);
+  const std::vector<SelectionValue> values = selection_values(base.fe.read, m.each);
+  if (values.empty())
+    throw Error(ErrorClass::input, "read",
+                "'" + a.input + "': no selected feature has a value of '" + m.each + "'");
+  // File names: the values with ASCII other than letters, digits, '.', '-' and '_' as '_'
+  // (UTF-8 kept).
+  std::map<std::string, std::string> names;  // name -> value
+  std::vector<std::string> safe;
+  for (const SelectionValue& v : values) {
+    std::string name = v.text.empty() ? "_" : v.text;
+    for (char& c : name)
+      if (static_cast<unsigned char>(c) < 0x80 && !std::isalnum(static_cast<unsigned char>(c)) &&
+          c != '.' && c != '-' && c != '_')
+        c = '_';
+    if (!names.emplace(name, v.text).second)
+      throw Error(ErrorClass::usage, "options",
+                  "--each " + m.each + ": the values '" + names[name] + "' and '" + v.text +
+                      "' give the same file name '" + name + "'");
+    safe.push_back(name);
+  }
+  // Output paths checked for every value before any meshing.
+  for (const std::string& name : safe) {
+    auto fill = [&](std::string path) {
+      for (std::size_t at; (at = path.find(placeholder)) != std::string::npos;)
+        path.replace(at, placeholder.size(), name);
+      return path;
+    };
+    CommonArgs one = a;
+    for (std::string& o : one.outputs) o = fill(o);
+    MeshArgs mm = m;
+    if (!one.report_path.empty()) check_output_path(fill(one.report_path), a.overwrite);
+    if (!f.plot_path.empty()) check_output_path(fill(f.plot_path), a.overwrite);
+    MeshWriteOptions w;
+    w.msh_version = m.msh_version;
+    w.output_crs = m.output_crs;
+    check_mesh_outputs(mesh_outputs(one, mm), w);
+  }
+  int first_failure = 0;
+  std::vector<std::string> failed;
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    auto fill = [&](std::string path) {
+      for (std::size_t at; (at = path.find(placeholder)) != std::string::npos;)
+        path.replace(at, placeholder.size(), safe[k]);
+      return path;
+    };
+    CommonArgs one = a;
+    FieldArgs ff = f;
+    MeshArgs mm = m;
+    for (std::string& o : one.outputs) o = fill(o);
+    one.report_path = fill(one.report_path);
+    ff.plot_path = fill(ff.plot_path);
+    one.fe.read.where = a.fe.read.where.empty()
+                            ? values[k].filter
+                            : "(" + a.fe.read.where + ") AND " + values[k].filter;
+    if (!a.quiet)
+      std::cout << "== " << m.each << " = " << values[k].text << " (" << k + 1 << " of "
+                << values.size() << ")\n"
+                << std::flush;
+    try {
+      run_mesh(one, ff, mm, command_line + " [--each: " + values[k].filter + "]");
+    } catch (const Error& e) {
+      std::cerr << "isoquad: " << m.each << " = " << values[k].text << ": " << e.what() << "\n";
+      if (!first_failure) first_failure = exit_code(e.error_class());
+      failed.push_back(values[k].text);
+    }
+  }
+  if (!a.quiet || !failed.empty()) {
+    std::ostream& out = failed.empty() ? std::cout : std::cerr;
+    out << (failed.empty() ? "" : "isoquad: ") << "--each " << m.each << ": "
+        << values.size() - failed.size() << " of " << values.size() << " meshed";
+    for (std::size_t i = 0; i < failed.size(); ++i) out << (i ? ", " : "; failed: ") << failed[i];
+    out << "\n";
+  }
+  return first_failure;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -640,6 +746,8 @@ int main(int argc, char** argv) {
   try {
     if (domain_cmd->parsed()) return run_domain(domain_args);
     if (fields_cmd->parsed()) return run_fields(fields_args, field_args, joined_command_line(argc, argv));
+    if (mesh_cmd->parsed() && !mesh_extra.each.empty())
+      return run_mesh_each(mesh_args, mesh_field_args, mesh_extra, joined_command_line(argc, argv));
     if (mesh_cmd->parsed())
       return run_mesh(mesh_args, mesh_field_args, mesh_extra, joined_command_line(argc, argv));
   } catch (const Error& e) {

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <sstream>
 
@@ -47,6 +48,47 @@ bool is_degenerate(const Ring& ring) {
 class Reader {
  public:
   explicit Reader(const ReadParams& p) : p_(p) {}
+
+  std::vector<SelectionValue> values(const std::string& field) {
+    open();
+    choose_layer();
+    set_crs();
+    apply_bbox();
+    apply_where();
+    OGRFeatureDefn* defn = layer_->GetLayerDefn();
+    const int index = defn->GetFieldIndex(field.c_str());
+    if (index < 0) {
+      std::string fields;
+      for (int i = 0; i < defn->GetFieldCount(); ++i)
+        fields += (i ? ", " : "") + std::string(defn->GetFieldDefn(i)->GetNameRef());
+      fail(ErrorClass::usage, "layer " + quote(out_.layer_name) + " has no attribute " +
+                                  quote(field) +
+                                  " (attributes: " + (fields.empty() ? "none" : fields) + ")");
+    }
+    const OGRFieldType type = defn->GetFieldDefn(index)->GetType();
+    const bool number = type == OFTInteger || type == OFTInteger64 || type == OFTReal;
+    std::map<std::pair<double, std::string>, SelectionValue> sorted;
+    layer_->ResetReading();
+    for (auto& feature : *layer_) {
+      if (!feature->IsFieldSetAndNotNull(index)) continue;
+      SelectionValue v;
+      v.text = feature->GetFieldAsString(index);
+      std::string quoted = "\"";
+      for (char c : field) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+      quoted += "\" = ";
+      if (number) {
+        v.filter = quoted + v.text;
+      } else {
+        v.filter = quoted + "'";
+        for (char c : v.text) v.filter += c == '\'' ? std::string("''") : std::string(1, c);
+        v.filter += "'";
+      }
+      sorted.emplace(std::make_pair(number ? feature->GetFieldAsDouble(index) : 0.0, v.text), v);
+    }
+    std::vector<SelectionValue> out;
+    for (auto& [key, v] : sorted) out.push_back(std::move(v));
+    return out;
+  }
 
   SourceData run() {
     open();
@@ -346,5 +388,9 @@ Ring densified_box(const std::array<double, 4>& b, int per_side) {
 }
 
 SourceData read_polygons(const ReadParams& params) { return Reader(params).run(); }
+
+std::vector<SelectionValue> selection_values(const ReadParams& params, const std::string& field) {
+  return Reader(params).values(field);
+}
 
 }  // namespace isoquad

@@ -52,6 +52,18 @@ struct SourceData {
 // coordinates outside its valid range, Error(usage) for a bad --where or --bbox.
 SourceData read_polygons(const ReadParams& params);
 
+// A value of an attribute over the selected features, with the OGR SQL filter that
+// selects the features that have it.
+struct SelectionValue {
+  std::string text;    // as GDAL formats it
+  std::string filter;  // "field" = 'text' (or = text for a number)
+};
+
+// The distinct values of `field` over the features `params` selects (layer, --where,
+// --bbox), sorted (numbers by value), nulls left out. Throws as read_polygons, and
+// Error(usage) for no such attribute (listing those there are).
+std::vector<SelectionValue> selection_values(const ReadParams& params, const std::string& field);
+
 // The bbox rectangle as a ring with `per_side` points per side, so that it bends
 // correctly when projected.
 Ring densified_box(const std::array<double, 4>& bbox, int per_side);

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -667,4 +668,55 @@ TEST(CliMesh, CoastWeightSlidesTheBoundaryOntoTheCoast) {
   const auto [without, with] = corsica_trade(dir, "--coast-weight", "0", "64", 85.0);
   const std::string p95 = "95% of its edges by ";
   EXPECT_LT(summary_number(with, "coast:", p95), 0.85 * summary_number(without, "coast:", p95));
+}
+
+// --each: a mesh per value of an attribute. Three squares of lon/lat, two of them
+// region 'a b' (meshed together: two components), one 'c/d' (its file name made safe):
+// each gets its GeoPackage and report; a region that fails (over --max-quads) is
+// reported and the others are still written, with the first failure's exit code; an
+// output without {} is refused before any work.
+TEST(CliMesh, EachValueOfAnAttributeGetsItsOwnMesh) {
+  TempDir dir;
+  const std::string input = dir.file("regions.geojson");
+  auto square = [](double x, double y, double side, const std::string& region) {
+    std::ostringstream s;
+    s << R"({"type":"Feature","properties":{"region":")" << region
+      << R"("},"geometry":{"type":"Polygon","coordinates":[[[)" << x << "," << y << "],["
+      << x + side << "," << y << "],[" << x + side << "," << y + side << "],[" << x << ","
+      << y + side << "],[" << x << "," << y << "]]]}}";
+    return s.str();
+  };
+  write_file(input, R"({"type":"FeatureCollection","features":[)" + square(0, 0, 0.3, "a b") + "," +
+                        square(1, 0, 0.3, "c/d") + "," + square(0, 1, 0.2, "a b") + "]}");
+  CliResult r = run_cli({"mesh", input, "--size", "3000", "--each", "region", "-o",
+                         dir.file("{}.gpkg"), "--report", dir.file("{}.json")},
+                        dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("== region = a b (1 of 2)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("== region = c/d (2 of 2)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("--each region: 2 of 2 meshed"), std::string::npos) << r.out;
+  for (const char* name : {"a_b", "c_d"}) {
+    const std::string report = read_file(dir.file(std::string(name) + ".json"));
+    const bool two = std::string(name) == "a_b";
+    EXPECT_NE(report.find(two ? "\"num_components\": 2," : "\"num_components\": 1,"),
+              std::string::npos)
+        << name << report.substr(0, 400);
+    const QuadLayer q = read_quads(dir.file(std::string(name) + ".gpkg"));
+    EXPECT_GT(q.quads.size(), 50u) << name;
+  }
+  // 'a b' asks for more quads than 150; 'c/d' fewer.
+  r = run_cli({"mesh", input, "--size", "3000", "--each", "region", "-o", dir.file("m_{}.gpkg"),
+               "--max-quads", "150", "-q"},
+              dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("region = a b: sizing:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--each region: 1 of 2 meshed; failed: a b"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("m_a_b.gpkg")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("m_c_d.gpkg")));
+  // No {}: nothing runs.
+  r = run_cli({"mesh", input, "--size", "3000", "--each", "region", "-o", dir.file("one.gpkg")},
+              dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("every -o needs {}"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
 }
