@@ -610,10 +610,14 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
   if (values.empty())
     throw Error(ErrorClass::input, "read",
                 "'" + a.input + "': no selected feature has a value of '" + m.each + "'");
-  // File names: the values with ASCII other than letters, digits, '.', '-' and '_' as '_'
-  // (UTF-8 kept).
-  std::map<std::string, std::string> names;  // name -> value
-  std::vector<std::string> safe;
+  // One region's arguments: its features, its paths (the value with ASCII other than
+  // letters, digits, '.', '-' and '_' as '_'; UTF-8 kept).
+  struct Region {
+    CommonArgs a;
+    FieldArgs f;
+  };
+  std::map<std::string, std::string> names;  // file name -> value
+  std::vector<Region> regions;
   for (const SelectionValue& v : values) {
     std::string name = v.text.empty() ? "_" : v.text;
     for (char& c : name)
@@ -624,48 +628,37 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
       throw Error(ErrorClass::usage, "options",
                   "--each " + m.each + ": the values '" + names[name] + "' and '" + v.text +
                       "' give the same file name '" + name + "'");
-    safe.push_back(name);
-  }
-  // Output paths checked for every value before any meshing.
-  for (const std::string& name : safe) {
     auto fill = [&](std::string path) {
       for (std::size_t at; (at = path.find(placeholder)) != std::string::npos;)
         path.replace(at, placeholder.size(), name);
       return path;
     };
-    CommonArgs one = a;
-    for (std::string& o : one.outputs) o = fill(o);
-    MeshArgs mm = m;
-    if (!one.report_path.empty()) check_output_path(fill(one.report_path), a.overwrite);
-    if (!f.plot_path.empty()) check_output_path(fill(f.plot_path), a.overwrite);
+    Region r{a, f};
+    for (std::string& o : r.a.outputs) o = fill(o);
+    r.a.report_path = fill(r.a.report_path);
+    r.f.plot_path = fill(r.f.plot_path);
+    r.a.fe.read.where =
+        a.fe.read.where.empty() ? v.filter : "(" + a.fe.read.where + ") AND " + v.filter;
+    // Every output path checked before any meshing.
+    if (!r.a.report_path.empty()) check_output_path(r.a.report_path, a.overwrite);
+    if (!r.f.plot_path.empty()) check_output_path(r.f.plot_path, a.overwrite);
     MeshWriteOptions w;
     w.msh_version = m.msh_version;
     w.output_crs = m.output_crs;
-    check_mesh_outputs(mesh_outputs(one, mm), w);
+    check_mesh_outputs(mesh_outputs(r.a, m), w);
+    regions.push_back(std::move(r));
   }
   int first_failure = 0;
   std::vector<std::string> failed;
-  for (std::size_t k = 0; k < values.size(); ++k) {
-    auto fill = [&](std::string path) {
-      for (std::size_t at; (at = path.find(placeholder)) != std::string::npos;)
-        path.replace(at, placeholder.size(), safe[k]);
-      return path;
-    };
-    CommonArgs one = a;
-    FieldArgs ff = f;
-    MeshArgs mm = m;
-    for (std::string& o : one.outputs) o = fill(o);
-    one.report_path = fill(one.report_path);
-    ff.plot_path = fill(ff.plot_path);
-    one.fe.read.where = a.fe.read.where.empty()
-                            ? values[k].filter
-                            : "(" + a.fe.read.where + ") AND " + values[k].filter;
+  for (std::size_t k = 0; k < regions.size(); ++k) {
     if (!a.quiet)
       std::cout << "== " << m.each << " = " << values[k].text << " (" << k + 1 << " of "
                 << values.size() << ")\n"
                 << std::flush;
+    MeshArgs mm = m;
     try {
-      run_mesh(one, ff, mm, command_line + " [--each: " + values[k].filter + "]");
+      run_mesh(regions[k].a, regions[k].f, mm,
+               command_line + " [--each: " + values[k].filter + "]");
     } catch (const Error& e) {
       std::cerr << "isoquad: " << m.each << " = " << values[k].text << ": " << e.what() << "\n";
       if (!first_failure) first_failure = exit_code(e.error_class());

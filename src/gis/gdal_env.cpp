@@ -74,4 +74,12 @@ std::string layer_names(GDALDataset& ds) {
   return names;
 }
 
+std::string field_names(OGRLayer& layer) {
+  OGRFeatureDefn* defn = layer.GetLayerDefn();
+  std::string names;
+  for (int i = 0; i < defn->GetFieldCount(); ++i)
+    names += (i ? ", " : "") + std::string(defn->GetFieldDefn(i)->GetNameRef());
+  return names.empty() ? "none" : names;
+}
+
 }  // namespace isoquad

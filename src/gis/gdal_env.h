@@ -5,6 +5,7 @@
 #include <string>
 
 class GDALDataset;
+class OGRLayer;
 
 namespace isoquad {
 
@@ -34,5 +35,7 @@ GdalDataset open_vector_dataset(const std::string& path, const std::string& stag
 
 // "name1, name2, ...": the data set's layers, for a message about a missing one.
 std::string layer_names(GDALDataset& ds);
+// The same for a layer's attributes ("none" without any).
+std::string field_names(OGRLayer& layer);
 
 }  // namespace isoquad

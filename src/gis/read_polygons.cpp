@@ -57,14 +57,9 @@ class Reader {
     apply_where();
     OGRFeatureDefn* defn = layer_->GetLayerDefn();
     const int index = defn->GetFieldIndex(field.c_str());
-    if (index < 0) {
-      std::string fields;
-      for (int i = 0; i < defn->GetFieldCount(); ++i)
-        fields += (i ? ", " : "") + std::string(defn->GetFieldDefn(i)->GetNameRef());
+    if (index < 0)
       fail(ErrorClass::usage, "layer " + quote(out_.layer_name) + " has no attribute " +
-                                  quote(field) +
-                                  " (attributes: " + (fields.empty() ? "none" : fields) + ")");
-    }
+                                  quote(field) + " (attributes: " + field_names(*layer_) + ")");
     const OGRFieldType type = defn->GetFieldDefn(index)->GetType();
     const bool number = type == OFTInteger || type == OFTInteger64 || type == OFTReal;
     std::map<std::pair<double, std::string>, SelectionValue> sorted;

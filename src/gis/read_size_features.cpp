@@ -64,14 +64,9 @@ SizeFeatures read_size_features(const std::string& path, const std::string& laye
   out.crs = crs_from_srs(*srs);
   OGRFeatureDefn* defn = layer->GetLayerDefn();
   const int index = defn->GetFieldIndex(field.c_str());
-  if (index < 0) {
-    std::string fields;
-    for (int i = 0; i < defn->GetFieldCount(); ++i)
-      fields += (i ? ", " : "") + std::string(defn->GetFieldDefn(i)->GetNameRef());
-    fail(ErrorClass::usage,
-         "layer '" + out.layer_name + "' has no attribute '" + field +
-             "' for the sizes (attributes: " + (fields.empty() ? "none" : fields) + ")");
-  }
+  if (index < 0)
+    fail(ErrorClass::usage, "layer '" + out.layer_name + "' has no attribute '" + field +
+                                "' for the sizes (attributes: " + field_names(*layer) + ")");
   layer->ResetReading();
   for (auto& feature : *layer) {
     const OGRGeometry* g = feature->GetGeometryRef();
