@@ -712,11 +712,10 @@ int main(int argc, char** argv) {
       "mesh",
       "The main job: an isotropic all-quadrangle mesh of the domain that follows the sizing "
       "and cross fields, with a quality summary; outputs for GIS and ocean models (.gpkg, "
-      ".vtu, .vtk, .msh, .gr3, .nc, .2dm, .pli, .slf), several in one run. Every quad written is "
-      "strictly "
-      "convex and none overlap: a tiling that leaves one otherwise is retried (up to 6 "
-      "tilings, each with the sizes halved where the one before failed), and the run stops "
-      "without writing when all fail.");
+      ".vtu, .vtk, .msh, .gr3, .nc, .2dm, .pli, .slf), several in one run. Every quad "
+      "written is strictly convex and none overlap: a tiling that leaves one otherwise is "
+      "retried (up to 6 tilings, each with the sizes halved where the one before failed), "
+      "and the run stops without writing when all fail.");
   add_front_end_options(mesh_cmd, mesh_args);
   add_field_options(mesh_cmd, mesh_field_args);
   add_mesh_options(mesh_cmd, mesh_extra);
