@@ -591,8 +591,8 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
 // first failure's.
 int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
                   const std::string& command_line) {
-  const std::string placeholder = "{}";
-  auto has = [&](const std::string& path) { return path.find(placeholder) != std::string::npos; };
+  const std::string mark = "{}";
+  auto has = [&](const std::string& path) { return path.find(mark) != std::string::npos; };
   for (const std::string& o : a.outputs)
     if (!has(o))
       throw Error(ErrorClass::usage, "options",
@@ -629,8 +629,8 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
                   "--each " + m.each + ": the values '" + names[name] + "' and '" + v.text +
                       "' give the same file name '" + name + "'");
     auto fill = [&](std::string path) {
-      for (std::size_t at; (at = path.find(placeholder)) != std::string::npos;)
-        path.replace(at, placeholder.size(), name);
+      for (std::size_t at; (at = path.find(mark)) != std::string::npos;)
+        path.replace(at, mark.size(), name);
       return path;
     };
     Region r{a, f};
