@@ -11,11 +11,11 @@ namespace {
 
 constexpr int kRun = 32;
 
-// Distance from p to the box (0 inside).
-double box_distance(const Point2& p, double xmin, double ymin, double xmax, double ymax) {
+// Squared distance from p to the box (0 inside).
+double box_distance2(const Point2& p, double xmin, double ymin, double xmax, double ymax) {
   const double dx = std::max({xmin - p.x, 0.0, p.x - xmax});
   const double dy = std::max({ymin - p.y, 0.0, p.y - ymax});
-  return std::hypot(dx, dy);
+  return dx * dx + dy * dy;
 }
 
 }  // namespace
@@ -56,6 +56,33 @@ FeatureSizes::FeatureSizes(const std::vector<SizeFeature>& features, double grad
     item.last_point = static_cast<int>(points_.size());
     items_.push_back(item);
   }
+  if (items_.empty()) return;
+  min_size_m_ = INFINITY;
+  double x1 = -INFINITY, y1 = -INFINITY;
+  x0_ = y0_ = INFINITY;
+  for (const Item& item : items_) {
+    min_size_m_ = std::min(min_size_m_, item.size_m);
+    x0_ = std::min(x0_, item.xmin), y0_ = std::min(y0_, item.ymin);
+    x1 = std::max(x1, item.xmax), y1 = std::max(y1, item.ymax);
+  }
+  n_ = std::clamp(static_cast<int>(std::ceil(std::sqrt(static_cast<double>(items_.size())))), 1,
+                  256);
+  cell_ = std::max({x1 - x0_, y1 - y0_, 1.0}) / n_;
+  auto cell_of = [this](double v, double origin) {
+    return std::clamp(static_cast<int>(std::floor((v - origin) / cell_)), 0, n_ - 1);
+  };
+  std::vector<std::vector<int>> cells(static_cast<std::size_t>(n_) * n_);
+  for (int k = 0; k < static_cast<int>(items_.size()); ++k) {
+    const Item& item = items_[k];
+    for (int j = cell_of(item.ymin, y0_); j <= cell_of(item.ymax, y0_); ++j)
+      for (int i = cell_of(item.xmin, x0_); i <= cell_of(item.xmax, x0_); ++i)
+        cells[static_cast<std::size_t>(j) * n_ + i].push_back(k);
+  }
+  cell_start_.push_back(0);
+  for (const auto& c : cells) {
+    cell_items_.insert(cell_items_.end(), c.begin(), c.end());
+    cell_start_.push_back(static_cast<int>(cell_items_.size()));
+  }
 }
 
 bool FeatureSizes::inside(const Item& item, const Point2& p) const {
@@ -77,28 +104,55 @@ bool FeatureSizes::inside(const Item& item, const Point2& p) const {
 }
 
 double FeatureSizes::limit(const Point2& p, double h) const {
-  for (const Item& item : items_) {
-    if (item.size_m + gradation_ * box_distance(p, item.xmin, item.ymin, item.xmax, item.ymax) >= h)
-      continue;
-    if (inside(item, p)) {
-      h = std::min(h, item.size_m);
-      continue;
-    }
-    // The nearest segment or point, looked for only where it could lower h.
-    double best = (h - item.size_m) / gradation_;
-    for (int k = item.first_run; k < item.last_run; ++k) {
-      const Run& r = runs_[k];
-      if (box_distance(p, r.xmin, r.ymin, r.xmax, r.ymax) >= best) continue;
-      const auto& line = polylines_[r.polyline];
-      if (line.size() == 1) best = std::min(best, distance(p, line[0]));
-      for (int s = r.first; s < r.last && s + 1 < static_cast<int>(line.size()); ++s)
-        best = std::min(best, distance_to_segment(p, line[s], line[s + 1]));
-    }
-    for (int k = item.first_point; k < item.last_point; ++k)
-      best = std::min(best, distance(p, points_[k]));
-    h = std::min(h, item.size_m + gradation_ * best);
+  // Only items within (h - the smallest size) / K of p can lower h: those of the cells
+  // within that reach, each once (in ascending order; the minimum is the same in any).
+  const double reach = (h - min_size_m_) / gradation_;
+  if (!(reach > 0) || n_ == 0) return h;
+  const double fx0 = std::floor((p.x - reach - x0_) / cell_);
+  const double fx1 = std::floor((p.x + reach - x0_) / cell_);
+  const double fy0 = std::floor((p.y - reach - y0_) / cell_);
+  const double fy1 = std::floor((p.y + reach - y0_) / cell_);
+  if (fx1 < 0 || fy1 < 0 || fx0 >= n_ || fy0 >= n_) return h;
+  const int i0 = static_cast<int>(std::max(fx0, 0.0)),
+            i1 = static_cast<int>(std::min(fx1, n_ - 1.0));
+  const int j0 = static_cast<int>(std::max(fy0, 0.0)),
+            j1 = static_cast<int>(std::min(fy1, n_ - 1.0));
+  if (static_cast<std::size_t>(i1 - i0 + 1) * (j1 - j0 + 1) >= items_.size()) {
+    for (const Item& item : items_) h = limit_by(item, p, h);
+    return h;
   }
+  thread_local std::vector<int> near;
+  near.clear();
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      const std::size_t c = static_cast<std::size_t>(j) * n_ + i;
+      near.insert(near.end(), cell_items_.begin() + cell_start_[c],
+                  cell_items_.begin() + cell_start_[c + 1]);
+    }
+  std::sort(near.begin(), near.end());
+  near.erase(std::unique(near.begin(), near.end()), near.end());
+  for (int k : near) h = limit_by(items_[k], p, h);
   return h;
+}
+
+double FeatureSizes::limit_by(const Item& item, const Point2& p, double h) const {
+  if (!(item.size_m < h)) return h;
+  const double bound = (h - item.size_m) / gradation_;
+  if (box_distance2(p, item.xmin, item.ymin, item.xmax, item.ymax) >= bound * bound) return h;
+  if (inside(item, p)) return item.size_m;
+  // The nearest segment or point, looked for only where it could lower h.
+  double best = bound;
+  for (int k = item.first_run; k < item.last_run; ++k) {
+    const Run& r = runs_[k];
+    if (box_distance2(p, r.xmin, r.ymin, r.xmax, r.ymax) >= best * best) continue;
+    const auto& line = polylines_[r.polyline];
+    if (line.size() == 1) best = std::min(best, distance(p, line[0]));
+    for (int s = r.first; s < r.last && s + 1 < static_cast<int>(line.size()); ++s)
+      best = std::min(best, distance_to_segment(p, line[s], line[s + 1]));
+  }
+  for (int k = item.first_point; k < item.last_point; ++k)
+    best = std::min(best, distance(p, points_[k]));
+  return std::min(h, item.size_m + gradation_ * best);
 }
 
 }  // namespace isoquad

@@ -32,12 +32,20 @@ class FeatureSizes {
     int first_point = 0, last_point = 0;
   };
   bool inside(const Item& item, const Point2& p) const;
+  // min(h, item's size + K * distance).
+  double limit_by(const Item& item, const Point2& p, double h) const;
 
   double gradation_ = 0.2;
+  double min_size_m_ = 0.0;
   std::vector<std::vector<Point2>> polylines_;
   std::vector<Point2> points_;
   std::vector<Run> runs_;
   std::vector<Item> items_;
+  // A grid of n x n cells over the items' boxes: cell c lists the items whose box meets
+  // it, in cell_items_[cell_start_[c] .. cell_start_[c + 1]).
+  double x0_ = 0, y0_ = 0, cell_ = 1;
+  int n_ = 0;
+  std::vector<int> cell_start_, cell_items_;
 };
 
 }  // namespace isoquad

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
 #include <functional>
 
 #include "core/error.h"
@@ -66,6 +67,37 @@ TEST(FeatureSizes, TheSmallestGradedSizeOfAnyFeature) {
   EXPECT_EQ(sizes.limit({2000, 2000}, h0), 500 + k * 1000);  // in the hole: 1000 m from the square
   EXPECT_EQ(sizes.limit({500, 500}, h0), 500);               // inside
   EXPECT_EQ(sizes.limit({500, 500}, 400), 400);              // never above h
+}
+
+// Many features (the grid's cells hold few of them): points, small squares and short
+// lines scattered over 100 km, sizes 200 to 1,000 m.
+TEST(FeatureSizes, ManyFeaturesThroughTheGridGiveThePlainMinimum) {
+  std::vector<SizeFeature> features(400);
+  std::uint32_t seed = 12345;
+  auto uniform = [&seed](double a, double b) {
+    seed = seed * 1664525u + 1013904223u;
+    return a + (b - a) * (seed >> 8) / double(1u << 24);
+  };
+  for (std::size_t k = 0; k < features.size(); ++k) {
+    SizeFeature& f = features[k];
+    f.size_m = uniform(200, 1000);
+    const Point2 c{uniform(0, 100000), uniform(0, 100000)};
+    if (k % 3 == 0) f.points = {c};
+    if (k % 3 == 1) f.rings = {{c, {c.x + 800, c.y}, {c.x + 800, c.y + 800}, {c.x, c.y + 800}, c}};
+    if (k % 3 == 2) f.lines = {{c, {c.x + uniform(-3000, 3000), c.y + uniform(-3000, 3000)}}};
+  }
+  const double k = 0.3, h0 = 2500;
+  const FeatureSizes sizes(features, k);
+  for (int i = -10; i <= 110; ++i)
+    for (int j = -10; j <= 110; ++j) {
+      const Point2 p{1000.0 * i + 13, 1000.0 * j + 29};
+      for (double h : {h0, 700.0}) {
+        double want = h;
+        for (const SizeFeature& f : features)
+          want = std::min(want, f.size_m + k * plain_distance(f, p));
+        ASSERT_NEAR(sizes.limit(p, h), want, 1e-9) << p.x << " " << p.y << " " << h;
+      }
+    }
 }
 
 TEST(FeatureSizes, TheReaderNamesWhatIsWrong) {
