@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <chrono>
@@ -12,6 +13,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -513,7 +515,14 @@ std::string joined_command_line(int argc, char** argv) {
   return s;
 }
 
-int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& command_line) {
+// What --each tabulates of one region's run.
+struct RegionResult {
+  QualitySummary quality;
+  double seconds = 0.0;
+};
+
+int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& command_line,
+             RegionResult* result = nullptr) {
   finish_front_end_args(a);
   const bool tiling_only = !m.stop_after.empty();
   const std::vector<MeshOutput> outputs = mesh_outputs(a, m);
@@ -568,6 +577,7 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
     std::cerr << "isoquad: warning: " << written.num_without_depth
               << " vertices lie outside the bathymetry (or on nodata); their depth is 0\n";
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (result) result->quality = r.quality, result->seconds = seconds;
   if (!a.quiet) {
     std::cout << format_domain_summary(r.fields.front.summary) << format_fields_summary(r.fields)
               << format_mesh_summary(r);
@@ -650,6 +660,7 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
   }
   int first_failure = 0;
   std::vector<std::string> failed;
+  std::vector<std::optional<RegionResult>> results(regions.size());
   for (std::size_t k = 0; k < regions.size(); ++k) {
     if (!a.quiet)
       std::cout << "== " << m.each << " = " << values[k].text << " (" << k + 1 << " of "
@@ -657,13 +668,41 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
                 << std::flush;
     MeshArgs mm = m;
     try {
-      run_mesh(regions[k].a, regions[k].f, mm,
-               command_line + " [--each: " + values[k].filter + "]");
+      RegionResult result;
+      run_mesh(regions[k].a, regions[k].f, mm, command_line + " [--each: " + values[k].filter + "]",
+               &result);
+      results[k] = result;
     } catch (const Error& e) {
       std::cerr << "isoquad: " << m.each << " = " << values[k].text << ": " << e.what() << "\n";
       if (!first_failure) first_failure = exit_code(e.error_class());
       failed.push_back(values[k].text);
     }
+  }
+  if (!a.quiet) {
+    // A line per region: its quads' quality, or that it failed.
+    // Padded by characters (UTF-8: the bytes that start one).
+    auto chars = [](const std::string& t) {
+      return static_cast<std::size_t>(std::count_if(t.begin(), t.end(), [](char c) {
+        return (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+      }));
+    };
+    std::size_t width = chars(m.each);
+    for (const SelectionValue& v : values) width = std::max(width, chars(v.text));
+    auto padded = [&](const std::string& t) { return t + std::string(width - chars(t), ' '); };
+    std::printf("\n%s %8s %8s %8s %8s %8s %8s\n", padded(m.each).c_str(), "quads", "angles",
+                "regular", "sizes", "orient.", "seconds");
+    for (std::size_t k = 0; k < values.size(); ++k) {
+      std::printf("%s", padded(values[k].text).c_str());
+      if (!results[k]) {
+        std::printf(" %8s\n", "failed");
+        continue;
+      }
+      const QualitySummary& q = results[k]->quality;
+      std::printf(" %8zu %7.1f%% %7.1f%% %7.1f%% %8.1f %8.2f\n", q.num_quads,
+                  100 * q.share_angles_75_105, 100 * q.share_regular_interior,
+                  100 * q.share_size_08_125, q.orientation_mean_deg, results[k]->seconds);
+    }
+    std::fflush(stdout);
   }
   if (!a.quiet || !failed.empty()) {
     std::ostream& out = failed.empty() ? std::cout : std::cerr;

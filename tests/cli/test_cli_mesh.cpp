@@ -695,8 +695,20 @@ TEST(CliMesh, EachValueOfAnAttributeGetsItsOwnMesh) {
   EXPECT_NE(r.out.find("== region = a b (1 of 2)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("== region = c/d (2 of 2)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("--each region: 2 of 2 meshed"), std::string::npos) << r.out;
+  // The closing table: a line per region with its quads, as its report has them.
+  const std::size_t table =
+      r.out.find("\nregion    quads   angles  regular    sizes  orient.  seconds\n");
+  ASSERT_NE(table, std::string::npos) << r.out;
   for (const char* name : {"a_b", "c_d"}) {
     const std::string report = read_file(dir.file(std::string(name) + ".json"));
+    const std::string value = std::string(name) == "a_b" ? "a b" : "c/d";
+    const std::size_t row = r.out.find("\n" + value + "   ", table);
+    ASSERT_NE(row, std::string::npos) << r.out;
+    const std::size_t quads_at = report.find("\"num_quads\": ");
+    ASSERT_NE(quads_at, std::string::npos);
+    EXPECT_EQ(std::stoul(r.out.substr(row + 1 + value.size())),
+              std::stoul(report.substr(quads_at + 13)))
+        << r.out;
     const bool two = std::string(name) == "a_b";
     EXPECT_NE(report.find(two ? "\"num_components\": 2," : "\"num_components\": 1,"),
               std::string::npos)
