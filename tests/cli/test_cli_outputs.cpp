@@ -132,10 +132,9 @@ CliResult mesh_water_box(const TempDir& dir, const std::vector<std::string>& ext
 
 // QGIS's mesh reader (MDAL) on each file: a line "vertices faces [sides] lowest-z" per
 // file, then "lonlat X Y": the last file's first vertex in EPSG:4326 (by the file's CRS).
-// Empty without python3-qgis.
+// python3-qgis is one of the project's dependencies (tools/install-deps.sh): without it
+// the check fails.
 std::string read_mesh_layers_in_qgis(const TempDir& dir, const std::vector<std::string>& paths) {
-  if (run_cli_program("/usr/bin/python3", {"-c", "import qgis.core"}, dir).exit_code != 0)
-    return "";
   return python_check(
       dir,
       "import os, sys\n"
@@ -524,7 +523,7 @@ TEST(CliOutputs, QgisRendersTheEmbeddedStyles) {
 // elevation (minus the depth), one nodestring per boundary segment (open ones first, an
 // island closed by its first node). Then QGIS's mesh reader (MDAL) opens it and the
 // UGRID file of the same run, in its CRS (the automatic projection, from the `crs`
-// variable), the first node at hgrid.ll's first node (skipped without python3-qgis).
+// variable), the first node at hgrid.ll's first node.
 TEST(CliOutputs, Sms2dmHoldsTheGr3sMeshWithElevationsAndNodestrings) {
   TempDir dir;
   const CliResult r = mesh_water_box(
@@ -589,7 +588,6 @@ TEST(CliOutputs, Sms2dmHoldsTheGr3sMeshWithElevationsAndNodestrings) {
   ASSERT_EQ(strings.size(), 3u);  // one open segment, the mainland coast and the island
 
   const std::string out = read_mesh_layers_in_qgis(dir, {dir.file("m.2dm"), dir.file("m.nc")});
-  if (out.empty()) GTEST_SKIP() << "python3-qgis is not installed";
   double low = 0;
   for (const auto& n : nodes) low = std::min(low, n[2]);
   std::ostringstream want;
@@ -690,7 +688,7 @@ TEST(CliOutputs, PliFilesHoldTheOpenBoundarySegments) {
 // line; the .cli lists every boundary node once (13 fields, K its line), walls on land
 // and prescribed elevation on the open segments, the outer contour counter-clockwise
 // from its south-west node, then the island clockwise. QGIS's mesh reader opens the
-// geometry (skipped without python3-qgis).
+// geometry.
 TEST(CliOutputs, TelemacGeometryAndBoundaryConditions) {
   TempDir dir;
   const CliResult r = mesh_water_box(dir, {"-o", dir.file("geo.slf"), "-o", dir.file("hgrid.gr3"),
@@ -798,7 +796,6 @@ TEST(CliOutputs, TelemacGeometryAndBoundaryConditions) {
                 dir.file("nodes.txt"), dir.file("depths.txt")});
 
   const std::string out = read_mesh_layers_in_qgis(dir, {dir.file("geo.slf")});
-  if (out.empty()) GTEST_SKIP() << "python3-qgis is not installed";
   // (MDAL reads BOTTOM as a data set, not as the vertices' z.)
   const std::string want =
       std::to_string(g.nodes.size()) + " " + std::to_string(2 * g.num_elements) + " [3] ";
