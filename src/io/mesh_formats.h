@@ -27,8 +27,8 @@ void write_vtk_legacy_file(const MeshView& v, const std::string& path, const std
 void write_ugrid_file(const MeshView& v, const std::string& path, const std::string& what);
 void write_2dm_file(const MeshView& v, const std::string& path, const std::string& what);
 // TELEMAC-2D: the geometry (the quads cut into triangles) and its boundary conditions.
-void write_slf_file(const MeshView& v, const std::string& path, const std::string& what);
-void write_cli_file(const MeshView& v, const std::string& path, const std::string& what);
+void write_telemac_files(const MeshView& v, const std::string& path, const std::string& what,
+                         const std::string& cli_path, const std::string& cli_what);
 // One open boundary segment as a D-Flow FM polyline, named after the stem of `what`.
 void write_pli_file(const MeshView& v, const BoundarySegment& segment, const std::string& path,
                     const std::string& what);

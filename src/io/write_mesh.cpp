@@ -267,9 +267,8 @@ std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
         break;
       }
       case MeshFormat::slf: {
-        write_slf_file(*view, tmp, o.path);
         const std::string cli = companion(o.path, ".cli");
-        write_cli_file(*view, set.add(cli, o.overwrite), cli);
+        write_telemac_files(*view, tmp, o.path, set.add(cli, o.overwrite), cli);
         files.push_back(cli);
         break;
       }

@@ -122,7 +122,8 @@ class RecordWriter {
 
 }  // namespace
 
-void write_slf_file(const MeshView& v, const std::string& path, const std::string& what) {
+void write_telemac_files(const MeshView& v, const std::string& path, const std::string& what,
+                         const std::string& cli_path, const std::string& cli_what) {
   const QuadMesh& m = *v.data->mesh;
   const std::vector<CliNode> boundary = cli_order(v);
   const int np = static_cast<int>(v.points.size());
@@ -161,11 +162,8 @@ void write_slf_file(const MeshView& v, const std::string& path, const std::strin
   w.doubles({0.0});  // the time step's time
   w.doubles(bottom);
   w.close();
-}
 
-void write_cli_file(const MeshView& v, const std::string& path, const std::string& what) {
-  OutputFile f(path, what);
-  const std::vector<CliNode> boundary = cli_order(v);
+  OutputFile f(cli_path, cli_what);
   for (std::size_t k = 0; k < boundary.size(); ++k) {
     const bool open = boundary[k].open;
     std::fprintf(f.get(), "%s 0.000 0.000 0.000 0.000 %d 0.000 0.000 0.000 %d %zu\n",
