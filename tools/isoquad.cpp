@@ -24,6 +24,7 @@
 #include "app/summary.h"
 #include "core/error.h"
 #include "gis/atomic_output.h"
+#include "gis/raster_field.h"
 #include "gis/read_polygons.h"
 #include "gis/write_domain.h"
 #include "io/write_fields.h"
@@ -160,6 +161,7 @@ struct FieldArgs {
   double cross_conformal = CrossParams{}.conformal;
   double background_factor = 0.25;
   double max_quads = FieldsOptions{}.max_quads;
+  std::optional<double> min_depth_m;  // --min-depth
   std::string plot_path;
 };
 
@@ -187,9 +189,18 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
   cmd->add_option("--refine-layer", f.sizing.refine_layer,
                   "Layer of --refine to read (default: its first)")
       ->group(g);
-  cmd->add_option("--bathymetry", f.sizing.bathymetry_path,
-                  "GDAL raster of depths in metres, positive down: vertex depths of the mesh outputs; "
-                  "with --wavelength-period or --slope-factor also the sizing")
+  cmd->add_option(
+         "--bathymetry", f.sizing.bathymetry_paths,
+         "GDAL raster of depths in metres, positive down: vertex depths of the mesh outputs; "
+         "with --wavelength-period or --slope-factor also the sizing. Repeat for several, "
+         "in priority order (a survey, then a regional grid, then GEBCO): at each point the "
+         "first with a depth gives it")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->group(g);
+  cmd->add_option("--min-depth", f.min_depth_m,
+                  "Depths shallower than this (metres, positive down) are written as it; the "
+                  "wavelength and slope rules count depths under max(1, this) as that")
       ->group(g);
   cmd->add_option("--wavelength-period", f.sizing.wavelength_period_s,
                   "Wave period T in seconds: h <= T sqrt(g d) / N")
@@ -256,7 +267,8 @@ FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {
   o.sizing = f.sizing;
   if (a.fe.target_size_m > 0) o.sizing.constant_m = a.fe.target_size_m;
   const bool explicit_source = o.sizing.constant_m || !o.sizing.expression.empty() ||
-                               !o.sizing.raster_path.empty() || !o.sizing.bathymetry_path.empty();
+                               !o.sizing.raster_path.empty() || !o.sizing.bathymetry_paths.empty();
+  if (f.min_depth_m) o.sizing.min_depth_m = std::max(o.sizing.min_depth_m, *f.min_depth_m);
   o.sizing.automatic = f.size_auto || !explicit_source;
   if (!std::isnan(f.cross_angle_deg) && !f.cross_raster.empty())
     throw Error(ErrorClass::usage, "options", "give --cross-angle or --cross-raster, not both");
@@ -328,6 +340,8 @@ int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
   const std::string ext = std::filesystem::path(a.output).extension().string();
   if (ext != ".vtu" && ext != ".gpkg")
     throw Error(ErrorClass::usage, "options", "'" + a.output + "': the fields are written as .vtu or .gpkg");
+  if (f.min_depth_m && f.sizing.bathymetry_paths.empty())
+    throw Error(ErrorClass::usage, "options", "--min-depth needs --bathymetry");
   const FieldsOptions options = fields_options(a, f);
   const auto t0 = std::chrono::steady_clock::now();
   FieldsResult r = build_fields(options, Progress(make_progress(a.quiet)));
@@ -541,9 +555,12 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
                       "--open-boundary FILE, or --domain water with --bbox");
   // --bathymetry alone gives the depths of the outputs; with a wavelength or slope rule
   // it also sets the sizing.
-  const std::string bathymetry = f.sizing.bathymetry_path;
+  const std::vector<std::string> bathymetry = f.sizing.bathymetry_paths;
+  for (const std::string& path : bathymetry) check_raster(path, "--bathymetry");
+  if (f.min_depth_m && bathymetry.empty())
+    throw Error(ErrorClass::usage, "options", "--min-depth needs --bathymetry");
   if (!bathymetry.empty() && !f.sizing.wavelength_period_s && !f.sizing.slope_factor)
-    f.sizing.bathymetry_path.clear();
+    f.sizing.bathymetry_paths.clear();
   if (!f.plot_path.empty()) check_output_path(f.plot_path, a.overwrite);
   if (!a.report_path.empty()) check_output_path(a.report_path, a.overwrite);
   if (tiling_only && f.plot_path.empty() && a.report_path.empty())
@@ -567,15 +584,21 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
   MeshJobOutputs job;
   job.meshes = outputs;
   job.write = write_options;
-  job.bathymetry_path = bathymetry;
+  job.bathymetry_paths = bathymetry;
+  job.min_depth_m = f.min_depth_m;
   job.plot_path = f.plot_path;
   job.report_path = a.report_path;
   job.overwrite = a.overwrite;
   job.command_line = command_line;
   const MeshJobWritten written = write_mesh_job_outputs(r, job);
-  if (written.num_without_depth && !a.quiet)
-    std::cerr << "isoquad: warning: " << written.num_without_depth
-              << " vertices lie outside the bathymetry (or on nodata); their depth is 0\n";
+  if (written.depths && written.depths->num_filled && !a.quiet) {
+    char buf[256];
+    std::snprintf(buf, sizeof buf,
+                  "isoquad: warning: %zu vertices lie outside the bathymetry (or next to nodata): "
+                  "each took the depth of the nearest vertex with one, up to %.0f m away\n",
+                  written.depths->num_filled, written.depths->max_fill_distance_m);
+    std::cerr << buf;
+  }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (result) result->quality = r.quality, result->seconds = seconds;
   if (!a.quiet) {
@@ -586,6 +609,12 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
       for (const std::string& file : written.files) std::cout << " " << file;
       std::cout << "\nboundary:     " << written.num_open_edges << " open edges, "
                 << written.num_land_edges << " land edges\n";
+    }
+    if (written.depths) {
+      std::printf("depths:       %.6g .. %.6g m", written.depths->min_m, written.depths->max_m);
+      if (written.depths->num_raised)
+        std::printf(", %zu vertices raised to --min-depth", written.depths->num_raised);
+      std::printf("\n");
     }
     if (!f.plot_path.empty()) std::cout << "plot:         " << f.plot_path << "\n";
     std::printf("time:         %.3f s, peak memory %.0f MB\n", seconds, process_peak_mb());

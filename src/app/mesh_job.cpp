@@ -1,5 +1,7 @@
 #include "app/mesh_job.h"
 
+#include "app/vertex_depths.h"
+
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -246,7 +248,7 @@ std::string format_mesh_summary(const MeshResult& r) {
 }
 
 std::string mesh_report_json(const MeshResult& r, const std::string& command_line,
-                             const MeshBoundary* boundary) {
+                             const MeshBoundary* boundary, const VertexDepths* depths) {
   JsonWriter j;
   j.begin_object();
   j.value("isoquad_version", ISOQUAD_VERSION).value("command_line", command_line);
@@ -332,6 +334,14 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
           .value("num_land_segments", land)
           .end_object();
     }
+    if (depths)
+      j.begin_object("depths")
+          .value("min_m", depths->min_m)
+          .value("max_m", depths->max_m)
+          .value("num_filled", depths->num_filled)
+          .value("max_fill_distance_m", depths->max_fill_distance_m)
+          .value("num_raised_to_min_depth", depths->num_raised)
+          .end_object();
     j.begin_object("smoothing")
         .value("tiling_attempts", r.attempts)
         .array("tiling_variants", r.tiling_variants)

@@ -15,6 +15,8 @@
 
 namespace isoquad {
 
+struct VertexDepths;
+
 struct MeshOptions {
   FieldsOptions fields;
   TilingParams tiling;
@@ -59,8 +61,10 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress = Pro
 
 std::string format_mesh_summary(const MeshResult& r);
 // The JSON report; with `boundary` (extract_boundary() of the quads, as the outputs
-// have it), its open and land edges and segments too.
+// have it), its open and land edges and segments too; with `depths`, how the vertices'
+// depths were made.
 std::string mesh_report_json(const MeshResult& r, const std::string& command_line,
-                             const MeshBoundary* boundary = nullptr);
+                             const MeshBoundary* boundary = nullptr,
+                             const VertexDepths* depths = nullptr);
 
 }  // namespace isoquad

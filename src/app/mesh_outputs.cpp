@@ -43,19 +43,6 @@ std::vector<std::pair<std::string, std::string>> quality_items(const QualitySumm
           {"boundary_departure_p95_h", format_number(q.boundary_departure_p95_h)}};
 }
 
-std::size_t sample_depths(const std::string& path, const Domain& domain, const QuadMesh& mesh,
-                          std::vector<double>& depth) {
-  const RasterField raster(path, "--bathymetry", CrsInfo{domain.crs_wkt, domain.crs_name});
-  std::size_t missing = 0;
-  depth.resize(mesh.points.size());
-  for (std::size_t i = 0; i < mesh.points.size(); ++i) {
-    const double d = raster.sample(mesh.points[i]);
-    depth[i] = std::isfinite(d) ? d : 0.0;
-    missing += !std::isfinite(d);
-  }
-  return missing;
-}
-
 MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs& o) {
   OutputSet set;
   MeshJobWritten written;
@@ -75,9 +62,12 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
         front.open_boundary_tolerance_m + 1e-7 * extent, front.open_boundary_chord_share);
     written.num_open_edges = data.boundary.num_open_edges;
     written.num_land_edges = data.boundary.num_land_edges;
-    if (!o.bathymetry_path.empty())
-      written.num_without_depth =
-          sample_depths(o.bathymetry_path, front.domain, r.quads, data.depth);
+    if (!o.bathymetry_paths.empty()) {
+      const RasterStack rasters(o.bathymetry_paths, "--bathymetry",
+                                CrsInfo{front.domain.crs_wkt, front.domain.crs_name});
+      written.depths = vertex_depths(rasters, r.quads, o.min_depth_m);
+      data.depth = std::move(written.depths->depth);
+    }
     data.command_line = o.command_line;
     data.quality = quality_items(r.quality);
     written.files = write_mesh_outputs(data, o.meshes, o.write, set);
@@ -97,7 +87,8 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
   }
   if (!o.report_path.empty())
     write_text_file(set.add(o.report_path, o.overwrite),
-                    mesh_report_json(r, o.command_line, r.has_quads ? &data.boundary : nullptr),
+                    mesh_report_json(r, o.command_line, r.has_quads ? &data.boundary : nullptr,
+                                     written.depths ? &*written.depths : nullptr),
                     true);
   set.commit_all();
   return written;

@@ -3,11 +3,13 @@
 // the JSON report, moved into place together only when all are complete.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "app/mesh_job.h"
+#include "app/vertex_depths.h"
 #include "io/write_mesh.h"
 
 namespace isoquad {
@@ -15,9 +17,10 @@ namespace isoquad {
 struct MeshJobOutputs {
   std::vector<MeshOutput> meshes;  // check_mesh_outputs() them before the meshing
   MeshWriteOptions write;
-  // GDAL raster of depths (metres, positive down, any CRS): the vertices' depths, 0
-  // where it has no value. Empty: none (unknown depths).
-  std::string bathymetry_path;
+  // GDAL rasters of depths (metres, positive down, any CRS), in priority order: the
+  // vertices' depths (vertex_depths()). Empty: none (unknown depths).
+  std::vector<std::string> bathymetry_paths;
+  std::optional<double> min_depth_m;  // --min-depth: shallower depths are raised to it
   std::string plot_path;     // PNG: the mesh, or the tiling when it stopped early
   std::string report_path;   // JSON: mesh_report_json()
   bool overwrite = false;    // for the plot and the report (the meshes have their own)
@@ -26,7 +29,7 @@ struct MeshJobOutputs {
 
 struct MeshJobWritten {
   std::size_t num_open_edges = 0, num_land_edges = 0;  // extract_boundary()
-  std::size_t num_without_depth = 0;  // vertices outside the bathymetry or on nodata
+  std::optional<VertexDepths> depths;  // with the bathymetry (the depths themselves moved out)
   std::vector<std::string> files;     // the mesh files written
 };
 
@@ -35,10 +38,5 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& result, const MeshJobOut
 
 // The quality summary as (name, value) pairs, as the GeoPackage's metadata keeps them.
 std::vector<std::pair<std::string, std::string>> quality_items(const QualitySummary& q);
-
-// Every vertex's depth from the raster (bilinear; 0 where it has no value) into
-// `depth`. Returns the number of vertices without one.
-std::size_t sample_depths(const std::string& path, const Domain& domain, const QuadMesh& mesh,
-                          std::vector<double>& depth);
 
 }  // namespace isoquad

@@ -44,7 +44,7 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
   const CrsInfo crs{domain.crs_wkt, domain.crs_name, false, true, 1.0};
 
   const bool explicit_source = params.constant_m || !params.expression.empty() ||
-                               !params.raster_path.empty() || !params.bathymetry_path.empty();
+                               !params.raster_path.empty() || !params.bathymetry_paths.empty();
   const bool automatic = params.automatic || !explicit_source;
   hmax_ = params.hmax_m > 0 ? params.hmax_m : std::numeric_limits<double>::infinity();
   hmin_ = params.hmin_m;
@@ -83,13 +83,14 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
     raster_ = std::make_unique<RasterField>(params.raster_path, "--size-raster", crs);
     summary_.sources.push_back("raster " + params.raster_path);
   }
-  if (!params.bathymetry_path.empty()) {
+  if (!params.bathymetry_paths.empty()) {
     if (params.wavelength_period_s <= 0 && params.slope_factor <= 0)
       usage("--bathymetry needs --wavelength-period with --cells-per-wavelength, or --slope-factor");
     if (params.wavelength_period_s > 0 && params.cells_per_wavelength <= 0)
       usage("--wavelength-period needs --cells-per-wavelength");
-    bathymetry_ = std::make_unique<RasterField>(params.bathymetry_path, "--bathymetry", crs);
-    summary_.sources.push_back("bathymetry " + params.bathymetry_path);
+    bathymetry_ = std::make_unique<RasterStack>(params.bathymetry_paths, "--bathymetry", crs);
+    for (const std::string& path : params.bathymetry_paths)
+      summary_.sources.push_back("bathymetry " + path);
   }
   if (!params.refine_path.empty()) {
     SizeFeatures in = read_size_features(params.refine_path, params.refine_layer,

@@ -19,6 +19,7 @@ struct BackgroundMesh;
 class BoundaryFeatureSize;
 class FeatureSizes;
 class RasterField;
+class RasterStack;
 
 // A place where the sizes must be smaller than the sources say: at most size_m within
 // radius_m of centre, growing by the gradation beyond (a cone, already graded). Not
@@ -37,11 +38,13 @@ struct SizingParams {
   std::string expression;            // --size-expr, in x and y (metres, meshing CRS)
   std::string raster_path;           // --size-raster: sizes in metres, any GDAL raster
   // Ocean-model sizing from a depth raster (metres, positive down):
-  std::string bathymetry_path;        // --bathymetry
+  // --bathymetry, in priority order: the first with a depth at a point gives it.
+  std::vector<std::string> bathymetry_paths;
   double wavelength_period_s = 0.0;   // --wavelength-period T (0: off)
   double cells_per_wavelength = 0.0;  // --cells-per-wavelength N: h <= T sqrt(g d) / N
   double slope_factor = 0.0;          // --slope-factor R: h <= 2 pi d / (R |grad d|) (0: off)
   double min_depth_m = 1.0;           // depths below this (and dry land) count as this
+                                      // (--min-depth when larger)
   // --refine: vector features (any OGR format with a CRS) whose attribute refine_field
   // gives the size in metres inside their polygons and on their lines and points,
   // growing by the gradation away from them; not clamped to hmin.
@@ -95,7 +98,7 @@ class SizingOracle {
   std::unique_ptr<BoundaryFeatureSize> automatic_;
   std::unique_ptr<Expression> expression_;
   std::unique_ptr<RasterField> raster_;
-  std::unique_ptr<RasterField> bathymetry_;
+  std::unique_ptr<RasterStack> bathymetry_;
   std::unique_ptr<FeatureSizes> features_;
   double gradient_step_m_ = 1.0;
 };

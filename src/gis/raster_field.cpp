@@ -13,13 +13,19 @@
 
 namespace isoquad {
 
-RasterField::RasterField(const std::string& path, const std::string& what,
-                         const CrsInfo& query_crs)
-    : path_(path) {
+namespace {
+
+[[noreturn]] void raster_error(const std::string& what, const std::string& path,
+                               const std::string& problem) {
+  throw Error(ErrorClass::input, "raster", what + " '" + path + "': " + problem);
+}
+
+// The dataset of `path`, checked: a readable raster with a band and a usable
+// geotransform. `inverse`: the geotransform's inverse. Throws Error(input).
+std::unique_ptr<GDALDataset> open_raster(const std::string& path, const std::string& what,
+                                         double inverse[6]) {
   ensure_gdal_registered();
-  auto fail = [&](const std::string& problem) {
-    throw Error(ErrorClass::input, "raster", what + " '" + path + "': " + problem);
-  };
+  auto fail = [&](const std::string& problem) { raster_error(what, path, problem); };
   struct stat st {};
   if (path.rfind("/vsi", 0) != 0 && stat(path.c_str(), &st) != 0) fail("no such file");
   GdalErrorCapture capture;
@@ -27,11 +33,25 @@ RasterField::RasterField(const std::string& path, const std::string& what,
       GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!ds) fail("cannot read as a raster (" + capture.last_message() + ")");
   if (ds->GetRasterCount() < 1) fail("has no raster band");
-  width_ = ds->GetRasterXSize();
-  height_ = ds->GetRasterYSize();
   double gt[6];
   if (ds->GetGeoTransform(gt) != CE_None) fail("has no georeferencing (geotransform)");
-  if (!GDALInvGeoTransform(gt, inverse_)) fail("has a singular geotransform");
+  if (!GDALInvGeoTransform(gt, inverse)) fail("has a singular geotransform");
+  return ds;
+}
+
+}  // namespace
+
+void check_raster(const std::string& path, const std::string& what) {
+  double inverse[6];
+  open_raster(path, what, inverse);
+}
+
+RasterField::RasterField(const std::string& path, const std::string& what, const CrsInfo& query_crs)
+    : path_(path) {
+  const std::unique_ptr<GDALDataset> ds = open_raster(path, what, inverse_);
+  GdalErrorCapture capture;
+  width_ = ds->GetRasterXSize();
+  height_ = ds->GetRasterYSize();
   GDALRasterBand* band = ds->GetRasterBand(1);
   int ok = 0;
   nodata_ = band->GetNoDataValue(&ok);
@@ -39,7 +59,7 @@ RasterField::RasterField(const std::string& path, const std::string& what,
   values_.resize(static_cast<std::size_t>(width_) * height_);
   if (band->RasterIO(GF_Read, 0, 0, width_, height_, values_.data(), width_, height_, GDT_Float32,
                      0, 0) != CE_None)
-    fail("cannot read band 1 (" + capture.last_message() + ")");
+    raster_error(what, path, "cannot read band 1 (" + capture.last_message() + ")");
   const OGRSpatialReference* srs = ds->GetSpatialRef();
   if (srs) {
     CrsInfo raster_crs = crs_from_srs(*srs);
@@ -67,6 +87,28 @@ double RasterField::sample(const Point2& p) const {
   };
   return (1 - ty) * ((1 - tx) * at(i0, j0) + tx * at(i1, j0)) +
          ty * ((1 - tx) * at(i0, j1) + tx * at(i1, j1));
+}
+
+RasterStack::RasterStack(const std::vector<std::string>& paths, const std::string& what,
+                         const CrsInfo& query_crs) {
+  for (const std::string& path : paths)
+    rasters_.push_back(std::make_unique<RasterField>(path, what, query_crs));
+}
+
+RasterStack::~RasterStack() = default;
+
+double RasterStack::sample(const Point2& p) const {
+  for (const auto& raster : rasters_) {
+    const double v = raster->sample(p);
+    if (!std::isnan(v)) return v;
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string RasterStack::paths_text() const {
+  std::string text;
+  for (const auto& raster : rasters_) text += (text.empty() ? "'" : ", '") + raster->path() + "'";
+  return text;
 }
 
 }  // namespace isoquad

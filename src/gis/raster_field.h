@@ -39,4 +39,29 @@ class RasterField {
   std::unique_ptr<CrsTransform> to_raster_;
 };
 
+// Rasters in priority order (a harbour survey, then a regional grid, then a global
+// one): at a point, the first with a value there gives it. Throws as RasterField.
+class RasterStack {
+ public:
+  RasterStack(const std::vector<std::string>& paths, const std::string& what,
+              const CrsInfo& query_crs);
+  ~RasterStack();
+  RasterStack(const RasterStack&) = delete;
+  RasterStack& operator=(const RasterStack&) = delete;
+
+  // The first raster's value at p that is not NaN; NaN where none has one.
+  double sample(const Point2& p) const;
+
+  std::size_t size() const { return rasters_.size(); }
+  // 'a.tif', 'b.tif' (for messages).
+  std::string paths_text() const;
+
+ private:
+  std::vector<std::unique_ptr<RasterField>> rasters_;
+};
+
+// Opens `path` as RasterField would, without reading its values: the errors (Error
+// input) before a long job rather than after it.
+void check_raster(const std::string& path, const std::string& what);
+
 }  // namespace isoquad

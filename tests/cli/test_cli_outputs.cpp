@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -828,14 +829,16 @@ TEST(CliOutputs, OpenBoundaryFollowsTheBboxWithAndWithoutSimplification) {
   }
 }
 
-// Vertices outside the bathymetry get depth 0 and a warning that counts them.
-TEST(CliOutputs, VerticesOutsideTheBathymetryGetZeroDepth) {
+// Vertices outside the bathymetry take the depth of the nearest vertex with one (along
+// the mesh's edges), with a warning that counts them; the report says so too.
+TEST(CliOutputs, VerticesOutsideTheBathymetryTakeTheNearestDepth) {
   TempDir dir;
   const std::string dem = bathymetry(dir, 20);  // 4.7 W to 4.5 W: the west of the bbox
-  const CliResult r = run_cli({"mesh", water_input(dir), "--domain", "water", "--bbox",
-                               "-4.6,48.2,-4.4,48.35", "--size", "800", "--bathymetry", dem, "-o",
-                               dir.file("hgrid.gr3"), "-o", dir.file("m.nc")},
-                              dir);
+  const CliResult r =
+      run_cli({"mesh", water_input(dir), "--domain", "water", "--bbox", "-4.6,48.2,-4.4,48.35",
+               "--size", "800", "--bathymetry", dem, "-o", dir.file("hgrid.gr3"), "-o",
+               dir.file("m.nc"), "--report", dir.file("m.json")},
+              dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // The UGRID file in the automatic local projection, depth on nodes as in the gr3.
   python_check(dir,
@@ -851,19 +854,92 @@ TEST(CliOutputs, VerticesOutsideTheBathymetryGetZeroDepth) {
              "assert np.allclose(gr3[:, 1], d['mesh_node_x'][:], atol=1e-6)\n",
              {dir.file("m.nc"), dir.file("hgrid.gr3")});
   const Gr3 ll = parse_gr3(dir.file("hgrid.ll"));
-  std::size_t zero = 0;
+  // The depths where the raster has them (it ends at 4.5 W: past its last pixel centre
+  // the values are its edge's), the set every vertex's depth must come from.
+  std::vector<double> sampled;
+  std::size_t filled = 0;
+  for (const auto& n : ll.nodes) {
+    if (n[0] < -4.505) {
+      EXPECT_NEAR(n[2], depth_at(n[0], n[1]), 0.01);
+    }
+    if (n[0] <= -4.5) {
+      sampled.push_back(n[2]);
+    } else {
+      ++filled;
+    }
+  }
+  for (const auto& n : ll.nodes)
+    EXPECT_TRUE(std::any_of(sampled.begin(), sampled.end(),
+                            [&](double z) { return std::abs(z - n[2]) < 1e-6; }))
+        << n[0] << " " << n[1] << " " << n[2];
+  EXPECT_GT(filled, ll.nodes.size() / 4);
+  EXPECT_NE(
+      r.err.find("warning: " + std::to_string(filled) + " vertices lie outside the bathymetry"),
+      std::string::npos)
+      << r.err;
+  const std::string report = read_file(dir.file("m.json"));
+  EXPECT_NE(report.find("\"num_filled\": " + std::to_string(filled) + ","), std::string::npos)
+      << report;
+}
+
+// Several rasters: at each vertex the first with a depth gives it; --min-depth raises the
+// shallower ones; a raster that cannot be read stops the run before the meshing.
+TEST(CliOutputs, BathymetryRastersInPriorityOrderAndMinimumDepth) {
+  TempDir dir;
+  const std::string west = bathymetry(dir, 20);  // 4.7 W to 4.5 W
+  const std::string deep = dir.file("deep.tif");
+  {
+    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
+    GDALDataset* ds = drv->Create(deep.c_str(), 4, 4, 1, GDT_Float32, nullptr);
+    double gt[6] = {-4.8, 0.15, 0, 48.5, 0, -0.15};
+    ds->SetGeoTransform(gt);
+    OGRSpatialReference srs;
+    srs.importFromEPSG(4326);
+    ds->SetSpatialRef(&srs);
+    std::vector<float> v(16, 500.0f);
+    EXPECT_EQ(
+        ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 4, 4, v.data(), 4, 4, GDT_Float32, 0, 0),
+        CE_None);
+    GDALClose(ds);
+  }
+  const std::vector<std::string> box = {"mesh",   water_input(dir),       "--domain", "water",
+                                        "--bbox", "-4.6,48.2,-4.4,48.35", "--size",   "800"};
+  auto run = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = box;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args, dir);
+  };
+  CliResult r = run({"--bathymetry", west, "--bathymetry", deep, "-o", dir.file("a.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  Gr3 ll = parse_gr3(dir.file("a.ll"));
   for (const auto& n : ll.nodes) {
     if (n[0] < -4.51) {
       EXPECT_NEAR(n[2], depth_at(n[0], n[1]), 0.01);
     } else if (n[0] > -4.49) {
-      EXPECT_EQ(n[2], 0.0);
+      EXPECT_NEAR(n[2], 500.0, 1e-6);
     }
-    zero += n[2] == 0.0;
   }
-  EXPECT_GT(zero, ll.nodes.size() / 4);
-  EXPECT_NE(r.err.find("warning: " + std::to_string(zero) + " vertices lie outside the bathymetry"),
+  // The other order: the deep raster covers everything.
+  r = run(
+      {"--bathymetry", deep, "--bathymetry", west, "--min-depth", "600", "-o", dir.file("b.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  ll = parse_gr3(dir.file("b.ll"));
+  for (const auto& n : ll.nodes) EXPECT_NEAR(n[2], 600.0, 1e-6);
+  EXPECT_NE(r.out.find("depths:       600 .. 600 m, " + std::to_string(ll.nodes.size()) +
+                       " vertices raised to --min-depth"),
             std::string::npos)
-      << r.err;
+      << r.out;
+  // An unreadable raster: exit 3 at once, naming it, nothing written.
+  write_file(dir.file("bad.tif"), "not a raster");
+  r = run({"--bathymetry", west, "--bathymetry", dir.file("bad.tif"), "-o", dir.file("c.gr3")});
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("bad.tif"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.find("quads:"), std::string::npos) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("c.gr3")));
+  // --min-depth alone means nothing.
+  r = run({"--min-depth", "5", "-o", dir.file("d.gr3")});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
 }
 
 TEST(CliOutputs, GoldenToolStartsACaseThatChecksAndCatchesAChange) {

@@ -47,7 +47,7 @@ TEST(MeshJobOutputs, WritesEveryMeshThePlotAndTheReport) {
   // A land domain: every boundary edge is land, as many as the mesh has.
   EXPECT_EQ(w.num_open_edges, 0u);
   EXPECT_EQ(w.num_land_edges, boundary_edges(r.quads).size());
-  EXPECT_EQ(w.num_without_depth, 0u);
+  EXPECT_FALSE(w.depths);  // no bathymetry
   EXPECT_NE(
       read_file(dir.file("m.json")).find("\"num_quads\": " + std::to_string(r.quality.num_quads)),
       std::string::npos);

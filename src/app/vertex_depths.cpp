@@ -1,0 +1,94 @@
+#include "app/vertex_depths.h"
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <queue>
+#include <utility>
+
+#include "core/error.h"
+
+namespace isoquad {
+
+VertexDepths vertex_depths(const RasterStack& rasters, const QuadMesh& mesh,
+                           std::optional<double> min_depth_m) {
+  const std::size_t n = mesh.points.size();
+  VertexDepths out;
+  out.depth.assign(n, 0.0);
+  // Dijkstra from every vertex with a value, over the quads' sides: a vertex without one
+  // takes the depth of the first vertex with one to reach it (ties to the lower id).
+  std::vector<double> reach(n, INFINITY);
+  using Entry = std::pair<double, std::size_t>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  for (std::size_t v = 0; v < n; ++v) {
+    const double d = rasters.sample(mesh.points[v]);
+    if (std::isnan(d)) continue;
+    out.depth[v] = d;
+    reach[v] = 0.0;
+    queue.push({0.0, v});
+  }
+  if (queue.empty())
+    throw Error(ErrorClass::input, "bathymetry",
+                "--bathymetry " + rasters.paths_text() +
+                    ": no vertex of the mesh lies where it has a depth (check its extent, its CRS "
+                    "and its nodata value)");
+  if (queue.size() < n) {
+    std::vector<std::size_t> start(n + 1, 0);
+    for (const auto& q : mesh.quads)
+      for (int v : q) start[v + 1] += 2;
+    for (std::size_t v = 0; v < n; ++v) start[v + 1] += start[v];
+    std::vector<int> next(start.back());
+    std::vector<std::size_t> fill(start.begin(), start.end() - 1);
+    for (const auto& q : mesh.quads)
+      for (int i = 0; i < 4; ++i) {
+        const int a = q[i], b = q[(i + 1) % 4];
+        next[fill[a]++] = b;
+        next[fill[b]++] = a;
+      }
+    auto spread = [&] {
+      while (!queue.empty()) {
+        const auto [d, v] = queue.top();
+        queue.pop();
+        if (d > reach[v]) continue;
+        for (std::size_t k = start[v]; k < start[v + 1]; ++k) {
+          const std::size_t w = static_cast<std::size_t>(next[k]);
+          const double dw = d + distance(mesh.points[v], mesh.points[w]);
+          if (dw < reach[w]) {
+            reach[w] = dw;
+            out.depth[w] = out.depth[v];
+            queue.push({dw, w});
+          }
+        }
+      }
+    };
+    spread();
+    // A part of the mesh that no vertex with a depth reaches (an island's own mesh off
+    // the rasters): from the vertex with a depth nearest its first vertex.
+    for (std::size_t v = 0; v < n; ++v) {
+      if (reach[v] < INFINITY) continue;
+      std::size_t nearest = n;
+      double best = INFINITY;
+      for (std::size_t w = 0; w < n; ++w)
+        if (reach[w] == 0.0 && distance(mesh.points[v], mesh.points[w]) < best)
+          best = distance(mesh.points[v], mesh.points[w]), nearest = w;
+      reach[v] = best;
+      out.depth[v] = out.depth[nearest];
+      queue.push({best, v});
+      spread();
+    }
+    for (std::size_t v = 0; v < n; ++v)
+      if (reach[v] > 0.0) {
+        ++out.num_filled;
+        out.max_fill_distance_m = std::max(out.max_fill_distance_m, reach[v]);
+      }
+  }
+  if (min_depth_m)
+    for (double& d : out.depth)
+      if (d < *min_depth_m) d = *min_depth_m, ++out.num_raised;
+  const auto [lo, hi] = std::minmax_element(out.depth.begin(), out.depth.end());
+  out.min_m = *lo;
+  out.max_m = *hi;
+  return out;
+}
+
+}  // namespace isoquad

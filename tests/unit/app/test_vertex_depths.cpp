@@ -1,0 +1,171 @@
+// The vertices' depths (app/vertex_depths.h): rasters in priority order, the vertices
+// without a depth filled from the nearest with one, the minimum depth.
+#include "app/vertex_depths.h"
+
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <optional>
+
+#include "core/error.h"
+#include "gis/gdal_env.h"
+#include "support/test_support.h"
+
+using namespace isoquad;
+using namespace isoquad::test;
+
+namespace {
+
+// A GeoTIFF without a CRS (so in the query CRS) of nx x ny pixels of 50 m from (x0, y1)
+// down and right, with value(x, y) at the pixel centres; NaN values written as the
+// band's nodata (-9999).
+std::string write_raster(const TempDir& dir, const std::string& name, double x0, double y1, int nx,
+                         int ny, const std::function<double(double, double)>& value) {
+  ensure_gdal_registered();
+  const std::string path = dir.file(name);
+  GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
+  GDALDataset* ds = drv->Create(path.c_str(), nx, ny, 1, GDT_Float32, nullptr);
+  double gt[6] = {x0, 50, 0, y1, 0, -50};
+  ds->SetGeoTransform(gt);
+  std::vector<float> v(static_cast<std::size_t>(nx) * ny);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const double d = value(x0 + (i + 0.5) * 50, y1 - (j + 0.5) * 50);
+      v[static_cast<std::size_t>(j) * nx + i] = std::isnan(d) ? -9999.0f : static_cast<float>(d);
+    }
+  GDALRasterBand* band = ds->GetRasterBand(1);
+  band->SetNoDataValue(-9999);
+  EXPECT_EQ(band->RasterIO(GF_Write, 0, 0, nx, ny, v.data(), nx, ny, GDT_Float32, 0, 0), CE_None);
+  GDALClose(ds);
+  return path;
+}
+
+// (nx + 1) x (ny + 1) vertices 100 m apart from (x0, 0), quads counter-clockwise.
+void add_grid(QuadMesh& m, double x0, int nx, int ny) {
+  const int first = static_cast<int>(m.points.size());
+  for (int j = 0; j <= ny; ++j)
+    for (int i = 0; i <= nx; ++i) m.points.push_back({x0 + 100.0 * i, 100.0 * j});
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i) {
+      const int a = first + j * (nx + 1) + i;
+      m.quads.push_back({a, a + 1, a + nx + 2, a + nx + 1});
+    }
+}
+
+QuadMesh grid() {
+  QuadMesh m;
+  add_grid(m, 0, 10, 5);  // x 0..1000, y 0..500
+  return m;
+}
+
+const CrsInfo kNoCrs{};
+
+// West: x up to 500 m, depth 10 + y / 100 (linear in y: bilinear sampling is exact).
+std::string west(const TempDir& dir) {
+  return write_raster(dir, "west.tif", -50, 550, 11, 12,
+                      [](double, double y) { return 10 + y / 100; });
+}
+// Everywhere on the grid, depth 100 + y / 100.
+std::string whole(const TempDir& dir) {
+  return write_raster(dir, "whole.tif", -50, 550, 22, 12,
+                      [](double, double y) { return 100 + y / 100; });
+}
+
+}  // namespace
+
+TEST(VertexDepths, TheFirstRasterWithADepthGivesIt) {
+  TempDir dir;
+  const QuadMesh m = grid();
+  const RasterStack survey_first({west(dir), whole(dir)}, "--bathymetry", kNoCrs);
+  const VertexDepths d = vertex_depths(survey_first, m, std::nullopt);
+  for (std::size_t v = 0; v < m.points.size(); ++v) {
+    const Point2 p = m.points[v];
+    EXPECT_NEAR(d.depth[v], (p.x <= 500 ? 10 : 100) + p.y / 100, 1e-4) << p.x << " " << p.y;
+  }
+  EXPECT_EQ(d.num_filled, 0u);
+  EXPECT_EQ(d.num_raised, 0u);
+  EXPECT_NEAR(d.min_m, 10, 1e-4);
+  EXPECT_NEAR(d.max_m, 105, 1e-4);
+  const RasterStack whole_first({whole(dir), west(dir)}, "--bathymetry", kNoCrs);
+  for (double z : vertex_depths(whole_first, m, std::nullopt).depth) EXPECT_GE(z, 100 - 1e-4);
+}
+
+TEST(VertexDepths, NodataFallsThroughToTheNextRaster) {
+  TempDir dir;
+  const QuadMesh m = grid();
+  // A hole of nodata over x in [300, 700]: sampling next to it gives none either.
+  const std::string holed =
+      write_raster(dir, "holed.tif", -50, 550, 22, 12,
+                   [](double x, double y) { return x > 300 && x < 700 ? NAN : 100 + y / 100; });
+  const std::string flat =
+      write_raster(dir, "flat.tif", -50, 550, 22, 12, [](double, double) { return 7.0; });
+  const VertexDepths d =
+      vertex_depths(RasterStack({holed, flat}, "--bathymetry", kNoCrs), m, std::nullopt);
+  int from_flat = 0;
+  for (std::size_t v = 0; v < m.points.size(); ++v) {
+    const Point2 p = m.points[v];
+    if (p.x >= 300 && p.x <= 700) {
+      EXPECT_NEAR(d.depth[v], 7.0, 1e-6);
+    }
+    if (p.x <= 200 || p.x >= 800) {
+      EXPECT_NEAR(d.depth[v], 100 + p.y / 100, 1e-4);
+    }
+    from_flat += d.depth[v] == 7.0;
+  }
+  EXPECT_GE(from_flat, 5 * 6);
+  EXPECT_EQ(d.num_filled, 0u);
+}
+
+TEST(VertexDepths, VerticesWithoutADepthTakeTheNearestAlongTheEdges) {
+  TempDir dir;
+  const QuadMesh m = grid();
+  const VertexDepths d =
+      vertex_depths(RasterStack({west(dir)}, "--bathymetry", kNoCrs), m, std::nullopt);
+  // East of 500 m each vertex takes the depth of the vertex at 500 m on its row.
+  for (std::size_t v = 0; v < m.points.size(); ++v)
+    EXPECT_NEAR(d.depth[v], 10 + m.points[v].y / 100, 1e-4) << v;
+  EXPECT_EQ(d.num_filled, 5u * 6u);
+  EXPECT_NEAR(d.max_fill_distance_m, 500, 1e-9);
+}
+
+TEST(VertexDepths, APartOfTheMeshOffTheRastersTakesTheNearestDepth) {
+  TempDir dir;
+  QuadMesh m = grid();
+  add_grid(m, 3000, 2, 2);  // x 3000..3200, y 0..200: no raster reaches it
+  const VertexDepths d =
+      vertex_depths(RasterStack({whole(dir)}, "--bathymetry", kNoCrs), m, std::nullopt);
+  // From the vertex with a depth nearest (3000, 0): (1000, 0), depth 100.
+  for (std::size_t v = 66; v < m.points.size(); ++v) EXPECT_NEAR(d.depth[v], 100, 1e-4) << v;
+  EXPECT_EQ(d.num_filled, 9u);
+  EXPECT_NEAR(d.max_fill_distance_m, 2000 + 200 + 200, 1e-9);
+}
+
+TEST(VertexDepths, ShallowDepthsAreRaisedToTheMinimum) {
+  TempDir dir;
+  const QuadMesh m = grid();
+  const VertexDepths d = vertex_depths(RasterStack({whole(dir)}, "--bathymetry", kNoCrs), m, 102.0);
+  std::size_t raised = 0;
+  for (std::size_t v = 0; v < m.points.size(); ++v) {
+    const double asked = 100 + m.points[v].y / 100;
+    EXPECT_NEAR(d.depth[v], std::max(asked, 102.0), 1e-4);
+    raised += asked < 102.0 - 1e-6;
+  }
+  EXPECT_EQ(raised, 2u * 11u);  // the rows at y = 0 and 100
+  EXPECT_EQ(d.num_raised, raised);
+  EXPECT_NEAR(d.min_m, 102, 1e-12);
+}
+
+TEST(VertexDepths, ARasterThatMissesTheMeshIsAnError) {
+  TempDir dir;
+  const std::string far =
+      write_raster(dir, "far.tif", 50000, 50550, 10, 10, [](double, double) { return 5.0; });
+  try {
+    vertex_depths(RasterStack({far}, "--bathymetry", kNoCrs), grid(), std::nullopt);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::input);
+    EXPECT_NE(std::string(e.what()).find("far.tif"), std::string::npos) << e.what();
+  }
+}
