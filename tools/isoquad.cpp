@@ -5,17 +5,21 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cctype>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 #include <filesystem>
 #include <iostream>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <string>
+#include <thread>
 
 #include "app/fields_job.h"
 #include "app/front_end.h"
@@ -378,6 +382,7 @@ struct MeshArgs {
   std::string conform_rule = "lattice";
   std::string init = "front";
   std::string each;  // --each FIELD: a mesh per value of the attribute
+  int jobs = 1;      // --jobs: regions of --each meshed at once
 };
 
 // For `domain` (its summary says how much of the boundary the lines follow) and `mesh`.
@@ -398,6 +403,12 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "A mesh per value of this attribute over the selected features (each value's "
                   "features together): {} in -o, --report and --plot stands for the value; a "
                   "region that fails does not stop the others")
+      ->group("Selection");
+  cmd->add_option("--jobs", m.jobs,
+                  "With --each: regions meshed at once, each on its own thread (default 1). Every "
+                  "region's files are the same; their summaries print in order as they finish, "
+                  "without progress; the peak memory is that of the regions running together")
+      ->check(CLI::PositiveNumber)
       ->group("Selection");
   const char* g = "Tiling (paper, sections 2.2 to 2.5)";
   cmd->add_option("--init", m.init,
@@ -535,8 +546,26 @@ struct RegionResult {
   double seconds = 0.0;
 };
 
+// Where a mesh job prints: its summary, its warnings, and whether it shows progress
+// (regions meshed at once print into buffers, without progress).
+struct Console {
+  std::ostream& out = std::cout;
+  std::ostream& err = std::cerr;
+  bool progress = true;
+};
+
+// printf into a stream.
+template <typename... Args>
+void print(std::ostream& os, const char* format, Args... args) {
+  char buf[512];
+  std::snprintf(buf, sizeof buf, format, args...);
+  os << buf;
+}
+
 int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& command_line,
-             RegionResult* result = nullptr) {
+             RegionResult* result = nullptr, const Console& console = Console()) {
+  std::ostream& out = console.out;
+  std::ostream& err = console.err;
   finish_front_end_args(a);
   const bool tiling_only = !m.stop_after.empty();
   const std::vector<MeshOutput> outputs = mesh_outputs(a, m);
@@ -580,7 +609,7 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
                               : m.stop_after == "resplit" ? TilingStep::resplit
                                                           : TilingStep::none;
   const auto t0 = std::chrono::steady_clock::now();
-  MeshResult r = build_mesh(options, Progress(make_progress(a.quiet)));
+  MeshResult r = build_mesh(options, Progress(make_progress(a.quiet || !console.progress)));
   MeshJobOutputs job;
   job.meshes = outputs;
   job.write = write_options;
@@ -591,35 +620,32 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
   job.overwrite = a.overwrite;
   job.command_line = command_line;
   const MeshJobWritten written = write_mesh_job_outputs(r, job);
-  if (written.depths && written.depths->num_filled && !a.quiet) {
-    char buf[256];
-    std::snprintf(buf, sizeof buf,
-                  "isoquad: warning: %zu vertices lie outside the bathymetry (or next to nodata): "
-                  "each took the depth of the nearest vertex with one, up to %.0f m away\n",
-                  written.depths->num_filled, written.depths->max_fill_distance_m);
-    std::cerr << buf;
-  }
+  if (written.depths && written.depths->num_filled && !a.quiet)
+    print(err,
+          "isoquad: warning: %zu vertices lie outside the bathymetry (or next to nodata): each "
+          "took the depth of the nearest vertex with one, up to %.0f m away\n",
+          written.depths->num_filled, written.depths->max_fill_distance_m);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (result) result->quality = r.quality, result->seconds = seconds;
   if (!a.quiet) {
-    std::cout << format_domain_summary(r.fields.front.summary) << format_fields_summary(r.fields)
-              << format_mesh_summary(r);
+    out << format_domain_summary(r.fields.front.summary) << format_fields_summary(r.fields)
+        << format_mesh_summary(r);
     if (r.has_quads) {
-      std::cout << "output:      ";
-      for (const std::string& file : written.files) std::cout << " " << file;
-      std::cout << "\nboundary:     " << written.num_open_edges << " open edges, "
-                << written.num_land_edges << " land edges\n";
+      out << "output:      ";
+      for (const std::string& file : written.files) out << " " << file;
+      out << "\nboundary:     " << written.num_open_edges << " open edges, "
+          << written.num_land_edges << " land edges\n";
     }
     if (written.depths) {
-      std::printf("depths:       %.6g .. %.6g m", written.depths->min_m, written.depths->max_m);
+      print(out, "depths:       %.6g .. %.6g m", written.depths->min_m, written.depths->max_m);
       if (written.depths->num_raised)
-        std::printf(", %zu vertices raised to --min-depth", written.depths->num_raised);
-      std::printf("\n");
+        print(out, ", %zu vertices raised to --min-depth", written.depths->num_raised);
+      out << "\n";
     }
-    if (!f.plot_path.empty()) std::cout << "plot:         " << f.plot_path << "\n";
-    std::printf("time:         %.3f s, peak memory %.0f MB\n", seconds, process_peak_mb());
+    if (!f.plot_path.empty()) out << "plot:         " << f.plot_path << "\n";
+    print(out, "time:         %.3f s, peak memory %.0f MB\n", seconds, process_peak_mb());
     for (const std::string& w : r.fields.front.summary.warnings)
-      std::cerr << "isoquad: warning: " << w << "\n";
+      err << "isoquad: warning: " << w << "\n";
   }
   return 0;
 }
@@ -687,26 +713,76 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
     check_mesh_outputs(mesh_outputs(r.a, m), w);
     regions.push_back(std::move(r));
   }
-  int first_failure = 0;
-  std::vector<std::string> failed;
-  std::vector<std::optional<RegionResult>> results(regions.size());
-  for (std::size_t k = 0; k < regions.size(); ++k) {
-    if (!a.quiet)
-      std::cout << "== " << m.each << " = " << values[k].text << " (" << k + 1 << " of "
-                << values.size() << ")\n"
-                << std::flush;
+  // Region k's run, printing into `console`; a failure (Error) is reported there and
+  // the others go on.
+  struct Outcome {
+    std::optional<RegionResult> result;
+    int exit = 0;
+    std::exception_ptr crash;  // anything else, rethrown once every region has run
+  };
+  std::vector<Outcome> outcomes(regions.size());
+  auto header = [&](std::size_t k) {
+    return "== " + m.each + " = " + values[k].text + " (" + std::to_string(k + 1) + " of " +
+           std::to_string(values.size()) + ")\n";
+  };
+  auto mesh_region = [&](std::size_t k, const Console& console) {
     MeshArgs mm = m;
     try {
       RegionResult result;
       run_mesh(regions[k].a, regions[k].f, mm, command_line + " [--each: " + values[k].filter + "]",
-               &result);
-      results[k] = result;
+               &result, console);
+      outcomes[k].result = result;
     } catch (const Error& e) {
-      std::cerr << "isoquad: " << m.each << " = " << values[k].text << ": " << e.what() << "\n";
-      if (!first_failure) first_failure = exit_code(e.error_class());
+      console.err << "isoquad: " << m.each << " = " << values[k].text << ": " << e.what() << "\n";
+      outcomes[k].exit = exit_code(e.error_class());
+    }
+  };
+  const std::size_t jobs = std::min<std::size_t>(static_cast<std::size_t>(m.jobs), regions.size());
+  if (jobs <= 1) {
+    for (std::size_t k = 0; k < regions.size(); ++k) {
+      if (!a.quiet) std::cout << header(k) << std::flush;
+      mesh_region(k, Console());
+    }
+  } else {
+    // Each region prints into its buffers; they go out in the regions' order, each as
+    // soon as it and those before it are done.
+    struct Buffers {
+      std::ostringstream out, err;
+      bool done = false;
+    };
+    std::vector<Buffers> buffers(regions.size());
+    std::mutex mutex;
+    std::size_t printed = 0;
+    std::atomic<std::size_t> next{0};
+    auto worker = [&] {
+      for (std::size_t k = next++; k < regions.size(); k = next++) {
+        try {
+          mesh_region(k, Console{buffers[k].out, buffers[k].err, false});
+        } catch (...) {
+          outcomes[k].crash = std::current_exception();
+        }
+        const std::lock_guard<std::mutex> lock(mutex);
+        buffers[k].done = true;
+        for (; printed < regions.size() && buffers[printed].done; ++printed) {
+          if (!a.quiet) std::cout << header(printed) << buffers[printed].out.str() << std::flush;
+          std::cerr << buffers[printed].err.str() << std::flush;
+        }
+      }
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t j = 1; j < jobs; ++j) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
+    for (const Outcome& o : outcomes)
+      if (o.crash) std::rethrow_exception(o.crash);
+  }
+  int first_failure = 0;
+  std::vector<std::string> failed;
+  for (std::size_t k = 0; k < regions.size(); ++k)
+    if (!outcomes[k].result) {
+      if (!first_failure) first_failure = outcomes[k].exit;
       failed.push_back(values[k].text);
     }
-  }
   if (!a.quiet) {
     // A line per region: its quads' quality, or that it failed.
     // Padded by characters (UTF-8: the bytes that start one).
@@ -722,14 +798,14 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
                 "regular", "sizes", "orient.", "seconds");
     for (std::size_t k = 0; k < values.size(); ++k) {
       std::printf("%s", padded(values[k].text).c_str());
-      if (!results[k]) {
+      if (!outcomes[k].result) {
         std::printf(" %8s\n", "failed");
         continue;
       }
-      const QualitySummary& q = results[k]->quality;
+      const QualitySummary& q = outcomes[k].result->quality;
       std::printf(" %8zu %7.1f%% %7.1f%% %7.1f%% %8.1f %8.2f\n", q.num_quads,
                   100 * q.share_angles_75_105, 100 * q.share_regular_interior,
-                  100 * q.share_size_08_125, q.orientation_mean_deg, results[k]->seconds);
+                  100 * q.share_size_08_125, q.orientation_mean_deg, outcomes[k].result->seconds);
     }
     std::fflush(stdout);
   }
@@ -808,6 +884,9 @@ int main(int argc, char** argv) {
     if (fields_cmd->parsed()) return run_fields(fields_args, field_args, joined_command_line(argc, argv));
     if (mesh_cmd->parsed() && !mesh_extra.each.empty())
       return run_mesh_each(mesh_args, mesh_field_args, mesh_extra, joined_command_line(argc, argv));
+    if (mesh_cmd->parsed() && mesh_extra.jobs != 1)
+      throw Error(ErrorClass::usage, "options",
+                  "--jobs meshes the regions of --each at once: give --each");
     if (mesh_cmd->parsed())
       return run_mesh(mesh_args, mesh_field_args, mesh_extra, joined_command_line(argc, argv));
   } catch (const Error& e) {

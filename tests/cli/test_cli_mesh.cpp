@@ -732,3 +732,61 @@ TEST(CliMesh, EachValueOfAnAttributeGetsItsOwnMesh) {
   EXPECT_NE(r.err.find("every -o needs {}"), std::string::npos) << r.err;
   EXPECT_EQ(r.out, "");
 }
+
+// --jobs 2: the regions meshed at once give the same files as one after the other, and
+// print in the same order; a failure is reported the same way.
+TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
+  TempDir dir;
+  const std::string input = dir.file("regions.geojson");
+  auto square = [](double x, double y, double side, const std::string& region) {
+    std::ostringstream s;
+    s << R"({"type":"Feature","properties":{"region":")" << region
+      << R"("},"geometry":{"type":"Polygon","coordinates":[[[)" << x << "," << y << "],["
+      << x + side << "," << y << "],[" << x + side << "," << y + side << "],[" << x << ","
+      << y + side << "],[" << x << "," << y << "]]]}}";
+    return s.str();
+  };
+  write_file(input, R"({"type":"FeatureCollection","features":[)" + square(0, 0, 0.3, "p") + "," +
+                        square(1, 0, 0.25, "q") + "," + square(0, 1, 0.2, "r") + "," +
+                        square(2, 2, 0.35, "s") + "]}");
+  auto run = [&](const std::string& stem, const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"mesh",   input,    "--size", "3000",
+                                     "--each", "region", "-o",     dir.file(stem + "_{}.gr3")};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args, dir);
+  };
+  const CliResult one = run("one", {});
+  const CliResult two = run("two", {"--jobs", "2"});
+  ASSERT_EQ(one.exit_code, 0) << one.err;
+  ASSERT_EQ(two.exit_code, 0) << two.err;
+  std::size_t at = 0;
+  bool first = true;
+  for (const char* region : {"p", "q", "r", "s"}) {
+    EXPECT_EQ(read_file(dir.file(std::string("one_") + region + ".gr3")),
+              read_file(dir.file(std::string("two_") + region + ".gr3")))
+        << region;
+    const std::size_t header = two.out.find(std::string("== region = ") + region + " (");
+    ASSERT_NE(header, std::string::npos) << two.out;
+    if (!first) {
+      EXPECT_GT(header, at) << two.out;  // in the regions' order
+    }
+    first = false;
+    at = header;
+    // Each region's summary follows its header, before the next one's.
+    EXPECT_NE(two.out.find(std::string("two_") + region + ".gr3", header), std::string::npos);
+  }
+  EXPECT_NE(two.out.find("--each region: 4 of 4 meshed"), std::string::npos) << two.out;
+  // One region over --max-quads: the others written, the same message and exit code.
+  const CliResult failed = run("cap", {"--jobs", "2", "--max-quads", "150", "-q"});
+  EXPECT_EQ(failed.exit_code, 2) << failed.err;
+  EXPECT_NE(failed.err.find("region = s: sizing:"), std::string::npos) << failed.err;
+  EXPECT_NE(failed.err.find("--each region: 3 of 4 meshed; failed: s"), std::string::npos)
+      << failed.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("cap_s.gr3")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("cap_p.gr3")));
+  // --jobs without --each.
+  const CliResult alone =
+      run_cli({"mesh", input, "--size", "3000", "--jobs", "2", "-o", dir.file("alone.gpkg")}, dir);
+  EXPECT_EQ(alone.exit_code, 2);
+  EXPECT_NE(alone.err.find("--jobs"), std::string::npos) << alone.err;
+}
