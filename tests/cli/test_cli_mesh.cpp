@@ -670,6 +670,20 @@ TEST(CliMesh, CoastWeightSlidesTheBoundaryOntoTheCoast) {
   EXPECT_LT(summary_number(with, "coast:", p95), 0.85 * summary_number(without, "coast:", p95));
 }
 
+namespace {
+
+// A GeoJSON feature: the lon/lat square [x, x + side] x [y, y + side], attribute region.
+std::string square_feature(double x, double y, double side, const std::string& region) {
+  std::ostringstream s;
+  s << R"({"type":"Feature","properties":{"region":")" << region
+    << R"("},"geometry":{"type":"Polygon","coordinates":[[[)" << x << "," << y << "],[" << x + side
+    << "," << y << "],[" << x + side << "," << y + side << "],[" << x << "," << y + side << "],["
+    << x << "," << y << "]]]}}";
+  return s.str();
+}
+
+}  // namespace
+
 // --each: a mesh per value of an attribute. Three squares of lon/lat, two of them
 // region 'a b' (meshed together: two components), one 'c/d' (its file name made safe):
 // each gets its GeoPackage and report; a region that fails (over --max-quads) is
@@ -678,16 +692,9 @@ TEST(CliMesh, CoastWeightSlidesTheBoundaryOntoTheCoast) {
 TEST(CliMesh, EachValueOfAnAttributeGetsItsOwnMesh) {
   TempDir dir;
   const std::string input = dir.file("regions.geojson");
-  auto square = [](double x, double y, double side, const std::string& region) {
-    std::ostringstream s;
-    s << R"({"type":"Feature","properties":{"region":")" << region
-      << R"("},"geometry":{"type":"Polygon","coordinates":[[[)" << x << "," << y << "],["
-      << x + side << "," << y << "],[" << x + side << "," << y + side << "],[" << x << ","
-      << y + side << "],[" << x << "," << y << "]]]}}";
-    return s.str();
-  };
-  write_file(input, R"({"type":"FeatureCollection","features":[)" + square(0, 0, 0.3, "a b") + "," +
-                        square(1, 0, 0.3, "c/d") + "," + square(0, 1, 0.2, "a b") + "]}");
+  write_file(input, R"({"type":"FeatureCollection","features":[)" +
+                        square_feature(0, 0, 0.3, "a b") + "," + square_feature(1, 0, 0.3, "c/d") +
+                        "," + square_feature(0, 1, 0.2, "a b") + "]}");
   CliResult r = run_cli({"mesh", input, "--size", "3000", "--each", "region", "-o",
                          dir.file("{}.gpkg"), "--report", dir.file("{}.json")},
                         dir);
@@ -738,17 +745,10 @@ TEST(CliMesh, EachValueOfAnAttributeGetsItsOwnMesh) {
 TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
   TempDir dir;
   const std::string input = dir.file("regions.geojson");
-  auto square = [](double x, double y, double side, const std::string& region) {
-    std::ostringstream s;
-    s << R"({"type":"Feature","properties":{"region":")" << region
-      << R"("},"geometry":{"type":"Polygon","coordinates":[[[)" << x << "," << y << "],["
-      << x + side << "," << y << "],[" << x + side << "," << y + side << "],[" << x << ","
-      << y + side << "],[" << x << "," << y << "]]]}}";
-    return s.str();
-  };
-  write_file(input, R"({"type":"FeatureCollection","features":[)" + square(0, 0, 0.3, "p") + "," +
-                        square(1, 0, 0.25, "q") + "," + square(0, 1, 0.2, "r") + "," +
-                        square(2, 2, 0.35, "s") + "]}");
+  write_file(input, R"({"type":"FeatureCollection","features":[)" + square_feature(0, 0, 0.3, "p") +
+                        "," + square_feature(1, 0, 0.25, "q") + "," +
+                        square_feature(0, 1, 0.2, "r") + "," + square_feature(2, 2, 0.35, "s") +
+                        "]}");
   auto run = [&](const std::string& stem, const std::vector<std::string>& extra) {
     std::vector<std::string> args = {"mesh",   input,    "--size", "3000",
                                      "--each", "region", "-o",     dir.file(stem + "_{}.gr3")};
