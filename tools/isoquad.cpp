@@ -641,6 +641,14 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
       if (written.depths->num_raised)
         print(out, ", %zu vertices raised to --min-depth", written.depths->num_raised);
       out << "\n";
+      const TimeSteps& t = written.depths->time_steps;
+      if (t.limiting_quad >= 0) {
+        const Point2 c = quad_centroid(r.quads, t.limiting_quad);
+        print(out,
+              "time step:    %.3g s at a gravity-wave Courant number of 1, set by a quad %.0f m "
+              "wide in %.0f m of water at (%.1f, %.1f); median quad %.3g s\n",
+              t.min_s, t.width_m, t.depth_m, c.x, c.y, t.median_s);
+      }
     }
     if (!f.plot_path.empty()) out << "plot:         " << f.plot_path << "\n";
     print(out, "time:         %.3f s, peak memory %.0f MB\n", seconds, process_peak_mb());

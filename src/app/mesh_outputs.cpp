@@ -66,7 +66,9 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
       const RasterStack rasters(o.bathymetry_paths, "--bathymetry",
                                 CrsInfo{front.domain.crs_wkt, front.domain.crs_name});
       written.depths = vertex_depths(rasters, r.quads, o.min_depth_m);
+      written.depths->time_steps = courant_time_steps(r.quads, written.depths->depth);
       data.depth = std::move(written.depths->depth);
+      data.time_step_s = std::move(written.depths->time_steps.per_quad_s);
     }
     data.command_line = o.command_line;
     data.quality = quality_items(r.quality);

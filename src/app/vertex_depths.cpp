@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <queue>
 #include <utility>
 
 #include "core/error.h"
+#include "fields/sizing_field.h"
 
 namespace isoquad {
 
@@ -88,6 +90,37 @@ VertexDepths vertex_depths(const RasterStack& rasters, const QuadMesh& mesh,
   const auto [lo, hi] = std::minmax_element(out.depth.begin(), out.depth.end());
   out.min_m = *lo;
   out.max_m = *hi;
+  return out;
+}
+
+TimeSteps courant_time_steps(const QuadMesh& mesh, const std::vector<double>& depth) {
+  TimeSteps out;
+  out.per_quad_s.assign(mesh.quads.size(), std::numeric_limits<double>::quiet_NaN());
+  std::vector<double> wet;
+  for (std::size_t q = 0; q < mesh.quads.size(); ++q) {
+    const auto& c = mesh.quads[q];
+    auto mid = [&](int i) {
+      const Point2 &a = mesh.points[c[i]], &b = mesh.points[c[(i + 1) % 4]];
+      return Point2{(a.x + b.x) / 2, (a.y + b.y) / 2};
+    };
+    const double width = std::min(distance(mid(0), mid(2)), distance(mid(1), mid(3)));
+    double deepest = depth[c[0]];
+    for (int v : c) deepest = std::max(deepest, depth[v]);
+    if (!(deepest > 0)) continue;
+    const double dt = width / std::sqrt(kGravity * deepest);
+    out.per_quad_s[q] = dt;
+    wet.push_back(dt);
+    if (out.limiting_quad < 0 || dt < out.min_s) {
+      out.min_s = dt;
+      out.limiting_quad = static_cast<int>(q);
+      out.width_m = width;
+      out.depth_m = deepest;
+    }
+  }
+  if (!wet.empty()) {
+    std::nth_element(wet.begin(), wet.begin() + wet.size() / 2, wet.end());
+    out.median_s = wet[wet.size() / 2];
+  }
   return out;
 }
 

@@ -13,17 +13,32 @@
 
 namespace isoquad {
 
+// The time step each quad allows an explicit model at a gravity-wave Courant number of 1:
+// its width (the shorter distance between the midpoints of opposite sides) over
+// sqrt(g d), d its deepest vertex's depth. Multiply by the model's Courant limit (D-Flow
+// FM's default CFLmax is 0.7).
+struct TimeSteps {
+  std::vector<double> per_quad_s;       // #Q; NaN for a dry quad (no vertex deeper than 0)
+  double min_s = 0.0, median_s = 0.0;   // over the wet quads; 0 when none is wet
+  int limiting_quad = -1;               // the quad of min_s
+  double width_m = 0.0, depth_m = 0.0;  // its width and depth
+};
+
 struct VertexDepths {
   std::vector<double> depth;         // #P metres, positive down
   std::size_t num_filled = 0;        // vertices that took the nearest vertex's depth
   double max_fill_distance_m = 0.0;  // the longest path from one to the vertex it took
   std::size_t num_raised = 0;        // depths raised to min_depth_m
   double min_m = 0.0, max_m = 0.0;   // the range of the depths written
+  TimeSteps time_steps;              // courant_time_steps() of the depths written
 };
 
 // Throws Error(input) when no vertex has a value in any of the rasters (an extent or CRS
 // that misses the domain).
 VertexDepths vertex_depths(const RasterStack& rasters, const QuadMesh& mesh,
                            std::optional<double> min_depth_m);
+
+// `depth`: #P, as written.
+TimeSteps courant_time_steps(const QuadMesh& mesh, const std::vector<double>& depth);
 
 }  // namespace isoquad

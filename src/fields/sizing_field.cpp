@@ -21,7 +21,6 @@ namespace isoquad {
 
 namespace {
 
-constexpr double kGravity = 9.81;  // m/s2
 
 }  // namespace
 

@@ -21,6 +21,8 @@ class FeatureSizes;
 class RasterField;
 class RasterStack;
 
+constexpr double kGravity = 9.81;  // m/s2 (the wavelength rule, the time steps of the outputs)
+
 // A place where the sizes must be smaller than the sources say: at most size_m within
 // radius_m of centre, growing by the gradation beyond (a cone, already graded). Not
 // clamped to hmin. The mesh job adds these where a tiling attempt failed (a fold where a

@@ -38,23 +38,29 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
   const auto& pts = v.points;
   GpkgWriter w(path, true, v.crs_wkt);
   (void)what;
-  w.begin_layer("quads", GeometryKind::polygon,
-                {{"id", FieldType::integer},
-                 {"size_ratio", FieldType::real},
-                 {"orientation_deg", FieldType::real},
-                 {"min_angle_deg", FieldType::real},
-                 {"max_angle_deg", FieldType::real},
-                 {"eta", FieldType::real},
-                 {"irregular_corners", FieldType::integer}});
+  std::vector<FieldDef> qfields = {{"id", FieldType::integer},
+                                   {"size_ratio", FieldType::real},
+                                   {"orientation_deg", FieldType::real},
+                                   {"min_angle_deg", FieldType::real},
+                                   {"max_angle_deg", FieldType::real},
+                                   {"eta", FieldType::real},
+                                   {"irregular_corners", FieldType::integer}};
+  const bool time_steps = !v.data->time_step_s.empty();
+  if (time_steps) qfields.push_back({"time_step_s", FieldType::real});  // NaN: NULL (dry)
+  w.begin_layer("quads", GeometryKind::polygon, qfields);
   for (std::size_t i = 0; i < m.quads.size(); ++i) {
     const auto& t = m.quads[i];
     int irregular = 0;
     for (int c : t) irregular += q.degree[c] != q.ideal_degree[c];
-    w.add_polygon(std::vector<Point2>{pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]]},
-                  {FieldValue::integer(static_cast<long long>(i)), FieldValue::real(q.size_ratio[i]),
-                   FieldValue::real(q.orientation_deg[i]), FieldValue::real(q.min_angle_deg[i]),
-                   FieldValue::real(q.max_angle_deg[i]), FieldValue::real(q.eta[i]),
-                   FieldValue::integer(irregular)});
+    std::vector<FieldValue> values = {FieldValue::integer(static_cast<long long>(i)),
+                                      FieldValue::real(q.size_ratio[i]),
+                                      FieldValue::real(q.orientation_deg[i]),
+                                      FieldValue::real(q.min_angle_deg[i]),
+                                      FieldValue::real(q.max_angle_deg[i]),
+                                      FieldValue::real(q.eta[i]),
+                                      FieldValue::integer(irregular)};
+    if (time_steps) values.push_back(FieldValue::real(v.data->time_step_s[i]));
+    w.add_polygon(std::vector<Point2>{pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]]}, values);
   }
   std::vector<FieldDef> vfields = {{"id", FieldType::integer},
                                    {"degree", FieldType::integer},
@@ -160,6 +166,7 @@ void write_vtu_mesh(const MeshView& mv, const std::string& path) {
                  {"min_angle_deg", q.min_angle_deg},
                  {"max_angle_deg", q.max_angle_deg},
                  {"eta", q.eta}};
+  if (!mv.data->time_step_s.empty()) v.cell_data.push_back({"time_step_s", mv.data->time_step_s});
   write_vtu(v, path, true);
 }
 

@@ -41,6 +41,8 @@ struct MeshOutputData {
   std::string crs_wkt;         // the mesh's (meshing) CRS
   MeshBoundary boundary;       // extract_boundary()
   std::vector<double> depth;   // #P metres, positive down; empty: unknown (written as 0)
+  // #Q the time step at a gravity-wave Courant number of 1 (NaN: dry); empty: unknown.
+  std::vector<double> time_step_s;
   // GeoPackage metadata.
   std::string command_line;
   std::vector<std::pair<std::string, std::string>> quality;  // name, value

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <iomanip>
@@ -921,8 +922,8 @@ TEST(CliOutputs, BathymetryRastersInPriorityOrderAndMinimumDepth) {
     }
   }
   // The other order: the deep raster covers everything.
-  r = run(
-      {"--bathymetry", deep, "--bathymetry", west, "--min-depth", "600", "-o", dir.file("b.gr3")});
+  r = run({"--bathymetry", deep, "--bathymetry", west, "--min-depth", "600", "-o",
+           dir.file("b.gr3"), "-o", dir.file("b.gpkg")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ll = parse_gr3(dir.file("b.ll"));
   for (const auto& n : ll.nodes) EXPECT_NEAR(n[2], 600.0, 1e-6);
@@ -930,6 +931,38 @@ TEST(CliOutputs, BathymetryRastersInPriorityOrderAndMinimumDepth) {
                        " vertices raised to --min-depth"),
             std::string::npos)
       << r.out;
+  // Each quad's time step at Courant 1: its width (between opposite sides' midpoints)
+  // over sqrt(g 600 m); the summary gives the smallest.
+  {
+    GDALDataset* ds = static_cast<GDALDataset*>(
+        GDALOpenEx(dir.file("b.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+    ASSERT_NE(ds, nullptr);
+    OGRLayer* quads = ds->GetLayerByName("quads");
+    ASSERT_NE(quads, nullptr);
+    double smallest = INFINITY;
+    std::size_t n = 0;
+    for (auto& f : *quads) {
+      const OGRLinearRing* ring =
+          dynamic_cast<const OGRPolygon*>(f->GetGeometryRef())->getExteriorRing();
+      auto mid = [&](int i) {
+        return std::array<double, 2>{(ring->getX(i) + ring->getX(i + 1)) / 2,
+                                     (ring->getY(i) + ring->getY(i + 1)) / 2};
+      };
+      auto apart = [&](int i, int j) {
+        return std::hypot(mid(i)[0] - mid(j)[0], mid(i)[1] - mid(j)[1]);
+      };
+      const double expected = std::min(apart(0, 2), apart(1, 3)) / std::sqrt(9.81 * 600);
+      const double dt = f->GetFieldAsDouble("time_step_s");
+      EXPECT_NEAR(dt, expected, 1e-6 * expected) << f->GetFID();
+      smallest = std::min(smallest, dt);
+      ++n;
+    }
+    GDALClose(ds);
+    EXPECT_GT(n, 100u);
+    char line[64];
+    std::snprintf(line, sizeof line, "time step:    %.3g s at a gravity-wave Courant", smallest);
+    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+  }
   // An unreadable raster: exit 3 at once, naming it, nothing written.
   write_file(dir.file("bad.tif"), "not a raster");
   r = run({"--bathymetry", west, "--bathymetry", dir.file("bad.tif"), "-o", dir.file("c.gr3")});

@@ -169,3 +169,33 @@ TEST(VertexDepths, ARasterThatMissesTheMeshIsAnError) {
     EXPECT_NE(std::string(e.what()).find("far.tif"), std::string::npos) << e.what();
   }
 }
+
+TEST(VertexDepths, TimeStepsAreTheWidthOverTheCelerity) {
+  QuadMesh m = grid();  // 100 m squares; the last column narrowed to 50 m
+  for (Point2& p : m.points)
+    if (p.x > 999) p.x = 950;
+  std::vector<double> depth(m.points.size());
+  for (std::size_t v = 0; v < m.points.size(); ++v) depth[v] = 10 + m.points[v].y / 10;  // 10..60
+  // The quads of the first row: dry (every vertex at 0 or shallower).
+  for (std::size_t v = 0; v < m.points.size(); ++v)
+    if (m.points[v].y < 150) depth[v] = m.points[v].y < 50 ? -2.0 : 0.0;
+  const TimeSteps t = courant_time_steps(m, depth);
+  ASSERT_EQ(t.per_quad_s.size(), m.quads.size());
+  for (std::size_t q = 0; q < m.quads.size(); ++q) {
+    const auto& c = m.quads[q];
+    double deepest = depth[c[0]];
+    for (int v : c) deepest = std::max(deepest, depth[v]);
+    const double width = m.points[c[1]].x - m.points[c[0]].x;  // <= 100 m tall
+    if (deepest <= 0) {
+      EXPECT_TRUE(std::isnan(t.per_quad_s[q])) << q;
+    } else {
+      EXPECT_NEAR(t.per_quad_s[q], std::min(width, 100.0) / std::sqrt(9.81 * deepest), 1e-9) << q;
+    }
+  }
+  // The narrow column at the deepest row sets it: 50 m in 60 m of water.
+  EXPECT_NEAR(t.min_s, 50 / std::sqrt(9.81 * 60), 1e-9);
+  EXPECT_NEAR(t.width_m, 50, 1e-9);
+  EXPECT_NEAR(t.depth_m, 60, 1e-9);
+  EXPECT_EQ(m.quads[t.limiting_quad][0], 4 * 11 + 9);  // the top row's last quad
+  EXPECT_GT(t.median_s, t.min_s);
+}
