@@ -291,7 +291,8 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
   EXPECT_EQ(count[std::make_pair(1, 2)], open_edges);
   EXPECT_EQ(count[std::make_pair(1, 1)], land_edges);
 
-  // Legacy VTK and VTU in meshio, UGRID in netCDF4: the same counts, lon/lat, depth.
+  // Legacy VTK and VTU in meshio, UGRID in netCDF4: the same counts, lon/lat, depth, time
+  // steps.
   python_check(dir,
                "import sys, meshio, netCDF4, numpy as np\n"
                "np_, ne = int(sys.argv[3]), int(sys.argv[4])\n"
@@ -300,7 +301,11 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
                "    assert m.points.shape[0] == np_ and m.cells_dict['quad'].shape == (ne, 4), f\n"
                "    assert -4.61 < m.points[:, 0].min() and m.points[:, 0].max() < -4.39, f\n"
                "    assert np.ravel(m.point_data['depth']).min() > 100, f\n"
+               "    steps = np.ravel(m.cell_data['time_step_s'][0])\n"
+               "    assert steps.shape == (ne,) and (steps > 0).all(), f\n"
                "d = netCDF4.Dataset(sys.argv[5])\n"
+               "assert np.allclose(d['time_step_s'][:], steps, rtol=1e-12)\n"
+               "assert d['time_step_s'].units == 's'\n"
                "assert d.dimensions['n_node'].size == np_ and d.dimensions['n_face'].size == ne\n"
                "assert d['mesh_node_x'].standard_name == 'longitude'\n"
                "assert 'WGS 84' in d['crs'].crs_wkt\n"
