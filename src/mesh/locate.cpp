@@ -97,4 +97,19 @@ Location TriangleLocator::locate(const Point2& p) const {
   return best;
 }
 
+Location TriangleLocator::locate(const Point2& p, int hint) const {
+  if (hint >= 0) {
+    const auto& t = mesh_->triangles[hint];
+    const auto b = barycentric(mesh_->points[t[0]], mesh_->points[t[1]], mesh_->points[t[2]], p);
+    if (b[0] > 1e-9 && b[1] > 1e-9 && b[2] > 1e-9) {
+      Location inside;
+      inside.triangle = hint;
+      inside.bary = b;
+      inside.inside = true;
+      return inside;
+    }
+  }
+  return locate(p);
+}
+
 }  // namespace isoquad

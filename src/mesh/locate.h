@@ -23,6 +23,10 @@ class TriangleLocator {
   // The containing triangle; a point outside the mesh (e.g. on a chord of a curved
   // boundary) gets the nearest triangle, with its barycentric coordinates clamped.
   Location locate(const Point2& p) const;
+  // The same, first trying triangle `hint` (e.g. where a moving point was last): a point
+  // well inside it (every barycentric coordinate over 1e-9) is in no other triangle, so
+  // the answer is the one locate(p) gives, without the search.
+  Location locate(const Point2& p, int hint) const;
 
  private:
   const BackgroundMesh* mesh_;

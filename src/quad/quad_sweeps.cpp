@@ -68,11 +68,13 @@ class AlignedSmoother {
     const int nv = static_cast<int>(m_.points.size());
     h_.resize(nv);
     theta_.resize(nv);
+    triangle_.assign(nv, -1);  // where each vertex was last: the next search starts there
     const int threads = sweep_threads(params_);
     for (int it = 0; it < params_.aligned_iterations; ++it) {
       parallel_chunks(nv, threads, [&](int begin, int end, int) {
         for (int v = begin; v < end; ++v) {
-          const Location loc = locator_.locate(m_.points[v]);
+          const Location loc = locator_.locate(m_.points[v], triangle_[v]);
+          triangle_[v] = loc.triangle;
           h_[v] = loc.triangle >= 0 ? size_.at(bg_, loc.triangle, loc.bary) : 0.0;
           theta_[v] = loc.triangle >= 0 ? cross_angle_at(bg_, cross_, loc.triangle, loc.bary) : 0.0;
         }
@@ -172,6 +174,7 @@ class AlignedSmoother {
   const CrossField& cross_;
   const SmoothParams& params_;
   TriangleLocator locator_;
+  std::vector<int> triangle_;
   std::vector<double> h_, theta_;
 };
 
