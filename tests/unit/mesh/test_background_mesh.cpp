@@ -369,3 +369,30 @@ TEST(TriangleLocator, PointsOnEdgesAndVerticesAreInside) {
   EXPECT_FALSE(far.inside);
   EXPECT_GE(far.triangle, 0);
 }
+
+TEST(TriangleLocator, AHintGivesWhatTheSearchGives) {
+  // Points inside, on edges and vertices, and outside, each with the triangle it is in,
+  // a neighbour, a far triangle and no hint: the same triangle and coordinates.
+  const BackgroundMesh m = build_background_mesh(square_domain(1000.0), uniform(25.0));
+  const TriangleLocator locator(m);
+  std::vector<Point2> points = {{1000.5, 500.0}, {-3.0, -3.0}};
+  for (std::size_t f = 0; f < m.triangles.size(); f += 7) {
+    const auto& t = m.triangles[f];
+    const Point2 &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]];
+    points.push_back({(a.x + b.x + c.x) / 3, (a.y + b.y + c.y) / 3});
+    points.push_back({(a.x + b.x) / 2, (a.y + b.y) / 2});
+    points.push_back(a);
+  }
+  int hits = 0;
+  for (const Point2& p : points) {
+    const Location plain = locator.locate(p);
+    for (int hint : {plain.triangle, m.neighbours[std::max(plain.triangle, 0)][0], 0, -1}) {
+      const Location hinted = locator.locate(p, hint);
+      EXPECT_EQ(hinted.triangle, plain.triangle) << p.x << " " << p.y << " hint " << hint;
+      EXPECT_EQ(hinted.bary, plain.bary);
+      EXPECT_EQ(hinted.inside, plain.inside);
+      hits += hint == plain.triangle;
+    }
+  }
+  EXPECT_GT(hits, 100);
+}
