@@ -5,6 +5,7 @@
 #include <gdal_priv.h>
 
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <set>
 
@@ -27,6 +28,30 @@ Domain rectangle(double w, double h) {
   d.crs_wkt = parse_crs("EPSG:3857", "test").wkt;
   d.crs_name = "test";
   return d;
+}
+
+// A GeoTIFF in EPSG:3857 of nx x ny square pixels of `pixel` metres from (x0, y1) down
+// and right, value(x, y) at the pixel centres.
+std::string write_tif(const std::string& path, double x0, double y1, double pixel, int nx, int ny,
+                      const std::function<double(double, double)>& value) {
+  ensure_gdal_registered();
+  GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
+  GDALDataset* ds = drv->Create(path.c_str(), nx, ny, 1, GDT_Float32, nullptr);
+  double gt[6] = {x0, pixel, 0, y1, 0, -pixel};
+  ds->SetGeoTransform(gt);
+  OGRSpatialReference srs;
+  srs.importFromEPSG(3857);
+  ds->SetSpatialRef(&srs);
+  std::vector<float> v(static_cast<std::size_t>(nx) * ny);
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      v[static_cast<std::size_t>(j) * nx + i] =
+          static_cast<float>(value(x0 + (i + 0.5) * pixel, y1 - (j + 0.5) * pixel));
+  EXPECT_EQ(
+      ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, nx, ny, v.data(), nx, ny, GDT_Float32, 0, 0),
+      CE_None);
+  GDALClose(ds);
+  return path;
 }
 
 BackgroundMesh mesh_for(const Domain& d, const SizingOracle& oracle, double factor = 0.5) {
@@ -211,28 +236,9 @@ TEST(SizingField, AutomaticSizingIsLipschitzAndBounded) {
 
 TEST(SizingField, RasterIsSampledBilinearly) {
   TempDir dir;
-  const std::string path = dir.file("size.tif");
-  ensure_gdal_registered();
-  {
-    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
-    GDALDataset* ds = drv->Create(path.c_str(), 20, 10, 1, GDT_Float32, nullptr);
-    // 100 m pixels from (0, 1000) down to (2000, 0).
-    double gt[6] = {0, 100, 0, 1000, 0, -100};
-    ds->SetGeoTransform(gt);
-    OGRSpatialReference srs;
-    srs.importFromEPSG(3857);
-    ds->SetSpatialRef(&srs);
-    std::vector<float> v(200);
-    for (int j = 0; j < 10; ++j)
-      for (int i = 0; i < 20; ++i) {
-        const double x = (i + 0.5) * 100, y = 1000 - (j + 0.5) * 100;
-        v[j * 20 + i] = static_cast<float>(10 + x / 100 + y / 50);
-      }
-    if (ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 20, 10, v.data(), 20, 10, GDT_Float32, 0,
-                                       0) != CE_None)
-      FAIL();
-    GDALClose(ds);
-  }
+  // 100 m pixels from (0, 1000) down to (2000, 0).
+  const std::string path = write_tif(dir.file("size.tif"), 0, 1000, 100, 20, 10,
+                                     [](double x, double y) { return 10 + x / 100 + y / 50; });
   const Domain d = rectangle(2000, 1000);
   SizingParams p;
   p.automatic = false;
@@ -411,4 +417,49 @@ TEST(SizingField, TheQuadsEstimatedBeforeTheMeshAreTheAreaOverTheSizeSquared) {
   const double exact = 1000 * band(0, 1000) - 500 * band(250, 750) + 1000 * band(2000, 3000);
   EXPECT_NEAR(estimate_num_quads(d, graded), exact, 0.04 * exact);
   EXPECT_EQ(estimate_num_quads(Domain{}, graded), 0.0);
+}
+
+// The ocean-model rules from depth rasters: h <= T sqrt(g d) / N (depths under the
+// minimum count as it), and h <= 2 pi d / (R |grad d|); several rasters in priority order.
+TEST(SizingField, WavelengthAndSlopeRulesFollowTheDepths) {
+  TempDir dir;
+  const Domain d = rectangle(2000, 1000);
+  // A survey over the west half, 100 m deep; a grid over everything, 10 m, and dry land
+  // (-5 m) where y > 800.
+  const std::string survey = write_tif(dir.file("survey.tif"), -100, 1100, 50, 24, 24,
+                                       [](double, double) { return 100.0; });
+  const std::string grid = write_tif(dir.file("grid.tif"), -100, 1100, 50, 44, 24,
+                                     [](double, double y) { return y > 800 ? -5.0 : 10.0; });
+  SizingParams p;
+  p.automatic = false;
+  p.bathymetry_paths = {survey, grid};
+  p.wavelength_period_s = 60;
+  p.cells_per_wavelength = 50;
+  SizingOracle wave(d, p);
+  auto rule = [](double depth) { return 60 * std::sqrt(9.81 * depth) / 50; };
+  EXPECT_NEAR(wave({500, 500}), rule(100), 1e-6);
+  EXPECT_NEAR(wave({1500, 500}), rule(10), 1e-6);
+  EXPECT_NEAR(wave({1500, 950}), rule(1), 1e-6);  // dry: the minimum depth, 1 m
+  p.min_depth_m = 4;
+  EXPECT_NEAR(SizingOracle(d, p)({1500, 950}), rule(4), 1e-6);
+  // The other order: the grid everywhere.
+  p.bathymetry_paths = {grid, survey};
+  p.min_depth_m = 1;
+  EXPECT_NEAR(SizingOracle(d, p)({500, 500}), rule(10), 1e-6);
+
+  // A slope: d = 20 + x / 100, |grad d| = 0.01.
+  const std::string slope = write_tif(dir.file("slope.tif"), -100, 1100, 50, 44, 24,
+                                      [](double x, double) { return 20 + x / 100; });
+  SizingParams q;
+  q.automatic = false;
+  q.bathymetry_paths = {slope};
+  q.slope_factor = 10;
+  SizingOracle steep(d, q);
+  for (double x : {300.0, 1000.0, 1700.0})
+    EXPECT_NEAR(steep({x, 500}), 2 * M_PI * (20 + x / 100) / (10 * 0.01), 1e-3) << x;
+  // Neither rule: an error naming what is missing.
+  q.slope_factor = 0;
+  const Error e = error_of([&] { SizingOracle o(d, q); });
+  EXPECT_EQ(e.error_class(), ErrorClass::usage);
+  EXPECT_NE(std::string(e.what()).find("--wavelength-period"), std::string::npos) << e.what();
 }
