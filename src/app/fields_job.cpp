@@ -178,7 +178,7 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options, 
     case CrossSource::constant: r.cross = constant_cross_field(r.mesh, options.cross.angle_deg); break;
     case CrossSource::raster: {
       const CrsInfo crs{domain.crs_wkt, domain.crs_name, false, true, 1.0};
-      RasterField raster(options.cross.raster_path, "--cross-raster", crs);
+      RasterField raster(options.cross.raster_path, "--cross-raster", crs, bounding_box(domain));
       // Where the raster has no data, the boundary-aligned field fills in.
       r.cross =
           boundary_field(r.mesh, r.size, options.cross.conformal, coarse ? &*coarse : nullptr);

@@ -64,7 +64,8 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
     written.num_land_edges = data.boundary.num_land_edges;
     if (!o.bathymetry_paths.empty()) {
       const RasterStack rasters(o.bathymetry_paths, "--bathymetry",
-                                CrsInfo{front.domain.crs_wkt, front.domain.crs_name});
+                                CrsInfo{front.domain.crs_wkt, front.domain.crs_name},
+                                bounding_box(r.quads.points));
       written.depths = vertex_depths(rasters, r.quads, o.min_depth_m);
       written.depths->time_steps = courant_time_steps(r.quads, written.depths->depth);
       data.depth = std::move(written.depths->depth);

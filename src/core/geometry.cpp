@@ -6,6 +6,24 @@
 
 namespace isoquad {
 
+std::array<double, 4> bounding_box(const std::vector<Point2>& points) {
+  std::array<double, 4> b{1e300, 1e300, -1e300, -1e300};
+  for (const Point2& q : points) {
+    b[0] = std::min(b[0], q.x), b[1] = std::min(b[1], q.y);
+    b[2] = std::max(b[2], q.x), b[3] = std::max(b[3], q.y);
+  }
+  return b;
+}
+
+std::array<double, 4> bounding_box(const Domain& domain) {
+  std::array<double, 4> b{1e300, 1e300, -1e300, -1e300};
+  for (const Polygon& p : domain.polygons) {
+    const std::array<double, 4> r = bounding_box(p.outer);
+    b = {std::min(b[0], r[0]), std::min(b[1], r[1]), std::max(b[2], r[2]), std::max(b[3], r[3])};
+  }
+  return b;
+}
+
 double signed_area(const Ring& ring) {
   const std::size_t n = ring.size();
   if (n < 3) return 0.0;

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,10 @@ struct Domain {
   std::string crs_wkt;   // WKT2 of the CRS the coordinates are in
   std::string crs_name;  // a human-readable name of that CRS
 };
+
+// Bounding boxes {xmin, ymin, xmax, ymax}: of a domain (its outer rings), of points.
+std::array<double, 4> bounding_box(const Domain& domain);
+std::array<double, 4> bounding_box(const std::vector<Point2>& points);
 
 // Signed area of a ring (positive when counter-clockwise), shoelace formula.
 double signed_area(const Ring& ring);

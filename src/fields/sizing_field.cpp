@@ -41,6 +41,7 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
   for (const LocalRefinement& r : params.refinements)
     if (!(r.size_m > 0) || !(r.radius_m >= 0)) usage("a local refinement needs a positive size");
   const CrsInfo crs{domain.crs_wkt, domain.crs_name, false, true, 1.0};
+  const std::array<double, 4> extent = bounding_box(domain);  // rasters: only that part read
 
   const bool explicit_source = params.constant_m || !params.expression.empty() ||
                                !params.raster_path.empty() || !params.bathymetry_paths.empty();
@@ -79,7 +80,7 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
     summary_.sources.push_back("expression " + params.expression);
   }
   if (!params.raster_path.empty()) {
-    raster_ = std::make_unique<RasterField>(params.raster_path, "--size-raster", crs);
+    raster_ = std::make_unique<RasterField>(params.raster_path, "--size-raster", crs, extent);
     summary_.sources.push_back("raster " + params.raster_path);
   }
   if (!params.bathymetry_paths.empty()) {
@@ -87,7 +88,8 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
       usage("--bathymetry needs --wavelength-period with --cells-per-wavelength, or --slope-factor");
     if (params.wavelength_period_s > 0 && params.cells_per_wavelength <= 0)
       usage("--wavelength-period needs --cells-per-wavelength");
-    bathymetry_ = std::make_unique<RasterStack>(params.bathymetry_paths, "--bathymetry", crs);
+    bathymetry_ =
+        std::make_unique<RasterStack>(params.bathymetry_paths, "--bathymetry", crs, extent);
     for (const std::string& path : params.bathymetry_paths)
       summary_.sources.push_back("bathymetry " + path);
   }

@@ -46,25 +46,71 @@ void check_raster(const std::string& path, const std::string& what) {
   open_raster(path, what, inverse);
 }
 
-RasterField::RasterField(const std::string& path, const std::string& what, const CrsInfo& query_crs)
+RasterField::RasterField(const std::string& path, const std::string& what, const CrsInfo& query_crs,
+                         const std::optional<std::array<double, 4>>& extent)
     : path_(path) {
   const std::unique_ptr<GDALDataset> ds = open_raster(path, what, inverse_);
   GdalErrorCapture capture;
   width_ = ds->GetRasterXSize();
   height_ = ds->GetRasterYSize();
-  GDALRasterBand* band = ds->GetRasterBand(1);
-  int ok = 0;
-  nodata_ = band->GetNoDataValue(&ok);
-  has_nodata_ = ok != 0;
-  values_.resize(static_cast<std::size_t>(width_) * height_);
-  if (band->RasterIO(GF_Read, 0, 0, width_, height_, values_.data(), width_, height_, GDT_Float32,
-                     0, 0) != CE_None)
-    raster_error(what, path, "cannot read band 1 (" + capture.last_message() + ")");
   const OGRSpatialReference* srs = ds->GetSpatialRef();
   if (srs) {
     CrsInfo raster_crs = crs_from_srs(*srs);
     to_raster_ = std::make_unique<CrsTransform>(query_crs, raster_crs);
   }
+  window_ = {0, 0, width_, height_};
+  if (extent) {
+    // The pixels under a 33 x 33 lattice over the extent (its edges and inside: a pole or
+    // a bend of the transform inside it counts), and round them as many as the lattice's
+    // cells span (a point between lattice points is within a cell of one) plus two.
+    constexpr int kSteps = 32;
+    std::vector<std::array<double, 2>> pixel((kSteps + 1) * (kSteps + 1), {NAN, NAN});
+    for (int a = 0; a <= kSteps; ++a)
+      for (int b = 0; b <= kSteps; ++b) {
+        Point2 q{(*extent)[0] + ((*extent)[2] - (*extent)[0]) * a / kSteps,
+                 (*extent)[1] + ((*extent)[3] - (*extent)[1]) * b / kSteps};
+        if (to_raster_ && !to_raster_->transform(q)) continue;
+        pixel[a * (kSteps + 1) + b] = {inverse_[0] + q.x * inverse_[1] + q.y * inverse_[2],
+                                       inverse_[3] + q.x * inverse_[4] + q.y * inverse_[5]};
+      }
+    double i_lo = INFINITY, j_lo = INFINITY, i_hi = -INFINITY, j_hi = -INFINITY;
+    double span_i = 0, span_j = 0;  // a lattice cell's width and height, in pixels
+    for (int a = 0; a <= kSteps; ++a)
+      for (int b = 0; b <= kSteps; ++b) {
+        const auto& p = pixel[a * (kSteps + 1) + b];
+        if (std::isnan(p[0])) continue;
+        i_lo = std::min(i_lo, p[0]), i_hi = std::max(i_hi, p[0]);
+        j_lo = std::min(j_lo, p[1]), j_hi = std::max(j_hi, p[1]);
+        for (const auto& n : {a < kSteps ? pixel[(a + 1) * (kSteps + 1) + b] : p,
+                              b < kSteps ? pixel[a * (kSteps + 1) + b + 1] : p})
+          if (!std::isnan(n[0])) {
+            span_i = std::max(span_i, std::abs(n[0] - p[0]));
+            span_j = std::max(span_j, std::abs(n[1] - p[1]));
+          }
+      }
+    auto clamp_to = [](double v, int size) {
+      return static_cast<int>(std::clamp(v, 0.0, static_cast<double>(size)));
+    };
+    if (i_lo <= i_hi && j_lo <= j_hi) {
+      const double margin_i = std::ceil(span_i) + 2, margin_j = std::ceil(span_j) + 2;
+      const int i0 = clamp_to(std::floor(i_lo) - margin_i, width_);
+      const int i1 = clamp_to(std::ceil(i_hi) + margin_i, width_);
+      const int j0 = clamp_to(std::floor(j_lo) - margin_j, height_);
+      const int j1 = clamp_to(std::ceil(j_hi) + margin_j, height_);
+      window_ = {i0, j0, std::max(0, i1 - i0), std::max(0, j1 - j0)};
+    } else {
+      window_ = {0, 0, 0, 0};  // no point of the extent has a place in the raster's CRS
+    }
+  }
+  GDALRasterBand* band = ds->GetRasterBand(1);
+  int ok = 0;
+  nodata_ = band->GetNoDataValue(&ok);
+  has_nodata_ = ok != 0;
+  values_.resize(static_cast<std::size_t>(window_[2]) * window_[3]);
+  if (!values_.empty() &&
+      band->RasterIO(GF_Read, window_[0], window_[1], window_[2], window_[3], values_.data(),
+                     window_[2], window_[3], GDT_Float32, 0, 0) != CE_None)
+    raster_error(what, path, "cannot read band 1 (" + capture.last_message() + ")");
 }
 
 RasterField::~RasterField() = default;
@@ -82,7 +128,10 @@ double RasterField::sample(const Point2& p) const {
   const int i1 = std::min(i0 + 1, width_ - 1), j1 = std::min(j0 + 1, height_ - 1);
   const double tx = std::clamp(px - i0, 0.0, 1.0), ty = std::clamp(py - j0, 0.0, 1.0);
   auto at = [&](int i, int j) {
-    const double v = values_[static_cast<std::size_t>(j) * width_ + i];
+    i -= window_[0];
+    j -= window_[1];
+    if (i < 0 || j < 0 || i >= window_[2] || j >= window_[3]) return nan;  // not read
+    const double v = values_[static_cast<std::size_t>(j) * window_[2] + i];
     return (has_nodata_ && v == static_cast<float>(nodata_)) || std::isnan(v) ? nan : v;
   };
   return (1 - ty) * ((1 - tx) * at(i0, j0) + tx * at(i1, j0)) +
@@ -90,9 +139,10 @@ double RasterField::sample(const Point2& p) const {
 }
 
 RasterStack::RasterStack(const std::vector<std::string>& paths, const std::string& what,
-                         const CrsInfo& query_crs) {
+                         const CrsInfo& query_crs,
+                         const std::optional<std::array<double, 4>>& extent) {
   for (const std::string& path : paths)
-    rasters_.push_back(std::make_unique<RasterField>(path, what, query_crs));
+    rasters_.push_back(std::make_unique<RasterField>(path, what, query_crs, extent));
 }
 
 RasterStack::~RasterStack() = default;

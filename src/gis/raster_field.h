@@ -2,7 +2,9 @@
 // another CRS (the meshing CRS). Used for size, angle and depth rasters.
 #pragma once
 
+#include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,8 +17,12 @@ class RasterField {
  public:
   // Reads band 1 of `path`. `what` names the option in messages (e.g. "--size-raster").
   // `query_crs` is the CRS of the points passed to sample(). A raster without a CRS is
-  // taken to be in `query_crs`. Throws Error(input) or Error(crs).
-  RasterField(const std::string& path, const std::string& what, const CrsInfo& query_crs);
+  // taken to be in `query_crs`. With `extent` ({xmin, ymin, xmax, ymax} in the query
+  // CRS), only the pixels under it are read (with a margin): a continental or
+  // global grid costs the domain's part of it; sample() gives NaN off that part. Throws
+  // Error(input) or Error(crs).
+  RasterField(const std::string& path, const std::string& what, const CrsInfo& query_crs,
+              const std::optional<std::array<double, 4>>& extent = std::nullopt);
   ~RasterField();
   RasterField(const RasterField&) = delete;
   RasterField& operator=(const RasterField&) = delete;
@@ -28,10 +34,13 @@ class RasterField {
   const std::string& path() const { return path_; }
   int width() const { return width_; }
   int height() const { return height_; }
+  // The pixels read: {first column, first row, columns, rows}.
+  const std::array<int, 4>& window() const { return window_; }
 
  private:
   std::string path_;
   int width_ = 0, height_ = 0;
+  std::array<int, 4> window_{0, 0, 0, 0};
   double inverse_[6] = {};  // georeferenced -> pixel/line
   std::vector<float> values_;
   bool has_nodata_ = false;
@@ -44,7 +53,8 @@ class RasterField {
 class RasterStack {
  public:
   RasterStack(const std::vector<std::string>& paths, const std::string& what,
-              const CrsInfo& query_crs);
+              const CrsInfo& query_crs,
+              const std::optional<std::array<double, 4>>& extent = std::nullopt);
   ~RasterStack();
   RasterStack(const RasterStack&) = delete;
   RasterStack& operator=(const RasterStack&) = delete;

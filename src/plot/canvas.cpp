@@ -28,16 +28,6 @@ Rgb ramp_white_to(const Rgb& to, double t) {
   return {1 + t * (to.r - 1), 1 + t * (to.g - 1), 1 + t * (to.b - 1)};
 }
 
-std::array<double, 4> bounding_box(const Domain& domain) {
-  std::array<double, 4> b{1e300, 1e300, -1e300, -1e300};
-  for (const Polygon& p : domain.polygons)
-    for (const Point2& q : p.outer) {
-      b[0] = std::min(b[0], q.x), b[1] = std::min(b[1], q.y);
-      b[2] = std::max(b[2], q.x), b[3] = std::max(b[3], q.y);
-    }
-  return b;
-}
-
 Canvas::Canvas(const std::array<double, 4>& box, int width_px, int legend_px) : box_(box) {
   const double w = std::max(box[2] - box[0], 1e-12), h = std::max(box[3] - box[1], 1e-12);
   width_ = width_px;

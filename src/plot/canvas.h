@@ -67,7 +67,4 @@ class Canvas {
   int width_ = 0, height_ = 0, map_height_ = 0;
 };
 
-// The bounding box of a domain.
-std::array<double, 4> bounding_box(const Domain& domain);
-
 }  // namespace isoquad
