@@ -20,6 +20,7 @@
 
 #include "gis/gdal_env.h"
 #include "support/test_support.h"
+#include "support/write_raster.h"
 
 using namespace isoquad::test;
 
@@ -39,24 +40,8 @@ double depth_at(double lon, double lat) { return 1000.0 * (lon + 4.7) + 200.0 * 
 // A GeoTIFF in lon/lat, depth linear in lon and lat (so bilinear sampling is exact),
 // from 4.7 W eastwards over `nx` pixels of 0.01 degrees (40: past the bbox).
 std::string bathymetry(const TempDir& d, int nx = 40) {
-  isoquad::ensure_gdal_registered();
-  const std::string path = d.file("dem" + std::to_string(nx) + ".tif");
-  GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
-  const int ny = 35;
-  GDALDataset* ds = drv->Create(path.c_str(), nx, ny, 1, GDT_Float32, nullptr);
-  double gt[6] = {-4.7, 0.01, 0, 48.45, 0, -0.01};
-  ds->SetGeoTransform(gt);
-  OGRSpatialReference srs;
-  srs.importFromEPSG(4326);
-  ds->SetSpatialRef(&srs);
-  std::vector<float> v(nx * ny);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i)
-      v[j * nx + i] = static_cast<float>(depth_at(gt[0] + (i + 0.5) * gt[1], gt[3] + (j + 0.5) * gt[5]));
-  EXPECT_EQ(ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, nx, ny, v.data(), nx, ny, GDT_Float32, 0, 0),
-            CE_None);
-  GDALClose(ds);
-  return path;
+  return write_geotiff(d.file("dem" + std::to_string(nx) + ".tif"), -4.7, 48.45, 0.01, nx, 35, 4326,
+                       depth_at);
 }
 
 struct Gr3 {
@@ -893,21 +878,8 @@ TEST(CliOutputs, VerticesOutsideTheBathymetryTakeTheNearestDepth) {
 TEST(CliOutputs, BathymetryRastersInPriorityOrderAndMinimumDepth) {
   TempDir dir;
   const std::string west = bathymetry(dir, 20);  // 4.7 W to 4.5 W
-  const std::string deep = dir.file("deep.tif");
-  {
-    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
-    GDALDataset* ds = drv->Create(deep.c_str(), 4, 4, 1, GDT_Float32, nullptr);
-    double gt[6] = {-4.8, 0.15, 0, 48.5, 0, -0.15};
-    ds->SetGeoTransform(gt);
-    OGRSpatialReference srs;
-    srs.importFromEPSG(4326);
-    ds->SetSpatialRef(&srs);
-    std::vector<float> v(16, 500.0f);
-    EXPECT_EQ(
-        ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, 4, 4, v.data(), 4, 4, GDT_Float32, 0, 0),
-        CE_None);
-    GDALClose(ds);
-  }
+  const std::string deep = write_geotiff(dir.file("deep.tif"), -4.8, 48.5, 0.15, 4, 4, 4326,
+                                         [](double, double) { return 500.0; });
   const std::vector<std::string> box = {"mesh",   water_input(dir),       "--domain", "water",
                                         "--bbox", "-4.6,48.2,-4.4,48.35", "--size",   "800"};
   auto run = [&](std::vector<std::string> extra) {

@@ -2,7 +2,6 @@
 // without a depth filled from the nearest with one, the minimum depth.
 #include "app/vertex_depths.h"
 
-#include <gdal_priv.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -12,6 +11,7 @@
 #include "core/error.h"
 #include "gis/gdal_env.h"
 #include "support/test_support.h"
+#include "support/write_raster.h"
 
 using namespace isoquad;
 using namespace isoquad::test;
@@ -19,27 +19,10 @@ using namespace isoquad::test;
 namespace {
 
 // A GeoTIFF without a CRS (so in the query CRS) of nx x ny pixels of 50 m from (x0, y1)
-// down and right, with value(x, y) at the pixel centres; NaN values written as the
-// band's nodata (-9999).
+// down and right, with value(x, y) at the pixel centres (NaN: nodata).
 std::string write_raster(const TempDir& dir, const std::string& name, double x0, double y1, int nx,
                          int ny, const std::function<double(double, double)>& value) {
-  ensure_gdal_registered();
-  const std::string path = dir.file(name);
-  GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
-  GDALDataset* ds = drv->Create(path.c_str(), nx, ny, 1, GDT_Float32, nullptr);
-  double gt[6] = {x0, 50, 0, y1, 0, -50};
-  ds->SetGeoTransform(gt);
-  std::vector<float> v(static_cast<std::size_t>(nx) * ny);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i) {
-      const double d = value(x0 + (i + 0.5) * 50, y1 - (j + 0.5) * 50);
-      v[static_cast<std::size_t>(j) * nx + i] = std::isnan(d) ? -9999.0f : static_cast<float>(d);
-    }
-  GDALRasterBand* band = ds->GetRasterBand(1);
-  band->SetNoDataValue(-9999);
-  EXPECT_EQ(band->RasterIO(GF_Write, 0, 0, nx, ny, v.data(), nx, ny, GDT_Float32, 0, 0), CE_None);
-  GDALClose(ds);
-  return path;
+  return write_geotiff(dir.file(name), x0, y1, 50, nx, ny, 0, value);
 }
 
 // (nx + 1) x (ny + 1) vertices 100 m apart from (x0, 0), quads counter-clockwise.

@@ -16,6 +16,7 @@
 #include "gis/gdal_env.h"
 #include "mesh/background_mesh.h"
 #include "support/test_support.h"
+#include "support/write_raster.h"
 
 using namespace isoquad;
 using namespace isoquad::test;
@@ -34,24 +35,7 @@ Domain rectangle(double w, double h) {
 // and right, value(x, y) at the pixel centres.
 std::string write_tif(const std::string& path, double x0, double y1, double pixel, int nx, int ny,
                       const std::function<double(double, double)>& value) {
-  ensure_gdal_registered();
-  GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
-  GDALDataset* ds = drv->Create(path.c_str(), nx, ny, 1, GDT_Float32, nullptr);
-  double gt[6] = {x0, pixel, 0, y1, 0, -pixel};
-  ds->SetGeoTransform(gt);
-  OGRSpatialReference srs;
-  srs.importFromEPSG(3857);
-  ds->SetSpatialRef(&srs);
-  std::vector<float> v(static_cast<std::size_t>(nx) * ny);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i)
-      v[static_cast<std::size_t>(j) * nx + i] =
-          static_cast<float>(value(x0 + (i + 0.5) * pixel, y1 - (j + 0.5) * pixel));
-  EXPECT_EQ(
-      ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, nx, ny, v.data(), nx, ny, GDT_Float32, 0, 0),
-      CE_None);
-  GDALClose(ds);
-  return path;
+  return write_geotiff(path, x0, y1, pixel, nx, ny, 3857, value);
 }
 
 BackgroundMesh mesh_for(const Domain& d, const SizingOracle& oracle, double factor = 0.5) {

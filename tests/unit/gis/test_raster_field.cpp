@@ -2,15 +2,14 @@
 // under an extent.
 #include "gis/raster_field.h"
 
-#include <gdal_priv.h>
 #include <gtest/gtest.h>
-#include <ogr_spatialref.h>
 
 #include <cmath>
 
 #include "gis/crs.h"
 #include "gis/gdal_env.h"
 #include "support/test_support.h"
+#include "support/write_raster.h"
 
 using namespace isoquad;
 using namespace isoquad::test;
@@ -20,26 +19,8 @@ namespace {
 // A world grid in lon/lat, 0.5-degree pixels, value lon + 1000 lat at the pixel centres
 // (bilinear sampling is exact between them).
 std::string world(const TempDir& dir) {
-  ensure_gdal_registered();
-  const std::string path = dir.file("world.tif");
-  GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
-  const int nx = 720, ny = 360;
-  GDALDataset* ds = drv->Create(path.c_str(), nx, ny, 1, GDT_Float32, nullptr);
-  double gt[6] = {-180, 0.5, 0, 90, 0, -0.5};
-  ds->SetGeoTransform(gt);
-  OGRSpatialReference srs;
-  srs.importFromEPSG(4326);
-  ds->SetSpatialRef(&srs);
-  std::vector<float> v(static_cast<std::size_t>(nx) * ny);
-  for (int j = 0; j < ny; ++j)
-    for (int i = 0; i < nx; ++i)
-      v[static_cast<std::size_t>(j) * nx + i] =
-          static_cast<float>((-180 + (i + 0.5) * 0.5) + 1000 * (90 - (j + 0.5) * 0.5));
-  EXPECT_EQ(
-      ds->GetRasterBand(1)->RasterIO(GF_Write, 0, 0, nx, ny, v.data(), nx, ny, GDT_Float32, 0, 0),
-      CE_None);
-  GDALClose(ds);
-  return path;
+  return write_geotiff(dir.file("world.tif"), -180, 90, 0.5, 720, 360, 4326,
+                       [](double lon, double lat) { return lon + 1000 * lat; });
 }
 
 // Under `extent` (query CRS), the window's samples are the whole raster's, on a lattice
