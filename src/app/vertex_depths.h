@@ -16,7 +16,7 @@ namespace isoquad {
 // The time step each quad allows an explicit model at a gravity-wave Courant number of 1:
 // its width (the shorter distance between the midpoints of opposite sides) over
 // sqrt(g d), d its deepest vertex's depth. Multiply by the model's Courant limit (D-Flow
-// FM's default CFLmax is 0.7).
+// FM's default CFLMax is 0.7).
 struct TimeSteps {
   std::vector<double> per_quad_s;       // #Q; NaN for a dry quad (no vertex deeper than 0)
   double min_s = 0.0, median_s = 0.0;   // over the wet quads; 0 when none is wet
