@@ -217,6 +217,18 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
                   "R: h <= 2 pi d / (R |grad d|), resolving bathymetric slopes")
       ->check(CLI::PositiveNumber)
       ->group(g);
+  cmd->add_option("--time-step", f.sizing.time_step_s,
+                  "DT in seconds, with --bathymetry: sizes at least 1.25 DT sqrt(g d) / C, so "
+                  "that an explicit model can run at DT (a quad's time step is its width over "
+                  "sqrt(g d) times C); over every other source, --hmin and --hmax, under "
+                  "--refine")
+      ->check(CLI::PositiveNumber)
+      ->group(g);
+  cmd->add_option("--courant", f.sizing.courant,
+                  "C, the model's gravity-wave Courant limit, for --time-step and the time "
+                  "steps reported (default 1; D-Flow FM's CFLMax is 0.7)")
+      ->check(CLI::PositiveNumber)
+      ->group(g);
   cmd->add_option("--cells-across", f.sizing.cells_across,
                   "Elements across a narrow channel (automatic sizing; default 2)")
       ->check(CLI::PositiveNumber)
@@ -270,10 +282,8 @@ FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {
   o.front = a.fe;
   o.sizing = f.sizing;
   if (a.fe.target_size_m > 0) o.sizing.constant_m = a.fe.target_size_m;
-  const bool explicit_source = o.sizing.constant_m || !o.sizing.expression.empty() ||
-                               !o.sizing.raster_path.empty() || !o.sizing.bathymetry_paths.empty();
   if (f.min_depth_m) o.sizing.min_depth_m = std::max(o.sizing.min_depth_m, *f.min_depth_m);
-  o.sizing.automatic = f.size_auto || !explicit_source;
+  o.sizing.automatic = f.size_auto || !has_explicit_source(o.sizing);
   if (!std::isnan(f.cross_angle_deg) && !f.cross_raster.empty())
     throw Error(ErrorClass::usage, "options", "give --cross-angle or --cross-raster, not both");
   if (!std::isnan(f.cross_angle_deg)) {
@@ -336,6 +346,16 @@ int run_domain(CommonArgs& a) {
   return 0;
 }
 
+// The options that need depths.
+void check_depth_options(const FieldArgs& f) {
+  if (!f.sizing.bathymetry_paths.empty()) return;
+  if (f.min_depth_m) throw Error(ErrorClass::usage, "options", "--min-depth needs --bathymetry");
+  if (f.sizing.time_step_s > 0)
+    throw Error(ErrorClass::usage, "options", "--time-step needs --bathymetry");
+  if (f.sizing.courant != SizingParams().courant)
+    throw Error(ErrorClass::usage, "options", "--courant needs --bathymetry");
+}
+
 int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
   finish_front_end_args(a);
   check_output_path(a.output, a.overwrite);
@@ -344,8 +364,7 @@ int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
   const std::string ext = std::filesystem::path(a.output).extension().string();
   if (ext != ".vtu" && ext != ".gpkg")
     throw Error(ErrorClass::usage, "options", "'" + a.output + "': the fields are written as .vtu or .gpkg");
-  if (f.min_depth_m && f.sizing.bathymetry_paths.empty())
-    throw Error(ErrorClass::usage, "options", "--min-depth needs --bathymetry");
+  check_depth_options(f);
   const FieldsOptions options = fields_options(a, f);
   const auto t0 = std::chrono::steady_clock::now();
   FieldsResult r = build_fields(options, Progress(make_progress(a.quiet)));
@@ -582,13 +601,13 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
                   "'" + o.path +
                       "': a .pli holds the open boundary, and this domain has none: give "
                       "--open-boundary FILE, or --domain water with --bbox");
-  // --bathymetry alone gives the depths of the outputs; with a wavelength or slope rule
-  // it also sets the sizing.
+  // --bathymetry alone gives the depths of the outputs; with a wavelength, slope or time
+  // step rule it also sets the sizing.
   const std::vector<std::string> bathymetry = f.sizing.bathymetry_paths;
   for (const std::string& path : bathymetry) check_raster(path, "--bathymetry");
-  if (f.min_depth_m && bathymetry.empty())
-    throw Error(ErrorClass::usage, "options", "--min-depth needs --bathymetry");
-  if (!bathymetry.empty() && !f.sizing.wavelength_period_s && !f.sizing.slope_factor)
+  check_depth_options(f);
+  if (!bathymetry.empty() && !f.sizing.wavelength_period_s && !f.sizing.slope_factor &&
+      !f.sizing.time_step_s)
     f.sizing.bathymetry_paths.clear();
   if (!f.plot_path.empty()) check_output_path(f.plot_path, a.overwrite);
   if (!a.report_path.empty()) check_output_path(a.report_path, a.overwrite);
@@ -615,6 +634,8 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
   job.write = write_options;
   job.bathymetry_paths = bathymetry;
   job.min_depth_m = f.min_depth_m;
+  job.courant = f.sizing.courant;
+  job.time_step_s = f.sizing.time_step_s;
   job.plot_path = f.plot_path;
   job.report_path = a.report_path;
   job.overwrite = a.overwrite;
@@ -645,9 +666,13 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
       if (t.limiting_quad >= 0) {
         const Point2 c = quad_centroid(r.quads, t.limiting_quad);
         print(out,
-              "time step:    %.3g s at a gravity-wave Courant number of 1, set by a quad %.0f m "
-              "wide in %.0f m of water at (%.1f, %.1f); median quad %.3g s\n",
-              t.min_s, t.width_m, t.depth_m, c.x, c.y, t.median_s);
+              "time step:    %.3g s at a gravity-wave Courant number of %.3g, set by a quad %.0f "
+              "m wide in %.0f m of water at (%.1f, %.1f); median quad %.3g s",
+              t.min_s, t.courant, t.width_m, t.depth_m, c.x, c.y, t.median_s);
+        if (f.sizing.time_step_s > 0)
+          print(out, "; %zu of %zu wet quads under --time-step %.6g s", t.num_under_target,
+                t.num_wet, f.sizing.time_step_s);
+        out << "\n";
       }
     }
     if (!f.plot_path.empty()) out << "plot:         " << f.plot_path << "\n";

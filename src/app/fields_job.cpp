@@ -232,6 +232,15 @@ std::string format_fields_summary(const FieldsResult& r) {
                   *lo, *hi, r.size.size_m.size(), predicted_num_quads(r.mesh, r.size));
     os << buf;
   }
+  if (r.sizing.time_step_s > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "dt floor:     sizes for %.6g s at a Courant number of %.3g set at %zu "
+                  "background vertices (up to %.6g m%s)\n",
+                  r.sizing.time_step_s, r.sizing.courant, r.size.num_set_by_time_step,
+                  r.size.max_time_step_size_m,
+                  r.size.max_time_step_size_m > r.sizing.hmax_m ? ", above hmax" : "");
+    os << buf;
+  }
   std::snprintf(buf, sizeof buf, "background:   %zu vertices, %zu triangles, %zu boundary chains\n",
                 r.mesh.points.size(), r.mesh.triangles.size(), r.mesh.chains.size());
   os << buf;
@@ -257,6 +266,11 @@ void add_sizing_report(JsonWriter& j, const FieldsResult& r) {
       .array("sources", r.sizing.sources)
       .value("narrow_medial_points", r.sizing.num_narrow_sites)
       .value("predicted_quads", predicted_num_quads(r.mesh, r.size));
+  if (r.sizing.time_step_s > 0)
+    j.value("time_step_s", r.sizing.time_step_s)
+        .value("courant", r.sizing.courant)
+        .value("num_set_by_time_step", r.size.num_set_by_time_step)
+        .value("max_time_step_size_m", r.size.max_time_step_size_m);
   if (!r.size.size_m.empty()) {
     const auto [lo, hi] = std::minmax_element(r.size.size_m.begin(), r.size.size_m.end());
     j.value("size_min_m", *lo).value("size_max_m", *hi);

@@ -341,10 +341,13 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
           .value("num_filled", depths->num_filled)
           .value("max_fill_distance_m", depths->max_fill_distance_m)
           .value("num_raised_to_min_depth", depths->num_raised)
+          .value("courant", depths->time_steps.courant)
           .value("time_step_min_s", depths->time_steps.min_s)
           .value("time_step_median_s", depths->time_steps.median_s)
           .value("time_step_min_width_m", depths->time_steps.width_m)
           .value("time_step_min_depth_m", depths->time_steps.depth_m)
+          .value("num_wet_quads", depths->time_steps.num_wet)
+          .value("num_under_time_step", depths->time_steps.num_under_target)
           .end_object();
     j.begin_object("smoothing")
         .value("tiling_attempts", r.attempts)

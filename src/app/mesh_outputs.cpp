@@ -67,7 +67,8 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
                                 CrsInfo{front.domain.crs_wkt, front.domain.crs_name},
                                 bounding_box(r.quads.points));
       written.depths = vertex_depths(rasters, r.quads, o.min_depth_m);
-      written.depths->time_steps = courant_time_steps(r.quads, written.depths->depth);
+      written.depths->time_steps =
+          courant_time_steps(r.quads, written.depths->depth, o.courant, o.time_step_s);
       data.depth = std::move(written.depths->depth);
       data.time_step_s = std::move(written.depths->time_steps.per_quad_s);
     }

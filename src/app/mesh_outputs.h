@@ -21,6 +21,8 @@ struct MeshJobOutputs {
   // vertices' depths (vertex_depths()). Empty: none (unknown depths).
   std::vector<std::string> bathymetry_paths;
   std::optional<double> min_depth_m;  // --min-depth: shallower depths are raised to it
+  double courant = 1.0;               // --courant: the time steps are at this Courant number
+  double time_step_s = 0.0;           // --time-step: the quads' time steps are counted against it
   std::string plot_path;     // PNG: the mesh, or the tiling when it stopped early
   std::string report_path;   // JSON: mesh_report_json()
   bool overwrite = false;    // for the plot and the report (the meshes have their own)

@@ -93,8 +93,10 @@ VertexDepths vertex_depths(const RasterStack& rasters, const QuadMesh& mesh,
   return out;
 }
 
-TimeSteps courant_time_steps(const QuadMesh& mesh, const std::vector<double>& depth) {
+TimeSteps courant_time_steps(const QuadMesh& mesh, const std::vector<double>& depth, double courant,
+                             double target_s) {
   TimeSteps out;
+  out.courant = courant;
   out.per_quad_s.assign(mesh.quads.size(), std::numeric_limits<double>::quiet_NaN());
   std::vector<double> wet;
   for (std::size_t q = 0; q < mesh.quads.size(); ++q) {
@@ -107,9 +109,10 @@ TimeSteps courant_time_steps(const QuadMesh& mesh, const std::vector<double>& de
     double deepest = depth[c[0]];
     for (int v : c) deepest = std::max(deepest, depth[v]);
     if (!(deepest > 0)) continue;
-    const double dt = width / std::sqrt(kGravity * deepest);
+    const double dt = courant * width / std::sqrt(kGravity * deepest);
     out.per_quad_s[q] = dt;
     wet.push_back(dt);
+    if (dt < target_s) ++out.num_under_target;
     if (out.limiting_quad < 0 || dt < out.min_s) {
       out.min_s = dt;
       out.limiting_quad = static_cast<int>(q);
@@ -117,6 +120,7 @@ TimeSteps courant_time_steps(const QuadMesh& mesh, const std::vector<double>& de
       out.depth_m = deepest;
     }
   }
+  out.num_wet = wet.size();
   if (!wet.empty()) {
     std::nth_element(wet.begin(), wet.begin() + wet.size() / 2, wet.end());
     out.median_s = wet[wet.size() / 2];

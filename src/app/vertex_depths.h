@@ -13,15 +13,17 @@
 
 namespace isoquad {
 
-// The time step each quad allows an explicit model at a gravity-wave Courant number of 1:
-// its width (the shorter distance between the midpoints of opposite sides) over
-// sqrt(g d), d its deepest vertex's depth. Multiply by the model's Courant limit (D-Flow
-// FM's default CFLMax is 0.7).
+// The time step each quad allows an explicit model at a gravity-wave Courant number C:
+// C times its width (the shorter distance between the midpoints of opposite sides) over
+// sqrt(g d), d its deepest vertex's depth. (D-Flow FM's default CFLMax is 0.7.)
 struct TimeSteps {
+  double courant = 1.0;
   std::vector<double> per_quad_s;       // #Q; NaN for a dry quad (no vertex deeper than 0)
   double min_s = 0.0, median_s = 0.0;   // over the wet quads; 0 when none is wet
   int limiting_quad = -1;               // the quad of min_s
   double width_m = 0.0, depth_m = 0.0;  // its width and depth
+  std::size_t num_wet = 0;
+  std::size_t num_under_target = 0;  // wet quads under the target time step
 };
 
 struct VertexDepths {
@@ -38,7 +40,8 @@ struct VertexDepths {
 VertexDepths vertex_depths(const RasterStack& rasters, const QuadMesh& mesh,
                            std::optional<double> min_depth_m);
 
-// `depth`: #P, as written.
-TimeSteps courant_time_steps(const QuadMesh& mesh, const std::vector<double>& depth);
+// `depth`: #P, as written. `target_s` > 0: count the wet quads whose time step is under it.
+TimeSteps courant_time_steps(const QuadMesh& mesh, const std::vector<double>& depth,
+                             double courant = 1.0, double target_s = 0.0);
 
 }  // namespace isoquad

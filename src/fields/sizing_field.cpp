@@ -19,16 +19,16 @@
 
 namespace isoquad {
 
-namespace {
-
-
-}  // namespace
-
 struct SizingOracle::Expression {
   mu::Parser parser;
   double x = 0.0, y = 0.0;
   std::string text;
 };
+
+bool has_explicit_source(const SizingParams& p) {
+  return p.constant_m || !p.expression.empty() || !p.raster_path.empty() ||
+         (!p.bathymetry_paths.empty() && (p.wavelength_period_s > 0 || p.slope_factor > 0));
+}
 
 SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : params_(params) {
   auto usage = [](const std::string& what) { throw Error(ErrorClass::usage, "sizing", what); };
@@ -43,9 +43,7 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
   const CrsInfo crs{domain.crs_wkt, domain.crs_name, false, true, 1.0};
   const std::array<double, 4> extent = bounding_box(domain);  // rasters: only that part read
 
-  const bool explicit_source = params.constant_m || !params.expression.empty() ||
-                               !params.raster_path.empty() || !params.bathymetry_paths.empty();
-  const bool automatic = params.automatic || !explicit_source;
+  const bool automatic = params.automatic || !has_explicit_source(params);
   hmax_ = params.hmax_m > 0 ? params.hmax_m : std::numeric_limits<double>::infinity();
   hmin_ = params.hmin_m;
   if (automatic) {
@@ -83,15 +81,24 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
     raster_ = std::make_unique<RasterField>(params.raster_path, "--size-raster", crs, extent);
     summary_.sources.push_back("raster " + params.raster_path);
   }
+  if (!(params.courant > 0)) usage("--courant must be positive");
+  if (params.time_step_s < 0) usage("--time-step must be positive");
+  if (params.time_step_s > 0 && params.bathymetry_paths.empty())
+    usage("--time-step needs --bathymetry");
+  summary_.time_step_s = params.time_step_s;
+  summary_.courant = params.courant;
   if (!params.bathymetry_paths.empty()) {
-    if (params.wavelength_period_s <= 0 && params.slope_factor <= 0)
-      usage("--bathymetry needs --wavelength-period with --cells-per-wavelength, or --slope-factor");
+    if (params.wavelength_period_s <= 0 && params.slope_factor <= 0 && params.time_step_s <= 0)
+      usage(
+          "--bathymetry needs --wavelength-period with --cells-per-wavelength, --slope-factor or "
+          "--time-step");
     if (params.wavelength_period_s > 0 && params.cells_per_wavelength <= 0)
       usage("--wavelength-period needs --cells-per-wavelength");
     bathymetry_ =
         std::make_unique<RasterStack>(params.bathymetry_paths, "--bathymetry", crs, extent);
-    for (const std::string& path : params.bathymetry_paths)
-      summary_.sources.push_back("bathymetry " + path);
+    if (has_explicit_source(params))  // the time step rule is a bound, not a source
+      for (const std::string& path : params.bathymetry_paths)
+        summary_.sources.push_back("bathymetry " + path);
   }
   if (!params.refine_path.empty()) {
     SizeFeatures in = read_size_features(params.refine_path, params.refine_layer,
@@ -175,8 +182,8 @@ double SizingOracle::operator()(const Point2& p) const {
       h = std::min(h, v);
     }
   }
+  const double raw = depth_at(p);
   if (bathymetry_) {
-    const double raw = bathymetry_->sample(p);
     if (!std::isnan(raw)) {
       const double d = std::max(params_.min_depth_m, raw);
       if (params_.wavelength_period_s > 0)
@@ -198,6 +205,25 @@ double SizingOracle::operator()(const Point2& p) const {
                 "no size at " + format_point(p) + " (outside every raster); give --hmax or --size");
   h = std::clamp(h, hmin_, hmax_);
   if (automatic_) h = std::min(h, automatic_->narrow(p));
+  return limit_locally(p, std::max(h, raw_time_step_floor(raw)));
+}
+
+double SizingOracle::depth_at(const Point2& p) const {
+  return bathymetry_ ? bathymetry_->sample(p) : std::numeric_limits<double>::quiet_NaN();
+}
+
+double SizingOracle::raw_time_step_floor(double depth) const {
+  if (!(params_.time_step_s > 0) || std::isnan(depth)) return 0.0;
+  const double d = std::max(params_.min_depth_m, depth);
+  return kTimeStepMargin * params_.time_step_s * std::sqrt(kGravity * d) / params_.courant;
+}
+
+double SizingOracle::time_step_floor(const Point2& p) const {
+  const double floor = raw_time_step_floor(depth_at(p));
+  return floor > 0 ? limit_locally(p, floor) : 0.0;
+}
+
+double SizingOracle::limit_locally(const Point2& p, double h) const {
   if (features_) h = features_->limit(p, h);
   for (const LocalRefinement& r : params_.refinements) {
     const double d = std::hypot(p.x - r.centre.x, p.y - r.centre.y);
@@ -329,8 +355,18 @@ SizingField sample_sizing_field(const BackgroundMesh& mesh, const SizingOracle& 
   SizingField field;
   field.size_m.resize(mesh.points.size());
   // In spatial order: consecutive queries are close, which keeps them cheap.
-  for (int v : spatial_order(mesh.points)) field.size_m[v] = oracle(mesh.points[v]);
+  const std::vector<int> order = spatial_order(mesh.points);
+  for (int v : order) field.size_m[v] = oracle(mesh.points[v]);
   limit_gradient(mesh, gradation, field.size_m);
+  if (oracle.has_time_step_floor())
+    for (int v : order) {
+      const double floor = oracle.time_step_floor(mesh.points[v]);
+      if (floor > 0 && floor >= field.size_m[v]) {
+        field.size_m[v] = floor;
+        ++field.num_set_by_time_step;
+        field.max_time_step_size_m = std::max(field.max_time_step_size_m, floor);
+      }
+    }
   return field;
 }
 

@@ -23,6 +23,11 @@ class RasterStack;
 
 constexpr double kGravity = 9.81;  // m/s2 (the wavelength rule, the time steps of the outputs)
 
+// The sizes the time step rule asks for are this much above DT sqrt(g d) / C: a quad's
+// width (between the midpoints of opposite sides) falls under its size where it is
+// smaller than the field or not square (measured in docs/measurements.md).
+constexpr double kTimeStepMargin = 1.25;
+
 // A place where the sizes must be smaller than the sources say: at most size_m within
 // radius_m of centre, growing by the gradation beyond (a cone, already graded). Not
 // clamped to hmin. The mesh job adds these where a tiling attempt failed (a fold where a
@@ -47,6 +52,12 @@ struct SizingParams {
   double slope_factor = 0.0;          // --slope-factor R: h <= 2 pi d / (R |grad d|) (0: off)
   double min_depth_m = 1.0;           // depths below this (and dry land) count as this
                                       // (--min-depth when larger)
+  // --time-step DT: sizes raised to at least DT sqrt(g d) / C (C: --courant), so that no
+  // quad holds an explicit model's time step under DT at that Courant number, with a
+  // margin for quads narrower than their size (kTimeStepMargin). Over every source, hmin
+  // and hmax; under --refine features and local refinements. 0: off.
+  double time_step_s = 0.0;
+  double courant = 1.0;
   // --refine: vector features (any OGR format with a CRS) whose attribute refine_field
   // gives the size in metres inside their polygons and on their lines and points,
   // growing by the gradation away from them; not clamped to hmin.
@@ -60,6 +71,11 @@ struct SizingParams {
   std::vector<LocalRefinement> refinements;
 };
 
+// A size source besides the automatic one: --size, --size-expr, --size-raster, or
+// --bathymetry with the wavelength or slope rule (the time step rule only bounds sizes).
+// Without one, the sizing is automatic.
+bool has_explicit_source(const SizingParams& params);
+
 // The resolved parameters and what the summary reports.
 struct SizingSummary {
   double hmin_m = 0.0;
@@ -71,6 +87,8 @@ struct SizingSummary {
   double narrow_min_width_m = 0.0;   // the widths those features have (about)
   double narrow_max_width_m = 0.0;
   double narrow_floor_m = 0.0;  // their smallest size
+  double time_step_s = 0.0;     // --time-step (0: off) and --courant
+  double courant = 1.0;
 };
 
 // h(x) before gradation: the minimum of the sources, clamped to [hmin, hmax], then of the
@@ -86,6 +104,10 @@ class SizingOracle {
   SizingOracle& operator=(const SizingOracle&) = delete;
 
   double operator()(const Point2& x) const;
+  // The size the time step rule asks for at x (0: off, or no depth there), limited by the
+  // --refine features and the local refinements as operator() is.
+  double time_step_floor(const Point2& x) const;
+  bool has_time_step_floor() const { return params_.time_step_s > 0; }
   const SizingSummary& summary() const { return summary_; }
   // The same size everywhere: --size alone (clamped to hmin and hmax), no other source
   // and no local refinement.
@@ -103,11 +125,17 @@ class SizingOracle {
   std::unique_ptr<RasterStack> bathymetry_;
   std::unique_ptr<FeatureSizes> features_;
   double gradient_step_m_ = 1.0;
+  double depth_at(const Point2& x) const;                 // NaN: none
+  double raw_time_step_floor(double depth) const;         // 0 for NaN
+  double limit_locally(const Point2& x, double h) const;  // features and refinements
 };
 
 // Sizes at the background mesh vertices, made K-Lipschitz along every background edge.
 struct SizingField {
   std::vector<double> size_m;  // #V
+  // Vertices whose size the time step rule sets (--time-step), and the largest it sets.
+  std::size_t num_set_by_time_step = 0;
+  double max_time_step_size_m = 0.0;
   // Barycentric interpolation in triangle f.
   double at(const BackgroundMesh& mesh, int f, const std::array<double, 3>& bary) const;
 };
@@ -125,7 +153,8 @@ double estimate_num_quads(const Domain& domain, const std::function<double(const
 
 // Samples the oracle at every vertex and limits the gradient: afterwards
 // |h_u - h_v| <= K |u - v| holds on every background edge (Dijkstra-like sweep from
-// the smallest sizes).
+// the smallest sizes). The time step rule's sizes are then raised again to its floor,
+// where the gradation took them under it (the gradient there is the floor's own).
 SizingField sample_sizing_field(const BackgroundMesh& mesh, const SizingOracle& oracle,
                                 double gradation);
 

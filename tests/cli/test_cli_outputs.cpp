@@ -952,6 +952,82 @@ TEST(CliOutputs, BathymetryRastersInPriorityOrderAndMinimumDepth) {
   EXPECT_EQ(r.exit_code, 2) << r.err;
 }
 
+namespace {
+
+// The quads' time steps (time_step_s) of a GeoPackage written by `isoquad mesh`.
+std::vector<double> quad_time_steps(const std::string& gpkg) {
+  std::vector<double> steps;
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(gpkg.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  if (!ds) return steps;
+  if (OGRLayer* quads = ds->GetLayerByName("quads"))
+    for (auto& f : *quads) steps.push_back(f->GetFieldAsDouble("time_step_s"));
+  GDALClose(ds);
+  return steps;
+}
+
+}  // namespace
+
+// --time-step raises the sizes to what an explicit model needs at that step and Courant
+// number: fewer quads under it than without; every time step reported at --courant.
+TEST(CliOutputs, TimeStepRuleWidensTheQuadsInDeepWater) {
+  TempDir dir;
+  const std::string dem = bathymetry(dir);  // 130 to 330 m deep over the box
+  const std::vector<std::string> box = {
+      "mesh", water_input(dir), "--domain", "water",     "--bbox", "-4.6,48.2,-4.4,48.35", "--hmax",
+      "800",  "--bathymetry",   dem,        "--courant", "0.7"};
+  auto run = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = box;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args, dir);
+  };
+  CliResult plain = run({"-o", dir.file("plain.gpkg")});
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  CliResult wide =
+      run({"--time-step", "6", "-o", dir.file("wide.gpkg"), "--report", dir.file("wide.json")});
+  ASSERT_EQ(wide.exit_code, 0) << wide.err;
+  const std::vector<double> before = quad_time_steps(dir.file("plain.gpkg"));
+  const std::vector<double> after = quad_time_steps(dir.file("wide.gpkg"));
+  ASSERT_GT(before.size(), 100u);
+  ASSERT_GT(after.size(), 20u);
+  auto under = [](const std::vector<double>& steps) {
+    return static_cast<std::size_t>(
+        std::count_if(steps.begin(), steps.end(), [](double s) { return s < 6.0; }));
+  };
+  const std::size_t under_before = under(before), under_after = under(after);
+  EXPECT_GT(under_before, before.size() / 2);
+  EXPECT_LT(under_after, after.size() / 10);        // 12 of 572 when measured
+  EXPECT_LT(after.size(), before.size() * 7 / 10);  // 1,176 -> 572 quads when measured
+  EXPECT_GT(*std::min_element(after.begin(), after.end()),
+            *std::min_element(before.begin(), before.end()));
+  // The summary and the report count them, at Courant 0.7.
+  EXPECT_NE(wide.out.find("; " + std::to_string(under_after) + " of " +
+                          std::to_string(after.size()) + " wet quads under --time-step 6 s"),
+            std::string::npos)
+      << wide.out;
+  EXPECT_NE(wide.out.find("at a gravity-wave Courant number of 0.7,"), std::string::npos)
+      << wide.out;
+  EXPECT_NE(wide.out.find("dt floor:     sizes for 6 s at a Courant number of 0.7 set at "),
+            std::string::npos)
+      << wide.out;
+  const std::string report = read_file(dir.file("wide.json"));
+  EXPECT_NE(report.find("\"num_under_time_step\": " + std::to_string(under_after)),
+            std::string::npos)
+      << report;
+  // Without depths, --time-step and --courant mean nothing.
+  for (const std::vector<std::string>& bad : {std::vector<std::string>{"--time-step", "6"},
+                                              std::vector<std::string>{"--courant", "0.5"}}) {
+    std::vector<std::string> args = {"mesh",  water_input(dir),  "--domain",
+                                     "water", "--bbox",          "-4.6,48.2,-4.4,48.35",
+                                     "-o",    dir.file("x.gpkg")};
+    args.insert(args.end(), bad.begin(), bad.end());
+    const CliResult r = run_cli(args, dir);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(bad[0] + " needs --bathymetry"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("x.gpkg")));
+  }
+}
+
 TEST(CliOutputs, GoldenToolStartsACaseThatChecksAndCatchesAChange) {
   // tools/golden.py init: a user's own regression case from an isoquad mesh command
   // line; `check` passes on it, and fails once an expected value is off.

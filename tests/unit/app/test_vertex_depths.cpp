@@ -181,4 +181,27 @@ TEST(VertexDepths, TimeStepsAreTheWidthOverTheCelerity) {
   EXPECT_NEAR(t.depth_m, 60, 1e-9);
   EXPECT_EQ(m.quads[t.limiting_quad][0], 4 * 11 + 9);  // the top row's last quad
   EXPECT_GT(t.median_s, t.min_s);
+
+  // At a Courant number of 0.7 every time step is 0.7 times as long; against a target,
+  // the wet quads under it are counted.
+  const double target = t.median_s;
+  const TimeSteps c = courant_time_steps(m, depth, 0.7, target * 0.7);
+  std::size_t wet = 0, under = 0;
+  for (std::size_t q = 0; q < m.quads.size(); ++q) {
+    if (std::isnan(t.per_quad_s[q])) {
+      EXPECT_TRUE(std::isnan(c.per_quad_s[q]));
+      continue;
+    }
+    EXPECT_NEAR(c.per_quad_s[q], 0.7 * t.per_quad_s[q], 1e-12) << q;
+    ++wet;
+    under += t.per_quad_s[q] < target;
+  }
+  EXPECT_DOUBLE_EQ(c.courant, 0.7);
+  EXPECT_EQ(c.num_wet, wet);
+  EXPECT_EQ(t.num_wet, wet);
+  EXPECT_EQ(c.num_under_target, under);
+  EXPECT_GT(under, 0u);
+  EXPECT_LT(under, wet);
+  EXPECT_EQ(t.num_under_target, 0u);  // no target
+  EXPECT_NEAR(c.min_s, 0.7 * t.min_s, 1e-12);
 }

@@ -447,3 +447,70 @@ TEST(SizingField, WavelengthAndSlopeRulesFollowTheDepths) {
   EXPECT_EQ(e.error_class(), ErrorClass::usage);
   EXPECT_NE(std::string(e.what()).find("--wavelength-period"), std::string::npos) << e.what();
 }
+
+TEST(SizingField, TimeStepRuleRaisesSizesToItsFloorOverEverySourceButLocalOnes) {
+  TempDir dir;
+  // 20 km x 10 km, depths from 5 m (x = 0) to 2005 m (x = 20 km); automatic sizes of
+  // 100 to 400 m. At 4 s and a Courant number of 0.5 the floor passes 400 m 1.6 km from
+  // the shallow edge.
+  const Domain d = rectangle(20000, 10000);
+  const std::string depths = write_tif(dir.file("depth.tif"), -500, 10500, 250, 84, 44,
+                                       [](double x, double) { return 5 + std::max(0.0, x) / 10; });
+  SizingParams p;
+  p.hmin_m = 100;
+  p.hmax_m = 400;
+  p.bathymetry_paths = {depths};
+  p.time_step_s = 4;
+  p.courant = 0.5;
+  const SizingOracle oracle(d, p);
+  auto floor_at = [](double x, double courant) {
+    return kTimeStepMargin * 4 * std::sqrt(kGravity * (5 + x / 10)) / courant;
+  };
+  // The rule is a bound, not a source: the sizing stays automatic, and the summary says so.
+  ASSERT_EQ(oracle.summary().sources.size(), 1u);
+  EXPECT_EQ(oracle.summary().sources[0], "automatic (local feature size)");
+  EXPECT_DOUBLE_EQ(oracle.summary().time_step_s, 4.0);
+  // Deep water: the floor, above hmax; shallow water: the automatic sizes.
+  EXPECT_NEAR(oracle({15000, 5000}), floor_at(15000, 0.5), 1e-3);
+  EXPECT_GT(oracle({15000, 5000}), 1000.0);
+  EXPECT_NEAR(oracle.time_step_floor({15000, 5000}), floor_at(15000, 0.5), 1e-3);
+  EXPECT_LT(floor_at(1000, 0.5), 400.0);
+  EXPECT_DOUBLE_EQ(oracle({1000, 5000}), 400.0);
+  // Courant 1 halves it.
+  SizingParams q = p;
+  q.courant = 1.0;
+  EXPECT_NEAR(SizingOracle(d, q).time_step_floor({15000, 5000}), floor_at(15000, 1.0), 1e-3);
+
+  // On the background mesh: no vertex under the floor after gradation, and the floor
+  // sets the sizes in the deep half.
+  const BackgroundMesh mesh = mesh_for(d, oracle);
+  const SizingField f = sample_sizing_field(mesh, oracle, p.gradation);
+  std::size_t set = 0;
+  for (std::size_t v = 0; v < mesh.points.size(); ++v) {
+    const double floor = floor_at(mesh.points[v].x, 0.5);
+    ASSERT_GE(f.size_m[v], floor * (1 - 1e-4)) << v;
+    set += f.size_m[v] <= floor * (1 + 1e-4);
+  }
+  EXPECT_GT(f.num_set_by_time_step, mesh.points.size() / 2);
+  EXPECT_NEAR(static_cast<double>(set), static_cast<double>(f.num_set_by_time_step),
+              0.01 * mesh.points.size());
+  EXPECT_NEAR(f.max_time_step_size_m, floor_at(20000, 0.5), 0.02 * floor_at(20000, 0.5));
+
+  // A local refinement (a failed tiling's cone) stays under it.
+  SizingParams r = p;
+  r.refinements.push_back({{15000, 5000}, 0.0, 100.0});
+  const SizingOracle refined(d, r);
+  EXPECT_NEAR(refined({15000, 5000}), 100.0, 1e-9);
+  EXPECT_NEAR(refined.time_step_floor({15000, 5000}), 100.0, 1e-9);
+
+  // Usage errors: no depths, a non-positive Courant number.
+  SizingParams none = p;
+  none.bathymetry_paths.clear();
+  const Error e = error_of([&] { SizingOracle o(d, none); });
+  EXPECT_EQ(e.error_class(), ErrorClass::usage);
+  EXPECT_NE(std::string(e.what()).find("--time-step needs --bathymetry"), std::string::npos)
+      << e.what();
+  SizingParams zero = p;
+  zero.courant = 0;
+  EXPECT_EQ(error_of([&] { SizingOracle o(d, zero); }).error_class(), ErrorClass::usage);
+}
