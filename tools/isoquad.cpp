@@ -193,15 +193,26 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
   cmd->add_option("--refine-layer", f.sizing.refine_layer,
                   "Layer of --refine to read (default: its first)")
       ->group(g);
-  cmd->add_option(
-         "--bathymetry", f.sizing.bathymetry_paths,
-         "GDAL raster of depths in metres, positive down: vertex depths of the mesh outputs; "
-         "with --wavelength-period or --slope-factor also the sizing. Repeat for several, "
-         "in priority order (a survey, then a regional grid, then GEBCO): at each point the "
-         "first with a depth gives it")
-      ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-      ->group(g);
+  // --bathymetry and --elevation make one list, in the order given (trigger_on_parse:
+  // each occurrence is added as it is read).
+  for (const bool elevation : {false, true})
+    cmd->add_option_function<std::string>(
+           elevation ? "--elevation" : "--bathymetry",
+           [&f, elevation](const std::string& path) {
+             f.sizing.bathymetry.push_back({path, elevation});
+           },
+           elevation ? "GDAL raster of elevations in metres, positive up, as GEBCO, EMODnet and "
+                       "SRTM15+ give them (-200 is 200 m deep); otherwise as --bathymetry, in the "
+                       "same priority list"
+                     : "GDAL raster of depths in metres, positive down: vertex depths of the mesh "
+                       "outputs; with --wavelength-period, --slope-factor or --time-step also the "
+                       "sizing. Repeat it (or --elevation) for several, in priority order (a "
+                       "survey, then a regional grid, then GEBCO): at each point the first with a "
+                       "depth gives it")
+        ->trigger_on_parse()
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
+        ->group(g);
   cmd->add_option("--min-depth", f.min_depth_m,
                   "Depths shallower than this (metres, positive down) are written as it; the "
                   "wavelength and slope rules count depths under max(1, this) as that")
@@ -346,14 +357,17 @@ int run_domain(CommonArgs& a) {
   return 0;
 }
 
-// The options that need depths.
+// The depth rasters can be read, and the options that need depths have them.
 void check_depth_options(const FieldArgs& f) {
-  if (!f.sizing.bathymetry_paths.empty()) return;
-  if (f.min_depth_m) throw Error(ErrorClass::usage, "options", "--min-depth needs --bathymetry");
-  if (f.sizing.time_step_s > 0)
-    throw Error(ErrorClass::usage, "options", "--time-step needs --bathymetry");
-  if (f.sizing.courant != SizingParams().courant)
-    throw Error(ErrorClass::usage, "options", "--courant needs --bathymetry");
+  for (const DepthRaster& r : f.sizing.bathymetry) check_raster(r.path, r.option());
+  if (!f.sizing.bathymetry.empty()) return;
+  auto needs = [](const char* option) {
+    throw Error(ErrorClass::usage, "options",
+                std::string(option) + " needs depths: --bathymetry or --elevation");
+  };
+  if (f.min_depth_m) needs("--min-depth");
+  if (f.sizing.time_step_s > 0) needs("--time-step");
+  if (f.sizing.courant != SizingParams().courant) needs("--courant");
 }
 
 int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
@@ -603,12 +617,11 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
                       "--open-boundary FILE, or --domain water with --bbox");
   // --bathymetry alone gives the depths of the outputs; with a wavelength, slope or time
   // step rule it also sets the sizing.
-  const std::vector<std::string> bathymetry = f.sizing.bathymetry_paths;
-  for (const std::string& path : bathymetry) check_raster(path, "--bathymetry");
+  const std::vector<DepthRaster> bathymetry = f.sizing.bathymetry;
   check_depth_options(f);
   if (!bathymetry.empty() && !f.sizing.wavelength_period_s && !f.sizing.slope_factor &&
       !f.sizing.time_step_s)
-    f.sizing.bathymetry_paths.clear();
+    f.sizing.bathymetry.clear();
   if (!f.plot_path.empty()) check_output_path(f.plot_path, a.overwrite);
   if (!a.report_path.empty()) check_output_path(a.report_path, a.overwrite);
   if (tiling_only && f.plot_path.empty() && a.report_path.empty())
@@ -632,7 +645,7 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
   MeshJobOutputs job;
   job.meshes = outputs;
   job.write = write_options;
-  job.bathymetry_paths = bathymetry;
+  job.bathymetry = bathymetry;
   job.min_depth_m = f.min_depth_m;
   job.courant = f.sizing.courant;
   job.time_step_s = f.sizing.time_step_s;
@@ -646,6 +659,14 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
           "isoquad: warning: %zu vertices lie outside the bathymetry (or next to nodata): each "
           "took the depth of the nearest vertex with one, up to %.0f m away\n",
           written.depths->num_filled, written.depths->max_fill_distance_m);
+  // Most of the mesh above the water: likely elevations given as depths, or the reverse.
+  if (written.depths && !a.quiet &&
+      written.depths->num_dry > 0.9 * static_cast<double>(r.quads.points.size()))
+    print(err,
+          "isoquad: warning: %zu of the mesh's %zu vertices are dry (depth 0 or less): a "
+          "raster of elevations (positive up, as GEBCO's) is given with --elevation, one of "
+          "depths (positive down) with --bathymetry\n",
+          written.depths->num_dry, r.quads.points.size());
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (result) result->quality = r.quality, result->seconds = seconds;
   if (!a.quiet) {

@@ -62,9 +62,8 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
         front.open_boundary_tolerance_m + 1e-7 * extent, front.open_boundary_chord_share);
     written.num_open_edges = data.boundary.num_open_edges;
     written.num_land_edges = data.boundary.num_land_edges;
-    if (!o.bathymetry_paths.empty()) {
-      const RasterStack rasters(o.bathymetry_paths, "--bathymetry",
-                                CrsInfo{front.domain.crs_wkt, front.domain.crs_name},
+    if (!o.bathymetry.empty()) {
+      const RasterStack rasters(o.bathymetry, CrsInfo{front.domain.crs_wkt, front.domain.crs_name},
                                 bounding_box(r.quads.points));
       written.depths = vertex_depths(rasters, r.quads, o.min_depth_m);
       written.depths->time_steps =

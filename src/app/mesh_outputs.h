@@ -17,9 +17,9 @@ namespace isoquad {
 struct MeshJobOutputs {
   std::vector<MeshOutput> meshes;  // check_mesh_outputs() them before the meshing
   MeshWriteOptions write;
-  // GDAL rasters of depths (metres, positive down, any CRS), in priority order: the
+  // GDAL rasters of depths or elevations (metres, any CRS), in priority order: the
   // vertices' depths (vertex_depths()). Empty: none (unknown depths).
-  std::vector<std::string> bathymetry_paths;
+  std::vector<DepthRaster> bathymetry;
   std::optional<double> min_depth_m;  // --min-depth: shallower depths are raised to it
   double courant = 1.0;               // --courant: the time steps are at this Courant number
   double time_step_s = 0.0;           // --time-step: the quads' time steps are counted against it

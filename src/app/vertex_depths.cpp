@@ -31,7 +31,7 @@ VertexDepths vertex_depths(const RasterStack& rasters, const QuadMesh& mesh,
   }
   if (queue.empty())
     throw Error(ErrorClass::input, "bathymetry",
-                "--bathymetry " + rasters.paths_text() +
+                rasters.paths_text() +
                     ": no vertex of the mesh lies where it has a depth (check its extent, its CRS "
                     "and its nodata value)");
   if (queue.size() < n) {
@@ -84,6 +84,8 @@ VertexDepths vertex_depths(const RasterStack& rasters, const QuadMesh& mesh,
         out.max_fill_distance_m = std::max(out.max_fill_distance_m, reach[v]);
       }
   }
+  out.num_dry = static_cast<std::size_t>(
+      std::count_if(out.depth.begin(), out.depth.end(), [](double d) { return d <= 0; }));
   if (min_depth_m)
     for (double& d : out.depth)
       if (d < *min_depth_m) d = *min_depth_m, ++out.num_raised;

@@ -31,6 +31,7 @@ struct VertexDepths {
   std::size_t num_filled = 0;        // vertices that took the nearest vertex's depth
   double max_fill_distance_m = 0.0;  // the longest path from one to the vertex it took
   std::size_t num_raised = 0;        // depths raised to min_depth_m
+  std::size_t num_dry = 0;           // vertices at depth 0 or above (before min_depth_m)
   double min_m = 0.0, max_m = 0.0;   // the range of the depths written
   TimeSteps time_steps;              // courant_time_steps() of the depths written
 };

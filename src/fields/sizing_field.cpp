@@ -27,7 +27,7 @@ struct SizingOracle::Expression {
 
 bool has_explicit_source(const SizingParams& p) {
   return p.constant_m || !p.expression.empty() || !p.raster_path.empty() ||
-         (!p.bathymetry_paths.empty() && (p.wavelength_period_s > 0 || p.slope_factor > 0));
+         (!p.bathymetry.empty() && (p.wavelength_period_s > 0 || p.slope_factor > 0));
 }
 
 SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : params_(params) {
@@ -83,22 +83,21 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
   }
   if (!(params.courant > 0)) usage("--courant must be positive");
   if (params.time_step_s < 0) usage("--time-step must be positive");
-  if (params.time_step_s > 0 && params.bathymetry_paths.empty())
-    usage("--time-step needs --bathymetry");
+  if (params.time_step_s > 0 && params.bathymetry.empty())
+    usage("--time-step needs depths: --bathymetry or --elevation");
   summary_.time_step_s = params.time_step_s;
   summary_.courant = params.courant;
-  if (!params.bathymetry_paths.empty()) {
+  if (!params.bathymetry.empty()) {
     if (params.wavelength_period_s <= 0 && params.slope_factor <= 0 && params.time_step_s <= 0)
       usage(
           "--bathymetry needs --wavelength-period with --cells-per-wavelength, --slope-factor or "
           "--time-step");
     if (params.wavelength_period_s > 0 && params.cells_per_wavelength <= 0)
       usage("--wavelength-period needs --cells-per-wavelength");
-    bathymetry_ =
-        std::make_unique<RasterStack>(params.bathymetry_paths, "--bathymetry", crs, extent);
+    bathymetry_ = std::make_unique<RasterStack>(params.bathymetry, crs, extent);
     if (has_explicit_source(params))  // the time step rule is a bound, not a source
-      for (const std::string& path : params.bathymetry_paths)
-        summary_.sources.push_back("bathymetry " + path);
+      for (const DepthRaster& r : params.bathymetry)
+        summary_.sources.push_back((r.elevation ? "elevation " : "bathymetry ") + r.path);
   }
   if (!params.refine_path.empty()) {
     SizeFeatures in = read_size_features(params.refine_path, params.refine_layer,

@@ -12,14 +12,13 @@
 
 #include "core/geometry.h"
 #include "gis/crs.h"
+#include "gis/raster_field.h"
 
 namespace isoquad {
 
 struct BackgroundMesh;
 class BoundaryFeatureSize;
 class FeatureSizes;
-class RasterField;
-class RasterStack;
 
 constexpr double kGravity = 9.81;  // m/s2 (the wavelength rule, the time steps of the outputs)
 
@@ -44,9 +43,9 @@ struct SizingParams {
   std::optional<double> constant_m;  // --size
   std::string expression;            // --size-expr, in x and y (metres, meshing CRS)
   std::string raster_path;           // --size-raster: sizes in metres, any GDAL raster
-  // Ocean-model sizing from a depth raster (metres, positive down):
-  // --bathymetry, in priority order: the first with a depth at a point gives it.
-  std::vector<std::string> bathymetry_paths;
+  // Ocean-model sizing from depth rasters (--bathymetry, --elevation), in priority
+  // order: the first with a depth at a point gives it.
+  std::vector<DepthRaster> bathymetry;
   double wavelength_period_s = 0.0;   // --wavelength-period T (0: off)
   double cells_per_wavelength = 0.0;  // --cells-per-wavelength N: h <= T sqrt(g d) / N
   double slope_factor = 0.0;          // --slope-factor R: h <= 2 pi d / (R |grad d|) (0: off)

@@ -138,26 +138,27 @@ double RasterField::sample(const Point2& p) const {
          ty * ((1 - tx) * at(i0, j1) + tx * at(i1, j1));
 }
 
-RasterStack::RasterStack(const std::vector<std::string>& paths, const std::string& what,
-                         const CrsInfo& query_crs,
-                         const std::optional<std::array<double, 4>>& extent) {
-  for (const std::string& path : paths)
-    rasters_.push_back(std::make_unique<RasterField>(path, what, query_crs, extent));
+RasterStack::RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo& query_crs,
+                         const std::optional<std::array<double, 4>>& extent)
+    : sources_(rasters) {
+  for (const DepthRaster& r : rasters)
+    rasters_.push_back(std::make_unique<RasterField>(r.path, r.option(), query_crs, extent));
 }
 
 RasterStack::~RasterStack() = default;
 
 double RasterStack::sample(const Point2& p) const {
-  for (const auto& raster : rasters_) {
-    const double v = raster->sample(p);
-    if (!std::isnan(v)) return v;
+  for (std::size_t i = 0; i < rasters_.size(); ++i) {
+    const double v = rasters_[i]->sample(p);
+    if (!std::isnan(v)) return sources_[i].elevation ? -v : v;
   }
   return std::numeric_limits<double>::quiet_NaN();
 }
 
 std::string RasterStack::paths_text() const {
   std::string text;
-  for (const auto& raster : rasters_) text += (text.empty() ? "'" : ", '") + raster->path() + "'";
+  for (const DepthRaster& r : sources_)
+    text += (text.empty() ? "" : ", ") + std::string(r.option()) + " '" + r.path + "'";
   return text;
 }
 

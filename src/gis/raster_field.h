@@ -48,26 +48,34 @@ class RasterField {
   std::unique_ptr<CrsTransform> to_raster_;
 };
 
-// Rasters in priority order (a harbour survey, then a regional grid, then a global
+// A raster of depths (metres, positive down: --bathymetry) or of elevations (positive
+// up, as GEBCO, EMODnet and SRTM15+ give them: --elevation), read as depths.
+struct DepthRaster {
+  std::string path;
+  bool elevation = false;
+  const char* option() const { return elevation ? "--elevation" : "--bathymetry"; }
+};
+
+// Depth rasters in priority order (a harbour survey, then a regional grid, then a global
 // one): at a point, the first with a value there gives it. Throws as RasterField.
 class RasterStack {
  public:
-  RasterStack(const std::vector<std::string>& paths, const std::string& what,
-              const CrsInfo& query_crs,
+  RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo& query_crs,
               const std::optional<std::array<double, 4>>& extent = std::nullopt);
   ~RasterStack();
   RasterStack(const RasterStack&) = delete;
   RasterStack& operator=(const RasterStack&) = delete;
 
-  // The first raster's value at p that is not NaN; NaN where none has one.
+  // The first raster's depth at p that is not NaN; NaN where none has one.
   double sample(const Point2& p) const;
 
   std::size_t size() const { return rasters_.size(); }
-  // 'a.tif', 'b.tif' (for messages).
+  // --bathymetry 'a.tif', --elevation 'b.tif' (for messages).
   std::string paths_text() const;
 
  private:
   std::vector<std::unique_ptr<RasterField>> rasters_;
+  std::vector<DepthRaster> sources_;
 };
 
 // Opens `path` as RasterField would, without reading its values: the errors (Error

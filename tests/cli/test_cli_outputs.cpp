@@ -952,6 +952,69 @@ TEST(CliOutputs, BathymetryRastersInPriorityOrderAndMinimumDepth) {
   EXPECT_EQ(r.exit_code, 2) << r.err;
 }
 
+// --elevation reads a raster positive up (as GEBCO's) as depths, in one priority list with
+// --bathymetry in the order given; a raster of elevations given as depths leaves the mesh
+// dry, with a warning.
+TEST(CliOutputs, ElevationRastersGiveTheSameDepths) {
+  TempDir dir;
+  const std::string west = bathymetry(dir, 20);  // depths, 4.7 W to 4.5 W
+  const std::string west_z =
+      write_geotiff(dir.file("west_z.tif"), -4.7, 48.45, 0.01, 20, 35, 4326,
+                    [](double lon, double lat) { return -depth_at(lon, lat); });
+  const std::string deep_z = write_geotiff(dir.file("deep_z.tif"), -4.8, 48.5, 0.15, 4, 4, 4326,
+                                           [](double, double) { return -500.0; });
+  const std::vector<std::string> box = {"mesh",   water_input(dir),       "--domain", "water",
+                                        "--bbox", "-4.6,48.2,-4.4,48.35", "--size",   "800"};
+  auto run = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = box;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args, dir);
+  };
+  // Elevations only, and depths then elevations: the same depths.
+  CliResult r = run({"--elevation", west_z, "--elevation", deep_z, "-o", dir.file("z.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  const Gr3 z = parse_gr3(dir.file("z.ll"));
+  r = run({"--bathymetry", west, "--elevation", deep_z, "-o", dir.file("d.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 d = parse_gr3(dir.file("d.ll"));
+  ASSERT_EQ(z.nodes.size(), d.nodes.size());
+  std::size_t west_nodes = 0, east_nodes = 0;
+  for (std::size_t i = 0; i < z.nodes.size(); ++i) {
+    EXPECT_NEAR(z.nodes[i][2], d.nodes[i][2], 1e-9) << i;
+    if (z.nodes[i][0] < -4.51) {
+      EXPECT_NEAR(z.nodes[i][2], depth_at(z.nodes[i][0], z.nodes[i][1]), 0.01) << i;
+      ++west_nodes;
+    } else if (z.nodes[i][0] > -4.49) {
+      EXPECT_NEAR(z.nodes[i][2], 500.0, 1e-6) << i;
+      ++east_nodes;
+    }
+  }
+  EXPECT_GT(west_nodes, 20u);
+  EXPECT_GT(east_nodes, 20u);
+  // The order given is the priority: deep_z first covers everything.
+  r = run({"--elevation", deep_z, "--bathymetry", west, "-o", dir.file("e.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const auto& n : parse_gr3(dir.file("e.ll")).nodes) EXPECT_NEAR(n[2], 500.0, 1e-6);
+  // Elevations given as depths: every vertex dry, a warning says what to do.
+  r = run({"--bathymetry", deep_z, "-o", dir.file("w.gr3"), "--report", dir.file("w.json")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::size_t n = parse_gr3(dir.file("w.ll")).nodes.size();
+  EXPECT_NE(r.err.find("warning: " + std::to_string(n) + " of the mesh's " + std::to_string(n) +
+                       " vertices are dry (depth 0 or less)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("--elevation"), std::string::npos) << r.err;
+  EXPECT_NE(read_file(dir.file("w.json")).find("\"num_dry\": " + std::to_string(n)),
+            std::string::npos);
+  // An unreadable elevation raster is named with its option.
+  write_file(dir.file("bad.tif"), "not a raster");
+  r = run({"--elevation", dir.file("bad.tif"), "-o", dir.file("f.gr3")});
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("--elevation"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("bad.tif"), std::string::npos) << r.err;
+}
+
 namespace {
 
 // The quads' time steps (time_step_s) of a GeoPackage written by `isoquad mesh`.
@@ -1023,7 +1086,8 @@ TEST(CliOutputs, TimeStepRuleWidensTheQuadsInDeepWater) {
     args.insert(args.end(), bad.begin(), bad.end());
     const CliResult r = run_cli(args, dir);
     EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find(bad[0] + " needs --bathymetry"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(bad[0] + " needs depths: --bathymetry or --elevation"), std::string::npos)
+        << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("x.gpkg")));
   }
 }

@@ -61,7 +61,7 @@ std::string whole(const TempDir& dir) {
 TEST(VertexDepths, TheFirstRasterWithADepthGivesIt) {
   TempDir dir;
   const QuadMesh m = grid();
-  const RasterStack survey_first({west(dir), whole(dir)}, "--bathymetry", kNoCrs);
+  const RasterStack survey_first({{west(dir)}, {whole(dir)}}, kNoCrs);
   const VertexDepths d = vertex_depths(survey_first, m, std::nullopt);
   for (std::size_t v = 0; v < m.points.size(); ++v) {
     const Point2 p = m.points[v];
@@ -71,8 +71,33 @@ TEST(VertexDepths, TheFirstRasterWithADepthGivesIt) {
   EXPECT_EQ(d.num_raised, 0u);
   EXPECT_NEAR(d.min_m, 10, 1e-4);
   EXPECT_NEAR(d.max_m, 105, 1e-4);
-  const RasterStack whole_first({whole(dir), west(dir)}, "--bathymetry", kNoCrs);
+  const RasterStack whole_first({{whole(dir)}, {west(dir)}}, kNoCrs);
   for (double z : vertex_depths(whole_first, m, std::nullopt).depth) EXPECT_GE(z, 100 - 1e-4);
+}
+
+// Elevations (positive up, as GEBCO's) are read as depths, in the same priority list;
+// the dry vertices are counted.
+TEST(VertexDepths, ElevationRastersAreReadAsDepths) {
+  TempDir dir;
+  const QuadMesh m = grid();
+  // West: elevations -(10 + y / 100), so depths 10 + y / 100; then the whole grid's
+  // depths 100 + y / 100.
+  const std::string west_elevation = write_raster(dir, "west_z.tif", -50, 550, 11, 12,
+                                                  [](double, double y) { return -(10 + y / 100); });
+  const RasterStack stack({{west_elevation, true}, {whole(dir), false}}, kNoCrs);
+  EXPECT_EQ(stack.paths_text(),
+            "--elevation '" + west_elevation + "', --bathymetry '" + whole(dir) + "'");
+  const VertexDepths d = vertex_depths(stack, m, std::nullopt);
+  for (std::size_t v = 0; v < m.points.size(); ++v) {
+    const Point2 p = m.points[v];
+    EXPECT_NEAR(d.depth[v], (p.x <= 500 ? 10 : 100) + p.y / 100, 1e-4) << p.x << " " << p.y;
+  }
+  EXPECT_EQ(d.num_dry, 0u);
+  // The same raster given as depths: the west is dry (6 x 6 vertices at x <= 500).
+  const VertexDepths wrong =
+      vertex_depths(RasterStack({{west_elevation, false}, {whole(dir)}}, kNoCrs), m, 5.0);
+  EXPECT_EQ(wrong.num_dry, 36u);
+  EXPECT_EQ(wrong.num_raised, 36u);
 }
 
 TEST(VertexDepths, NodataFallsThroughToTheNextRaster) {
@@ -84,8 +109,7 @@ TEST(VertexDepths, NodataFallsThroughToTheNextRaster) {
                    [](double x, double y) { return x > 300 && x < 700 ? NAN : 100 + y / 100; });
   const std::string flat =
       write_raster(dir, "flat.tif", -50, 550, 22, 12, [](double, double) { return 7.0; });
-  const VertexDepths d =
-      vertex_depths(RasterStack({holed, flat}, "--bathymetry", kNoCrs), m, std::nullopt);
+  const VertexDepths d = vertex_depths(RasterStack({{holed}, {flat}}, kNoCrs), m, std::nullopt);
   int from_flat = 0;
   for (std::size_t v = 0; v < m.points.size(); ++v) {
     const Point2 p = m.points[v];
@@ -104,8 +128,7 @@ TEST(VertexDepths, NodataFallsThroughToTheNextRaster) {
 TEST(VertexDepths, VerticesWithoutADepthTakeTheNearestAlongTheEdges) {
   TempDir dir;
   const QuadMesh m = grid();
-  const VertexDepths d =
-      vertex_depths(RasterStack({west(dir)}, "--bathymetry", kNoCrs), m, std::nullopt);
+  const VertexDepths d = vertex_depths(RasterStack({{west(dir)}}, kNoCrs), m, std::nullopt);
   // East of 500 m each vertex takes the depth of the vertex at 500 m on its row.
   for (std::size_t v = 0; v < m.points.size(); ++v)
     EXPECT_NEAR(d.depth[v], 10 + m.points[v].y / 100, 1e-4) << v;
@@ -117,8 +140,7 @@ TEST(VertexDepths, APartOfTheMeshOffTheRastersTakesTheNearestDepth) {
   TempDir dir;
   QuadMesh m = grid();
   add_grid(m, 3000, 2, 2);  // x 3000..3200, y 0..200: no raster reaches it
-  const VertexDepths d =
-      vertex_depths(RasterStack({whole(dir)}, "--bathymetry", kNoCrs), m, std::nullopt);
+  const VertexDepths d = vertex_depths(RasterStack({{whole(dir)}}, kNoCrs), m, std::nullopt);
   // From the vertex with a depth nearest (3000, 0): (1000, 0), depth 100.
   for (std::size_t v = 66; v < m.points.size(); ++v) EXPECT_NEAR(d.depth[v], 100, 1e-4) << v;
   EXPECT_EQ(d.num_filled, 9u);
@@ -128,7 +150,7 @@ TEST(VertexDepths, APartOfTheMeshOffTheRastersTakesTheNearestDepth) {
 TEST(VertexDepths, ShallowDepthsAreRaisedToTheMinimum) {
   TempDir dir;
   const QuadMesh m = grid();
-  const VertexDepths d = vertex_depths(RasterStack({whole(dir)}, "--bathymetry", kNoCrs), m, 102.0);
+  const VertexDepths d = vertex_depths(RasterStack({{whole(dir)}}, kNoCrs), m, 102.0);
   std::size_t raised = 0;
   for (std::size_t v = 0; v < m.points.size(); ++v) {
     const double asked = 100 + m.points[v].y / 100;
@@ -145,7 +167,7 @@ TEST(VertexDepths, ARasterThatMissesTheMeshIsAnError) {
   const std::string far =
       write_raster(dir, "far.tif", 50000, 50550, 10, 10, [](double, double) { return 5.0; });
   try {
-    vertex_depths(RasterStack({far}, "--bathymetry", kNoCrs), grid(), std::nullopt);
+    vertex_depths(RasterStack({{far}}, kNoCrs), grid(), std::nullopt);
     FAIL() << "no error";
   } catch (const Error& e) {
     EXPECT_EQ(e.error_class(), ErrorClass::input);

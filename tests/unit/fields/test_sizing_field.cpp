@@ -416,7 +416,7 @@ TEST(SizingField, WavelengthAndSlopeRulesFollowTheDepths) {
                                      [](double, double y) { return y > 800 ? -5.0 : 10.0; });
   SizingParams p;
   p.automatic = false;
-  p.bathymetry_paths = {survey, grid};
+  p.bathymetry = {{survey}, {grid}};
   p.wavelength_period_s = 60;
   p.cells_per_wavelength = 50;
   SizingOracle wave(d, p);
@@ -427,7 +427,7 @@ TEST(SizingField, WavelengthAndSlopeRulesFollowTheDepths) {
   p.min_depth_m = 4;
   EXPECT_NEAR(SizingOracle(d, p)({1500, 950}), rule(4), 1e-6);
   // The other order: the grid everywhere.
-  p.bathymetry_paths = {grid, survey};
+  p.bathymetry = {{grid}, {survey}};
   p.min_depth_m = 1;
   EXPECT_NEAR(SizingOracle(d, p)({500, 500}), rule(10), 1e-6);
 
@@ -436,7 +436,7 @@ TEST(SizingField, WavelengthAndSlopeRulesFollowTheDepths) {
                                       [](double x, double) { return 20 + x / 100; });
   SizingParams q;
   q.automatic = false;
-  q.bathymetry_paths = {slope};
+  q.bathymetry = {{slope}};
   q.slope_factor = 10;
   SizingOracle steep(d, q);
   for (double x : {300.0, 1000.0, 1700.0})
@@ -459,7 +459,7 @@ TEST(SizingField, TimeStepRuleRaisesSizesToItsFloorOverEverySourceButLocalOnes) 
   SizingParams p;
   p.hmin_m = 100;
   p.hmax_m = 400;
-  p.bathymetry_paths = {depths};
+  p.bathymetry = {{depths}};
   p.time_step_s = 4;
   p.courant = 0.5;
   const SizingOracle oracle(d, p);
@@ -505,11 +505,10 @@ TEST(SizingField, TimeStepRuleRaisesSizesToItsFloorOverEverySourceButLocalOnes) 
 
   // Usage errors: no depths, a non-positive Courant number.
   SizingParams none = p;
-  none.bathymetry_paths.clear();
+  none.bathymetry.clear();
   const Error e = error_of([&] { SizingOracle o(d, none); });
   EXPECT_EQ(e.error_class(), ErrorClass::usage);
-  EXPECT_NE(std::string(e.what()).find("--time-step needs --bathymetry"), std::string::npos)
-      << e.what();
+  EXPECT_NE(std::string(e.what()).find("--time-step needs depths"), std::string::npos) << e.what();
   SizingParams zero = p;
   zero.courant = 0;
   EXPECT_EQ(error_of([&] { SizingOracle o(d, zero); }).error_class(), ErrorClass::usage);
