@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Acceptance of the mesh outputs (issue 6): a sea area with islands (Brittany) meshed
 # and written to every format in one run, each file loaded by its reader (GDAL, gmsh,
-# meshio, python3-netcdf4, our gr3 check, QGIS's mesh reader for .2dm) and the GeoPackage
+# meshio, python3-netcdf4, our gr3 and fort.14 checks, QGIS's mesh reader for .2dm) and the GeoPackage
 # rendered by QGIS with its embedded styles. Writes into out/acceptance/ (or $1); needs build/isoquad.
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -13,7 +13,7 @@ time build/isoquad mesh shapefiles/brittany_land.shp --domain water \
   --bbox -5.3,46.8,-1.95,49.35 --hmax 8000 --overwrite \
   -o "$OUT/brittany.gpkg" -o "$OUT/brittany.msh" -o "$OUT/hgrid.gr3" \
   -o "$OUT/brittany.vtk" -o "$OUT/brittany.vtu" -o "$OUT/brittany.nc" \
-  -o "$OUT/brittany.2dm" -o "$OUT/brittany.slf" --report "$OUT/brittany.json"
+  -o "$OUT/brittany.2dm" -o "$OUT/brittany.slf" -o "$OUT/fort.14" --report "$OUT/brittany.json"
 
 echo "== GDAL"
 ogrinfo -q "$OUT/brittany.gpkg" -sql "SELECT kind, COUNT(*) AS segments, SUM(num_nodes) AS nodes FROM boundary GROUP BY kind"
@@ -36,6 +36,11 @@ print("brittany.nc", mesh.cf_role, {k: v.size for k, v in d.dimensions.items()},
 lines = open(f"{out}/hgrid.gr3").read().split("\n")
 ne, np_ = map(int, lines[1].split())
 print("hgrid.gr3", ne, "quads,", np_, "nodes;", *(l for l in lines if "Number of open boundaries" in l or "Number of land boundaries" in l))
+lines = open(f"{out}/fort.14").read().split("\n")
+ne, np_ = map(int, lines[1].split())
+ibtypes = [l.split()[1] for l in lines if "Number of nodes for land boundary" in l]
+print("fort.14", ne, "triangles,", np_, "nodes; IBTYPE", {t: ibtypes.count(t) for t in sorted(set(ibtypes))},
+      *(l for l in lines if "Number of open boundaries" in l or "Number of land boundaries" in l))
 PYEOF
 echo "== QGIS: the .2dm, .nc and .slf as mesh layers (MDAL)"
 "$PY" - "$OUT"/brittany.{2dm,nc,slf} 2> >(grep -v "QStandardPaths\|HDF5\|^ *#\|major:\|minor:" >&2) <<'PYEOF'

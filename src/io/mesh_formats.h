@@ -2,6 +2,7 @@
 // temporary path it is given; the caller moves it into place.
 #pragma once
 
+#include <array>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,11 @@ void write_2dm_file(const MeshView& v, const std::string& path, const std::strin
 // TELEMAC-2D: the geometry (the quads cut into triangles) and its boundary conditions.
 void write_telemac_files(const MeshView& v, const std::string& path, const std::string& what,
                          const std::string& cli_path, const std::string& cli_what);
+// ADCIRC: the grid (the quads cut into triangles) and its boundaries.
+void write_fort14_file(const MeshView& v, const std::string& path, const std::string& what);
+// Each quad a, b, c, d as two counter-clockwise triangles across its shorter diagonal (in
+// the meshing CRS, as meshed), for the formats of triangle-only models.
+std::vector<std::array<int, 3>> quads_as_triangles(const QuadMesh& mesh);
 // One open boundary segment as a D-Flow FM polyline, named after the stem of `what`.
 void write_pli_file(const MeshView& v, const BoundarySegment& segment, const std::string& path,
                     const std::string& what);

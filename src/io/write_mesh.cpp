@@ -24,7 +24,8 @@ const std::map<std::string, MeshFormat>& format_names() {
   static const std::map<std::string, MeshFormat> names = {
       {"gpkg", MeshFormat::gpkg},  {"vtu", MeshFormat::vtu}, {"vtk", MeshFormat::vtk},
       {"msh", MeshFormat::msh},    {"gr3", MeshFormat::gr3}, {"nc", MeshFormat::nc},
-      {"2dm", MeshFormat::sms2dm}, {"pli", MeshFormat::pli}, {"slf", MeshFormat::slf}};
+      {"2dm", MeshFormat::sms2dm}, {"pli", MeshFormat::pli}, {"slf", MeshFormat::slf},
+      {"14", MeshFormat::fort14}};
   return names;
 }
 
@@ -178,11 +179,12 @@ MeshFormat mesh_output_format(const MeshOutput& out) {
   const auto it = format_names().find(name);
   if (it == format_names().end())
     throw Error(ErrorClass::usage, "options",
-                out.format.empty() ? "'" + out.path + "': unknown mesh format '" + ext +
-                                         "'; use .gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .pli or "
-                                         ".slf (or --output-format)"
-                                   : "unknown --output-format '" + out.format +
-                                         "'; use gpkg, vtu, vtk, msh, gr3, nc, 2dm, pli or slf");
+                out.format.empty()
+                    ? "'" + out.path + "': unknown mesh format '" + ext +
+                          "'; use .gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .pli, "
+                          ".slf or .14 (or --output-format)"
+                    : "unknown --output-format '" + out.format +
+                          "'; use gpkg, vtu, vtk, msh, gr3, nc, 2dm, pli, slf or 14");
   return it->second;
 }
 
@@ -237,7 +239,24 @@ std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
                       to.name + "' (--output-crs)");
     view = &reprojected;
   }
+  // Longitudes and latitudes (hgrid.ll, and fort.14 without --output-crs), once.
   std::vector<Point2> lonlat;
+  auto lonlat_view = [&](const char* what) {
+    if (lonlat.empty()) {
+      lonlat = native.points;
+      CrsTransform t(CrsInfo{data.crs_wkt, "mesh CRS"}, parse_crs("EPSG:4326", what));
+      const long bad = t.transform(lonlat);
+      if (bad >= 0)
+        throw Error(
+            ErrorClass::crs, "write",
+            "vertex " + format_point(native.points[bad]) + " has no longitude and latitude");
+    }
+    MeshView ll = native;
+    ll.points = lonlat;
+    ll.crs_wkt = parse_crs("EPSG:4326", what).wkt;
+    ll.geographic = true;
+    return ll;
+  };
   std::vector<std::string> files;
   for (const MeshOutput& o : outputs) {
     const MeshFormat fmt = mesh_output_format(o);
@@ -258,18 +277,9 @@ std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
         break;
       case MeshFormat::gr3: {
         write_gr3_file(native, native.points, tmp, o.path);
-        if (lonlat.empty()) {
-          lonlat = native.points;
-          CrsTransform t(CrsInfo{data.crs_wkt, "mesh CRS"}, parse_crs("EPSG:4326", "hgrid.ll"));
-          const long bad = t.transform(lonlat);
-          if (bad >= 0)
-            throw Error(ErrorClass::crs, "write",
-                        "vertex " + format_point(native.points[bad]) + " has no longitude and latitude");
-        }
-        MeshView ll = native;
-        ll.geographic = true;
+        const MeshView ll = lonlat_view("hgrid.ll");
         const std::string ll_path = companion(o.path, ".ll");
-        write_gr3_file(ll, lonlat, set.add(ll_path, o.overwrite), ll_path);
+        write_gr3_file(ll, ll.points, set.add(ll_path, o.overwrite), ll_path);
         files.push_back(ll_path);
         break;
       }
@@ -279,6 +289,10 @@ std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
         files.push_back(cli);
         break;
       }
+      case MeshFormat::fort14:
+        // ADCIRC's spherical coordinates (ICS = 2) are longitudes and latitudes.
+        write_fort14_file(options.output_crs.empty() ? lonlat_view("fort.14") : *view, tmp, o.path);
+        break;
       case MeshFormat::pli:
         break;  // above
     }

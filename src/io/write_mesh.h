@@ -25,12 +25,12 @@
 
 namespace isoquad {
 
-enum class MeshFormat { gpkg, vtu, vtk, msh, gr3, nc, sms2dm, pli, slf };
+enum class MeshFormat { gpkg, vtu, vtk, msh, gr3, nc, sms2dm, pli, slf, fort14 };
 
 struct MeshOutput {
   std::string path;
   std::string
-      format;  // gpkg, vtu, vtk, msh, gr3, nc, 2dm, pli, slf; empty: by the path's extension
+      format;  // gpkg, vtu, vtk, msh, gr3, nc, 2dm, pli, slf, 14; empty: by the path's extension
   bool overwrite = false;
 };
 

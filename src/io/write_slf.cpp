@@ -122,6 +122,19 @@ class RecordWriter {
 
 }  // namespace
 
+std::vector<std::array<int, 3>> quads_as_triangles(const QuadMesh& m) {
+  std::vector<std::array<int, 3>> out;
+  out.reserve(2 * m.quads.size());
+  for (const auto& q : m.quads) {
+    const int s =
+        distance(m.points[q[0]], m.points[q[2]]) <= distance(m.points[q[1]], m.points[q[3]]) ? 0
+                                                                                             : 1;
+    out.push_back({q[s], q[(s + 1) % 4], q[(s + 2) % 4]});
+    out.push_back({q[s], q[(s + 2) % 4], q[(s + 3) % 4]});
+  }
+  return out;
+}
+
 void write_telemac_files(const MeshView& v, const std::string& path, const std::string& what,
                          const std::string& cli_path, const std::string& cli_what) {
   const QuadMesh& m = *v.data->mesh;
@@ -130,15 +143,9 @@ void write_telemac_files(const MeshView& v, const std::string& path, const std::
   std::vector<int> ipobo(np, 0);
   for (std::size_t k = 0; k < boundary.size(); ++k)
     ipobo[boundary[k].node] = static_cast<int>(k + 1);
-  // Each quad a, b, c, d as two triangles across its shorter diagonal (in the meshing
-  // CRS, as meshed).
   std::vector<int> ikle;
-  for (const auto& q : m.quads) {
-    const int s =
-        distance(m.points[q[0]], m.points[q[2]]) <= distance(m.points[q[1]], m.points[q[3]]) ? 0
-                                                                                             : 1;
-    for (int t : {s, s + 1, s + 2, s, s + 2, s + 3}) ikle.push_back(q[t % 4] + 1);
-  }
+  for (const auto& t : quads_as_triangles(m))
+    for (int n : t) ikle.push_back(n + 1);
   RecordWriter w(path, what);
   w.begin(80);
   w.text("isoquad " ISOQUAD_VERSION " mesh (quads cut into triangles)", 72);

@@ -47,6 +47,8 @@ std::string bathymetry(const TempDir& d, int nx = 40) {
 struct Gr3 {
   std::vector<std::array<double, 3>> nodes;
   std::size_t num_elements = 0;
+  std::vector<std::vector<int>> elements;      // node numbers from 1
+  std::size_t open_total = 0, land_total = 0;  // the files' NETA and NVEL
   std::vector<std::vector<int>> open, land;
   std::vector<int> land_flags;
 };
@@ -66,15 +68,17 @@ Gr3 parse_gr3(const std::string& path) {
     g.nodes.push_back(n);
   }
   for (std::size_t e = 0; e < ne; ++e) {
-    int id, k, v;
+    int id, k;
     in >> id >> k;
-    EXPECT_EQ(k, 4);
-    for (int i = 0; i < k; ++i) in >> v;
+    EXPECT_TRUE(k == 3 || k == 4) << path;
+    std::vector<int> element(std::max(0, k));
+    for (int& v : element) in >> v;
+    g.elements.push_back(element);
   }
-  std::size_t n = 0, total = 0;
+  std::size_t n = 0;
   in >> n;
   std::getline(in, line);
-  in >> total;
+  in >> g.open_total;
   std::getline(in, line);
   for (std::size_t s = 0; s < n; ++s) {
     std::size_t m = 0;
@@ -86,7 +90,7 @@ Gr3 parse_gr3(const std::string& path) {
   }
   in >> n;
   std::getline(in, line);
-  in >> total;
+  in >> g.land_total;
   std::getline(in, line);
   for (std::size_t s = 0; s < n; ++s) {
     std::size_t m = 0;
@@ -681,6 +685,82 @@ TEST(CliOutputs, PliFilesHoldTheOpenBoundarySegments) {
 // and prescribed elevation on the open segments, the outer contour counter-clockwise
 // from its south-west node, then the island clockwise. QGIS's mesh reader opens the
 // geometry.
+// ADCIRC's fort.14: hgrid.gr3's nodes (in longitude and latitude, as hgrid.ll) and depths,
+// each quad as two counter-clockwise triangles, the open segments as the gr3's, and flux
+// boundaries that cover every other boundary edge once: mainland (IBTYPE 20) first, then
+// the island (21), closed by its first node again.
+TEST(CliOutputs, AdcircGridHasTheTrianglesAndBoundariesOfTheQuads) {
+  TempDir dir;
+  const CliResult r = mesh_water_box(dir, {"-o", dir.file("fort.14"), "-o", dir.file("hgrid.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 g = parse_gr3(dir.file("hgrid.gr3"));
+  const Gr3 ll = parse_gr3(dir.file("hgrid.ll"));
+  const Gr3 a = parse_gr3(dir.file("fort.14"));
+  ASSERT_EQ(a.nodes.size(), g.nodes.size());
+  for (std::size_t i = 0; i < a.nodes.size(); ++i)
+    for (int k : {0, 1, 2}) EXPECT_NEAR(a.nodes[i][k], ll.nodes[i][k], 1e-9) << i;
+  // Triangles: twice the quads, counter-clockwise, covering the quads' area.
+  ASSERT_EQ(a.elements.size(), 2 * g.elements.size());
+  auto area = [](const std::vector<std::array<double, 3>>& nodes, const std::vector<int>& e) {
+    double s = 0;
+    for (std::size_t i = 0; i < e.size(); ++i) {
+      const auto &p = nodes[e[i] - 1], &q = nodes[e[(i + 1) % e.size()] - 1];
+      s += p[0] * q[1] - q[0] * p[1];
+    }
+    return s / 2;
+  };
+  double quads = 0, triangles = 0;
+  for (const auto& e : g.elements) quads += area(g.nodes, e);
+  std::map<std::pair<int, int>, int> edges;  // undirected, how many triangles
+  for (const auto& e : a.elements) {
+    ASSERT_EQ(e.size(), 3u);
+    EXPECT_GT(area(a.nodes, e), 0.0);  // counter-clockwise in longitude and latitude
+    triangles += area(g.nodes, e);
+    for (int i = 0; i < 3; ++i) ++edges[std::minmax(e[i], e[(i + 1) % 3])];
+  }
+  EXPECT_NEAR(triangles, quads, 1e-9 * quads);
+  // Boundaries: the open segments are the gr3's; with the land segments, every boundary
+  // edge (of one triangle) once.
+  EXPECT_EQ(a.open, g.open);
+  std::size_t open_nodes = 0, land_nodes = 0;
+  std::map<std::pair<int, int>, int> listed;
+  auto add = [&](const std::vector<int>& s) {
+    for (std::size_t i = 0; i + 1 < s.size(); ++i) ++listed[std::minmax(s[i], s[i + 1])];
+  };
+  for (const auto& s : a.open) open_nodes += s.size(), add(s);
+  EXPECT_EQ(a.open_total, open_nodes);
+  ASSERT_EQ(a.land.size(), g.land.size());
+  std::size_t islands = 0;
+  for (std::size_t k = 0; k < a.land.size(); ++k) {
+    const auto& s = a.land[k];
+    land_nodes += s.size();
+    add(s);
+    ASSERT_TRUE(a.land_flags[k] == 20 || a.land_flags[k] == 21) << k;
+    if (a.land_flags[k] == 21) {
+      ++islands;
+      EXPECT_EQ(s.front(), s.back()) << k;  // closed
+    } else {
+      EXPECT_EQ(islands, 0u) << "a mainland segment after an island";
+    }
+  }
+  EXPECT_EQ(islands, 1u);
+  EXPECT_EQ(a.land_total, land_nodes);
+  std::map<std::pair<int, int>, int> boundary;
+  for (const auto& [edge, n] : edges)
+    if (n == 1) boundary[edge] = 1;
+  EXPECT_EQ(listed, boundary);
+  // Depths as the gr3's.
+  for (std::size_t i = 0; i < a.nodes.size(); ++i) EXPECT_EQ(a.nodes[i][2], g.nodes[i][2]);
+  // --output-crs: the coordinates the user asks for (a Cartesian ADCIRC run, ICS = 1).
+  const CliResult utm =
+      mesh_water_box(dir, {"-o", dir.file("utm.14"), "--output-crs", "EPSG:32630"});
+  ASSERT_EQ(utm.exit_code, 0) << utm.err;
+  const Gr3 u = parse_gr3(dir.file("utm.14"));
+  ASSERT_EQ(u.nodes.size(), a.nodes.size());
+  EXPECT_GT(u.nodes[0][0], 100000.0);  // metres
+  EXPECT_EQ(u.elements, a.elements);
+}
+
 TEST(CliOutputs, TelemacGeometryAndBoundaryConditions) {
   TempDir dir;
   const CliResult r = mesh_water_box(dir, {"-o", dir.file("geo.slf"), "-o", dir.file("hgrid.gr3"),
