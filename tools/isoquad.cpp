@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -48,6 +49,24 @@ const char* kExitCodes =
     "  5   meshing: a meshing stage failed\n"
     "  6   output: output exists (see --overwrite) or cannot be written\n"
     "  70  internal error (a bug: please report it)\n";
+
+// Number checks with plain messages (CLI11's own name the whole double range).
+CLI::Validator number_check(const char* name, bool zero_allowed) {
+  return CLI::Validator(
+      [zero_allowed](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(v))
+          return "'" + text + "' is not a number";
+        if (zero_allowed ? v < 0 : !(v > 0))
+          return "must be " + std::string(zero_allowed ? "0 or more" : "more than 0") + ", not " +
+                 text;
+        return {};
+      },
+      name);
+}
+const CLI::Validator kPositive = number_check("POSITIVE", false);
+const CLI::Validator kNonNegative = number_check("NONNEGATIVE", true);
 
 struct CommonArgs {
   std::string input;
@@ -102,20 +121,24 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
   cmd->add_option("--size", a.fe.target_size_m,
                   "Element size in metres: a constant size for meshing; sets the defaults of "
                   "--simplify (size/4), --min-island-area (size^2) and --min-width (size/4)")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group("Cleaning");
   cmd->add_option("--simplify", a.simplify_m,
-                  "Topology-preserving simplification tolerance in metres (default: a quarter of --size or, in fields and mesh, of the automatic hmin; otherwise off)")
-      ->check(CLI::NonNegativeNumber)
+                  "Topology-preserving simplification tolerance in metres (default: a quarter of "
+                  "--size or, in fields and mesh, of the automatic hmin; otherwise off)")
+      ->check(kNonNegative)
       ->group("Cleaning");
   cmd->add_option("--min-island-area", a.min_island_area_m2,
-                  "Drop islands and holes smaller than this, in m2 (default: the square of --size or, in fields and mesh, of the automatic hmin; otherwise 0)")
-      ->check(CLI::NonNegativeNumber)
+                  "Drop islands and holes smaller than this, in m2 (default: the square of --size "
+                  "or, in fields and mesh, of the automatic hmin; otherwise 0)")
+      ->check(kNonNegative)
       ->group("Cleaning");
-  cmd->add_option("--min-width", a.min_width_m,
-                  "Fill notches and gaps, and remove spikes and isthmuses, narrower than this, in m "
-                  "(default: a quarter of --size or, in fields and mesh, of the automatic hmin; otherwise off)")
-      ->check(CLI::NonNegativeNumber)
+  cmd->add_option(
+         "--min-width", a.min_width_m,
+         "Fill notches and gaps, and remove spikes and isthmuses, narrower than this, in m "
+         "(default: a quarter of --size or, in fields and mesh, of the automatic hmin; otherwise "
+         "off)")
+      ->check(kNonNegative)
       ->group("Cleaning");
   cmd->add_option("--report", a.report_path, "Write the summary as JSON to this file")->group("Output");
   cmd->add_flag("--overwrite", a.overwrite, "Replace existing output files")->group("Output");
@@ -219,36 +242,37 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
       ->group(g);
   cmd->add_option("--wavelength-period", f.sizing.wavelength_period_s,
                   "Wave period T in seconds: h <= T sqrt(g d) / N")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group(g);
-  cmd->add_option("--cells-per-wavelength", f.sizing.cells_per_wavelength, "N of the wavelength rule")
-      ->check(CLI::PositiveNumber)
+  cmd->add_option("--cells-per-wavelength", f.sizing.cells_per_wavelength,
+                  "N of the wavelength rule")
+      ->check(kPositive)
       ->group(g);
   cmd->add_option("--slope-factor", f.sizing.slope_factor,
                   "R: h <= 2 pi d / (R |grad d|), resolving bathymetric slopes")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group(g);
   cmd->add_option("--time-step", f.sizing.time_step_s,
                   "DT in seconds, with --bathymetry: sizes at least 1.25 DT sqrt(g d) / C, so "
                   "that an explicit model can run at DT (a quad's time step is its width over "
                   "sqrt(g d) times C); over every other source, --hmin and --hmax, under "
                   "--refine")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group(g);
   cmd->add_option("--courant", f.sizing.courant,
                   "C, the model's gravity-wave Courant limit, for --time-step and the time "
                   "steps reported (default 1; D-Flow FM's CFLMax is 0.7)")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group(g);
   cmd->add_option("--cells-across", f.sizing.cells_across,
                   "Elements across a narrow channel (automatic sizing; default 2)")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group(g);
   cmd->add_option("--hmin", f.sizing.hmin_m,
                   "Smallest size (automatic default: hmax / 10); automatic sizing puts one "
                   "element across channels, inlets and spits narrower than --cells-across x "
                   "hmin, down to hmin/2 (see --no-narrow-sizes)")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group(g);
   cmd->add_flag_callback(
          "--no-narrow-sizes", [&f] { f.sizing.narrow_sizes = false; },
@@ -257,11 +281,12 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
       ->group(g);
   cmd->add_option("--hmax", f.sizing.hmax_m,
                   "Largest size (automatic default: sqrt(domain area / 2000))")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group(g);
   cmd->add_option("--gradation", f.sizing.gradation,
-                  "K: sizes change by at most K metres per metre (default 0.2: a tile 2h wide then spans a 40% change of h; larger grades faster with worse quads)")
-      ->check(CLI::PositiveNumber)
+                  "K: sizes change by at most K metres per metre (default 0.2: a tile 2h wide then "
+                  "spans a 40% change of h; larger grades faster with worse quads)")
+      ->check(kPositive)
       ->group(g);
   const char* c = "Cross field";
   cmd->add_option("--cross", f.cross,
@@ -283,7 +308,7 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
   cmd->add_option("--max-quads", f.max_quads,
                   "Stop before meshing when the sizes ask for more quads than this (about 3 to 5 "
                   "KB of memory each; default 1000000; 0: no limit)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->group("Background mesh");
   cmd->add_option("--plot", f.plot_path, "Also draw a PNG")->group("Output");
 }
@@ -441,7 +466,7 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "With --each: regions meshed at once, each on its own thread (default 1). Every "
                   "region's files are the same; their summaries print in order as they finish, "
                   "without progress; the peak memory is that of the regions running together")
-      ->check(CLI::PositiveNumber)
+      ->check(kPositive)
       ->group("Selection");
   const char* g = "Tiling (paper, sections 2.2 to 2.5)";
   cmd->add_option("--init", m.init,
@@ -452,11 +477,11 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
       ->group(g);
   cmd->add_option("--relax-iters", m.mesh.tiling.relax_iters,
                   "Cap on L-infinity relaxation iterations (default 50)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->group(g);
   cmd->add_option("--conform-iters", m.mesh.tiling.conform_iters,
                   "Conforming relaxation iterations (default 20)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->group(g);
   cmd->add_option("--conform-shift", m.mesh.tiling.conform_shift,
                   "Generator shift: a fraction of the offset between neighbouring tiles (lattice) "
@@ -467,18 +492,20 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
   cmd->add_option("--butterfly-max", m.mesh.tiling.butterfly_max,
                   "Remove butterflies whose inner meta-edge is shorter than this times h (default "
                   "3; the paper's 0.5 of the tile size 2h is 1)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->group(g);
-  cmd->add_option("--resplit-rounds", m.mesh.tiling.resplit_rounds,
-                  "After the butterflies, rounds of re-splitting two adjacent tiles into a quadrangle "
-                  "and the rest (two quadrangles when their union has six meta-vertices), when that leaves fewer irregular "
-                  "vertices (default 10; 0: none, as the paper)")
-      ->check(CLI::NonNegativeNumber)
+  cmd->add_option(
+         "--resplit-rounds", m.mesh.tiling.resplit_rounds,
+         "After the butterflies, rounds of re-splitting two adjacent tiles into a quadrangle "
+         "and the rest (two quadrangles when their union has six meta-vertices), when that leaves "
+         "fewer irregular "
+         "vertices (default 10; 0: none, as the paper)")
+      ->check(kNonNegative)
       ->group(g);
   cmd->add_option("--corner-barrier", m.mesh.tiling.barriers.length_h,
                   "Length, in h, of the edge paths from reflex boundary corners that no tile "
                   "floods across, so that tiles meet at the corner (default 1; 0: none)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->group(g);
   cmd->add_option("--conform-rule", m.conform_rule,
                   "How conforming relaxation shifts a tile: lattice (default; towards the rows and "
@@ -500,38 +527,39 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "Stop after a tiling step and plot the tiles: init, relax, conform, butterfly or resplit")
       ->check(CLI::IsMember({"init", "relax", "conform", "butterfly", "resplit"}))
       ->group(g);
-  cmd->add_option("--smooth-iters", m.mesh.smooth.iterations, "Laplacian smoothing sweeps (default 10)")
-      ->check(CLI::NonNegativeNumber)
+  cmd->add_option("--smooth-iters", m.mesh.smooth.iterations,
+                  "Laplacian smoothing sweeps (default 10)")
+      ->check(kNonNegative)
       ->group("Quads");
   cmd->add_option("--aligned-iters", m.mesh.smooth.aligned_iterations,
                   "Field-aligned smoothing sweeps after the Laplacian ones: edges pulled to "
                   "length h along the cross field (default 20; 0: none)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->group("Quads");
   cmd->add_option("--angle-iters", m.mesh.smooth.angle_iterations,
                   "Angle sweeps last: vertices take small moves that bring corners nearer 90 "
                   "degrees and edges nearer the cross field, keeping sizes (default 20; 0: none)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->group("Quads");
   cmd->add_option("--orientation-weight", m.mesh.smooth.angle_orientation_weight,
                   "Weight of the edges' rotation from the cross field in the angle sweeps, "
                   "against square corners and sizes (default 1.5; 0: none). More turns edges "
                   "nearer the field at the cost of angles and sizes; less gives better angles "
                   "(fewer quads under SCHISM's angle ratio)")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->group("Quads");
   cmd->add_option("--schism-weight", m.mesh.smooth.angle_ratio_weight,
                   "Weight, in the angle sweeps, of each quad whose smallest angle is under half "
                   "its largest (SCHISM's angle ratio check; default 0.5; 0: none). More gives "
                   "fewer such quads at the cost of angles in [75,105] and orientation")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->group("Quads");
   cmd->add_option("--coast-weight", m.mesh.smooth.coast_weight,
                   "Weight, in the angle sweeps, of how far the coast between a boundary edge's "
                   "ends lies off it (squared, over the edge's length; default 0: none). More "
                   "slides boundary vertices onto headlands and the heads of inlets, at the cost "
                   "of angles")
-      ->check(CLI::NonNegativeNumber)
+      ->check(kNonNegative)
       ->group("Quads");
   cmd->add_option(
          "--output-format", m.output_formats,

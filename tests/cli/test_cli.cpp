@@ -6,6 +6,7 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "gis/gdal_env.h"
@@ -120,6 +121,17 @@ TEST(Cli, UsageErrorsExitWithTwo) {
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find("isoquad: "), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out));
+  }
+  // Numbers out of range or not numbers: one short line naming the option and the value.
+  for (const auto& [option, value, message] : std::vector<std::array<std::string, 3>>{
+           {"--hmax", "0", "--hmax: must be more than 0, not 0"},
+           {"--hmax", "abc", "--hmax: 'abc' is not a number"},
+           {"--hmax", "5000x", "--hmax: '5000x' is not a number"},
+           {"--max-quads", "-1", "--max-quads: must be 0 or more, not -1"}}) {
+    const CliResult r = run_cli({"mesh", input, "-o", out, option, value}, dir);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find("isoquad: usage: " + message + "\n"), std::string::npos) << r.err;
+    EXPECT_LT(r.err.size(), 200u) << r.err;
   }
 }
 
