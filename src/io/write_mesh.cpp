@@ -1,5 +1,6 @@
 #include "io/write_mesh.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <map>
 
@@ -173,6 +174,24 @@ void write_vtu_mesh(const MeshView& mv, const std::string& path) {
 
 }  // namespace
 
+bool unwrap_antimeridian(const QuadMesh& mesh, std::vector<Point2>& lonlat) {
+  auto spans_half_the_globe = [&](const std::vector<Point2>& ll) {
+    for (const auto& q : mesh.quads) {
+      double lo = ll[q[0]].x, hi = lo;
+      for (int v : q) lo = std::min(lo, ll[v].x), hi = std::max(hi, ll[v].x);
+      if (hi - lo > 180.0) return true;
+    }
+    return false;
+  };
+  if (!spans_half_the_globe(lonlat)) return false;
+  std::vector<Point2> shifted = lonlat;
+  for (Point2& p : shifted)
+    if (p.x < 0) p.x += 360.0;
+  if (spans_half_the_globe(shifted)) return false;  // round a pole: no cut helps
+  lonlat = std::move(shifted);
+  return true;
+}
+
 MeshFormat mesh_output_format(const MeshOutput& out) {
   const std::string ext = lower(std::filesystem::path(out.path).extension().string());
   const std::string name = out.format.empty() ? (ext.empty() ? "" : ext.substr(1)) : lower(out.format);
@@ -239,7 +258,8 @@ std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
                       to.name + "' (--output-crs)");
     view = &reprojected;
   }
-  // Longitudes and latitudes (hgrid.ll, and fort.14 without --output-crs), once.
+  // Longitudes and latitudes (hgrid.ll, and fort.14 without --output-crs), once; in
+  // [0, 360) for a mesh across the antimeridian (unwrap_antimeridian).
   std::vector<Point2> lonlat;
   auto lonlat_view = [&](const char* what) {
     if (lonlat.empty()) {
@@ -250,6 +270,7 @@ std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
         throw Error(
             ErrorClass::crs, "write",
             "vertex " + format_point(native.points[bad]) + " has no longitude and latitude");
+      unwrap_antimeridian(*data.mesh, lonlat);
     }
     MeshView ll = native;
     ll.points = lonlat;

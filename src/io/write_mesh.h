@@ -25,6 +25,12 @@
 
 namespace isoquad {
 
+// Longitudes of a mesh that crosses the antimeridian (a quad spanning more than 180
+// degrees of longitude) moved into [0, 360), so that its elements stay whole; unchanged
+// otherwise, or when that does not help (a mesh round a pole). Returns whether it moved
+// them.
+bool unwrap_antimeridian(const QuadMesh& mesh, std::vector<Point2>& lonlat);
+
 enum class MeshFormat { gpkg, vtu, vtk, msh, gr3, nc, sms2dm, pli, slf, fort14 };
 
 struct MeshOutput {

@@ -433,8 +433,44 @@ TEST(MeshOutputs, FormatByExtensionOrName) {
             (std::vector<std::string>{"d/geo.slf", "d/geo.cli"}));
   EXPECT_EQ(mesh_output_files({"d/hgrid.gr3", "", false}),
             (std::vector<std::string>{"d/hgrid.gr3", "d/hgrid.ll"}));
+  EXPECT_EQ(mesh_output_format({"out/fort.14", "", false}), MeshFormat::fort14);
+  EXPECT_EQ(mesh_output_format({"a.grd", "14", false}), MeshFormat::fort14);
   EXPECT_THROW(mesh_output_format({"a.dat", "", false}), Error);
   EXPECT_THROW(mesh_output_format({"a.gpkg", "shp", false}), Error);
+}
+
+// Longitudes across the antimeridian move into [0, 360) so that no quad spans the globe;
+// a mesh that does not cross it, or that goes round a pole, keeps its longitudes.
+TEST(MeshOutputs, LongitudesAcrossTheAntimeridianAreUnwrapped) {
+  QuadMesh m;  // two quads side by side, 1 degree wide, the middle column at 180
+  m.points = {{179, 0}, {180, 0}, {-179, 0}, {179, 1}, {180, 1}, {-179, 1}};
+  m.quads = {{0, 1, 4, 3}, {1, 2, 5, 4}};
+  std::vector<Point2> ll = m.points;
+  EXPECT_TRUE(unwrap_antimeridian(m, ll));
+  EXPECT_DOUBLE_EQ(ll[2].x, 181.0);
+  EXPECT_DOUBLE_EQ(ll[5].x, 181.0);
+  EXPECT_DOUBLE_EQ(ll[0].x, 179.0);
+  EXPECT_DOUBLE_EQ(ll[2].y, 0.0);
+  // West of it: unchanged.
+  std::vector<Point2> west = {{10, 0}, {11, 0}, {12, 0}, {10, 1}, {11, 1}, {12, 1}};
+  const std::vector<Point2> before = west;
+  EXPECT_FALSE(unwrap_antimeridian(m, west));
+  EXPECT_EQ(west.size(), before.size());
+  for (std::size_t i = 0; i < west.size(); ++i) EXPECT_EQ(west[i].x, before[i].x);
+  // A ring of quads round the pole spans every longitude whatever the cut: unchanged.
+  QuadMesh ring;
+  for (int k = 0; k < 4; ++k) {
+    const double lon = -180 + 90 * k;
+    ring.points.push_back({lon, 80});
+    ring.points.push_back({lon, 85});
+  }
+  for (int k = 0; k < 4; ++k) {
+    const int a = 2 * k, b = 2 * ((k + 1) % 4);
+    ring.quads.push_back({a, b, b + 1, a + 1});
+  }
+  std::vector<Point2> polar = ring.points;
+  EXPECT_FALSE(unwrap_antimeridian(ring, polar));
+  EXPECT_DOUBLE_EQ(polar[0].x, -180.0);
 }
 
 // A failure while writing the second output (its temporary file cannot be created)
