@@ -256,6 +256,7 @@ std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
       throw Error(ErrorClass::crs, "write",
                   "vertex " + format_point(native.points[bad]) + " cannot be transformed to '" +
                       to.name + "' (--output-crs)");
+    if (to.geographic) unwrap_antimeridian(*data.mesh, reprojected.points);
     view = &reprojected;
   }
   // Longitudes and latitudes (hgrid.ll, and fort.14 without --output-crs), once; in

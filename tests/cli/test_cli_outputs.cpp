@@ -106,6 +106,13 @@ Gr3 parse_gr3(const std::string& path) {
   return g;
 }
 
+// A vector file written by isoquad, opened with GDAL (null when it cannot be).
+GDALDataset* open_vector(const std::string& path) {
+  isoquad::ensure_gdal_registered();
+  return static_cast<GDALDataset*>(
+      GDALOpenEx(path.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+}
+
 bool on_bbox(double lon, double lat, double tol) {
   return std::abs(lon - kBox[0]) < tol || std::abs(lon - kBox[2]) < tol ||
          std::abs(lat - kBox[1]) < tol || std::abs(lat - kBox[3]) < tol;
@@ -200,9 +207,7 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
 
   // GeoPackage through GDAL: layers, CRS (EPSG:4326 by --output-crs), counts, depth,
   // boundary kinds, metadata, styles.
-  isoquad::ensure_gdal_registered();
-  GDALDataset* ds = static_cast<GDALDataset*>(
-      GDALOpenEx(dir.file("m.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  GDALDataset* ds = open_vector(dir.file("m.gpkg"));
   ASSERT_NE(ds, nullptr);
   OGRLayer* quads = ds->GetLayerByName("quads");
   OGRLayer* vertices = ds->GetLayerByName("vertices");
@@ -328,8 +333,7 @@ TEST(CliOutputs, OpenBoundaryLinesGiveTheSeaBoundary) {
   };
   // The open boundary's segments in the GeoPackage, as lon/lat points.
   auto open_segments = [&dir](const std::string& output) {
-    isoquad::ensure_gdal_registered();
-    std::unique_ptr<GDALDataset> ds(GDALDataset::Open(dir.file(output).c_str(), GDAL_OF_VECTOR));
+    std::unique_ptr<GDALDataset> ds(open_vector(dir.file(output)));
     std::vector<std::vector<std::pair<double, double>>> segments;
     EXPECT_TRUE(ds);
     if (!ds) return segments;
@@ -761,6 +765,39 @@ TEST(CliOutputs, AdcircGridHasTheTrianglesAndBoundariesOfTheQuads) {
   EXPECT_EQ(u.elements, a.elements);
 }
 
+// An island across the antimeridian (drawn in two halves, as Natural Earth draws Fiji):
+// in longitude and latitude its outputs stay whole, with longitudes past 180.
+TEST(CliOutputs, LonLatOutputsAcrossTheAntimeridianStayWhole) {
+  TempDir dir;
+  const std::string input = dir.file("island.geojson");
+  write_file(input, geojson_polygons(
+                        {"[[[179.6,-17],[180,-17],[180,-16.6],[179.6,-16.6],[179.6,-17]]]",
+                         "[[[-180,-17],[-179.6,-17],[-179.6,-16.6],[-180,-16.6],[-180,-17]]]"}));
+  for (const bool output_crs : {false, true}) {
+    std::vector<std::string> args = {"mesh",           input, "--size",          "5000",       "-o",
+                                     dir.file("a.14"), "-o",  dir.file("a.gr3"), "--overwrite"};
+    if (output_crs)
+      args.insert(args.end(), {"-o", dir.file("a.gpkg"), "--output-crs", "EPSG:4326"});
+    const CliResult r = run_cli(args, dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* file : {"a.14", "a.ll"}) {
+      const Gr3 g = parse_gr3(dir.file(file));
+      ASSERT_GT(g.nodes.size(), 50u);
+      double lo = 1e9, hi = -1e9;
+      for (const auto& n : g.nodes) lo = std::min(lo, n[0]), hi = std::max(hi, n[0]);
+      EXPECT_NEAR(lo, 179.6, 1e-6) << file;
+      EXPECT_NEAR(hi, 180.4, 1e-6) << file;
+    }
+  }
+  GDALDataset* ds = open_vector(dir.file("a.gpkg"));
+  ASSERT_NE(ds, nullptr);
+  OGREnvelope extent;
+  ASSERT_EQ(ds->GetLayerByName("quads")->GetExtent(&extent), OGRERR_NONE);
+  GDALClose(ds);
+  EXPECT_NEAR(extent.MinX, 179.6, 1e-6);
+  EXPECT_NEAR(extent.MaxX, 180.4, 1e-6);
+}
+
 TEST(CliOutputs, TelemacGeometryAndBoundaryConditions) {
   TempDir dir;
   const CliResult r = mesh_water_box(dir, {"-o", dir.file("geo.slf"), "-o", dir.file("hgrid.gr3"),
@@ -991,8 +1028,7 @@ TEST(CliOutputs, BathymetryRastersInPriorityOrderAndMinimumDepth) {
   // Each quad's time step at Courant 1: its width (between opposite sides' midpoints)
   // over sqrt(g 600 m); the summary gives the smallest.
   {
-    GDALDataset* ds = static_cast<GDALDataset*>(
-        GDALOpenEx(dir.file("b.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+    GDALDataset* ds = open_vector(dir.file("b.gpkg"));
     ASSERT_NE(ds, nullptr);
     OGRLayer* quads = ds->GetLayerByName("quads");
     ASSERT_NE(quads, nullptr);
@@ -1100,8 +1136,7 @@ namespace {
 // The quads' time steps (time_step_s) of a GeoPackage written by `isoquad mesh`.
 std::vector<double> quad_time_steps(const std::string& gpkg) {
   std::vector<double> steps;
-  GDALDataset* ds = static_cast<GDALDataset*>(
-      GDALOpenEx(gpkg.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  GDALDataset* ds = open_vector(gpkg);
   if (!ds) return steps;
   if (OGRLayer* quads = ds->GetLayerByName("quads"))
     for (auto& f : *quads) steps.push_back(f->GetFieldAsDouble("time_step_s"));
