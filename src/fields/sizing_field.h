@@ -51,10 +51,10 @@ struct SizingParams {
   double slope_factor = 0.0;          // --slope-factor R: h <= 2 pi d / (R |grad d|) (0: off)
   double min_depth_m = 1.0;           // depths below this (and dry land) count as this
                                       // (--min-depth when larger)
-  // --time-step DT: sizes raised to at least DT sqrt(g d) / C (C: --courant), so that no
-  // quad holds an explicit model's time step under DT at that Courant number, with a
-  // margin for quads narrower than their size (kTimeStepMargin). Over every source, hmin
-  // and hmax; under --refine features and local refinements. 0: off.
+  // --time-step DT: sizes raised to at least kTimeStepMargin DT sqrt(g d) / C (C:
+  // --courant), so that the quads allow an explicit model the time step DT at that
+  // Courant number (most of them: a quad narrower than its size may not). Over every
+  // source, hmin and hmax; under --refine features and local refinements. 0: off.
   double time_step_s = 0.0;
   double courant = 1.0;
   // --refine: vector features (any OGR format with a CRS) whose attribute refine_field
@@ -91,8 +91,8 @@ struct SizingSummary {
 };
 
 // h(x) before gradation: the minimum of the sources, clamped to [hmin, hmax], then of the
-// narrow features' sizes (automatic sizing; down to hmin/2), the --refine features' and
-// the local refinements.
+// narrow features' sizes (automatic sizing; down to hmin/2), raised to the time step
+// rule's floor, then the minimum with the --refine features' and the local refinements.
 // Not thread-safe. Throws Error(input) for a bad source (unreadable raster, expression
 // that does not parse) and Error(meshing) for a non-positive size.
 class SizingOracle {
