@@ -238,7 +238,7 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
         ->group(g);
   cmd->add_option("--min-depth", f.min_depth_m,
                   "Depths shallower than this (metres, positive down) are written as it; the "
-                  "wavelength and slope rules count depths under max(1, this) as that")
+                  "wavelength, slope and time step rules count depths under max(1, this) as that")
       ->group(g);
   cmd->add_option("--wavelength-period", f.sizing.wavelength_period_s,
                   "Wave period T in seconds: h <= T sqrt(g d) / N")
@@ -253,7 +253,7 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
       ->check(kPositive)
       ->group(g);
   cmd->add_option("--time-step", f.sizing.time_step_s,
-                  "DT in seconds, with --bathymetry: sizes at least 1.25 DT sqrt(g d) / C, so "
+                  "DT in seconds, with depths: sizes at least 1.25 DT sqrt(g d) / C, so "
                   "that an explicit model can run at DT (a quad's time step is its width over "
                   "sqrt(g d) times C); over every other source, --hmin and --hmax, under "
                   "--refine")
