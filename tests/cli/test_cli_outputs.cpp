@@ -118,14 +118,20 @@ bool on_bbox(double lon, double lat, double tol) {
          std::abs(lat - kBox[1]) < tol || std::abs(lat - kBox[3]) < tol;
 }
 
-// `isoquad mesh` on the water box at 800 m with the bathymetry (depths), quiet, with the
-// `extra` arguments (the outputs).
-CliResult mesh_water_box(const TempDir& dir, const std::vector<std::string>& extra) {
-  std::vector<std::string> args = {"mesh",         water_input(dir),       "--domain", "water",
-                                   "--bbox",       "-4.6,48.2,-4.4,48.35", "--size",   "800",
-                                   "--bathymetry", bathymetry(dir),        "-q"};
+// `isoquad mesh` on the water box (kBox) with the `extra` arguments.
+CliResult mesh_box(const TempDir& dir, const std::vector<std::string>& extra) {
+  std::vector<std::string> args = {"mesh",  water_input(dir), "--domain",
+                                   "water", "--bbox",         "-4.6,48.2,-4.4,48.35"};
   args.insert(args.end(), extra.begin(), extra.end());
   return run_cli(args, dir);
+}
+
+// The same at 800 m with the bathymetry (depths), quiet, with the `extra` arguments (the
+// outputs).
+CliResult mesh_water_box(const TempDir& dir, const std::vector<std::string>& extra) {
+  std::vector<std::string> args = {"--size", "800", "--bathymetry", bathymetry(dir), "-q"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return mesh_box(dir, args);
 }
 
 // QGIS's mesh reader (MDAL) on each file: a line "vertices faces [sides] lowest-z" per
@@ -997,12 +1003,9 @@ TEST(CliOutputs, BathymetryRastersInPriorityOrderAndMinimumDepth) {
   const std::string west = bathymetry(dir, 20);  // 4.7 W to 4.5 W
   const std::string deep = write_geotiff(dir.file("deep.tif"), -4.8, 48.5, 0.15, 4, 4, 4326,
                                          [](double, double) { return 500.0; });
-  const std::vector<std::string> box = {"mesh",   water_input(dir),       "--domain", "water",
-                                        "--bbox", "-4.6,48.2,-4.4,48.35", "--size",   "800"};
   auto run = [&](std::vector<std::string> extra) {
-    std::vector<std::string> args = box;
-    args.insert(args.end(), extra.begin(), extra.end());
-    return run_cli(args, dir);
+    extra.insert(extra.begin(), {"--size", "800"});
+    return mesh_box(dir, extra);
   };
   CliResult r = run({"--bathymetry", west, "--bathymetry", deep, "-o", dir.file("a.gr3")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -1079,12 +1082,9 @@ TEST(CliOutputs, ElevationRastersGiveTheSameDepths) {
                     [](double lon, double lat) { return -depth_at(lon, lat); });
   const std::string deep_z = write_geotiff(dir.file("deep_z.tif"), -4.8, 48.5, 0.15, 4, 4, 4326,
                                            [](double, double) { return -500.0; });
-  const std::vector<std::string> box = {"mesh",   water_input(dir),       "--domain", "water",
-                                        "--bbox", "-4.6,48.2,-4.4,48.35", "--size",   "800"};
   auto run = [&](std::vector<std::string> extra) {
-    std::vector<std::string> args = box;
-    args.insert(args.end(), extra.begin(), extra.end());
-    return run_cli(args, dir);
+    extra.insert(extra.begin(), {"--size", "800"});
+    return mesh_box(dir, extra);
   };
   // Elevations only, and depths then elevations: the same depths.
   CliResult r = run({"--elevation", west_z, "--elevation", deep_z, "-o", dir.file("z.gr3")});
@@ -1151,13 +1151,9 @@ std::vector<double> quad_time_steps(const std::string& gpkg) {
 TEST(CliOutputs, TimeStepRuleWidensTheQuadsInDeepWater) {
   TempDir dir;
   const std::string dem = bathymetry(dir);  // 130 to 330 m deep over the box
-  const std::vector<std::string> box = {
-      "mesh", water_input(dir), "--domain", "water",     "--bbox", "-4.6,48.2,-4.4,48.35", "--hmax",
-      "800",  "--bathymetry",   dem,        "--courant", "0.7"};
   auto run = [&](std::vector<std::string> extra) {
-    std::vector<std::string> args = box;
-    args.insert(args.end(), extra.begin(), extra.end());
-    return run_cli(args, dir);
+    extra.insert(extra.begin(), {"--hmax", "800", "--bathymetry", dem, "--courant", "0.7"});
+    return mesh_box(dir, extra);
   };
   CliResult plain = run({"-o", dir.file("plain.gpkg")});
   ASSERT_EQ(plain.exit_code, 0) << plain.err;
@@ -1195,11 +1191,9 @@ TEST(CliOutputs, TimeStepRuleWidensTheQuadsInDeepWater) {
   // Without depths, --time-step and --courant mean nothing.
   for (const std::vector<std::string>& bad : {std::vector<std::string>{"--time-step", "6"},
                                               std::vector<std::string>{"--courant", "0.5"}}) {
-    std::vector<std::string> args = {"mesh",  water_input(dir),  "--domain",
-                                     "water", "--bbox",          "-4.6,48.2,-4.4,48.35",
-                                     "-o",    dir.file("x.gpkg")};
+    std::vector<std::string> args = {"-o", dir.file("x.gpkg")};
     args.insert(args.end(), bad.begin(), bad.end());
-    const CliResult r = run_cli(args, dir);
+    const CliResult r = mesh_box(dir, args);
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find(bad[0] + " needs depths: --bathymetry or --elevation"), std::string::npos)
         << r.err;
