@@ -435,6 +435,7 @@ struct MeshArgs {
   MeshOptions mesh;
   std::vector<std::string> output_formats;
   std::string msh_version = "4.1";
+  std::string msh_groups = "kind";
   std::string output_crs;
   std::string stop_after;  // empty: the whole job
   std::string conform_rule = "lattice";
@@ -573,6 +574,12 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
   cmd->add_option("--msh-version", m.msh_version, "Gmsh file version: 4.1 (default) or 2.2")
       ->check(CLI::IsMember({"4.1", "2.2"}))
       ->group("Output");
+  cmd->add_option("--msh-groups", m.msh_groups,
+                  "Gmsh physical groups of the boundary: kind (default: land 1, open 2) or "
+                  "segment (land 1, each open segment its own: open_1, open_2... tagged 11, "
+                  "12..., in hgrid.gr3's order, for a boundary condition per open boundary)")
+      ->check(CLI::IsMember({"kind", "segment"}))
+      ->group("Output");
   cmd->add_option("--output-crs", m.output_crs,
                   "Write coordinates in this CRS (e.g. EPSG:4326); SCHISM .gr3 stays in the "
                   "meshing CRS (its .ll is in lon/lat)")
@@ -633,6 +640,7 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
   const std::vector<MeshOutput> outputs = mesh_outputs(a, m);
   MeshWriteOptions write_options;
   write_options.msh_version = m.msh_version;
+  write_options.msh_groups = m.msh_groups;
   write_options.output_crs = m.output_crs;
   if (!tiling_only) check_mesh_outputs(outputs, write_options);
   else check_output_path(a.output, a.overwrite);
@@ -792,6 +800,7 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
     if (!r.f.plot_path.empty()) check_output_path(r.f.plot_path, a.overwrite);
     MeshWriteOptions w;
     w.msh_version = m.msh_version;
+    w.msh_groups = m.msh_groups;
     w.output_crs = m.output_crs;
     check_mesh_outputs(mesh_outputs(r.a, m), w);
     regions.push_back(std::move(r));

@@ -19,8 +19,9 @@ struct MeshView {
 };
 
 // The `what` path is the final name, for messages.
+// `open_per_segment`: each open segment its own physical group (MeshWriteOptions).
 void write_msh_file(const MeshView& v, const std::string& path, const std::string& what,
-                    const std::string& version);
+                    const std::string& version, bool open_per_segment);
 // `ll` is `points` in lon/lat (EPSG:4326).
 void write_gr3_file(const MeshView& v, const std::vector<Point2>& points,
                     const std::string& path, const std::string& what);

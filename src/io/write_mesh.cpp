@@ -218,6 +218,8 @@ void check_mesh_output_format(const std::string& path) { mesh_output_format(Mesh
 
 void check_mesh_outputs(const std::vector<MeshOutput>& outputs, const MeshWriteOptions& options) {
   if (outputs.empty()) throw Error(ErrorClass::usage, "options", "no output: give -o FILE");
+  if (options.msh_groups != "kind" && options.msh_groups != "segment")
+    throw Error(ErrorClass::usage, "options", "--msh-groups must be kind or segment");
   if (options.msh_version != "4.1" && options.msh_version != "2.2")
     throw Error(ErrorClass::usage, "options", "--msh-version must be 4.1 or 2.2");
   if (!options.output_crs.empty()) parse_crs(options.output_crs, "--output-crs");
@@ -292,7 +294,9 @@ std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
       case MeshFormat::gpkg: write_gpkg(*view, tmp, o.path); break;
       case MeshFormat::vtu: write_vtu_mesh(*view, tmp); break;
       case MeshFormat::vtk: write_vtk_legacy_file(*view, tmp, o.path); break;
-      case MeshFormat::msh: write_msh_file(*view, tmp, o.path, options.msh_version); break;
+      case MeshFormat::msh:
+        write_msh_file(*view, tmp, o.path, options.msh_version, options.msh_groups == "segment");
+        break;
       case MeshFormat::nc: write_ugrid_file(*view, tmp, o.path); break;
       case MeshFormat::sms2dm:
         write_2dm_file(*view, tmp, o.path);

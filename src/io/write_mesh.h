@@ -56,6 +56,10 @@ struct MeshOutputData {
 
 struct MeshWriteOptions {
   std::string msh_version = "4.1";  // or "2.2"
+  // Gmsh physical groups of the boundary: "kind" (land 1, open 2), or "segment" (land 1,
+  // and each open segment its own, open_1, open_2... tagged 11, 12..., in hgrid.gr3's
+  // order: a boundary condition per open boundary, as Thetis sets them).
+  std::string msh_groups = "kind";
   // Writes coordinates in this CRS (anything parse_crs accepts); empty: the mesh's CRS.
   // Applies to every format but gr3, which is in the mesh's CRS (its .ll in lon/lat).
   std::string output_crs;

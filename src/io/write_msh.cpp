@@ -1,9 +1,12 @@
 // Gmsh MSH 4.1 and 2.2 ASCII: one surface (the domain), one curve per boundary segment,
-// physical groups land (1), open (2) and domain (3).
+// physical groups land (1), open (2) and domain (3); or, open segment by segment,
+// open_1, open_2... (11, 12...) instead of open.
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
 #include <limits>
+#include <map>
+#include <string>
 
 #include "core/error.h"
 #include "io/mesh_formats.h"
@@ -12,9 +15,30 @@ namespace isoquad {
 
 namespace {
 
-constexpr int kLand = 1, kOpen = 2, kDomain = 3;
+constexpr int kLand = 1, kOpen = 2, kDomain = 3, kOpenSegments = 10;
 
-int physical_of(BoundaryKind k) { return k == BoundaryKind::open ? kOpen : kLand; }
+// The physical group of each segment, and the groups' names by tag.
+struct Groups {
+  std::vector<int> of_segment;
+  std::map<int, std::string> names;
+};
+
+Groups physical_groups(const std::vector<BoundarySegment>& segs, bool open_per_segment) {
+  Groups g;
+  int open = 0;
+  for (const BoundarySegment& s : segs) {
+    int tag = kLand;
+    std::string name = "land";
+    if (s.kind == BoundaryKind::open) {
+      ++open;
+      tag = open_per_segment ? kOpenSegments + open : kOpen;
+      name = open_per_segment ? "open_" + std::to_string(open) : "open";
+    }
+    g.of_segment.push_back(tag);
+    g.names[tag] = name;
+  }
+  return g;
+}
 
 // The edges (node pairs, 0-based) of a segment.
 std::vector<std::array<int, 2>> segment_edges(const BoundarySegment& s) {
@@ -34,19 +58,17 @@ struct Box {
 }  // namespace
 
 void write_msh_file(const MeshView& v, const std::string& path, const std::string& what,
-                    const std::string& version) {
+                    const std::string& version, bool open_per_segment) {
   if (version != "4.1" && version != "2.2")
     throw Error(ErrorClass::usage, "options", "--msh-version must be 4.1 or 2.2");
   const QuadMesh& m = *v.data->mesh;
   const auto& segs = v.data->boundary.segments;
   std::ofstream f(path);
   f << std::setprecision(17);
-  bool has[3] = {false, false, false};
-  for (const auto& s : segs) has[physical_of(s.kind)] = true;
+  const Groups groups = physical_groups(segs, open_per_segment);
   f << "$MeshFormat\n" << version << " 0 8\n$EndMeshFormat\n";
-  f << "$PhysicalNames\n" << (1 + has[kLand] + has[kOpen]) << "\n";
-  if (has[kLand]) f << "1 " << kLand << " \"land\"\n";
-  if (has[kOpen]) f << "1 " << kOpen << " \"open\"\n";
+  f << "$PhysicalNames\n" << groups.names.size() + 1 << "\n";
+  for (const auto& [tag, name] : groups.names) f << "1 " << tag << " \"" << name << "\"\n";
   f << "2 " << kDomain << " \"domain\"\n$EndPhysicalNames\n";
   const std::size_t np = m.points.size(), nq = m.quads.size();
   std::size_t nl = 0;
@@ -59,7 +81,7 @@ void write_msh_file(const MeshView& v, const std::string& path, const std::strin
     std::size_t id = 1;
     for (std::size_t c = 0; c < segs.size(); ++c)
       for (const auto& e : segment_edges(segs[c]))
-        f << id++ << " 1 2 " << physical_of(segs[c].kind) << " " << c + 1 << " " << e[0] + 1 << " "
+        f << id++ << " 1 2 " << groups.of_segment[c] << " " << c + 1 << " " << e[0] + 1 << " "
           << e[1] + 1 << "\n";
     for (const auto& q : m.quads)
       f << id++ << " 3 2 " << kDomain << " 1 " << q[0] + 1 << " " << q[1] + 1 << " " << q[2] + 1
@@ -73,7 +95,7 @@ void write_msh_file(const MeshView& v, const std::string& path, const std::strin
       Box b;
       for (int n : segs[c].nodes) b.add(v.points[n]);
       f << c + 1 << " " << b.x0 << " " << b.y0 << " 0 " << b.x1 << " " << b.y1 << " 0 1 "
-        << physical_of(segs[c].kind) << " 0\n";
+        << groups.of_segment[c] << " 0\n";
     }
     f << "1 " << all.x0 << " " << all.y0 << " 0 " << all.x1 << " " << all.y1 << " 0 1 " << kDomain
       << " " << segs.size();

@@ -338,6 +338,71 @@ TEST(MeshOutputs, GmshReadsBothVersionsWithPhysicalGroups) {
   }
 }
 
+// --msh-groups segment: each open segment its own physical group, in hgrid.gr3's order;
+// gmsh reads them back.
+TEST(MeshOutputs, GmshGroupsOpenSegmentsOneByOne) {
+  const Fixture f;
+  TempDir dir;
+  MeshOutputData d = f.data();
+  // Open along the bottom and the top sides: two open segments.
+  const std::vector<Point2> bottom{{kX0 - 1000, kY0}, {kX0 + 4000, kY0}};
+  const std::vector<Point2> top{{kX0 - 1000, kY0 + 3 * kStep}, {kX0 + 4000, kY0 + 3 * kStep}};
+  d.boundary = extract_boundary(f.mesh, PolylineIndex({bottom, top}), 1.0);
+  std::vector<const BoundarySegment*> open;
+  for (const BoundarySegment& s : d.boundary.segments)
+    if (s.kind == BoundaryKind::open) open.push_back(&s);
+  ASSERT_EQ(open.size(), 2u);
+  for (const std::string version : {"4.1", "2.2"}) {
+    MeshWriteOptions o;
+    o.msh_version = version;
+    o.msh_groups = "segment";
+    const std::string path = dir.file("m" + version + ".msh");
+    write_mesh_outputs(d, {{path, "", false}}, o);
+    const CliResult r = run_cli_program(
+        "gmsh", {path, "-0", "-format", "msh22", "-o", dir.file("re" + version + ".msh")}, dir);
+    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+    std::istringstream in(read_file(dir.file("re" + version + ".msh")));
+    std::string line;
+    std::map<int, std::string> names;
+    std::map<int, std::set<std::pair<int, int>>> edges;  // physical -> edges (0-based nodes)
+    while (std::getline(in, line)) {
+      if (line == "$PhysicalNames") {
+        int n = 0;
+        in >> n;
+        for (int i = 0; i < n; ++i) {
+          int dim = 0, tag = 0;
+          std::string nm;
+          in >> dim >> tag >> nm;
+          names[tag] = nm;
+        }
+      } else if (line == "$Elements") {
+        int n = 0;
+        in >> n;
+        for (int i = 0; i < n; ++i) {
+          int id = 0, type = 0, ntags = 0, phys = 0, a = 0, b = 0;
+          in >> id >> type >> ntags >> phys;
+          for (int t = 1; t < ntags; ++t) in >> id;
+          if (type == 1) {
+            in >> a >> b;
+            edges[phys].insert(std::minmax(a - 1, b - 1));
+          }
+          std::getline(in, line);
+        }
+      }
+    }
+    EXPECT_EQ(names,
+              (std::map<int, std::string>{
+                  {1, "\"land\""}, {3, "\"domain\""}, {11, "\"open_1\""}, {12, "\"open_2\""}}))
+        << version;
+    // Each segment's edges (gmsh numbers the nodes its own way: the counts, and the
+    // two groups apart).
+    for (int k = 0; k < 2; ++k)
+      EXPECT_EQ(edges[11 + k].size(), open[k]->nodes.size() - 1) << version << " open_" << k + 1;
+    for (const auto& e : edges[11]) EXPECT_EQ(edges[12].count(e), 0u) << version;
+    EXPECT_EQ(edges.count(2), 0u) << version;
+  }
+}
+
 TEST(MeshOutputs, LegacyVtkLoadsInMeshio) {
   const Fixture f;
   TempDir dir;
