@@ -235,11 +235,17 @@ std::string format_fields_summary(const FieldsResult& r) {
   if (r.sizing.time_step_s > 0) {
     std::snprintf(buf, sizeof buf,
                   "dt floor:     sizes for %.6g s at a Courant number of %.3g set at %zu "
-                  "background vertices (up to %.6g m%s)\n",
-                  r.sizing.time_step_s, r.sizing.courant, r.size.num_set_by_time_step,
-                  r.size.max_time_step_size_m,
-                  r.size.max_time_step_size_m > r.sizing.hmax_m ? ", above hmax" : "");
+                  "background vertices",
+                  r.sizing.time_step_s, r.sizing.courant, r.size.num_set_by_time_step);
     os << buf;
+    if (r.size.num_set_by_time_step > 0) {
+      std::snprintf(buf, sizeof buf, " (up to %.6g m%s)", r.size.max_time_step_size_m,
+                    r.size.max_time_step_size_m > r.sizing.hmax_m ? ", above hmax" : "");
+      os << buf;
+    } else {
+      os << " (the other sources' sizes are larger everywhere)";
+    }
+    os << "\n";
   }
   std::snprintf(buf, sizeof buf, "background:   %zu vertices, %zu triangles, %zu boundary chains\n",
                 r.mesh.points.size(), r.mesh.triangles.size(), r.mesh.chains.size());
