@@ -252,11 +252,13 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
                   "R: h <= 2 pi d / (R |grad d|), resolving bathymetric slopes")
       ->check(kPositive)
       ->group(g);
+  char margin[16];
+  std::snprintf(margin, sizeof margin, "%g", kTimeStepMargin);
   cmd->add_option("--time-step", f.sizing.time_step_s,
-                  "DT in seconds, with depths: sizes at least 1.25 DT sqrt(g d) / C, so "
-                  "that an explicit model can run at DT (a quad's time step is its width over "
-                  "sqrt(g d) times C); over every other source, --hmin and --hmax, under "
-                  "--refine")
+                  "DT in seconds, with depths: sizes at least " + std::string(margin) +
+                      " DT sqrt(g d) / C, so that an explicit model can run at DT (a quad's time "
+                      "step is its width over sqrt(g d) times C); over every other source, "
+                      "--hmin and --hmax, under --refine")
       ->check(kPositive)
       ->group(g);
   cmd->add_option("--courant", f.sizing.courant,
