@@ -403,6 +403,53 @@ TEST(MeshOutputs, GmshGroupsOpenSegmentsOneByOne) {
   }
 }
 
+// fort.14 of a land domain with a hole: no open boundary; the outer loop one mainland
+// segment (IBTYPE 20) and the hole an island (21), each closed by its first node again.
+TEST(MeshOutputs, AdcircLandDomainHasClosedFluxBoundaries) {
+  const Fixture f;
+  TempDir dir;
+  MeshOutputData d = f.data();
+  d.boundary = extract_boundary(f.mesh, PolylineIndex(), 0.0);
+  MeshWriteOptions o;
+  o.output_crs = "EPSG:32631";  // the fixture's own metres (ICS = 1)
+  write_mesh_outputs(d, {{dir.file("fort.14"), "", false}}, o);
+  std::istringstream in(read_file(dir.file("fort.14")));
+  std::string line;
+  std::getline(in, line);
+  std::size_t ne = 0, np = 0;
+  in >> ne >> np;
+  EXPECT_EQ(ne, 16u);
+  EXPECT_EQ(np, 16u);
+  std::getline(in, line);  // the rest of the counts' line
+  for (std::size_t i = 0; i < np + ne; ++i) std::getline(in, line);
+  std::size_t nope = 9, neta = 9, nbou = 0, nvel = 0;
+  in >> nope;
+  std::getline(in, line);
+  in >> neta;
+  std::getline(in, line);
+  EXPECT_EQ(nope, 0u);
+  EXPECT_EQ(neta, 0u);
+  in >> nbou;
+  std::getline(in, line);
+  in >> nvel;
+  std::getline(in, line);
+  ASSERT_EQ(nbou, 2u);
+  EXPECT_EQ(nvel, 13u + 5u);  // 12 outer nodes and 4 round the hole, each closed
+  for (const auto& [count, type] : {std::pair<std::size_t, int>{13, 20}, {5, 21}}) {
+    std::size_t n = 0;
+    int ibtype = 0;
+    in >> n >> ibtype;
+    std::getline(in, line);
+    EXPECT_EQ(n, count);
+    EXPECT_EQ(ibtype, type);
+    std::vector<int> nodes(n);
+    for (int& v : nodes) in >> v;
+    EXPECT_EQ(nodes.front(), nodes.back()) << type;
+    EXPECT_EQ(std::set<int>(nodes.begin(), nodes.end()).size(), n - 1) << type;
+  }
+  EXPECT_FALSE(in.fail());
+}
+
 TEST(MeshOutputs, LegacyVtkLoadsInMeshio) {
   const Fixture f;
   TempDir dir;
