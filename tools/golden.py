@@ -144,6 +144,8 @@ def main():
     if mesh_args:
         sys.exit("golden: arguments after -- are for init only")
     for case in a.cases:
+        if not os.path.isfile(os.path.join(case, "args.txt")):
+            sys.exit(f"golden: {case} is not a case (no args.txt); make one with init")
         (check if a.command == "check" else update)(case, a.isoquad)
 
 

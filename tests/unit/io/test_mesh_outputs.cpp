@@ -79,7 +79,7 @@ struct Fixture {
 };
 
 std::string golden(const std::string& name) {
-  return std::string(ISOQUAD_SOURCE_DIR) + "/tests/golden/gr3/" + name;
+  return std::string(ISOQUAD_SOURCE_DIR) + "/tests/formats/" + name;
 }
 
 // A SCHISM hgrid parser of our own: nodes, elements, boundary segments.
@@ -400,6 +400,27 @@ TEST(MeshOutputs, GmshGroupsOpenSegmentsOneByOne) {
       EXPECT_EQ(edges[11 + k].size(), open[k]->nodes.size() - 1) << version << " open_" << k + 1;
     for (const auto& e : edges[11]) EXPECT_EQ(edges[12].count(e), 0u) << version;
     EXPECT_EQ(edges.count(2), 0u) << version;
+  }
+}
+
+// fort.14 of the fixture against its golden file (rewritten with ISOQUAD_UPDATE_GOLDEN
+// set, as hgrid.gr3's): its nodes are hgrid.ll's, in longitude and latitude.
+TEST(MeshOutputs, Fort14MatchesGolden) {
+  const Fixture f;
+  TempDir dir;
+  write_mesh_outputs(f.data(),
+                     {{dir.file("fort.14"), "", false}, {dir.file("hgrid.gr3"), "", false}});
+  const std::string text = read_file(dir.file("fort.14"));
+  if (std::getenv("ISOQUAD_UPDATE_GOLDEN")) write_file(golden("fort.14"), text);
+  EXPECT_EQ(text, read_file(golden("fort.14")));
+  // The node lines are hgrid.ll's.
+  std::istringstream a(text), b(read_file(dir.file("hgrid.ll")));
+  std::string la, lb;
+  for (int i = 0; i < 2; ++i) std::getline(a, la), std::getline(b, lb);
+  for (std::size_t i = 0; i < f.mesh.points.size(); ++i) {
+    std::getline(a, la);
+    std::getline(b, lb);
+    EXPECT_EQ(la, lb) << i;
   }
 }
 
