@@ -1237,4 +1237,11 @@ TEST(CliOutputs, GoldenToolStartsACaseThatChecksAndCatchesAChange) {
   r = run_cli_program("/usr/bin/python3", {golden, "check", case_dir, "--isoquad", ISOQUAD_CLI}, dir);
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.err.find("quality.num_quads"), std::string::npos) << r.err;
+  // A directory that is not a case (no args.txt): named, without a traceback.
+  std::filesystem::create_directories(dir.file("not_a_case"));
+  r = run_cli_program("/usr/bin/python3",
+                      {golden, "update", dir.file("not_a_case"), "--isoquad", ISOQUAD_CLI}, dir);
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_NE(r.err.find("not_a_case is not a case (no args.txt)"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("Traceback"), std::string::npos) << r.err;
 }
