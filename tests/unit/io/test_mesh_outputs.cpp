@@ -284,6 +284,57 @@ TEST(MeshOutputs, Gr3MatchesGoldenAndParses) {
   EXPECT_EQ(ll.open, g.open);
 }
 
+// A mesh file read by gmsh and written again as MSH 2.2 (gmsh numbers nodes its own way):
+// the physical names by tag, the node count, and each element's type, physical tag and
+// nodes.
+struct GmshRewrite {
+  std::map<int, std::string> names;
+  std::size_t num_nodes = 0;
+  struct Element {
+    int type = 0, physical = 0;
+    std::vector<int> nodes;
+  };
+  std::vector<Element> elements;
+};
+
+GmshRewrite rewrite_with_gmsh(const TempDir& dir, const std::string& path) {
+  GmshRewrite g;
+  const std::string out = path + ".re.msh";
+  const CliResult r = run_cli_program("gmsh", {path, "-0", "-format", "msh22", "-o", out}, dir);
+  EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(r.err.find("Error"), std::string::npos) << r.err;
+  std::istringstream in(read_file(out));
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line == "$PhysicalNames") {
+      int n = 0;
+      in >> n;
+      for (int i = 0; i < n; ++i) {
+        int dim = 0, tag = 0;
+        std::string name;
+        in >> dim >> tag >> name;
+        g.names[tag] = name;
+      }
+    } else if (line == "$Nodes") {
+      in >> g.num_nodes;
+    } else if (line == "$Elements") {
+      int n = 0;
+      in >> n;
+      for (int i = 0; i < n; ++i) {
+        int id = 0, ntags = 0, tag = 0;
+        GmshRewrite::Element e;
+        in >> id >> e.type >> ntags >> e.physical;
+        for (int t = 1; t < ntags; ++t) in >> tag;
+        std::getline(in, line);
+        std::istringstream nodes(line);
+        for (int v; nodes >> v;) e.nodes.push_back(v);
+        g.elements.push_back(e);
+      }
+    }
+  }
+  return g;
+}
+
 TEST(MeshOutputs, GmshReadsBothVersionsWithPhysicalGroups) {
   const Fixture f;
   TempDir dir;
@@ -295,39 +346,11 @@ TEST(MeshOutputs, GmshReadsBothVersionsWithPhysicalGroups) {
   EXPECT_EQ(read_file(dir.file("m22.msh")).substr(0, 23), "$MeshFormat\n2.2 0 8\n$En");
   for (const std::string name : {"m41", "m22"}) {
     // gmsh reads the file and writes it again (2.2); we count what it kept.
-    const CliResult r = run_cli_program(
-        "gmsh", {dir.file(name + ".msh"), "-0", "-format", "msh22", "-o", dir.file(name + "_re.msh")}, dir);
-    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-    EXPECT_EQ(r.err.find("Error"), std::string::npos) << r.err;
-    std::istringstream in(read_file(dir.file(name + "_re.msh")));
-    std::string line;
+    const GmshRewrite g = rewrite_with_gmsh(dir, dir.file(name + ".msh"));
     std::map<std::pair<int, int>, int> count;  // (element type, physical) -> count
-    std::map<int, std::string> names;
-    std::size_t num_nodes = 0;
-    while (std::getline(in, line)) {
-      if (line == "$PhysicalNames") {
-        int n = 0;
-        in >> n;
-        for (int i = 0; i < n; ++i) {
-          int dim = 0, tag = 0;
-          std::string nm;
-          in >> dim >> tag >> nm;
-          names[tag] = nm;
-        }
-      } else if (line == "$Nodes") {
-        in >> num_nodes;
-      } else if (line == "$Elements") {
-        int n = 0;
-        in >> n;
-        for (int i = 0; i < n; ++i) {
-          int id = 0, type = 0, ntags = 0, phys = 0;
-          in >> id >> type >> ntags >> phys;
-          std::getline(in, line);
-          ++count[{type, phys}];
-        }
-      }
-    }
-    EXPECT_EQ(num_nodes, 16u) << name;
+    for (const auto& e : g.elements) ++count[{e.type, e.physical}];
+    std::map<int, std::string> names = g.names;
+    EXPECT_EQ(g.num_nodes, 16u) << name;
     EXPECT_EQ(names[1], "\"land\"");
     EXPECT_EQ(names[2], "\"open\"");
     EXPECT_EQ(names[3], "\"domain\"");
@@ -358,39 +381,12 @@ TEST(MeshOutputs, GmshGroupsOpenSegmentsOneByOne) {
     o.msh_groups = "segment";
     const std::string path = dir.file("m" + version + ".msh");
     write_mesh_outputs(d, {{path, "", false}}, o);
-    const CliResult r = run_cli_program(
-        "gmsh", {path, "-0", "-format", "msh22", "-o", dir.file("re" + version + ".msh")}, dir);
-    ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
-    std::istringstream in(read_file(dir.file("re" + version + ".msh")));
-    std::string line;
-    std::map<int, std::string> names;
-    std::map<int, std::set<std::pair<int, int>>> edges;  // physical -> edges (0-based nodes)
-    while (std::getline(in, line)) {
-      if (line == "$PhysicalNames") {
-        int n = 0;
-        in >> n;
-        for (int i = 0; i < n; ++i) {
-          int dim = 0, tag = 0;
-          std::string nm;
-          in >> dim >> tag >> nm;
-          names[tag] = nm;
-        }
-      } else if (line == "$Elements") {
-        int n = 0;
-        in >> n;
-        for (int i = 0; i < n; ++i) {
-          int id = 0, type = 0, ntags = 0, phys = 0, a = 0, b = 0;
-          in >> id >> type >> ntags >> phys;
-          for (int t = 1; t < ntags; ++t) in >> id;
-          if (type == 1) {
-            in >> a >> b;
-            edges[phys].insert(std::minmax(a - 1, b - 1));
-          }
-          std::getline(in, line);
-        }
-      }
-    }
-    EXPECT_EQ(names,
+    const GmshRewrite g = rewrite_with_gmsh(dir, path);
+    std::map<int, std::set<std::pair<int, int>>> edges;  // physical -> edges (gmsh's nodes)
+    for (const auto& e : g.elements)
+      if (e.type == 1 && e.nodes.size() == 2)
+        edges[e.physical].insert(std::minmax(e.nodes[0], e.nodes[1]));
+    EXPECT_EQ(g.names,
               (std::map<int, std::string>{
                   {1, "\"land\""}, {3, "\"domain\""}, {11, "\"open_1\""}, {12, "\"open_2\""}}))
         << version;
