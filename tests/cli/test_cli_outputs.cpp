@@ -126,6 +126,18 @@ CliResult mesh_box(const TempDir& dir, const std::vector<std::string>& extra) {
   return run_cli(args, dir);
 }
 
+// The same at 800 m with the `extra` arguments.
+CliResult mesh_box_800(const TempDir& dir, std::vector<std::string> extra) {
+  extra.insert(extra.begin(), {"--size", "800"});
+  return mesh_box(dir, extra);
+}
+
+// A GeoTIFF in lon/lat over the whole water box and round it, `value` everywhere.
+std::string uniform_raster(const TempDir& dir, const std::string& name, double value) {
+  return write_geotiff(dir.file(name), -4.8, 48.5, 0.15, 4, 4, 4326,
+                       [value](double, double) { return value; });
+}
+
 // The same at 800 m with the bathymetry (depths), quiet, with the `extra` arguments (the
 // outputs).
 CliResult mesh_water_box(const TempDir& dir, const std::vector<std::string>& extra) {
@@ -1001,12 +1013,8 @@ TEST(CliOutputs, VerticesOutsideTheBathymetryTakeTheNearestDepth) {
 TEST(CliOutputs, BathymetryRastersInPriorityOrderAndMinimumDepth) {
   TempDir dir;
   const std::string west = bathymetry(dir, 20);  // 4.7 W to 4.5 W
-  const std::string deep = write_geotiff(dir.file("deep.tif"), -4.8, 48.5, 0.15, 4, 4, 4326,
-                                         [](double, double) { return 500.0; });
-  auto run = [&](std::vector<std::string> extra) {
-    extra.insert(extra.begin(), {"--size", "800"});
-    return mesh_box(dir, extra);
-  };
+  const std::string deep = uniform_raster(dir, "deep.tif", 500.0);
+  auto run = [&](const std::vector<std::string>& extra) { return mesh_box_800(dir, extra); };
   CliResult r = run({"--bathymetry", west, "--bathymetry", deep, "-o", dir.file("a.gr3")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
@@ -1080,12 +1088,8 @@ TEST(CliOutputs, ElevationRastersGiveTheSameDepths) {
   const std::string west_z =
       write_geotiff(dir.file("west_z.tif"), -4.7, 48.45, 0.01, 20, 35, 4326,
                     [](double lon, double lat) { return -depth_at(lon, lat); });
-  const std::string deep_z = write_geotiff(dir.file("deep_z.tif"), -4.8, 48.5, 0.15, 4, 4, 4326,
-                                           [](double, double) { return -500.0; });
-  auto run = [&](std::vector<std::string> extra) {
-    extra.insert(extra.begin(), {"--size", "800"});
-    return mesh_box(dir, extra);
-  };
+  const std::string deep_z = uniform_raster(dir, "deep_z.tif", -500.0);
+  auto run = [&](const std::vector<std::string>& extra) { return mesh_box_800(dir, extra); };
   // Elevations only, and depths then elevations: the same depths.
   CliResult r = run({"--elevation", west_z, "--elevation", deep_z, "-o", dir.file("z.gr3")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
