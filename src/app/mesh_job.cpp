@@ -201,6 +201,13 @@ std::string format_mesh_summary(const MeshResult& r) {
                   r.smooth.num_sliver_collapses);
     os << buf;
   }
+  if (r.smooth.num_thin_repairs > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "thin quads:   %d long and narrow quad(s) (SCHISM's aspect ratio) mended by "
+                  "diagonal collapses, flips or thin rows merged\n",
+                  r.smooth.num_thin_repairs);
+    os << buf;
+  }
   if (r.smooth.num_corner_splits > 0) {
     std::snprintf(buf, sizeof buf,
                   "corners:      %d reflex corner(s) given a third quad where an interior vertex was "
@@ -359,6 +366,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("num_collapses", r.smooth.num_collapses)
         .value("num_sliver_collapses", r.smooth.num_sliver_collapses)
         .value("num_corner_splits", r.smooth.num_corner_splits)
+        .value("num_thin_repairs", r.smooth.num_thin_repairs)
         .end_object();
   }
   add_stage_times(j, r.fields.times);

@@ -256,6 +256,15 @@ std::size_t count_boundary_crossings(const QuadMesh& m, Point2* where) {
   return crossings.size();
 }
 
+double quad_aspect(const QuadMesh& m, int q) {
+  double shortest = std::numeric_limits<double>::infinity(), longest = 0;
+  for (int i = 0; i < 4; ++i) {
+    const double l = distance(m.points[m.quads[q][i]], m.points[m.quads[q][(i + 1) % 4]]);
+    shortest = std::min(shortest, l), longest = std::max(longest, l);
+  }
+  return shortest > 0 ? longest / shortest : std::numeric_limits<double>::infinity();
+}
+
 std::array<double, 4> quad_angles_deg(const QuadMesh& m, int q) {
   const auto& t = m.quads[q];
   std::array<double, 4> out{};

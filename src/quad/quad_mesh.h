@@ -66,5 +66,7 @@ ChordDeparture chord_departure(const QuadMesh& mesh, const BackgroundMesh& backg
 // The four interior angles in degrees.
 std::array<double, 4> quad_angles_deg(const QuadMesh& mesh, int q);
 double quad_area(const QuadMesh& mesh, int q);
+// The longest side over the shortest (SCHISM's aspect ratio; infinite with a side of 0).
+double quad_aspect(const QuadMesh& mesh, int q);
 
 }  // namespace isoquad

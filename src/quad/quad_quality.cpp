@@ -95,14 +95,9 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
 
     const auto& t = m.quads[q];
     Point2 c{0, 0};
-    double emin = 1e300, emax = 0;
-    for (int i = 0; i < 4; ++i) {
-      c.x += 0.25 * m.points[t[i]].x, c.y += 0.25 * m.points[t[i]].y;
-      const Point2 &p = m.points[t[i]], &r = m.points[t[(i + 1) % 4]];
-      const double len = std::hypot(r.x - p.x, r.y - p.y);
-      emin = std::min(emin, len), emax = std::max(emax, len);
-    }
-    if (emin > 0 && emax / emin > 5) ++s.schism_aspect_violations;
+    for (int i = 0; i < 4; ++i) c.x += 0.25 * m.points[t[i]].x, c.y += 0.25 * m.points[t[i]].y;
+    const double aspect = quad_aspect(m, q);
+    if (aspect > 5 && std::isfinite(aspect)) ++s.schism_aspect_violations;
     const Location loc = locator.locate(c);
     const double h = loc.triangle >= 0 ? size.at(bg, loc.triangle, loc.bary) : 0.0;
     qm.size_ratio[q] = h > 0 ? std::sqrt(std::max(0.0, quad_area(m, q))) / h : 0.0;

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <tuple>
 
 #include "quad/quad_sweeps.h"
@@ -595,55 +597,97 @@ int collapse_folds(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& pa
   return kept;
 }
 
-// Slivers, once every quad is convex: quads still flatter than sliver_convexity, the
-// flattest first, each removed by a diagonal collapse when that (with the lift and
-// untangling sweeps after it, on the quads within kSliverRings of it) leaves every quad
-// convex, no more boundary crossings, and either raises the flattest quad's convexity or
-// leaves fewer slivers without lowering it. At most sliver_tries quads are tried; a
-// collapse not kept is undone. (Sweeps over the whole mesh after each try cost the
-// Arctic Ocean at 1:10m, 39,770 quads, 10 s of its 13 s here; the local ones 0.1 s.)
-// With `relocate` (SmoothParams::sliver_relocate), each try moves the interior vertices
-// next to the change to their neighbours' middle first, and no thin row is collapsed.
-void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
-                      const SmoothParams& lift, SmoothStats& stats, bool relocate) {
-  auto scan = [&](int& slivers, int& nonconvex, double& worst) {
-    slivers = nonconvex = 0;
-    worst = 1.0;
+namespace {
+
+// A mesh's counts that the one-by-one repairs compare before and after a change.
+struct RepairCounts {
+  int defects = 0;     // quads the repair looks for
+  int slivers = 0;     // quads at most SmoothParams::sliver_convexity
+  int nonconvex = 0;   // quads at most SmoothParams::min_convexity
+  double worst = 1.0;  // the flattest quad's convexity
+  // Counted only for QuadDefect::better_angles:
+  int ratio = 0;              // quads under SmoothParams::min_angle_ratio (smallest / largest)
+  double smallest_deg = 180;  // the smallest angle
+};
+
+// What a one-by-one repair looks for: quads whose `badness` is at least `threshold`, the
+// worst first; a change is kept when every quad is convex, `better` (before, after)
+// holds, then `better_angles` (when set) with the angles counted too, and no more
+// boundary edges cross (the costlier counts only for a change that passed the others).
+struct QuadDefect {
+  std::function<double(const QuadMesh&, int)> badness;
+  double threshold;
+  int tries;  // at most this many defects tried
+  std::function<bool(const RepairCounts&, const RepairCounts&)> better;
+  std::function<bool(const RepairCounts&, const RepairCounts&)> better_angles;
+};
+
+// The changes a one-by-one repair kept.
+struct RepairsKept {
+  int collapses = 0;  // diagonal collapses and thin rows merged
+  int flips = 0;
+};
+
+// The defects one by one, every quad convex: at most QuadDefect::tries of them, each tried
+// once (by where it was: ids change on a collapse) for each diagonal collapse (shorter
+// diagonal first), then each edge flip with a neighbour (its hexagon split along another
+// diagonal), then (without `relocate`) the merge of the thin row it ends; the first
+// change kept (with the lift and untangling sweeps after it, on the quads within
+// kSliverRings of it) stays, the others are undone exactly. With `relocate`, each try
+// moves the interior vertices of the quads next to the change to the middle of their
+// neighbours first (a change that leaves a vertex of three or five quads can need it
+// moved further than the untangling's steps take it). (Sweeps over the whole mesh after
+// each try cost the Arctic Ocean at 1:10m, 39,770 quads, 10 s of its 13 s here; the
+// local ones 0.1 s.) Returns the changes kept.
+RepairsKept repair_one_by_one(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
+                              const SmoothParams& lift, SmoothStats& stats, bool relocate,
+                              const QuadDefect& defect) {
+  auto scan = [&] {
+    RepairCounts c;
     for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
-      const double c = quad_convexity(m, q);
-      slivers += c <= params.sliver_convexity;
-      nonconvex += c <= params.min_convexity;
-      worst = std::min(worst, c);
+      const double convexity = quad_convexity(m, q);
+      c.defects += defect.badness(m, q) >= defect.threshold;
+      c.slivers += convexity <= params.sliver_convexity;
+      c.nonconvex += convexity <= params.min_convexity;
+      c.worst = std::min(c.worst, convexity);
+    }
+    return c;
+  };
+  auto count_angles = [&](RepairCounts& c) {
+    for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
+      const auto angles = quad_angles_deg(m, q);
+      const double smallest = *std::min_element(angles.begin(), angles.end());
+      c.ratio +=
+          smallest < params.min_angle_ratio * *std::max_element(angles.begin(), angles.end());
+      c.smallest_deg = std::min(c.smallest_deg, smallest);
     }
   };
-  std::vector<Point2> tried;  // centroids of the slivers tried (ids change on a collapse)
+  std::vector<Point2> tried;  // centroids of the defects tried
   // The mesh's counts before a try: the same as before the last one unless that changed
   // the mesh (a change not kept is undone exactly), so counted again only then.
   bool changed = true;
-  int slivers0 = 0, nonconvex0 = 0;
-  double worst0 = 1.0;
+  RepairCounts before_try;
   std::size_t crossings0 = 0;
-  for (int attempt = 0; attempt < params.sliver_tries; ++attempt) {
+  QuadTopology t;  // rebuilt after each change
+  RepairsKept out;
+  for (int attempt = 0; attempt < defect.tries; ++attempt) {
     int pick = -1;
-    double flattest = params.sliver_convexity;
+    double worst = defect.threshold;
     for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
-      const double c = quad_convexity(m, q);
-      if (c > flattest || (pick >= 0 && c == flattest)) continue;
+      const double b = defect.badness(m, q);
+      if (b < worst || (pick >= 0 && b == worst)) continue;
       if (contains_point(tried, quad_centroid(m, q))) continue;
       pick = q;
-      flattest = c;
+      worst = b;
     }
     if (pick < 0) break;
     tried.push_back(quad_centroid(m, pick));
     if (changed) {
-      scan(slivers0, nonconvex0, worst0);
+      before_try = scan();
+      if (defect.better_angles) count_angles(before_try);
       crossings0 = count_boundary_crossings(m);
       changed = false;
     }
-    // A change of the topology around the sliver, kept when the mesh is then better.
-    // With `relocate`, the interior vertices of the quads next to it first go to the
-    // middle of their neighbours (a change that leaves a vertex of three or five quads
-    // can need it moved further than the untangling's steps take it).
     auto kept = [&](const std::function<bool()>& change) {
       QuadMesh before = m;
       const SmoothStats stats_before = stats;
@@ -651,17 +695,19 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
         changed = true;  // (a change that fails may have begun)
         return false;
       }
-      const QuadTopology t = quad_topology(m);
+      rebuild_quad_topology(m, t);
       const std::vector<int> near = quads_near(m, t, tried.back(), kSliverRings);
       if (relocate) move_to_neighbours_middle(m, t, quads_near(m, t, tried.back(), 1));
       SmoothStats ignored;
       untangle(bg, m, t, lift, ignored, false, &near);
       untangle(bg, m, t, params, stats, true, &near);
-      int slivers1, nonconvex1;
-      double worst1;
-      scan(slivers1, nonconvex1, worst1);
-      if (nonconvex1 == 0 && worst1 >= worst0 && (worst1 > worst0 || slivers1 < slivers0) &&
-          count_boundary_crossings(m) <= crossings0) {
+      RepairCounts after = scan();
+      bool better = after.nonconvex == 0 && defect.better(before_try, after);
+      if (better && defect.better_angles) {
+        count_angles(after);
+        better = defect.better_angles(before_try, after);
+      }
+      if (better && count_boundary_crossings(m) <= crossings0) {
         changed = true;
         return true;
       }
@@ -669,15 +715,13 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
       stats = stats_before;
       return false;
     };
-    // Each diagonal collapse (shortest diagonal first), then each edge flip with a
-    // neighbour (its hexagon split along another diagonal).
     bool done = false;
     for (int choice = 0; choice < 4 && !done; ++choice)
       if (kept([&] {
             return collapse_quads(
                        m, [&](int q) { return q == pick; }, choice) > 0;
           })) {
-        ++stats.num_sliver_collapses;
+        ++out.collapses;
         done = true;
       }
     const std::vector<QuadFlip> flips =
@@ -688,14 +732,64 @@ void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams&
             m.quads[flips[k].n] = flips[k].b;
             return true;
           })) {
-        ++stats.num_flips;
+        ++out.flips;
         done = true;
       }
-    // Failing those, the thin row it ends, collapsed (not again with the relocation).
     if (!done && !relocate && params.sliver_row_max > 0 &&
         kept([&] { return collapse_chord(bg, m, pick, params.sliver_row_max); }))
-      ++stats.num_sliver_collapses;
+      ++out.collapses;
   }
+  return out;
+}
+
+}  // namespace
+
+// Slivers, once every quad is convex: quads still flatter than sliver_convexity, the
+// flattest first (repair_one_by_one), a change kept when it either raises the flattest
+// quad's convexity or leaves fewer slivers without lowering it.
+void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
+                      const SmoothParams& lift, SmoothStats& stats, bool relocate) {
+  const QuadDefect slivers{[](const QuadMesh& mesh, int q) { return -quad_convexity(mesh, q); },
+                           -params.sliver_convexity, params.sliver_tries,
+                           [](const RepairCounts& before, const RepairCounts& after) {
+                             return after.worst >= before.worst &&
+                                    (after.worst > before.worst || after.slivers < before.slivers);
+                           },
+                           nullptr};
+  const RepairsKept kept = repair_one_by_one(bg, m, params, lift, stats, relocate, slivers);
+  stats.num_sliver_collapses += kept.collapses;
+  stats.num_flips += kept.flips;
+}
+
+// Thin quads, every quad convex: longest side over shortest at least thin_aspect, the
+// thinnest first (repair_one_by_one), a change kept when it leaves fewer thin quads,
+// fewer thin quads and quads under min_angle_ratio together (SCHISM's two checks), no
+// more slivers, the mesh's flattest quad no flatter, and its smallest angle no more than
+// kThinAngleSlackDeg under the smallest before the pass. (Without the angle rule, Chile
+// at 1:50m lost its smallest angle, 30.0 -> 16.8 degrees, for 4 of its 22 thin quads;
+// with no slack, France automatic at 28 km keeps 23 of its 25, since mending them makes
+// angles of about 22.3 degrees, its smallest 22.8; with 1 degree, 19, its smallest
+// angle unchanged.)
+constexpr double kThinAngleSlackDeg = 1.0;
+void collapse_thin(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
+                   const SmoothParams& lift, SmoothStats& stats) {
+  if (params.thin_aspect <= 0) return;
+  double smallest0_deg = 180;
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
+    const auto angles = quad_angles_deg(m, q);
+    smallest0_deg = std::min(smallest0_deg, *std::min_element(angles.begin(), angles.end()));
+  }
+  const QuadDefect thin{quad_aspect, params.thin_aspect, params.thin_tries,
+                        [](const RepairCounts& before, const RepairCounts& after) {
+                          return after.defects < before.defects &&
+                                 after.slivers <= before.slivers && after.worst >= before.worst;
+                        },
+                        [&](const RepairCounts& before, const RepairCounts& after) {
+                          return after.defects + after.ratio < before.defects + before.ratio &&
+                                 after.smallest_deg >= smallest0_deg - kThinAngleSlackDeg;
+                        }};
+  const RepairsKept kept = repair_one_by_one(bg, m, params, lift, stats, false, thin);
+  stats.num_thin_repairs += kept.collapses + kept.flips;
 }
 
 // Doubled corners, every quad convex: each tried once, kept when the mesh is then

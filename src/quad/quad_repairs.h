@@ -43,6 +43,11 @@ int collapse_folds(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& pa
 void collapse_slivers(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
                       const SmoothParams& lift, SmoothStats& stats, bool relocate = false);
 
+// Thin quads (SmoothParams::thin_aspect), every quad convex, by the same changes as the
+// slivers'; counted in SmoothStats::num_thin_repairs.
+void collapse_thin(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
+                   const SmoothParams& lift, SmoothStats& stats);
+
 // Reflex corners in two quads (SmoothParams::doubled_corner_side). Returns where the kept
 // splits left their quads' vertices.
 std::vector<Point2> split_doubled_corners(const BackgroundMesh& bg, QuadMesh& m,

@@ -7,6 +7,11 @@ namespace isoquad {
 
 QuadTopology quad_topology(const QuadMesh& m) {
   QuadTopology t;
+  rebuild_quad_topology(m, t);
+  return t;
+}
+
+void rebuild_quad_topology(const QuadMesh& m, QuadTopology& t) {
   const std::size_t n = m.points.size();
   t.quad_start.assign(n + 1, 0);
   for (const auto& q : m.quads)
@@ -19,7 +24,8 @@ QuadTopology quad_topology(const QuadMesh& m) {
   // A vertex's edge neighbours from its quads (each quad gives the corners before and
   // after it); an edge used by one quad only is a boundary edge. Boundary neighbours in
   // increasing order (the second slot keeps the last when there are more than two).
-  t.neighbours.assign(n, {});
+  t.neighbours.resize(n);
+  for (auto& nb : t.neighbours) nb.clear();  // (their memory kept for the next rebuild)
   t.boundary_neighbours.assign(n, {-1, -1});
   std::vector<int> around;
   for (std::size_t v = 0; v < n; ++v) {
@@ -42,7 +48,6 @@ QuadTopology quad_topology(const QuadMesh& m) {
       i = j;
     }
   }
-  return t;
 }
 
 bool point_less(const Point2& a, const Point2& b) {

@@ -19,6 +19,8 @@ struct QuadTopology {
 };
 
 QuadTopology quad_topology(const QuadMesh& m);
+// The same into `t`, reusing its memory (for callers that rebuild it often).
+void rebuild_quad_topology(const QuadMesh& m, QuadTopology& t);
 
 // Points in lexicographic order (x, then y).
 bool point_less(const Point2& a, const Point2& b);

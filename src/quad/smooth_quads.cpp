@@ -85,6 +85,9 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
   std::vector<Point2> split;  // where the corner splits left their quads' vertices
   if (params.doubled_corner_side > 0 && count_nonconvex() == 0)
     split = split_doubled_corners(bg, m, params, lift, stats);
+  // (After the corners' splits: a doubled corner's two quads are thin too, and the split
+  // is the change that mends them.)
+  if (count_nonconvex() == 0) collapse_thin(bg, m, params, lift, stats);
   // The repairs move vertices for convexity alone, and flips and collapses leave new
   // quads unswept: the angle sweeps again (SmoothParams::resweep_iterations) on the
   // vertices that moved since `swept_at` (sorted positions) or stand at `also`, and the

@@ -543,6 +543,8 @@ TEST(CliMesh, ANarrowIslandAboutOneTileLargeGetsCornersAtItsEnds) {
   // give it more quads): one tile with two corners, whose
   // turning vertices cluster at its two ends (none an eighth of the perimeter from the
   // corners). Split in three, merged back, 200 rounds of repair, and the run stopped.
+  // Its three quads (two over SCHISM's aspect ratio of 5) now become two by the thin
+  // quads' pass (smallest angle 30.8 -> 59.9 degrees).
   TempDir dir;
   const std::string proj =
       "+proj=sterea +lat_0=70.5695 +lon_0=115 +k=0.99 +x_0=0 +y_0=0 +datum=WGS84 +units=m "
@@ -559,7 +561,7 @@ TEST(CliMesh, ANarrowIslandAboutOneTileLargeGetsCornersAtItsEnds) {
   EXPECT_EQ(r.out.find("retried"), std::string::npos) << r.out;
   const auto quads = read_quads(dir.file("mesh.gpkg"));
   EXPECT_EQ(quads.num_other, 0);
-  EXPECT_GE(quads.quads.size(), 3u);
+  EXPECT_GE(quads.quads.size(), 2u);
   EXPECT_LE(quads.quads.size(), 4u);
   EXPECT_GT(check_convex_ccw(quads), 0.0);
 }

@@ -594,14 +594,12 @@ TEST(SmoothQuads, ADoubletIsMendedByAFlipWithAQuadOfTheGrid) {
   EXPECT_NEAR(area, kSide * kSide, 1e-6 * kSide * kSide);
 }
 
-TEST(SmoothQuads, AThinRowOfSliversIsMergedAway) {
-  // The 10 x 10 grid cut along x = 500 and its right part moved 2 m right and 15 m up
-  // between the boundaries: a column of 10 parallelograms 2 m wide and 100 m long whose
-  // short sides lean 7.6 degrees off their long ones (corners of 7.6 and 172.4 degrees),
-  // from the bottom boundary to the top one. No vertex moves here (no sweeps), and no
-  // collapse of a diagonal or flip mends such a row; merging the two ends of each short
-  // side removes it (Croatia at 1:10m had one, 27 m wide).
-  const BackgroundMesh bg = square_background();
+namespace {
+
+// The 10 x 10 grid cut along x = 500 and its right part moved dx right and dy up between
+// the bottom and top boundaries: a column of 10 quads dx wide from the bottom boundary
+// to the top one.
+QuadMesh grid_with_a_column(double dx, double dy) {
   QuadMesh m;
   const double h = kSide / kN;
   auto add = [&](const Point2& p) {
@@ -620,8 +618,8 @@ TEST(SmoothQuads, AThinRowOfSliversIsMergedAway) {
       double x = i <= kN / 2 ? i * h : (i - 1) * h;
       double y = j * h;
       if (i == kN / 2 + 1) {
-        x += 2.0;
-        if (j > 0 && j < kN) y += 15.0;
+        x += dx;
+        if (j > 0 && j < kN) y += dy;
       }
       ids.push_back(add({x, y}));
     }
@@ -630,16 +628,54 @@ TEST(SmoothQuads, AThinRowOfSliversIsMergedAway) {
   for (int i = 0; i <= kN; ++i)
     for (int j = 0; j < kN; ++j)
       m.quads.push_back({col[i][j], col[i + 1][j], col[i + 1][j + 1], col[i][j + 1]});
-  ASSERT_EQ(m.quads.size(), static_cast<std::size_t>((kN + 1) * kN));
+  return m;
+}
+
+// Smoothing parameters under which no vertex moves but by the repairs.
+SmoothParams without_sweeps() {
   SmoothParams params;
   params.iterations = params.aligned_iterations = params.angle_iterations = 0;
   params.lift_iterations = params.untangle_iterations = 0;
+  return params;
+}
+
+double flattest(const QuadMesh& mesh) {
+  double worst = 1.0;
+  for (int q = 0; q < static_cast<int>(mesh.quads.size()); ++q)
+    worst = std::min(worst, quad_convexity(mesh, q));
+  return worst;
+}
+
+int count_thin(const QuadMesh& mesh, double aspect) {
+  int n = 0;
+  for (int q = 0; q < static_cast<int>(mesh.quads.size()); ++q) n += quad_aspect(mesh, q) >= aspect;
+  return n;
+}
+
+// The repaired grid covers the square, with its boundary vertices on the boundary.
+void expect_square_covered(const QuadMesh& m) {
+  double area = 0;
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) area += quad_area(m, q);
+  EXPECT_NEAR(area, kSide * kSide, 1e-6 * kSide * kSide);
+  for (std::size_t v = 0; v < m.points.size(); ++v) {
+    if (m.chain[v] >= 0) {
+      EXPECT_LT(distance_to_square_boundary(m.points[v]), 1e-6) << v;
+    }
+  }
+}
+
+}  // namespace
+
+TEST(SmoothQuads, AThinRowOfSliversIsMergedAway) {
+  // A column of 10 parallelograms 2 m wide and 100 m long whose short sides lean 7.6
+  // degrees off their long ones (corners of 7.6 and 172.4 degrees). No vertex moves
+  // here (no sweeps), and no collapse of a diagonal or flip mends such a row; merging
+  // the two ends of each short side removes it (Croatia at 1:10m had one, 27 m wide).
+  const BackgroundMesh bg = square_background();
+  QuadMesh m = grid_with_a_column(2.0, 15.0);
+  ASSERT_EQ(m.quads.size(), static_cast<std::size_t>((kN + 1) * kN));
+  SmoothParams params = without_sweeps();
   params.sliver_row_max = kN;  // the whole column (the default stops at 8 quads)
-  auto flattest = [](const QuadMesh& mesh) {
-    double worst = 1.0;
-    for (int q = 0; q < static_cast<int>(mesh.quads.size()); ++q) worst = std::min(worst, quad_convexity(mesh, q));
-    return worst;
-  };
   ASSERT_LT(flattest(m), params.sliver_convexity);
   QuadMesh without = m;
   SmoothParams off = params;
@@ -650,14 +686,31 @@ TEST(SmoothQuads, AThinRowOfSliversIsMergedAway) {
   EXPECT_EQ(st.num_nonconvex_after, 0);
   EXPECT_EQ(m.quads.size(), static_cast<std::size_t>(kN * kN));
   EXPECT_GT(flattest(m), params.sliver_convexity);
-  double area = 0;
-  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) area += quad_area(m, q);
-  EXPECT_NEAR(area, kSide * kSide, 1e-6 * kSide * kSide);
-  for (std::size_t v = 0; v < m.points.size(); ++v) {
-    if (m.chain[v] >= 0) {
-      EXPECT_LT(distance_to_square_boundary(m.points[v]), 1e-6) << v;
-    }
-  }
+  expect_square_covered(m);
+}
+
+TEST(SmoothQuads, ThinQuadsAreMendedWithoutMakingSlivers) {
+  // A column of 10 rectangles 15 m wide and 100 m long: not flat at all (every corner
+  // 90 degrees), but each over SCHISM's aspect ratio of 5. The thin pass removes them
+  // (here by merging the row), leaving every quad convex and no sliver.
+  const BackgroundMesh bg = square_background();
+  QuadMesh m = grid_with_a_column(15.0, 0.0);
+  SmoothParams params = without_sweeps();
+  params.sliver_row_max = kN;
+  ASSERT_EQ(count_thin(m, params.thin_aspect), kN);
+  ASSERT_GT(flattest(m), params.sliver_convexity);
+  QuadMesh without = m;
+  SmoothParams off = params;
+  off.thin_aspect = 0;
+  const SmoothStats st_off = smooth_quads(bg, without, off);
+  EXPECT_EQ(count_thin(without, params.thin_aspect), kN);  // the premise: nothing else mends it
+  EXPECT_EQ(st_off.num_thin_repairs, 0);
+  const SmoothStats st = smooth_quads(bg, m, params);
+  EXPECT_EQ(st.num_nonconvex_after, 0);
+  EXPECT_GE(st.num_thin_repairs, 1);
+  EXPECT_EQ(count_thin(m, params.thin_aspect), 0);
+  EXPECT_GT(flattest(m), params.sliver_convexity);
+  expect_square_covered(m);
 }
 
 TEST(QuadConvexity, ASideOfNothingIsDegenerateWhateverItsTurns) {
