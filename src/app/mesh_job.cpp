@@ -196,25 +196,20 @@ std::string format_mesh_summary(const MeshResult& r) {
                   r.smooth.num_flips, r.smooth.num_collapses);
     os << buf;
   }
-  if (r.smooth.num_sliver_collapses > 0) {
-    std::snprintf(buf, sizeof buf, "slivers:      %d flat quad(s) removed by diagonal collapses or thin rows merged\n",
-                  r.smooth.num_sliver_collapses);
+  // A line with a count of repairs, when there were any (`format` takes the count).
+  auto repairs_line = [&](int count, const char* format) {
+    if (count <= 0) return;
+    std::snprintf(buf, sizeof buf, format, count);
     os << buf;
-  }
-  if (r.smooth.num_thin_repairs > 0) {
-    std::snprintf(buf, sizeof buf,
-                  "thin quads:   %d long and narrow quad(s) (SCHISM's aspect ratio) mended by "
-                  "diagonal collapses, flips or thin rows merged\n",
-                  r.smooth.num_thin_repairs);
-    os << buf;
-  }
-  if (r.smooth.num_corner_splits > 0) {
-    std::snprintf(buf, sizeof buf,
-                  "corners:      %d reflex corner(s) given a third quad where an interior vertex was "
-                  "glued to them\n",
-                  r.smooth.num_corner_splits);
-    os << buf;
-  }
+  };
+  repairs_line(r.smooth.num_sliver_collapses,
+               "slivers:      %d flat quad(s) removed by diagonal collapses or thin rows merged\n");
+  repairs_line(r.smooth.num_thin_repairs,
+               "thin quads:   %d long and narrow quad(s) (SCHISM's aspect ratio) mended by "
+               "diagonal collapses, flips or thin rows merged\n");
+  repairs_line(r.smooth.num_corner_splits,
+               "corners:      %d reflex corner(s) given a third quad where an interior vertex was "
+               "glued to them\n");
   std::snprintf(buf, sizeof buf, "angles:       %.1f%% in [75,105], min %.1f, max %.1f deg; eta mean %.3f, min %.3f\n",
                 100 * q.share_angles_75_105, q.min_angle_deg, q.max_angle_deg, q.eta_mean, q.eta_min);
   os << buf;
