@@ -163,17 +163,10 @@ bool flip_first_better(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams
 // How far the repair after a sliver's collapse or flip reaches, in rings of quads.
 constexpr int kSliverRings = 3;
 
-// The quads within `rings` rings (sharing a vertex, ring by ring) of the quad whose
-// centroid is nearest `at`, ascending.
-std::vector<int> quads_near(const QuadMesh& m, const QuadTopology& t, const Point2& at, int rings) {
+// The quads within `rings` rings (sharing a vertex, ring by ring) of quad `seed`,
+// ascending.
+std::vector<int> quads_within(const QuadMesh& m, const QuadTopology& t, int seed, int rings) {
   const int nq = static_cast<int>(m.quads.size());
-  int seed = -1;
-  double best = 1e300;
-  for (int q = 0; q < nq; ++q) {
-    const Point2 c = quad_centroid(m, q);
-    const double d = (c.x - at.x) * (c.x - at.x) + (c.y - at.y) * (c.y - at.y);
-    if (d < best) best = d, seed = q;
-  }
   std::vector<int> out;
   if (seed < 0) return out;
   std::vector<char> in(nq, 0);
@@ -189,6 +182,18 @@ std::vector<int> quads_near(const QuadMesh& m, const QuadTopology& t, const Poin
   }
   std::sort(out.begin(), out.end());
   return out;
+}
+
+// The same round the quad whose centroid is nearest `at` (the first such).
+std::vector<int> quads_near(const QuadMesh& m, const QuadTopology& t, const Point2& at, int rings) {
+  int seed = -1;
+  double best = 1e300;
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
+    const Point2 c = quad_centroid(m, q);
+    const double d = (c.x - at.x) * (c.x - at.x) + (c.y - at.y) * (c.y - at.y);
+    if (d < best) best = d, seed = q;
+  }
+  return quads_within(m, t, seed, rings);
 }
 
 // Ten Gauss-Seidel sweeps, in vertex order, that put each interior vertex of `quads`
@@ -220,19 +225,29 @@ void move_to_neighbours_middle(QuadMesh& m, const QuadTopology& t, const std::ve
 // the row is not thin throughout, does not reach the boundary both ways within max_row
 // quads, would merge two corners or two chains, or would leave a quad with a vertex
 // twice or an edge used twice the same way.
+// Whether quad q's sides i and i + 2 are its short ones, each under a quarter of its long
+// ones (a quad of a thin chord).
+bool thin_across(const QuadMesh& m, int q, int i) {
+  auto side = [&](int j) {
+    return distance(m.points[m.quads[q][j % 4]], m.points[m.quads[q][(j + 1) % 4]]);
+  };
+  return std::max(side(i), side(i + 2)) < 0.25 * std::min(side(i + 1), side(i + 3));
+}
+
+// The side (0 or 1) across which quad q is thin, or -1.
+int thin_side(const QuadMesh& m, int q) {
+  auto side = [&](int j) {
+    return distance(m.points[m.quads[q][j]], m.points[m.quads[q][(j + 1) % 4]]);
+  };
+  const int k = std::max(side(0), side(2)) < std::max(side(1), side(3)) ? 0 : 1;
+  return thin_across(m, q, k) ? k : -1;
+}
+
 bool collapse_chord(const BackgroundMesh& bg, QuadMesh& m, int start, int max_row) {
+  const int k = thin_side(m, start);
+  if (k < 0) return false;
   const EdgeQuads edges(m);
-  auto side = [&](int q, int i) {
-    return distance(m.points[m.quads[q][i]], m.points[m.quads[q][(i + 1) % 4]]);
-  };
-  // Whether quad q's sides i and i + 2 are its short ones, and short enough.
-  auto thin = [&](int q, int i) {
-    return std::max(side(q, i), side(q, i + 2)) <
-           0.25 * std::min(side(q, i + 1), side(q, (i + 3) % 4));
-  };
-  const int k =
-      std::max(side(start, 0), side(start, 2)) < std::max(side(start, 1), side(start, 3)) ? 0 : 1;
-  if (!thin(start, k)) return false;
+  auto thin = [&](int q, int i) { return thin_across(m, q, i); };
   std::vector<int> row{start};
   std::vector<std::array<int, 2>> sides{{m.quads[start][k], m.quads[start][k + 1]},
                                         {m.quads[start][k + 2], m.quads[start][(k + 3) % 4]}};
@@ -614,13 +629,77 @@ struct RepairCounts {
 // worst first; a change is kept when every quad is convex, `better` (before, after)
 // holds, then `better_angles` (when set) with the angles counted too, and no more
 // boundary edges cross (the costlier counts only for a change that passed the others).
+// With `local_first`, each collapse and flip is first tried on a patch of the mesh round
+// the defect (patch_around), and on the whole mesh only when the patch's counts say the
+// mesh would pass: `better` and `better_angles` must then hold whenever they hold for
+// `before` with the patch's differences added to its counts and its worst convexity and
+// smallest angle the lower of the patch's and `before`'s (a rule that asks for them no
+// lower than before, not higher).
 struct QuadDefect {
   std::function<double(const QuadMesh&, int)> badness;
   double threshold;
   int tries;  // at most this many defects tried
   std::function<bool(const RepairCounts&, const RepairCounts&)> better;
   std::function<bool(const RepairCounts&, const RepairCounts&)> better_angles;
+  bool local_first = false;
 };
+
+// The changes a one-by-one repair tries on a quad: a diagonal collapse (`choice`, as
+// collapse_quads'), an edge flip, or the merge of the thin row the quad is in.
+struct RepairChange {
+  enum Kind { collapse, flip, chord } kind = collapse;
+  int choice = 0;
+  QuadFlip edge_flip;
+};
+
+// The quads within `rings` rings of quad `q` as a mesh of their own, ids in the same
+// order as in m (so that ties between ids fall the same way): the vertices also on quads
+// outside it pinned (fixed and off any chain). With rings = kSliverRings + 3, what a
+// change of q and the untangling within kSliverRings after it move lies inside, and
+// nothing pinned moves in the whole mesh either.
+struct Patch {
+  QuadMesh mesh;
+  std::vector<int> quad_of, vertex_of;  // ids in m
+  int pick = -1;                        // q's id in the patch
+};
+Patch patch_around(const QuadMesh& m, const QuadTopology& t, int q, int rings) {
+  Patch p;
+  p.quad_of = quads_within(m, t, q, rings);
+  std::vector<char> in(m.quads.size(), 0);
+  for (int o : p.quad_of) in[o] = 1;
+  for (int o : p.quad_of)
+    p.vertex_of.insert(p.vertex_of.end(), m.quads[o].begin(), m.quads[o].end());
+  std::sort(p.vertex_of.begin(), p.vertex_of.end());
+  p.vertex_of.erase(std::unique(p.vertex_of.begin(), p.vertex_of.end()), p.vertex_of.end());
+  for (int v : p.vertex_of) {
+    bool pinned = false;
+    for (int k = t.quad_start[v]; k < t.quad_start[v + 1] && !pinned; ++k)
+      pinned = !in[t.quad_items[k]];
+    p.mesh.points.push_back(m.points[v]);
+    p.mesh.chain.push_back(pinned ? -1 : m.chain[v]);
+    p.mesh.arc_m.push_back(m.arc_m[v]);
+    p.mesh.fixed.push_back(pinned ? 1 : m.fixed[v]);
+  }
+  auto local = [&](int v) {
+    return static_cast<int>(std::lower_bound(p.vertex_of.begin(), p.vertex_of.end(), v) -
+                            p.vertex_of.begin());
+  };
+  for (std::size_t i = 0; i < p.quad_of.size(); ++i) {
+    const auto& c = m.quads[p.quad_of[i]];
+    p.mesh.quads.push_back({local(c[0]), local(c[1]), local(c[2]), local(c[3])});
+    if (p.quad_of[i] == q) p.pick = static_cast<int>(i);
+  }
+  return p;
+}
+
+// A patch's flip in the whole mesh's ids.
+QuadFlip flip_in_mesh(const Patch& p, const QuadFlip& f) {
+  QuadFlip out = f;
+  out.q = p.quad_of[f.q];
+  out.n = p.quad_of[f.n];
+  for (int k = 0; k < 4; ++k) out.a[k] = p.vertex_of[f.a[k]], out.b[k] = p.vertex_of[f.b[k]];
+  return out;
+}
 
 // The changes a one-by-one repair kept.
 struct RepairsKept {
@@ -642,33 +721,57 @@ struct RepairsKept {
 RepairsKept repair_one_by_one(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& params,
                               const SmoothParams& lift, SmoothStats& stats, bool relocate,
                               const QuadDefect& defect) {
-  auto scan = [&] {
+  auto count = [&](const QuadMesh& mesh) {
     RepairCounts c;
-    for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
-      const double convexity = quad_convexity(m, q);
-      c.defects += defect.badness(m, q) >= defect.threshold;
+    for (int q = 0; q < static_cast<int>(mesh.quads.size()); ++q) {
+      const double convexity = quad_convexity(mesh, q);
+      c.defects += defect.badness(mesh, q) >= defect.threshold;
       c.slivers += convexity <= params.sliver_convexity;
       c.nonconvex += convexity <= params.min_convexity;
       c.worst = std::min(c.worst, convexity);
     }
     return c;
   };
-  auto count_angles = [&](RepairCounts& c) {
-    for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
-      const auto angles = quad_angles_deg(m, q);
+  auto count_angles = [&](const QuadMesh& mesh, RepairCounts& c) {
+    for (int q = 0; q < static_cast<int>(mesh.quads.size()); ++q) {
+      const auto angles = quad_angles_deg(mesh, q);
       const double smallest = *std::min_element(angles.begin(), angles.end());
       c.ratio +=
           smallest < params.min_angle_ratio * *std::max_element(angles.begin(), angles.end());
       c.smallest_deg = std::min(c.smallest_deg, smallest);
     }
   };
+  // `change` made to quad `pick` of `mesh`, then the sweeps round `at`; false when the
+  // change could not be made (the mesh may have begun to change).
+  auto change_and_untangle = [&](QuadMesh& mesh, QuadTopology& t, int pick, const Point2& at,
+                                 const RepairChange& change, SmoothStats& st) {
+    bool made = true;
+    if (change.kind == RepairChange::collapse) {
+      made = collapse_quads(
+                 mesh, [&](int q) { return q == pick; }, change.choice) > 0;
+    } else if (change.kind == RepairChange::flip) {
+      mesh.quads[change.edge_flip.q] = change.edge_flip.a;
+      mesh.quads[change.edge_flip.n] = change.edge_flip.b;
+    } else {
+      made = collapse_chord(bg, mesh, pick, params.sliver_row_max);
+    }
+    if (!made) return false;
+    rebuild_quad_topology(mesh, t);
+    const std::vector<int> near = quads_near(mesh, t, at, kSliverRings);
+    if (relocate) move_to_neighbours_middle(mesh, t, quads_near(mesh, t, at, 1));
+    SmoothStats ignored;
+    untangle(bg, mesh, t, lift, ignored, false, &near);
+    untangle(bg, mesh, t, params, st, true, &near);
+    return true;
+  };
   std::vector<Point2> tried;  // centroids of the defects tried
-  // The mesh's counts before a try: the same as before the last one unless that changed
-  // the mesh (a change not kept is undone exactly), so counted again only then.
+  // The mesh's counts (and with local_first its topology) before a try: the same as
+  // before the last one unless that changed the mesh (a change not kept is undone
+  // exactly), so counted again only then.
   bool changed = true;
   RepairCounts before_try;
   std::size_t crossings0 = 0;
-  QuadTopology t;  // rebuilt after each change
+  QuadTopology t, current;  // after each change; of the mesh before the try
   RepairsKept out;
   for (int attempt = 0; attempt < defect.tries; ++attempt) {
     int pick = -1;
@@ -681,30 +784,56 @@ RepairsKept repair_one_by_one(const BackgroundMesh& bg, QuadMesh& m, const Smoot
       worst = b;
     }
     if (pick < 0) break;
-    tried.push_back(quad_centroid(m, pick));
+    const Point2 at = quad_centroid(m, pick);
+    tried.push_back(at);
     if (changed) {
-      before_try = scan();
-      if (defect.better_angles) count_angles(before_try);
+      before_try = count(m);
+      if (defect.better_angles) count_angles(m, before_try);
       crossings0 = count_boundary_crossings(m);
+      if (defect.local_first) rebuild_quad_topology(m, current);
       changed = false;
     }
-    auto kept = [&](const std::function<bool()>& change) {
+    auto passes = [&](const RepairCounts& after) {
+      return after.nonconvex == 0 && defect.better(before_try, after) &&
+             (!defect.better_angles || defect.better_angles(before_try, after));
+    };
+    Patch patch;
+    RepairCounts patch0;
+    if (defect.local_first) {
+      patch = patch_around(m, current, pick, kSliverRings + 3);
+      patch0 = count(patch.mesh);
+      if (defect.better_angles) count_angles(patch.mesh, patch0);
+    }
+    // Whether the change, made to the patch, leaves counts that pass.
+    auto promising = [&](const RepairChange& change) {
+      QuadMesh pm = patch.mesh;
+      QuadTopology pt;
+      SmoothStats ignored;
+      if (!change_and_untangle(pm, pt, patch.pick, at, change, ignored)) return false;
+      RepairCounts c = count(pm);
+      if (defect.better_angles) count_angles(pm, c);
+      RepairCounts after = before_try;
+      after.defects += c.defects - patch0.defects;
+      after.slivers += c.slivers - patch0.slivers;
+      after.nonconvex += c.nonconvex - patch0.nonconvex;
+      after.ratio += c.ratio - patch0.ratio;
+      after.worst = std::min(after.worst, c.worst);
+      after.smallest_deg = std::min(after.smallest_deg, c.smallest_deg);
+      return passes(after);
+    };
+    // The change made to the whole mesh, kept when the mesh then passes.
+    auto kept = [&](const RepairChange& change) {
       QuadMesh before = m;
       const SmoothStats stats_before = stats;
-      if (!change()) {
-        changed = true;  // (a change that fails may have begun)
+      if (!change_and_untangle(m, t, pick, at, change, stats)) {
+        m = std::move(before);
+        stats = stats_before;
         return false;
       }
-      rebuild_quad_topology(m, t);
-      const std::vector<int> near = quads_near(m, t, tried.back(), kSliverRings);
-      if (relocate) move_to_neighbours_middle(m, t, quads_near(m, t, tried.back(), 1));
-      SmoothStats ignored;
-      untangle(bg, m, t, lift, ignored, false, &near);
-      untangle(bg, m, t, params, stats, true, &near);
-      RepairCounts after = scan();
+      RepairCounts after = count(m);
       bool better = after.nonconvex == 0 && defect.better(before_try, after);
       if (better && defect.better_angles) {
-        count_angles(after);
+        count_angles(m, after);
         better = defect.better_angles(before_try, after);
       }
       if (better && count_boundary_crossings(m) <= crossings0) {
@@ -716,27 +845,36 @@ RepairsKept repair_one_by_one(const BackgroundMesh& bg, QuadMesh& m, const Smoot
       return false;
     };
     bool done = false;
-    for (int choice = 0; choice < 4 && !done; ++choice)
-      if (kept([&] {
-            return collapse_quads(
-                       m, [&](int q) { return q == pick; }, choice) > 0;
-          })) {
+    for (int choice = 0; choice < 4 && !done; ++choice) {
+      RepairChange change;
+      change.choice = choice;
+      if ((!defect.local_first || promising(change)) && kept(change)) {
         ++out.collapses;
         done = true;
       }
-    const std::vector<QuadFlip> flips =
-        done ? std::vector<QuadFlip>{} : flips_of(m, EdgeQuads(m), pick);
-    for (std::size_t k = 0; k < flips.size() && !done; ++k)
-      if (kept([&] {
-            m.quads[flips[k].q] = flips[k].a;
-            m.quads[flips[k].n] = flips[k].b;
-            return true;
-          })) {
-        ++out.flips;
-        done = true;
+    }
+    if (!done) {
+      const std::vector<QuadFlip> flips =
+          defect.local_first ? flips_of(patch.mesh, EdgeQuads(patch.mesh), patch.pick)
+                             : flips_of(m, EdgeQuads(m), pick);
+      for (std::size_t k = 0; k < flips.size() && !done; ++k) {
+        RepairChange change;
+        change.kind = RepairChange::flip;
+        change.edge_flip = flips[k];
+        if (defect.local_first) {
+          if (!promising(change)) continue;
+          change.edge_flip = flip_in_mesh(patch, flips[k]);
+        }
+        if (kept(change)) {
+          ++out.flips;
+          done = true;
+        }
       }
-    if (!done && !relocate && params.sliver_row_max > 0 &&
-        kept([&] { return collapse_chord(bg, m, pick, params.sliver_row_max); }))
+    }
+    // (A thin row may run out of any patch: tried on the whole mesh.)
+    RepairChange chord;
+    chord.kind = RepairChange::chord;
+    if (!done && !relocate && params.sliver_row_max > 0 && thin_side(m, pick) >= 0 && kept(chord))
       ++out.collapses;
   }
   return out;
@@ -779,7 +917,9 @@ void collapse_thin(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& pa
     const auto angles = quad_angles_deg(m, q);
     smallest0_deg = std::min(smallest0_deg, *std::min_element(angles.begin(), angles.end()));
   }
-  const QuadDefect thin{quad_aspect, params.thin_aspect, params.thin_tries,
+  const QuadDefect thin{quad_aspect,
+                        params.thin_aspect,
+                        params.thin_tries,
                         [](const RepairCounts& before, const RepairCounts& after) {
                           return after.defects < before.defects &&
                                  after.slivers <= before.slivers && after.worst >= before.worst;
@@ -787,7 +927,8 @@ void collapse_thin(const BackgroundMesh& bg, QuadMesh& m, const SmoothParams& pa
                         [&](const RepairCounts& before, const RepairCounts& after) {
                           return after.defects + after.ratio < before.defects + before.ratio &&
                                  after.smallest_deg >= smallest0_deg - kThinAngleSlackDeg;
-                        }};
+                        },
+                        params.thin_patch_first};
   const RepairsKept kept = repair_one_by_one(bg, m, params, lift, stats, false, thin);
   stats.num_thin_repairs += kept.collapses + kept.flips;
 }

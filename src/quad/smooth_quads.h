@@ -87,6 +87,11 @@ struct SmoothParams {
   // -> 2.3 s: each try rebuilds the mesh's topology, so the tries are bounded).
   double thin_aspect = 5.0;
   int thin_tries = 20;
+  // Each collapse and flip of the thin pass tried first on a patch of the mesh round the
+  // quad, and on the whole mesh only when the patch says it would be kept (false: on the
+  // whole mesh only). The same meshes; the patch saves rebuilding the whole mesh's
+  // topology and counts for every change that is undone.
+  bool thin_patch_first = true;
   // Then a boundary vertex in two quads only at a reflex corner of the domain (their
   // corners there sum to over 200 degrees), with an interior vertex in four quads nearer
   // than this share of its longest other edge: that vertex stands in for the third quad

@@ -130,6 +130,36 @@ TEST(MeshJob, FlatQuadsAreRemovedByDiagonalCollapsesWhenThatHelps) {
   EXPECT_NE(mesh_report_json(with, "test").find("\"num_sliver_collapses\""), std::string::npos);
 }
 
+TEST(MeshJob, ThinQuadsAreMendedAndTheirPatchesChangeNothing) {
+  // France automatic at 28 km: quads fanned round boundary vertices and squeezed at
+  // notches of the coast are over SCHISM's aspect ratio of 5. The thin pass mends some
+  // without a smaller angle or a flatter quad, and SCHISM's two counts fall; trying each
+  // change on a patch first gives the very same mesh as trying it on the whole mesh.
+  MeshOptions o = france(28000.0);
+  o.smooth.thin_aspect = 0;
+  const MeshResult off = build_mesh(o);
+  o.smooth.thin_aspect = MeshOptions().smooth.thin_aspect;
+  const MeshResult patch_first = build_mesh(o);
+  o.smooth.thin_patch_first = false;
+  const MeshResult whole = build_mesh(o);
+  EXPECT_EQ(off.smooth.num_thin_repairs, 0);
+  EXPECT_GE(patch_first.smooth.num_thin_repairs, 1);
+  EXPECT_LT(patch_first.quality.schism_aspect_violations, off.quality.schism_aspect_violations);
+  EXPECT_LT(patch_first.quality.schism_aspect_violations +
+                patch_first.quality.schism_angle_ratio_violations,
+            off.quality.schism_aspect_violations + off.quality.schism_angle_ratio_violations);
+  EXPECT_GE(patch_first.quality.min_angle_deg, off.quality.min_angle_deg - 1.0);
+  EXPECT_EQ(patch_first.quality.num_nonconvex, 0u);
+  EXPECT_EQ(patch_first.smooth.num_thin_repairs, whole.smooth.num_thin_repairs);
+  EXPECT_EQ(patch_first.quads.quads, whole.quads.quads);
+  ASSERT_EQ(patch_first.quads.points.size(), whole.quads.points.size());
+  for (std::size_t v = 0; v < whole.quads.points.size(); ++v) {
+    EXPECT_EQ(patch_first.quads.points[v].x, whole.quads.points[v].x) << v;
+    EXPECT_EQ(patch_first.quads.points[v].y, whole.quads.points[v].y) << v;
+  }
+  EXPECT_NE(mesh_report_json(patch_first, "test").find("\"num_thin_repairs\""), std::string::npos);
+}
+
 TEST(MeshJob, GivesUpWithAnErrorAfterTheLastAttempt) {
   // No quad is that convex (1 would need every corner at 90 degrees exactly): every
   // attempt fails, and the job stops after max_attempts instead of writing a mesh.
