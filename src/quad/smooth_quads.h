@@ -82,9 +82,9 @@ struct SmoothParams {
   // angle (quad_repairs.cpp's collapse_thin; thin_aspect 0: never). They are mostly
   // quads fanned round a boundary vertex or squeezed at a notch of the coast. France
   // automatic at 28 km: 25 -> 19 quads over 5, 302 -> 298 under the angle ratio, the
-  // other measures unchanged, smoothing 0.39 -> 0.49 s; the 29 countries at 1:50m whose
-  // meshes it changes: 461 -> 411 and 9,942 -> 9,923 (Russia 80 -> 75, its smoothing's
-  // time unchanged within the noise, with thin_patch_first).
+  // other measures unchanged, smoothing 0.39 -> 0.49 s; the 241 countries at 1:50m: 587
+  // -> 537 and 25,285 -> 25,266, no country's smallest angle changed (Russia 80 -> 75,
+  // its smoothing's time unchanged within the noise, with thin_patch_first).
   double thin_aspect = 5.0;
   int thin_tries = 20;
   // Each collapse and flip of the thin pass tried first on a patch of the mesh round the
