@@ -627,8 +627,8 @@ struct RepairCounts {
 
 // What a one-by-one repair looks for: quads whose `badness` is at least `threshold`, the
 // worst first; a change is kept when every quad is convex, `better` (before, after)
-// holds, then `better_angles` (when set) with the angles counted too, and no more
-// boundary edges cross (the costlier counts only for a change that passed the others).
+// holds, then `better_angles` (when set; the angles are counted for it only), and no
+// more boundary edges cross (counted last, only for a change that passed the others).
 // With `local_first`, each collapse and flip is first tried on a patch of the mesh round
 // the defect (patch_around), and on the whole mesh only when the patch's counts say the
 // mesh would pass: `better` and `better_angles` must then hold whenever they hold for
@@ -831,12 +831,8 @@ RepairsKept repair_one_by_one(const BackgroundMesh& bg, QuadMesh& m, const Smoot
         return false;
       }
       RepairCounts after = count(m);
-      bool better = after.nonconvex == 0 && defect.better(before_try, after);
-      if (better && defect.better_angles) {
-        count_angles(m, after);
-        better = defect.better_angles(before_try, after);
-      }
-      if (better && count_boundary_crossings(m) <= crossings0) {
+      if (defect.better_angles) count_angles(m, after);
+      if (passes(after) && count_boundary_crossings(m) <= crossings0) {
         changed = true;
         return true;
       }
