@@ -48,7 +48,9 @@ const char* kExitCodes =
     "  4   crs: missing or unknown CRS, coordinates outside the CRS's valid range\n"
     "  5   meshing: a meshing stage failed\n"
     "  6   output: output exists (see --overwrite) or cannot be written\n"
-    "  70  internal error (a bug: please report it)\n";
+    "  70  internal error (a bug: please report it)\n"
+    "  130 stopped by Ctrl-C (SIGINT; 143 SIGTERM, 129 SIGHUP): outputs not yet complete\n"
+    "      are removed, those of regions already meshed (--each) kept\n";
 
 // Number checks with plain messages (CLI11's own name the whole double range).
 CLI::Validator number_check(const char* name, bool zero_allowed) {
@@ -916,6 +918,8 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
 }  // namespace
 
 int main(int argc, char** argv) {
+  // First, before any thread: Ctrl-C or a batch system's SIGTERM leaves no temporary file.
+  isoquad::remove_unfinished_outputs_on_signals();
   CLI::App app{
       "isoquad: isotropic all-quadrangle meshes of map polygons (coastlines, lakes, sea "
       "areas) that follow a sizing field and a cross field."};

@@ -1,12 +1,17 @@
 #include "gis/atomic_output.h"
 
+#include <pthread.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
+#include <thread>
 
 #include "core/error.h"
 
@@ -26,6 +31,28 @@ fs::path parent_dir(const std::string& path) {
 void remove_with_side_files(const std::string& path) {
   for (const char* suffix : {"", "-journal", "-wal", "-shm"}) std::remove((path + suffix).c_str());
 }
+
+// The temporary files of the outputs being written, for the signal handling. Its lock is
+// held while an OutputSet moves its outputs into place. Never destroyed: a signal may
+// come while the process exits.
+struct UnfinishedOutputs {
+  std::recursive_mutex mutex;
+  std::vector<std::string> temp_paths;
+};
+
+UnfinishedOutputs& unfinished() {
+  static UnfinishedOutputs* const registry = new UnfinishedOutputs;
+  return *registry;
+}
+
+void forget_temp_path(const std::string& path) {
+  UnfinishedOutputs& u = unfinished();
+  std::lock_guard<std::recursive_mutex> lock(u.mutex);
+  const auto it = std::find(u.temp_paths.begin(), u.temp_paths.end(), path);
+  if (it != u.temp_paths.end()) u.temp_paths.erase(it);
+}
+
+constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
 }  // namespace
 
@@ -53,11 +80,16 @@ AtomicOutput::AtomicOutput(std::string final_path, bool overwrite)
   const fs::path name = "." + p.stem().string() + ".tmp-" + std::to_string(getpid()) +
                         p.extension().string();
   temp_path_ = (parent_dir(final_path_) / name).string();
+  UnfinishedOutputs& u = unfinished();
+  std::lock_guard<std::recursive_mutex> lock(u.mutex);
   remove_with_side_files(temp_path_);
+  u.temp_paths.push_back(temp_path_);
 }
 
 AtomicOutput::~AtomicOutput() {
-  if (!committed_) remove_with_side_files(temp_path_);
+  if (committed_) return;
+  remove_with_side_files(temp_path_);
+  forget_temp_path(temp_path_);
 }
 
 void AtomicOutput::commit() {
@@ -65,11 +97,54 @@ void AtomicOutput::commit() {
   if (!overwrite_ && fs::exists(final_path_, ec))
     throw Error(ErrorClass::output, "write",
                 quote(final_path_) + " appeared while writing; pass --overwrite to replace it");
+  std::lock_guard<std::recursive_mutex> lock(unfinished().mutex);
   if (std::rename(temp_path_.c_str(), final_path_.c_str()) != 0)
     throw Error(ErrorClass::output, "write",
                 "cannot move the finished output to " + quote(final_path_) + ": " +
                     std::strerror(errno));
   committed_ = true;
+  forget_temp_path(temp_path_);
+}
+
+void remove_unfinished_outputs() {
+  UnfinishedOutputs& u = unfinished();
+  std::lock_guard<std::recursive_mutex> lock(u.mutex);
+  for (const std::string& path : u.temp_paths) remove_with_side_files(path);
+  u.temp_paths.clear();
+}
+
+void remove_unfinished_outputs_on_signals() {
+  sigset_t signals;
+  sigemptyset(&signals);
+  int num_signals = 0;
+  for (int sig : kCleanupSignals) {
+    // A signal ignored from the start (nohup's SIGHUP, SIGINT of a background job) stays
+    // ignored: blocked and waited for, it would be received.
+    struct sigaction current {};
+    if (sigaction(sig, nullptr, &current) != 0 || current.sa_handler == SIG_IGN) continue;
+    sigaddset(&signals, sig);
+    ++num_signals;
+  }
+  if (num_signals == 0 || pthread_sigmask(SIG_BLOCK, &signals, nullptr) != 0) return;
+  std::thread([signals] {
+    int sig = 0;
+    if (sigwait(&signals, &sig) != 0) return;
+    // The lock stays held until the process ends: no output starts or moves meanwhile.
+    UnfinishedOutputs& u = unfinished();
+    u.mutex.lock();
+    const std::size_t removed = u.temp_paths.size();
+    remove_unfinished_outputs();
+    const char* name = sigabbrev_np(sig);
+    std::fprintf(stderr, "isoquad: stopped by SIG%s%s\n", name ? name : "?",
+                 removed > 0 ? "; the unfinished outputs were removed" : "");
+    std::signal(sig, SIG_DFL);
+    sigset_t just;
+    sigemptyset(&just);
+    sigaddset(&just, sig);
+    pthread_sigmask(SIG_UNBLOCK, &just, nullptr);
+    raise(sig);
+    _exit(128 + sig);
+  }).detach();
 }
 
 void write_text_file(const std::string& path, const std::string& text, bool overwrite) {
@@ -95,6 +170,8 @@ const std::string& OutputSet::add(const std::string& final_path, bool overwrite)
 }
 
 void OutputSet::commit_all() {
+  // A signal's clean-up waits until every output is in place (or none is).
+  std::lock_guard<std::recursive_mutex> lock(unfinished().mutex);
   // Set aside the files being replaced until every output is in place.
   std::vector<std::string> backups(outputs_.size());
   auto restore = [&] {

@@ -12,6 +12,18 @@ namespace isoquad {
 // directory does not exist or is not writable. Call before any long work.
 void check_output_path(const std::string& path, bool overwrite);
 
+// Removes the temporary files of the outputs still being written when the process is
+// stopped by SIGINT, SIGTERM or SIGHUP, then lets the signal end it as it would have
+// (exit status 128 + the signal's number in a shell). Call first thing in main, before
+// any thread starts: it blocks those signals in the calling thread (the threads started
+// later inherit that) and waits for them on a thread of its own. A signal that comes
+// while an OutputSet moves its outputs into place waits until every one is moved.
+void remove_unfinished_outputs_on_signals();
+
+// Removes the temporary files of every AtomicOutput alive and not committed, with their
+// SQLite side files (what the signal handling above does; for tests).
+void remove_unfinished_outputs();
+
 // Writes `text` to `path` through an AtomicOutput. Throws Error(output).
 void write_text_file(const std::string& path, const std::string& text, bool overwrite);
 

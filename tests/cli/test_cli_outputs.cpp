@@ -3,12 +3,16 @@
 // by real readers: GDAL (GeoPackage layers, CRS, counts, styles, metadata), the gmsh
 // binary, meshio (legacy VTK), python3-netcdf4 (UGRID) and our SCHISM parser; open
 // boundary edges on the bbox, depths from a bathymetry raster, all-or-nothing outputs.
+#include <fcntl.h>
 #include <gtest/gtest.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <iomanip>
 #include <map>
@@ -489,6 +493,90 @@ TEST(CliOutputs, UnwritableSecondOutputLeavesNothing) {
   EXPECT_EQ(read_file(dir.file("x.data")).substr(0, 20), "$MeshFormat\n2.2 0 8\n");
   EXPECT_EQ(read_file(dir.file("y.data")).substr(0, 26), "# vtk DataFile Version 3.0");
   std::filesystem::permissions(dir.file("locked"), std::filesystem::perms::owner_all);
+}
+
+// Stopped by SIGTERM while writing its outputs (frozen by SIGSTOP as soon as a temporary
+// file appears, so that the signal comes mid-write), a run leaves no temporary file and no
+// output, says so, and ends by the signal. A run that finishes before it is caught is
+// tried again with more quads.
+TEST(CliOutputs, ASignalWhileWritingLeavesNoTemporaryFile) {
+  TempDir dir;
+  const std::string input = water_input(dir);
+  auto entries = [&dir] {
+    std::set<std::string> e;
+    for (const std::string& name : dir.entries())
+      if (name != "land.geojson" && name != "err.txt") e.insert(name);
+    return e;
+  };
+  auto temporary = [&] {
+    for (const std::string& name : entries())
+      if (name.find(".tmp-") != std::string::npos) return true;
+    return false;
+  };
+  bool caught = false;
+  for (const char* size : {"800", "400", "200", "100"}) {
+    const std::vector<std::string> args = {ISOQUAD_CLI,
+                                           "mesh",
+                                           input,
+                                           "--domain",
+                                           "water",
+                                           "--bbox",
+                                           "-4.6,48.2,-4.4,48.35",
+                                           "--size",
+                                           size,
+                                           "-o",
+                                           dir.file("m.gpkg"),
+                                           "-o",
+                                           dir.file("m.vtu"),
+                                           "-o",
+                                           dir.file("m.msh"),
+                                           "-o",
+                                           dir.file("hgrid.gr3"),
+                                           "--report",
+                                           dir.file("r.json"),
+                                           "-q"};
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      const int err = open(dir.file("err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      dup2(err, 2);
+      std::vector<char*> argv;
+      for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+      argv.push_back(nullptr);
+      execv(argv[0], argv.data());
+      _exit(127);
+    }
+    int status = 0;
+    bool ended = false;
+    const auto start = std::chrono::steady_clock::now();
+    while (!ended && std::chrono::steady_clock::now() - start < std::chrono::seconds(120)) {
+      if (temporary()) {
+        kill(child, SIGSTOP);
+        caught = temporary();  // still writing, frozen
+        kill(child, caught ? SIGTERM : SIGKILL);
+        kill(child, SIGCONT);
+        ASSERT_EQ(waitpid(child, &status, 0), child);
+        ended = true;
+        break;
+      }
+      ended = waitpid(child, &status, WNOHANG) == child;
+      usleep(200);
+    }
+    ASSERT_TRUE(ended) << "the run did not end";
+    if (!caught) {  // finished first (or killed above): clear its outputs and try again
+      for (const std::string& name : entries()) std::filesystem::remove(dir.file(name));
+      continue;
+    }
+    ASSERT_TRUE(WIFSIGNALED(status)) << read_file(dir.file("err.txt"));
+    EXPECT_EQ(WTERMSIG(status), SIGTERM);
+    EXPECT_EQ(entries(), std::set<std::string>{}) << read_file(dir.file("err.txt"));
+    EXPECT_NE(read_file(dir.file("err.txt"))
+                  .find("stopped by SIGTERM; the unfinished outputs were removed"),
+              std::string::npos)
+        << read_file(dir.file("err.txt"));
+    break;
+  }
+  EXPECT_TRUE(caught) << "no run was caught while writing";
 }
 
 // Acceptance: QGIS 3.22 (python3-qgis, headless) opens the GeoPackage with its embedded

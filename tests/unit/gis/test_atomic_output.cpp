@@ -1,8 +1,11 @@
 #include "gis/atomic_output.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <csignal>
 
 #include "core/error.h"
 #include "support/test_support.h"
@@ -114,4 +117,56 @@ TEST(OutputSet, FailedCommitRestoresReplacedFiles) {
   auto entries = dir.entries();
   std::sort(entries.begin(), entries.end());
   EXPECT_EQ(entries, (std::vector<std::string>{"a.txt", "b.txt"}));  // no backup left
+}
+
+// What a signal leaves: the outputs still being written lose their temporary files (and
+// their SQLite side files); a committed output stays.
+TEST(AtomicOutput, UnfinishedOutputsAreRemovedOnRequest) {
+  TempDir dir;
+  {
+    AtomicOutput done(dir.file("done.gpkg"), false);
+    write_file(done.temp_path(), "done");
+    done.commit();
+    AtomicOutput half(dir.file("half.gpkg"), false);
+    write_file(half.temp_path(), "half");
+    write_file(half.temp_path() + "-journal", "journal");
+    OutputSet set;
+    write_file(set.add(dir.file("a.txt"), false), "a");
+    EXPECT_EQ(dir.entries().size(), 4u);
+    remove_unfinished_outputs();
+    EXPECT_EQ(dir.entries(), std::vector<std::string>{"done.gpkg"});
+  }
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"done.gpkg"});
+  EXPECT_EQ(read_file(dir.file("done.gpkg")), "done");
+}
+
+// A process stopped by SIGTERM (or Ctrl-C's SIGINT) while writing removes its temporary
+// files, keeps what it had committed, and still ends by the signal.
+TEST(AtomicOutput, ASignalRemovesTheUnfinishedOutputsAndEndsTheProcess) {
+  for (int sig : {SIGTERM, SIGINT}) {
+    TempDir dir;
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      remove_unfinished_outputs_on_signals();
+      AtomicOutput done(dir.file("done.txt"), false);
+      write_file(done.temp_path(), "done");
+      done.commit();
+      OutputSet set;
+      write_file(set.add(dir.file("a.gpkg"), false), "a");
+      write_file(set.add(dir.file("b.msh"), false), "b");
+      AtomicOutput nested(set.add(dir.file("c.gpkg"), false), false);
+      write_file(nested.temp_path(), "c");
+      write_file(nested.temp_path() + "-journal", "journal");
+      kill(getpid(), sig);
+      for (int i = 0; i < 500; ++i) usleep(10000);
+      _exit(0);  // not stopped: the parent sees exit status 0
+    }
+    int status = 0;
+    ASSERT_EQ(waitpid(child, &status, 0), child);
+    ASSERT_TRUE(WIFSIGNALED(status)) << "exit status " << WEXITSTATUS(status);
+    EXPECT_EQ(WTERMSIG(status), sig);
+    EXPECT_EQ(dir.entries(), std::vector<std::string>{"done.txt"});
+    EXPECT_EQ(read_file(dir.file("done.txt")), "done");
+  }
 }
