@@ -446,6 +446,7 @@ struct MeshArgs {
   std::string init = "front";
   std::string each;  // --each FIELD: a mesh per value of the attribute
   int jobs = 1;      // --jobs: regions of --each meshed at once
+  bool skip_existing = false;  // --skip-existing: nothing to do where every output exists
 };
 
 // For `domain` (its summary says how much of the boundary the lines follow) and `mesh`.
@@ -473,6 +474,12 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "without progress; the peak memory is that of the regions running together")
       ->check(kPositive)
       ->group("Selection");
+  cmd->add_flag("--skip-existing", m.skip_existing,
+                "Mesh nothing where every output (with --report and --plot) exists already: with "
+                "--each, those regions are skipped, so that a batch stopped part-way resumes "
+                "where it stopped (a run writes all its outputs or none, and removes its "
+                "unfinished ones when stopped by Ctrl-C or SIGTERM)")
+      ->group("Output");
   const char* g = "Tiling (paper, sections 2.2 to 2.5)";
   cmd->add_option("--init", m.init,
                   "How tiles start: front (default; seeds one tile apart along the cross field, "
@@ -605,6 +612,16 @@ std::vector<MeshOutput> mesh_outputs(const CommonArgs& a, const MeshArgs& m) {
     outs.push_back(o);
   }
   return outs;
+}
+
+// --skip-existing: every file the run would write exists.
+bool every_output_exists(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m) {
+  std::error_code ec;
+  for (const MeshOutput& o : mesh_outputs(a, m))
+    if (!mesh_output_exists(o)) return false;
+  for (const std::string& p : {a.report_path, f.plot_path})
+    if (!p.empty() && !std::filesystem::exists(p, ec)) return false;
+  return true;
 }
 
 std::string joined_command_line(int argc, char** argv) {
@@ -775,6 +792,7 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
   struct Region {
     CommonArgs a;
     FieldArgs f;
+    bool skip = false;  // --skip-existing, and every output exists
   };
   std::map<std::string, std::string> names;  // file name -> value
   std::vector<Region> regions;
@@ -800,19 +818,23 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
     r.a.fe.read.where =
         a.fe.read.where.empty() ? v.filter : "(" + a.fe.read.where + ") AND " + v.filter;
     // Every output path checked before any meshing.
-    if (!r.a.report_path.empty()) check_output_path(r.a.report_path, a.overwrite);
-    if (!r.f.plot_path.empty()) check_output_path(r.f.plot_path, a.overwrite);
-    MeshWriteOptions w;
-    w.msh_version = m.msh_version;
-    w.msh_groups = m.msh_groups;
-    w.output_crs = m.output_crs;
-    check_mesh_outputs(mesh_outputs(r.a, m), w);
+    r.skip = m.skip_existing && every_output_exists(r.a, r.f, m);
+    if (!r.skip) {
+      if (!r.a.report_path.empty()) check_output_path(r.a.report_path, a.overwrite);
+      if (!r.f.plot_path.empty()) check_output_path(r.f.plot_path, a.overwrite);
+      MeshWriteOptions w;
+      w.msh_version = m.msh_version;
+      w.msh_groups = m.msh_groups;
+      w.output_crs = m.output_crs;
+      check_mesh_outputs(mesh_outputs(r.a, m), w);
+    }
     regions.push_back(std::move(r));
   }
   // Region k's run, printing into `console`; a failure (Error) is reported there and
   // the others go on.
   struct Outcome {
     std::optional<RegionResult> result;
+    bool skipped = false;
     int exit = 0;
     std::exception_ptr crash;  // anything else, rethrown once every region has run
   };
@@ -822,6 +844,11 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
            std::to_string(values.size()) + ")\n";
   };
   auto mesh_region = [&](std::size_t k, const Console& console) {
+    if (regions[k].skip) {
+      if (!a.quiet) console.out << "skipped: every output exists (--skip-existing)\n";
+      outcomes[k].skipped = true;
+      return;
+    }
     MeshArgs mm = m;
     try {
       RegionResult result;
@@ -874,8 +901,11 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
   }
   int first_failure = 0;
   std::vector<std::string> failed;
+  std::size_t skipped = 0;
   for (std::size_t k = 0; k < regions.size(); ++k)
-    if (!outcomes[k].result) {
+    if (outcomes[k].skipped) {
+      ++skipped;
+    } else if (!outcomes[k].result) {
       if (!first_failure) first_failure = outcomes[k].exit;
       failed.push_back(values[k].text);
     }
@@ -895,7 +925,7 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
     for (std::size_t k = 0; k < values.size(); ++k) {
       std::printf("%s", padded(values[k].text).c_str());
       if (!outcomes[k].result) {
-        std::printf(" %8s\n", "failed");
+        std::printf(" %8s\n", outcomes[k].skipped ? "skipped" : "failed");
         continue;
       }
       const QualitySummary& q = outcomes[k].result->quality;
@@ -908,7 +938,8 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
   if (!a.quiet || !failed.empty()) {
     std::ostream& out = failed.empty() ? std::cout : std::cerr;
     out << (failed.empty() ? "" : "isoquad: ") << "--each " << m.each << ": "
-        << values.size() - failed.size() << " of " << values.size() << " meshed";
+        << values.size() - failed.size() - skipped << " of " << values.size() << " meshed";
+    if (skipped) out << ", " << skipped << " skipped (every output exists)";
     for (std::size_t i = 0; i < failed.size(); ++i) out << (i ? ", " : "; failed: ") << failed[i];
     out << "\n";
   }
@@ -980,11 +1011,19 @@ int main(int argc, char** argv) {
   try {
     if (domain_cmd->parsed()) return run_domain(domain_args);
     if (fields_cmd->parsed()) return run_fields(fields_args, field_args, joined_command_line(argc, argv));
+    if (mesh_cmd->parsed() && mesh_extra.skip_existing && mesh_args.overwrite)
+      throw Error(ErrorClass::usage, "options",
+                  "--skip-existing keeps existing outputs, --overwrite replaces them: give one");
     if (mesh_cmd->parsed() && !mesh_extra.each.empty())
       return run_mesh_each(mesh_args, mesh_field_args, mesh_extra, joined_command_line(argc, argv));
     if (mesh_cmd->parsed() && mesh_extra.jobs != 1)
       throw Error(ErrorClass::usage, "options",
                   "--jobs meshes the regions of --each at once: give --each");
+    if (mesh_cmd->parsed() && mesh_extra.skip_existing &&
+        every_output_exists(mesh_args, mesh_field_args, mesh_extra)) {
+      if (!mesh_args.quiet) std::cout << "skipped: every output exists (--skip-existing)\n";
+      return 0;
+    }
     if (mesh_cmd->parsed())
       return run_mesh(mesh_args, mesh_field_args, mesh_extra, joined_command_line(argc, argv));
   } catch (const Error& e) {

@@ -132,6 +132,14 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
   w.commit();
 }
 
+// The file of open segment k (from 1) of a .pli output that has several: the path's stem
+// numbered.
+std::string numbered_pli_path(const std::string& path, std::size_t k) {
+  std::filesystem::path p(path);
+  p.replace_filename(p.stem().string() + "_" + std::to_string(k) + p.extension().string());
+  return p.string();
+}
+
 // A .pli output: a file per open segment (in hgrid.gr3's order), the path itself for
 // one, else the path's stem numbered from 1.
 std::vector<std::string> write_open_boundary_polylines(const MeshView& v, const MeshOutput& o,
@@ -146,10 +154,7 @@ std::vector<std::string> write_open_boundary_polylines(const MeshView& v, const 
                     "--domain water with --bbox)");
   std::vector<std::string> files;
   for (std::size_t k = 0; k < open.size(); ++k) {
-    std::filesystem::path p(o.path);
-    if (open.size() > 1)
-      p.replace_filename(p.stem().string() + "_" + std::to_string(k + 1) + p.extension().string());
-    files.push_back(p.string());
+    files.push_back(open.size() > 1 ? numbered_pli_path(o.path, k + 1) : o.path);
     write_pli_file(v, *open[k], set.add(files.back(), o.overwrite), files.back());
   }
   return files;
@@ -212,6 +217,17 @@ std::vector<std::string> mesh_output_files(const MeshOutput& out) {
   if (f == MeshFormat::gr3) return {out.path, companion(out.path, ".ll")};
   if (f == MeshFormat::slf) return {out.path, companion(out.path, ".cli")};
   return {out.path};
+}
+
+bool mesh_output_exists(const MeshOutput& out) {
+  std::error_code ec;
+  for (const std::string& f : mesh_output_files(out)) {
+    if (std::filesystem::exists(f, ec)) continue;
+    if (mesh_output_format(out) != MeshFormat::pli ||
+        !std::filesystem::exists(numbered_pli_path(f, 1), ec))
+      return false;
+  }
+  return true;
 }
 
 void check_mesh_output_format(const std::string& path) { mesh_output_format(MeshOutput{path, "", false}); }

@@ -71,6 +71,9 @@ MeshFormat mesh_output_format(const MeshOutput& output);
 // Every file an output writes (gr3: also the .ll companion; slf: the .cli; pli: the
 // path, as for one open segment).
 std::vector<std::string> mesh_output_files(const MeshOutput& output);
+// True when every file of the output exists (pli: the path, or the first of its numbered
+// files, as for several open segments).
+bool mesh_output_exists(const MeshOutput& output);
 // Fails early (Error(usage) or Error(output)) for an unknown format or an output that
 // cannot be written. Call before any long work.
 void check_mesh_outputs(const std::vector<MeshOutput>& outputs, const MeshWriteOptions& options);

@@ -792,3 +792,66 @@ TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
   EXPECT_EQ(alone.exit_code, 2);
   EXPECT_NE(alone.err.find("--jobs"), std::string::npos) << alone.err;
 }
+
+// --skip-existing: a batch stopped part-way (its unfinished region left nothing) resumes
+// with the regions whose outputs are missing, and leaves the others' files untouched; a
+// region with only some of its outputs is not taken as done; a single run whose every
+// output exists does nothing.
+TEST(CliMesh, SkipExistingResumesABatch) {
+  TempDir dir;
+  const std::string input = dir.file("regions.geojson");
+  write_file(input, R"({"type":"FeatureCollection","features":[)" + square_feature(0, 0, 0.3, "p") +
+                        "," + square_feature(1, 0, 0.25, "q") + "]}");
+  auto run = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {
+        "mesh",   input, "--size",           "3000",     "--each",
+        "region", "-o",  dir.file("{}.gr3"), "--report", dir.file("{}.json")};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args, dir);
+  };
+  CliResult r = run({});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string p_grid = read_file(dir.file("p.gr3"));
+  const auto q_time = std::filesystem::last_write_time(dir.file("q.gr3"));
+  for (const char* f : {"p.gr3", "p.ll", "p.json"}) std::filesystem::remove(dir.file(f));
+  r = run({"--skip-existing", "--jobs", "2"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("== region = q (2 of 2)\nskipped: every output exists (--skip-existing)"),
+            std::string::npos)
+      << r.out;
+  const std::size_t row = r.out.find("\nq ");
+  ASSERT_NE(row, std::string::npos) << r.out;
+  EXPECT_NE(r.out.substr(row, r.out.find('\n', row + 1) - row).find(" skipped"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("--each region: 1 of 2 meshed, 1 skipped (every output exists)"),
+            std::string::npos)
+      << r.out;
+  EXPECT_EQ(read_file(dir.file("p.gr3")), p_grid);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("p.ll")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("p.json")));
+  EXPECT_EQ(std::filesystem::last_write_time(dir.file("q.gr3")), q_time);
+  // p without its .ll: not done, and its .gr3 is not replaced.
+  std::filesystem::remove(dir.file("p.ll"));
+  r = run({"--skip-existing"});
+  EXPECT_EQ(r.exit_code, 6) << r.err;
+  EXPECT_NE(r.err.find("/p.json' already exists"), std::string::npos) << r.err;
+  EXPECT_EQ(read_file(dir.file("p.gr3")), p_grid);
+  // Both options: refused.
+  r = run({"--skip-existing", "--overwrite"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--skip-existing"), std::string::npos) << r.err;
+  // One run: nothing to do when its outputs exist.
+  const std::vector<std::string> single = {"mesh",     input,
+                                           "--size",   "3000",
+                                           "--where",  "region = 'q'",
+                                           "-o",       dir.file("one.gpkg"),
+                                           "--report", dir.file("one.json")};
+  ASSERT_EQ(run_cli(single, dir).exit_code, 0);
+  const auto one_time = std::filesystem::last_write_time(dir.file("one.gpkg"));
+  std::vector<std::string> again = single;
+  again.push_back("--skip-existing");
+  r = run_cli(again, dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "skipped: every output exists (--skip-existing)\n");
+  EXPECT_EQ(std::filesystem::last_write_time(dir.file("one.gpkg")), one_time);
+}
