@@ -240,8 +240,13 @@ void check_mesh_outputs(const std::vector<MeshOutput>& outputs, const MeshWriteO
     throw Error(ErrorClass::usage, "options", "--msh-version must be 4.1 or 2.2");
   if (!options.output_crs.empty()) parse_crs(options.output_crs, "--output-crs");
   OutputSet probe;  // checks every path (exists, directory writable, given twice)
-  for (const MeshOutput& o : outputs)
+  for (const MeshOutput& o : outputs) {
     for (const std::string& f : mesh_output_files(o)) probe.add(f, o.overwrite);
+    // A .pli's first numbered file, written for several open segments: found now rather
+    // than after the meshing.
+    if (mesh_output_format(o) == MeshFormat::pli && !o.overwrite)
+      check_output_path(numbered_pli_path(o.path, 1), false);
+  }
 }
 
 std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,

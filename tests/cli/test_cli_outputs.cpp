@@ -776,6 +776,12 @@ TEST(CliOutputs, PliFilesHoldTheOpenBoundarySegments) {
     expect_segment(p, two.open[k], two);
   }
   EXPECT_FALSE(std::filesystem::exists(dir.file("sea_3.pli")));
+  // Again without --overwrite: sea_1.pli exists, and the run says so before meshing (not
+  // that it "appeared while writing", after).
+  r = mesh({"--open-boundary", lines, "-o", dir.file("sea.pli"), "-o", dir.file("again.gr3")});
+  EXPECT_EQ(r.exit_code, 6) << r.err;
+  EXPECT_NE(r.err.find("sea_1.pli' already exists"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("again.gr3")));
 
   // A land domain has no open boundary: exit 2 before meshing, nothing written.
   r = run_cli({"mesh", input, "--size", "800", "-q", "-o", dir.file("land.pli"), "-o",
