@@ -168,12 +168,21 @@ std::array<double, 4> parse_bbox(const std::string& text) {
 // Renders progress on stderr, throttled, only when stderr is a terminal.
 ProgressCallback make_progress(bool quiet) {
   if (quiet || !isatty(STDERR_FILENO)) return nullptr;
-  auto last = std::make_shared<std::chrono::steady_clock::time_point>();
+  // At most ten lines a second for one stage; a new stage shows at once (a long one that
+  // starts right after a short one would otherwise show under the short one's name).
+  struct Shown {
+    std::chrono::steady_clock::time_point at;
+    std::string stage;
+  };
+  auto last = std::make_shared<Shown>();
   return [last](const std::string& stage, double f) {
     const auto now = std::chrono::steady_clock::now();
-    if (f < 1.0 && now - *last < std::chrono::milliseconds(100)) return true;
-    *last = now;
-    std::fprintf(stderr, "\r%-12s %3d%%%s", stage.c_str(), static_cast<int>(f * 100 + 0.5),
+    if (f < 1.0 && stage == last->stage && now - last->at < std::chrono::milliseconds(100))
+      return true;
+    last->at = now;
+    last->stage = stage;
+    // \033[K clears what a longer line before left on the right.
+    std::fprintf(stderr, "\r%-12s %3d%%\033[K%s", stage.c_str(), static_cast<int>(f * 100 + 0.5),
                  f >= 1.0 ? "\n" : "");
     std::fflush(stderr);
     return true;
