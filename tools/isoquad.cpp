@@ -387,9 +387,9 @@ int run_domain(CommonArgs& a) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
-    std::cout << format_domain_summary(r.summary);
-    std::cout << "output:       " << a.output << " (layer 'domain')\n";
-    std::printf("time:         %.3f s\n", seconds);
+    std::cerr << format_domain_summary(r.summary);
+    std::cerr << "output:       " << a.output << " (layer 'domain')\n";
+    std::fprintf(stderr, "time:         %.3f s\n", seconds);
     for (const std::string& w : r.summary.warnings) std::cerr << "isoquad: warning: " << w << "\n";
   }
   return 0;
@@ -436,9 +436,10 @@ int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
   set.commit_all();
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
-    std::cout << format_domain_summary(r.front.summary) << format_fields_summary(r);
-    std::cout << "output:       " << a.output << (f.plot_path.empty() ? "" : ", " + f.plot_path) << "\n";
-    std::printf("time:         %.3f s\n", seconds);
+    std::cerr << format_domain_summary(r.front.summary) << format_fields_summary(r);
+    std::cerr << "output:       " << a.output << (f.plot_path.empty() ? "" : ", " + f.plot_path)
+              << "\n";
+    std::fprintf(stderr, "time:         %.3f s\n", seconds);
     for (const std::string& w : r.front.summary.warnings) std::cerr << "isoquad: warning: " << w << "\n";
   }
   return 0;
@@ -646,9 +647,10 @@ struct RegionResult {
 };
 
 // Where a mesh job prints: its summary, its warnings, and whether it shows progress
-// (regions meshed at once print into buffers, without progress).
+// (regions meshed at once print into buffers, without progress). Both go to stderr (the
+// summary with the warnings and errors, in the order they happen); stdout stays empty.
 struct Console {
-  std::ostream& out = std::cout;
+  std::ostream& out = std::cerr;
   std::ostream& err = std::cerr;
   bool progress = true;
 };
@@ -872,7 +874,7 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
   const std::size_t jobs = std::min<std::size_t>(static_cast<std::size_t>(m.jobs), regions.size());
   if (jobs <= 1) {
     for (std::size_t k = 0; k < regions.size(); ++k) {
-      if (!a.quiet) std::cout << header(k) << std::flush;
+      if (!a.quiet) std::cerr << header(k) << std::flush;
       mesh_region(k, Console());
     }
   } else {
@@ -896,7 +898,7 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
         const std::lock_guard<std::mutex> lock(mutex);
         buffers[k].done = true;
         for (; printed < regions.size() && buffers[printed].done; ++printed) {
-          if (!a.quiet) std::cout << header(printed) << buffers[printed].out.str() << std::flush;
+          if (!a.quiet) std::cerr << header(printed) << buffers[printed].out.str() << std::flush;
           std::cerr << buffers[printed].err.str() << std::flush;
         }
       }
@@ -929,28 +931,28 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
     std::size_t width = chars(m.each);
     for (const SelectionValue& v : values) width = std::max(width, chars(v.text));
     auto padded = [&](const std::string& t) { return t + std::string(width - chars(t), ' '); };
-    std::printf("\n%s %8s %8s %8s %8s %8s %8s\n", padded(m.each).c_str(), "quads", "angles",
-                "regular", "sizes", "orient.", "seconds");
+    std::fprintf(stderr, "\n%s %8s %8s %8s %8s %8s %8s\n", padded(m.each).c_str(), "quads",
+                 "angles", "regular", "sizes", "orient.", "seconds");
     for (std::size_t k = 0; k < values.size(); ++k) {
-      std::printf("%s", padded(values[k].text).c_str());
+      std::fprintf(stderr, "%s", padded(values[k].text).c_str());
       if (!outcomes[k].result) {
-        std::printf(" %8s\n", outcomes[k].skipped ? "skipped" : "failed");
+        std::fprintf(stderr, " %8s\n", outcomes[k].skipped ? "skipped" : "failed");
         continue;
       }
       const QualitySummary& q = outcomes[k].result->quality;
-      std::printf(" %8zu %7.1f%% %7.1f%% %7.1f%% %8.1f %8.2f\n", q.num_quads,
-                  100 * q.share_angles_75_105, 100 * q.share_regular_interior,
-                  100 * q.share_size_08_125, q.orientation_mean_deg, outcomes[k].result->seconds);
+      std::fprintf(stderr, " %8zu %7.1f%% %7.1f%% %7.1f%% %8.1f %8.2f\n", q.num_quads,
+                   100 * q.share_angles_75_105, 100 * q.share_regular_interior,
+                   100 * q.share_size_08_125, q.orientation_mean_deg, outcomes[k].result->seconds);
     }
-    std::fflush(stdout);
+    std::fflush(stderr);
   }
   if (!a.quiet || !failed.empty()) {
-    std::ostream& out = failed.empty() ? std::cout : std::cerr;
-    out << (failed.empty() ? "" : "isoquad: ") << "--each " << m.each << ": "
-        << values.size() - failed.size() - skipped << " of " << values.size() << " meshed";
-    if (skipped) out << ", " << skipped << " skipped (every output exists)";
-    for (std::size_t i = 0; i < failed.size(); ++i) out << (i ? ", " : "; failed: ") << failed[i];
-    out << "\n";
+    std::cerr << (failed.empty() ? "" : "isoquad: ") << "--each " << m.each << ": "
+              << values.size() - failed.size() - skipped << " of " << values.size() << " meshed";
+    if (skipped) std::cerr << ", " << skipped << " skipped (every output exists)";
+    for (std::size_t i = 0; i < failed.size(); ++i)
+      std::cerr << (i ? ", " : "; failed: ") << failed[i];
+    std::cerr << "\n";
   }
   return first_failure;
 }
@@ -1030,7 +1032,7 @@ int main(int argc, char** argv) {
                   "--jobs meshes the regions of --each at once: give --each");
     if (mesh_cmd->parsed() && mesh_extra.skip_existing &&
         every_output_exists(mesh_args, mesh_field_args, mesh_extra)) {
-      if (!mesh_args.quiet) std::cout << "skipped: every output exists (--skip-existing)\n";
+      if (!mesh_args.quiet) std::cerr << "skipped: every output exists (--skip-existing)\n";
       return 0;
     }
     if (mesh_cmd->parsed())

@@ -153,8 +153,8 @@ TEST(Cli, DomainWritesAGeoPackageInTheMeshingCrs) {
   const CliResult r =
       run_cli({"domain", sample("france.shp"), "-o", out, "--simplify", "1000"}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("vertices:     3094 before simplification"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("automatic"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("vertices:     3094 before simplification"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("automatic"), std::string::npos) << r.err;
   isoquad::ensure_gdal_registered();
   GDALDataset* ds = static_cast<GDALDataset*>(
       GDALOpenEx(out.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
@@ -178,10 +178,10 @@ TEST(Cli, WaterDomainAndRepairFromTheCommandLine) {
                          "--domain", "water", "--bbox", "-5.3,46.8,-1.95,49.35", "--size", "2000"},
                         dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("1 component(s), 5 ring(s), 4 hole(s)"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("1 component(s), 5 ring(s), 4 hole(s)"), std::string::npos) << r.err;
   r = run_cli({"domain", bowtie_geojson(dir), "-o", dir.file("fixed.gpkg"), "--repair"}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("1 invalid polygon(s) fixed"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("1 invalid polygon(s) fixed"), std::string::npos) << r.err;
 }
 
 // The Arctic Ocean's side of Europe and Asia from Natural Earth's land at 1:110m (the
@@ -221,7 +221,7 @@ TEST(Cli, ASharpTipIsCutBackToTheMinimumWidth) {
                                  "--overwrite", "--report", dir.file("r.json")},
                                 dir);
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    return std::make_pair(r.out, read_file(dir.file("r.json")));
+    return std::make_pair(r.err, read_file(dir.file("r.json")));
   };
   const auto [out, report] = run("10");
   EXPECT_NE(out.find("spikes:       1 tip(s) sharper than 15 deg cut back to 10 m wide"),
@@ -247,7 +247,7 @@ TEST(Cli, WaterOfOpenSeaIsTheWholeBbox) {
                         dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("the water domain is the whole bbox"), std::string::npos) << r.err;
-  EXPECT_NE(r.out.find("1 component(s), 1 ring(s), 0 hole(s)"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("1 component(s), 1 ring(s), 0 hole(s)"), std::string::npos) << r.err;
   // 0.6 by 0.4 degrees at 47.1 N: about 45.5 by 44.5 km.
   EXPECT_NEAR(read_domain_layer(out).area_m2 / 2.0255e9, 1.0, 0.01);
   r = run_cli({"domain", sample("brittany_land.geojson"), "-o", dir.file("land.gpkg"), "--domain",
@@ -284,8 +284,8 @@ TEST(Cli, ALandmassRoundThePoleIsMeshableLand) {
                                "--simplify", "1000", "--repair"},
                               dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("+lat_0=-90"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("1 component(s), 1 ring(s), 0 hole(s)"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("+lat_0=-90"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("1 component(s), 1 ring(s), 0 hole(s)"), std::string::npos) << r.err;
   // South of 70 S less the bay, on a sphere of the authalic radius: 15.06 million km2.
   const double R = 6371007.2, deg = M_PI / 180.0;
   const double expected = 2 * M_PI * R * R * (1 - std::sin(70 * deg)) -

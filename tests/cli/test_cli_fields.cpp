@@ -18,7 +18,7 @@ TEST(CliFields, VtuLoadsInMeshioWithSizeAndCrossAngle) {
                                "--hmax", "8000"},
                               dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("singularities"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("singularities"), std::string::npos) << r.err;
   // A real reader: meshio (Debian's python3-meshio, under /usr/bin/python3).
   const std::string script = dir.file("check.py");
   write_file(script,
@@ -140,7 +140,7 @@ TEST(CliFields, RefineFeaturesSetTheSizesAroundThem) {
       {"fields", domain, "--dst-crs", "EPSG:3857", "--size", "3000", "--refine", refine, "-o", vtu},
       dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("features " + refine + " (2, 400 to 600 m)"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("features " + refine + " (2, 400 to 600 m)"), std::string::npos) << r.err;
   python_check(
       dir,
       "import sys, meshio, numpy as np\n"

@@ -255,7 +255,10 @@ TEST(CliMesh, SquareGivesConvexQuadsCoveringTheSquare) {
                                "50", "--cross-angle", "0", "-o", gpkg, "--report", report},
                               dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("0 non-convex"), std::string::npos) << r.out;
+  // The summary is on stderr (the "short summary on stderr"); stdout stays empty.
+  EXPECT_NE(r.err.find("0 non-convex"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\nSCHISM:       "), std::string::npos) << r.err;
+  EXPECT_EQ(r.out, "");
   const QuadLayer layer = read_quads(gpkg);
   EXPECT_EQ(layer.num_other, 0);
   // 1000 m square, h = 50 m: about 400 quads of 50 m (subdivided tiles of 100 m).
@@ -446,7 +449,7 @@ TEST(CliMesh, HolesTouchingAtAPointAreCutApartWithAWarning) {
   const CliResult r = run_cli({"mesh", input, "--dst-crs", "EPSG:3857", "--size", "40", "-o", gpkg}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("rings touched were cut apart"), std::string::npos) << r.err;
-  EXPECT_NE(r.out.find("1 hole(s)"), std::string::npos) << r.out;  // the two holes joined
+  EXPECT_NE(r.err.find("1 hole(s)"), std::string::npos) << r.err;  // the two holes joined
   const QuadLayer layer = read_quads(gpkg);
   EXPECT_EQ(layer.num_other, 0);
   // Square minus two triangles of 20000 m2 each, minus the small cut.
@@ -470,7 +473,7 @@ TEST(CliMesh, SlitNarrowerThanAQuarterOfTheSizeIsFilled) {
                          "--cross-angle", "0", "-o", gpkg},
                         dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("1 feature(s) under 250 m wide changed"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("1 feature(s) under 250 m wide changed"), std::string::npos) << r.err;
   QuadLayer layer = read_quads(gpkg);
   EXPECT_EQ(layer.quads.size(), 100u);
   EXPECT_NEAR(check_convex_ccw(layer), 1.0e8, 1e-6 * 1.0e8);
@@ -486,11 +489,11 @@ TEST(CliMesh, SlitNarrowerThanAQuarterOfTheSizeIsFilled) {
                "-o", dir.file("kept.gpkg")},
               dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.out.find("narrow:"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err.find("narrow:"), std::string::npos) << r.err;
   // The slit (0.12 to 0.18 km2, depending on the simplification) is still cut out.
-  const std::size_t at = r.out.find("area:");
-  ASSERT_NE(at, std::string::npos) << r.out;
-  const double km2 = std::stod(r.out.substr(at + 5));
+  const std::size_t at = r.err.find("area:");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const double km2 = std::stod(r.err.substr(at + 5));
   EXPECT_GT(km2, 99.80);
   EXPECT_LT(km2, 99.90);
 }
@@ -558,7 +561,7 @@ TEST(CliMesh, ANarrowIslandAboutOneTileLargeGetsCornersAtItsEnds) {
                                dir.file("mesh.gpkg")},
                               dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.out.find("retried"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err.find("retried"), std::string::npos) << r.err;
   const auto quads = read_quads(dir.file("mesh.gpkg"));
   EXPECT_EQ(quads.num_other, 0);
   EXPECT_GE(quads.quads.size(), 2u);
@@ -627,7 +630,7 @@ static std::string corsica_with_weight(const TempDir& dir, const std::string& op
   EXPECT_EQ(r.exit_code, 0) << r.err;
   const CliResult bad = run_cli({"mesh", corsica, option, "-1", "-o", dir.file("bad.vtu")}, dir);
   EXPECT_EQ(bad.exit_code, 2) << bad.err;
-  return r.out;
+  return r.err;
 }
 
 // Corsica at hmax 4 km with `option` at `low`, then at `high`: the two summaries. The
@@ -701,23 +704,23 @@ TEST(CliMesh, EachValueOfAnAttributeGetsItsOwnMesh) {
                          dir.file("{}.gpkg"), "--report", dir.file("{}.json")},
                         dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("== region = a b (1 of 2)"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("== region = c/d (2 of 2)"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("--each region: 2 of 2 meshed"), std::string::npos) << r.out;
+  EXPECT_NE(r.err.find("== region = a b (1 of 2)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("== region = c/d (2 of 2)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--each region: 2 of 2 meshed"), std::string::npos) << r.err;
   // The closing table: a line per region with its quads, as its report has them.
   const std::size_t table =
-      r.out.find("\nregion    quads   angles  regular    sizes  orient.  seconds\n");
-  ASSERT_NE(table, std::string::npos) << r.out;
+      r.err.find("\nregion    quads   angles  regular    sizes  orient.  seconds\n");
+  ASSERT_NE(table, std::string::npos) << r.err;
   for (const char* name : {"a_b", "c_d"}) {
     const std::string report = read_file(dir.file(std::string(name) + ".json"));
     const std::string value = std::string(name) == "a_b" ? "a b" : "c/d";
-    const std::size_t row = r.out.find("\n" + value + "   ", table);
-    ASSERT_NE(row, std::string::npos) << r.out;
+    const std::size_t row = r.err.find("\n" + value + "   ", table);
+    ASSERT_NE(row, std::string::npos) << r.err;
     const std::size_t quads_at = report.find("\"num_quads\": ");
     ASSERT_NE(quads_at, std::string::npos);
-    EXPECT_EQ(std::stoul(r.out.substr(row + 1 + value.size())),
+    EXPECT_EQ(std::stoul(r.err.substr(row + 1 + value.size())),
               std::stoul(report.substr(quads_at + 13)))
-        << r.out;
+        << r.err;
     const bool two = std::string(name) == "a_b";
     EXPECT_NE(report.find(two ? "\"num_components\": 2," : "\"num_components\": 1,"),
               std::string::npos)
@@ -767,17 +770,17 @@ TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
     EXPECT_EQ(read_file(dir.file(std::string("one_") + region + ".gr3")),
               read_file(dir.file(std::string("two_") + region + ".gr3")))
         << region;
-    const std::size_t header = two.out.find(std::string("== region = ") + region + " (");
-    ASSERT_NE(header, std::string::npos) << two.out;
+    const std::size_t header = two.err.find(std::string("== region = ") + region + " (");
+    ASSERT_NE(header, std::string::npos) << two.err;
     if (!first) {
-      EXPECT_GT(header, at) << two.out;  // in the regions' order
+      EXPECT_GT(header, at) << two.err;  // in the regions' order
     }
     first = false;
     at = header;
     // Each region's summary follows its header, before the next one's.
-    EXPECT_NE(two.out.find(std::string("two_") + region + ".gr3", header), std::string::npos);
+    EXPECT_NE(two.err.find(std::string("two_") + region + ".gr3", header), std::string::npos);
   }
-  EXPECT_NE(two.out.find("--each region: 4 of 4 meshed"), std::string::npos) << two.out;
+  EXPECT_NE(two.err.find("--each region: 4 of 4 meshed"), std::string::npos) << two.err;
   // One region over --max-quads: the others written, the same message and exit code.
   const CliResult failed = run("cap", {"--jobs", "2", "--max-quads", "150", "-q"});
   EXPECT_EQ(failed.exit_code, 2) << failed.err;
@@ -816,16 +819,16 @@ TEST(CliMesh, SkipExistingResumesABatch) {
   for (const char* f : {"p.gr3", "p.ll", "p.json"}) std::filesystem::remove(dir.file(f));
   r = run({"--skip-existing", "--jobs", "2"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.out.find("== region = q (2 of 2)\nskipped: every output exists (--skip-existing)"),
+  EXPECT_NE(r.err.find("== region = q (2 of 2)\nskipped: every output exists (--skip-existing)"),
             std::string::npos)
-      << r.out;
-  const std::size_t row = r.out.find("\nq ");
-  ASSERT_NE(row, std::string::npos) << r.out;
-  EXPECT_NE(r.out.substr(row, r.out.find('\n', row + 1) - row).find(" skipped"), std::string::npos)
-      << r.out;
-  EXPECT_NE(r.out.find("--each region: 1 of 2 meshed, 1 skipped (every output exists)"),
+      << r.err;
+  const std::size_t row = r.err.find("\nq ");
+  ASSERT_NE(row, std::string::npos) << r.err;
+  EXPECT_NE(r.err.substr(row, r.err.find('\n', row + 1) - row).find(" skipped"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("--each region: 1 of 2 meshed, 1 skipped (every output exists)"),
             std::string::npos)
-      << r.out;
+      << r.err;
   EXPECT_EQ(read_file(dir.file("p.gr3")), p_grid);
   EXPECT_TRUE(std::filesystem::exists(dir.file("p.ll")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("p.json")));
@@ -852,6 +855,7 @@ TEST(CliMesh, SkipExistingResumesABatch) {
   again.push_back("--skip-existing");
   r = run_cli(again, dir);
   EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.out, "skipped: every output exists (--skip-existing)\n");
+  EXPECT_EQ(r.out, "");
+  EXPECT_EQ(r.err, "skipped: every output exists (--skip-existing)\n");
   EXPECT_EQ(std::filesystem::last_write_time(dir.file("one.gpkg")), one_time);
 }

@@ -189,7 +189,7 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
        dir.file("hgrid.gr3"), "-o", dir.file("m.vtk"), "-o", dir.file("m.nc"), "-o",
        dir.file("m.vtu"), "--output-crs", "EPSG:4326"},
       dir);
-  ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
+  ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;  // every vertex has a depth
 
   // SCHISM: the projected grid and its lon/lat companion.
@@ -401,11 +401,11 @@ TEST(CliOutputs, OpenBoundaryLinesGiveTheSeaBoundary) {
                "800", "--open-boundary", dir.file("west.geojson"), "-o", dir.file("d.gpkg")},
               dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const std::size_t along = r.out.find("1 line(s), along ");
-  ASSERT_NE(along, std::string::npos) << r.out;
-  const double km = std::stod(r.out.substr(along + 17));
-  EXPECT_GE(km, 16.6) << r.out;
-  EXPECT_LE(km, 16.68 + 2 * 0.21) << r.out;
+  const std::size_t along = r.err.find("1 line(s), along ");
+  ASSERT_NE(along, std::string::npos) << r.err;
+  const double km = std::stod(r.err.substr(along + 17));
+  EXPECT_GE(km, 16.6) << r.err;
+  EXPECT_LE(km, 16.68 + 2 * 0.21) << r.err;
 
   r = run(line_file("off.geojson", "[[-4.58,48.3],[-4.5,48.3]]"), "n.gpkg");
   EXPECT_EQ(r.exit_code, 3) << r.err;
@@ -1126,10 +1126,10 @@ TEST(CliOutputs, BathymetryRastersInPriorityOrderAndMinimumDepth) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ll = parse_gr3(dir.file("b.ll"));
   for (const auto& n : ll.nodes) EXPECT_NEAR(n[2], 600.0, 1e-6);
-  EXPECT_NE(r.out.find("depths:       600 .. 600 m, " + std::to_string(ll.nodes.size()) +
+  EXPECT_NE(r.err.find("depths:       600 .. 600 m, " + std::to_string(ll.nodes.size()) +
                        " vertices raised to --min-depth"),
             std::string::npos)
-      << r.out;
+      << r.err;
   // Each quad's time step at Courant 1: its width (between opposite sides' midpoints)
   // over sqrt(g 600 m); the summary gives the smallest.
   {
@@ -1159,14 +1159,14 @@ TEST(CliOutputs, BathymetryRastersInPriorityOrderAndMinimumDepth) {
     EXPECT_GT(n, 100u);
     char line[64];
     std::snprintf(line, sizeof line, "time step:    %.3g s at a gravity-wave Courant", smallest);
-    EXPECT_NE(r.out.find(line), std::string::npos) << line << "\n" << r.out;
+    EXPECT_NE(r.err.find(line), std::string::npos) << line << "\n" << r.err;
   }
   // An unreadable raster: exit 3 at once, naming it, nothing written.
   write_file(dir.file("bad.tif"), "not a raster");
   r = run({"--bathymetry", west, "--bathymetry", dir.file("bad.tif"), "-o", dir.file("c.gr3")});
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_NE(r.err.find("bad.tif"), std::string::npos) << r.err;
-  EXPECT_EQ(r.out.find("quads:"), std::string::npos) << r.out;
+  EXPECT_EQ(r.err.find("quads:"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("c.gr3")));
   // --min-depth alone means nothing.
   r = run({"--min-depth", "5", "-o", dir.file("d.gr3")});
@@ -1273,15 +1273,15 @@ TEST(CliOutputs, TimeStepRuleWidensTheQuadsInDeepWater) {
   EXPECT_GT(*std::min_element(after.begin(), after.end()),
             *std::min_element(before.begin(), before.end()));
   // The summary and the report count them, at Courant 0.7.
-  EXPECT_NE(wide.out.find("; " + std::to_string(under_after) + " of " +
+  EXPECT_NE(wide.err.find("; " + std::to_string(under_after) + " of " +
                           std::to_string(after.size()) + " wet quads under --time-step 6 s"),
             std::string::npos)
-      << wide.out;
-  EXPECT_NE(wide.out.find("at a gravity-wave Courant number of 0.7,"), std::string::npos)
-      << wide.out;
-  EXPECT_NE(wide.out.find("dt floor:     sizes for 6 s at a Courant number of 0.7 set at "),
+      << wide.err;
+  EXPECT_NE(wide.err.find("at a gravity-wave Courant number of 0.7,"), std::string::npos)
+      << wide.err;
+  EXPECT_NE(wide.err.find("dt floor:     sizes for 6 s at a Courant number of 0.7 set at "),
             std::string::npos)
-      << wide.out;
+      << wide.err;
   const std::string report = read_file(dir.file("wide.json"));
   EXPECT_NE(report.find("\"num_under_time_step\": " + std::to_string(under_after)),
             std::string::npos)
