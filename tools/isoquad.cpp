@@ -647,8 +647,8 @@ struct RegionResult {
 };
 
 // Where a mesh job prints: its summary, its warnings, and whether it shows progress
-// (regions meshed at once print into buffers, without progress). Both go to stderr (the
-// summary with the warnings and errors, in the order they happen); stdout stays empty.
+// (regions meshed at once print into buffers, without progress). Both are stderr (the
+// summary beside the warnings and errors); stdout stays empty.
 struct Console {
   std::ostream& out = std::cerr;
   std::ostream& err = std::cerr;
