@@ -142,7 +142,10 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
          "off)")
       ->check(kNonNegative)
       ->group("Cleaning");
-  cmd->add_option("--report", a.report_path, "Write the summary as JSON to this file")->group("Output");
+  cmd->add_option("--report", a.report_path,
+                  "Write the summary as JSON to this file (-: to stdout, once every output is "
+                  "written)")
+      ->group("Output");
   cmd->add_flag("--overwrite", a.overwrite, "Replace existing output files")->group("Output");
   cmd->add_flag("-q,--quiet", a.quiet, "Print nothing but errors")->group("Output");
 }
@@ -363,11 +366,26 @@ void finish_front_end_args(CommonArgs& a) {
   if (a.min_width_m >= 0) a.fe.min_width_m = a.min_width_m;
 }
 
+// --report -: the JSON goes to stdout (which nothing else uses), after every file is in
+// place; no file is checked or written for it.
+const char* const kStdout = "-";
+
+void check_report_path(const CommonArgs& a) {
+  if (!a.report_path.empty() && a.report_path != kStdout)
+    check_output_path(a.report_path, a.overwrite);
+}
+
+// Adds the report to the outputs written together, unless it goes to stdout.
+void write_report(const CommonArgs& a, OutputSet& set, const std::string& json) {
+  if (!a.report_path.empty() && a.report_path != kStdout)
+    write_text_file(set.add(a.report_path, a.overwrite), json, true);
+}
+
 int run_domain(CommonArgs& a) {
   finish_front_end_args(a);
   // Fail before any work when an output cannot be written.
   check_output_path(a.output, a.overwrite);
-  if (!a.report_path.empty()) check_output_path(a.report_path, a.overwrite);
+  check_report_path(a);
   const std::string ext = std::filesystem::path(a.output).extension().string();
   if (ext != ".gpkg" && ext != ".GPKG")
     throw Error(ErrorClass::usage, "options",
@@ -381,9 +399,10 @@ int run_domain(CommonArgs& a) {
   wp.path = set.add(a.output, a.overwrite);
   wp.overwrite = true;
   write_domain_gpkg(r.domain, wp);
-  if (!a.report_path.empty())
-    write_text_file(set.add(a.report_path, a.overwrite), domain_summary_json(r.summary), true);
+  const std::string report = domain_summary_json(r.summary);
+  write_report(a, set, report);
   set.commit_all();
+  if (a.report_path == kStdout) std::cout << report << std::flush;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
@@ -412,7 +431,7 @@ int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
   finish_front_end_args(a);
   check_output_path(a.output, a.overwrite);
   if (!f.plot_path.empty()) check_output_path(f.plot_path, a.overwrite);
-  if (!a.report_path.empty()) check_output_path(a.report_path, a.overwrite);
+  check_report_path(a);
   const std::string ext = std::filesystem::path(a.output).extension().string();
   if (ext != ".vtu" && ext != ".gpkg")
     throw Error(ErrorClass::usage, "options", "'" + a.output + "': the fields are written as .vtu or .gpkg");
@@ -431,9 +450,10 @@ int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
     pp.overwrite = true;
     plot_fields(r.mesh, r.size, r.cross, r.singularities, pp);
   }
-  if (!a.report_path.empty())
-    write_text_file(set.add(a.report_path, a.overwrite), fields_report_json(r, command_line), true);
+  const std::string report = fields_report_json(r, command_line);
+  write_report(a, set, report);
   set.commit_all();
+  if (a.report_path == kStdout) std::cout << report << std::flush;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
     std::cerr << format_domain_summary(r.front.summary) << format_fields_summary(r);
@@ -630,7 +650,7 @@ bool every_output_exists(const CommonArgs& a, const FieldArgs& f, const MeshArgs
   for (const MeshOutput& o : mesh_outputs(a, m))
     if (!mesh_output_exists(o)) return false;
   for (const std::string& p : {a.report_path, f.plot_path})
-    if (!p.empty() && !std::filesystem::exists(p, ec)) return false;
+    if (!p.empty() && p != kStdout && !std::filesystem::exists(p, ec)) return false;
   return true;
 }
 
@@ -692,7 +712,7 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
       !f.sizing.time_step_s)
     f.sizing.bathymetry.clear();
   if (!f.plot_path.empty()) check_output_path(f.plot_path, a.overwrite);
-  if (!a.report_path.empty()) check_output_path(a.report_path, a.overwrite);
+  check_report_path(a);
   if (tiling_only && f.plot_path.empty() && a.report_path.empty())
     throw Error(ErrorClass::usage, "options", "--stop-after needs --plot or --report to show the tiling");
   MeshOptions options = m.mesh;
@@ -723,6 +743,7 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
   job.overwrite = a.overwrite;
   job.command_line = command_line;
   const MeshJobWritten written = write_mesh_job_outputs(r, job);
+  if (a.report_path == kStdout) std::cout << written.report << std::flush;
   if (written.depths && written.depths->num_filled && !a.quiet)
     print(err,
           "isoquad: warning: %zu vertices lie outside the bathymetry (or next to nodata): each "

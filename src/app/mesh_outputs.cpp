@@ -88,11 +88,14 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
       plot_tiling(r.fields.mesh, r.tiling.tiling, r.tiling.graph, pp);
     }
   }
-  if (!o.report_path.empty())
-    write_text_file(set.add(o.report_path, o.overwrite),
-                    mesh_report_json(r, o.command_line, r.has_quads ? &data.boundary : nullptr,
-                                     written.depths ? &*written.depths : nullptr),
-                    true);
+  if (!o.report_path.empty()) {
+    std::string json = mesh_report_json(r, o.command_line, r.has_quads ? &data.boundary : nullptr,
+                                        written.depths ? &*written.depths : nullptr);
+    if (o.report_path == "-")
+      written.report = std::move(json);
+    else
+      write_text_file(set.add(o.report_path, o.overwrite), json, true);
+  }
   set.commit_all();
   return written;
 }

@@ -248,6 +248,45 @@ TEST(CliMesh, FranceAndBrittanyWaterFillTheirDomainsWithConvexQuads) {
   }
 }
 
+// --report -: the JSON report on stdout (the summary stays on stderr), with the quality
+// section of the file's; no file named "-"; not with --each (no {}).
+TEST(CliMesh, ReportToStdoutIsTheFilesReport) {
+  TempDir dir;
+  auto quality = [](const std::string& json) {
+    const std::size_t at = json.find("\"quality\": {");
+    return at == std::string::npos ? std::string() : json.substr(at, json.find("\n  }", at) - at);
+  };
+  auto mesh = [&](const std::string& gpkg, const std::string& report) {
+    return run_cli({"mesh", golden_input("square"), "--dst-crs", "EPSG:3857", "--size", "100", "-o",
+                    dir.file(gpkg), "--report", report},
+                   dir);
+  };
+  CliResult r = mesh("f.gpkg", dir.file("r.json"));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out, "");
+  const std::string file_quality = quality(read_file(dir.file("r.json")));
+  ASSERT_NE(file_quality.find("\"num_quads\": "), std::string::npos);
+  r = mesh("s.gpkg", "-");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("quads:"), std::string::npos) << r.err;
+  EXPECT_EQ(r.out.rfind("{\n", 0), 0u) << r.out;
+  EXPECT_EQ(quality(r.out), file_quality) << r.out;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("-")));
+  // domain too.
+  r = run_cli({"domain", golden_input("square"), "--dst-crs", "EPSG:3857", "-o", dir.file("d.gpkg"),
+               "--report", "-", "-q"},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.out.rfind("{", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find("\"num_components\": 1"), std::string::npos) << r.out;
+  // --each needs a file per region.
+  r = run_cli({"mesh", golden_input("square"), "--size", "100", "--each", "fid", "-o",
+               dir.file("{}.gpkg"), "--report", "-"},
+              dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("need {}"), std::string::npos) << r.err;
+}
+
 TEST(CliMesh, SquareGivesConvexQuadsCoveringTheSquare) {
   TempDir dir;
   const std::string gpkg = dir.file("mesh.gpkg"), report = dir.file("report.json");
