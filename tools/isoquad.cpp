@@ -168,6 +168,14 @@ std::array<double, 4> parse_bbox(const std::string& text) {
   return b;
 }
 
+// A progress line is on the terminal without its newline: a message must clear it first.
+std::atomic<bool> progress_line_open{false};
+
+// Clears an unfinished progress line, so that an error or warning starts its own line.
+void end_progress_line() {
+  if (progress_line_open.exchange(false)) std::fprintf(stderr, "\r\033[K");
+}
+
 // Renders progress on stderr, throttled, only when stderr is a terminal.
 ProgressCallback make_progress(bool quiet) {
   if (quiet || !isatty(STDERR_FILENO)) return nullptr;
@@ -188,6 +196,7 @@ ProgressCallback make_progress(bool quiet) {
     std::fprintf(stderr, "\r%-12s %3d%%\033[K%s", stage.c_str(), static_cast<int>(f * 100 + 0.5),
                  f >= 1.0 ? "\n" : "");
     std::fflush(stderr);
+    progress_line_open = f < 1.0;
     return true;
   };
 }
@@ -730,7 +739,9 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
                               : m.stop_after == "resplit" ? TilingStep::resplit
                                                           : TilingStep::none;
   const auto t0 = std::chrono::steady_clock::now();
-  MeshResult r = build_mesh(options, Progress(make_progress(a.quiet || !console.progress)));
+  // The outputs (depths, files, plot) take the last 5%: seconds on large meshes.
+  const Progress progress(make_progress(a.quiet || !console.progress));
+  MeshResult r = build_mesh(options, progress.slice(0.0, 0.95));
   MeshJobOutputs job;
   job.meshes = outputs;
   job.write = write_options;
@@ -742,7 +753,9 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
   job.report_path = a.report_path;
   job.overwrite = a.overwrite;
   job.command_line = command_line;
+  progress.report("write", 0.95);
   const MeshJobWritten written = write_mesh_job_outputs(r, job);
+  progress.report("written", 1.0);
   if (a.report_path == kStdout) std::cout << written.report << std::flush;
   if (written.depths && written.depths->num_filled && !a.quiet)
     print(err,
@@ -888,6 +901,7 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
                &result, console);
       outcomes[k].result = result;
     } catch (const Error& e) {
+      if (console.progress) end_progress_line();
       console.err << "isoquad: " << m.each << " = " << values[k].text << ": " << e.what() << "\n";
       outcomes[k].exit = exit_code(e.error_class());
     }
@@ -1059,9 +1073,11 @@ int main(int argc, char** argv) {
     if (mesh_cmd->parsed())
       return run_mesh(mesh_args, mesh_field_args, mesh_extra, joined_command_line(argc, argv));
   } catch (const Error& e) {
+    end_progress_line();
     std::cerr << "isoquad: " << e.what() << "\n";
     return exit_code(e.error_class());
   } catch (const std::exception& e) {
+    end_progress_line();
     std::cerr << "isoquad: internal error: " << e.what() << "\n";
     return exit_code(ErrorClass::internal);
   }
