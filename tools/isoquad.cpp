@@ -375,18 +375,16 @@ void finish_front_end_args(CommonArgs& a) {
   if (a.min_width_m >= 0) a.fe.min_width_m = a.min_width_m;
 }
 
-// --report -: the JSON goes to stdout (which nothing else uses), after every file is in
-// place; no file is checked or written for it.
-const char* const kStdout = "-";
-
+// --report - (kStdoutPath): the JSON goes to stdout (which nothing else uses), after every
+// file is in place; no file is checked or written for it.
 void check_report_path(const CommonArgs& a) {
-  if (!a.report_path.empty() && a.report_path != kStdout)
+  if (!a.report_path.empty() && a.report_path != kStdoutPath)
     check_output_path(a.report_path, a.overwrite);
 }
 
 // Adds the report to the outputs written together, unless it goes to stdout.
 void write_report(const CommonArgs& a, OutputSet& set, const std::string& json) {
-  if (!a.report_path.empty() && a.report_path != kStdout)
+  if (!a.report_path.empty() && a.report_path != kStdoutPath)
     write_text_file(set.add(a.report_path, a.overwrite), json, true);
 }
 
@@ -411,7 +409,7 @@ int run_domain(CommonArgs& a) {
   const std::string report = domain_summary_json(r.summary);
   write_report(a, set, report);
   set.commit_all();
-  if (a.report_path == kStdout) std::cout << report << std::flush;
+  if (a.report_path == kStdoutPath) std::cout << report << std::flush;
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
@@ -462,7 +460,7 @@ int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
   const std::string report = fields_report_json(r, command_line);
   write_report(a, set, report);
   set.commit_all();
-  if (a.report_path == kStdout) std::cout << report << std::flush;
+  if (a.report_path == kStdoutPath) std::cout << report << std::flush;
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
     std::cerr << format_domain_summary(r.front.summary) << format_fields_summary(r);
@@ -659,7 +657,7 @@ bool every_output_exists(const CommonArgs& a, const FieldArgs& f, const MeshArgs
   for (const MeshOutput& o : mesh_outputs(a, m))
     if (!mesh_output_exists(o)) return false;
   for (const std::string& p : {a.report_path, f.plot_path})
-    if (!p.empty() && p != kStdout && !std::filesystem::exists(p, ec)) return false;
+    if (!p.empty() && p != kStdoutPath && !std::filesystem::exists(p, ec)) return false;
   return true;
 }
 
@@ -756,7 +754,7 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
   progress.report("write", 0.95);
   const MeshJobWritten written = write_mesh_job_outputs(r, job);
   progress.report("written", 1.0);
-  if (a.report_path == kStdout) std::cout << written.report << std::flush;
+  if (a.report_path == kStdoutPath) std::cout << written.report << std::flush;
   if (written.depths && written.depths->num_filled && !a.quiet)
     print(err,
           "isoquad: warning: %zu vertices lie outside the bathymetry (or next to nodata): each "

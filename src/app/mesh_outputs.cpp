@@ -91,7 +91,7 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
   if (!o.report_path.empty()) {
     std::string json = mesh_report_json(r, o.command_line, r.has_quads ? &data.boundary : nullptr,
                                         written.depths ? &*written.depths : nullptr);
-    if (o.report_path == "-")
+    if (o.report_path == kStdoutPath)
       written.report = std::move(json);
     else
       write_text_file(set.add(o.report_path, o.overwrite), json, true);

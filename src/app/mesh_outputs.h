@@ -14,6 +14,9 @@
 
 namespace isoquad {
 
+// An output path that means stdout (--report -).
+inline constexpr const char* kStdoutPath = "-";
+
 struct MeshJobOutputs {
   std::vector<MeshOutput> meshes;  // check_mesh_outputs() them before the meshing
   MeshWriteOptions write;
@@ -24,7 +27,7 @@ struct MeshJobOutputs {
   double courant = 1.0;               // --courant: the time steps are at this Courant number
   double time_step_s = 0.0;           // --time-step: the quads' time steps are counted against it
   std::string plot_path;     // PNG: the mesh, or the tiling when it stopped early
-  std::string report_path;   // JSON: mesh_report_json(); "-": returned (MeshJobWritten::report)
+  std::string report_path;   // JSON: mesh_report_json(); kStdoutPath: returned (::report)
   bool overwrite = false;    // for the plot and the report (the meshes have their own)
   std::string command_line;  // in the GeoPackage's metadata and the report
 };
@@ -33,7 +36,7 @@ struct MeshJobWritten {
   std::size_t num_open_edges = 0, num_land_edges = 0;  // extract_boundary()
   std::optional<VertexDepths> depths;  // with the bathymetry (the depths themselves moved out)
   std::vector<std::string> files;     // the mesh files written
-  std::string report;  // the JSON report when its path is "-" (for stdout, once all is written)
+  std::string report;  // the JSON report when its path is kStdoutPath (printed once all is written)
 };
 
 // Writes them all or none (Error(output) when one cannot be written).
