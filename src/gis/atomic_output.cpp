@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <mutex>
 #include <thread>
 
@@ -30,6 +31,20 @@ fs::path parent_dir(const std::string& path) {
 
 void remove_with_side_files(const std::string& path) {
   for (const char* suffix : {"", "-journal", "-wal", "-shm"}) std::remove((path + suffix).c_str());
+}
+
+// A file name's stem as the temporary file's name holds it: long ones cut (at a UTF-8
+// character's start) and told apart by a hash of the whole, so that the temporary name
+// stays well under the file system's 255 bytes however long the output's name is (a
+// GeoPackage's writer nests a second temporary name in the first).
+std::string short_stem(const std::string& stem) {
+  constexpr std::size_t kKeep = 48;
+  if (stem.size() <= 2 * kKeep) return stem;
+  std::size_t cut = kKeep;
+  while (cut > 0 && (static_cast<unsigned char>(stem[cut]) & 0xC0) == 0x80) --cut;
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016zx", std::hash<std::string>{}(stem));
+  return stem.substr(0, cut) + "-" + hash;
 }
 
 // The temporary files of the outputs being written, for the signal handling. Its lock is
@@ -77,7 +92,7 @@ AtomicOutput::AtomicOutput(std::string final_path, bool overwrite)
     : final_path_(std::move(final_path)), overwrite_(overwrite) {
   check_output_path(final_path_, overwrite_);
   const fs::path p(final_path_);
-  const fs::path name = "." + p.stem().string() + ".tmp-" + std::to_string(getpid()) +
+  const fs::path name = "." + short_stem(p.stem().string()) + ".tmp-" + std::to_string(getpid()) +
                         p.extension().string();
   temp_path_ = (parent_dir(final_path_) / name).string();
   UnfinishedOutputs& u = unfinished();

@@ -170,3 +170,29 @@ TEST(AtomicOutput, ASignalRemovesTheUnfinishedOutputsAndEndsTheProcess) {
     EXPECT_EQ(read_file(dir.file("done.txt")), "done");
   }
 }
+
+// A long output name (up to the file system's 255 bytes) keeps a short temporary name,
+// also when a writer nests a second temporary file in the first (a GeoPackage's): a
+// 240-byte name used to fail to open its temporary file. Names that differ only past the
+// cut get different temporary names.
+TEST(AtomicOutput, LongNamesGetShortTemporaryNames) {
+  TempDir dir;
+  const std::string stem(235, 'a'), other = std::string(234, 'a') + "b";
+  const std::string path = dir.file(stem + ".gpkg");
+  {
+    AtomicOutput outer(path, false);
+    AtomicOutput inner(outer.temp_path(), false);
+    AtomicOutput sibling(dir.file(other + ".gpkg"), false);
+    for (const AtomicOutput* o : {&outer, &inner, &sibling}) {
+      const std::string name = std::filesystem::path(o->temp_path()).filename().string();
+      EXPECT_LT(name.size(), 100u) << name;
+      EXPECT_EQ(std::filesystem::path(name).extension(), ".gpkg");
+    }
+    EXPECT_NE(outer.temp_path(), sibling.temp_path());
+    write_file(inner.temp_path(), "data");
+    inner.commit();
+    outer.commit();
+  }
+  EXPECT_EQ(read_file(path), "data");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{stem + ".gpkg"});
+}
