@@ -150,6 +150,8 @@ void remove_unfinished_outputs_on_signals() {
     const std::size_t removed = u.temp_paths.size();
     remove_unfinished_outputs();
     const char* name = sigabbrev_np(sig);
+    // On a terminal, first clear a progress line left without its newline.
+    if (isatty(STDERR_FILENO)) std::fputs("\r\033[K", stderr);
     std::fprintf(stderr, "isoquad: stopped by SIG%s%s\n", name ? name : "?",
                  removed > 0 ? "; the unfinished outputs were removed" : "");
     std::signal(sig, SIG_DFL);
