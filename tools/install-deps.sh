@@ -12,7 +12,7 @@ PACKAGES=(
   libgdal-dev gdal-bin libgeos-dev
   libproj-dev proj-bin proj-data
   libgeographiclib-dev
-  libmuparser-dev libcli11-dev
+  libmuparser-dev libcli11-dev libsleef-dev
   libcairo2-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   libnetcdf-dev

@@ -205,6 +205,7 @@ double moving_corner_energy(const QuadMesh& m, const QuadTopology& t, int v,
                             const double* opposite_angle, double& sharpest) {
   const double range = params.angle_range_deg * M_PI / 180;
   const double softness = params.angle_range_softness_deg * M_PI / 180;
+  const double log_max_aspect = std::log(params.max_aspect);
   double e = 0;
   for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
     const int q = t.quad_items[k];
@@ -240,7 +241,7 @@ double moving_corner_energy(const QuadMesh& m, const QuadTopology& t, int v,
         shortest = std::min(shortest, l), longest = std::max(longest, l);
       }
       if (shortest > 0) {
-        const double over = std::log(longest / shortest) - std::log(params.max_aspect);
+        const double over = std::log(longest / shortest) - log_max_aspect;
         e += params.aspect_weight * smooth_step(over / params.aspect_softness);
         if (over > 0) e += params.aspect_log_weight * over;
       }

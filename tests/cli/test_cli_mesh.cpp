@@ -474,6 +474,39 @@ TEST(CliMesh, SameInputGivesByteIdenticalOutput) {
   EXPECT_TRUE(bytes[0] == bytes[1]);
 }
 
+// glibc picks its builds of exp, sin, atan2... by the CPU (FMA and AVX2, AVX, or SSE2);
+// isoquad brings its own (src/core/portable_math.cpp), so a CPU without FMA gives the
+// same files. glibc's tunables switch its other builds on here: with them, isoquad
+// without its own functions moved a vertex of Corsica's domain in its last bits and
+// changed Corsica's mesh at 4 km.
+TEST(CliMesh, SameOutputWhicheverBuildOfLibmTheCpuGets) {
+  if (!__builtin_cpu_supports("fma") || !__builtin_cpu_supports("avx2"))
+    GTEST_SKIP() << "this CPU gets glibc's SSE2 or AVX builds already";
+  TempDir dir;
+  const std::string corsica = source_dir() + "/shapefiles/corsica.geojson";
+  for (const std::string job : {"domain", "mesh"}) {
+    std::string bytes[2];
+    for (int i = 0; i < 2; ++i) {
+      const std::string out =
+          dir.file(job + std::to_string(i) + (job == "domain" ? ".gpkg" : ".gr3"));
+      std::vector<std::string> args = {
+          i ? "GLIBC_TUNABLES=glibc.cpu.hwcaps=-AVX2,-FMA,-AVX" : "GLIBC_TUNABLES=",
+          ISOQUAD_CLI,
+          job,
+          corsica,
+          "-o",
+          out,
+          "-q"};
+      if (job == "mesh") args.insert(args.end(), {"--hmax", "4000"});
+      const CliResult r = run_cli_program("/usr/bin/env", args, dir);
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      bytes[i] = read_file(out);
+    }
+    EXPECT_FALSE(bytes[0].empty()) << job;
+    EXPECT_TRUE(bytes[0] == bytes[1]) << job << ": the files differ";
+  }
+}
+
 TEST(CliMesh, HolesTouchingAtAPointAreCutApartWithAWarning) {
   // Valid for GEOS and OGC (two holes sharing a vertex), not triangulable as it is.
   TempDir dir;
