@@ -45,17 +45,41 @@ ISOQUAD_MATH1(expm1, Sleef_cinz_expm1d1_u10purec)
 ISOQUAD_MATH1(log, Sleef_cinz_logd1_u35purec)
 ISOQUAD_MATH1(log2, Sleef_cinz_log2d1_u35purec)
 ISOQUAD_MATH1(log10, Sleef_cinz_log10d1_u10purec)
-ISOQUAD_MATH1(log1p, Sleef_cinz_log1pd1_u10purec)
 ISOQUAD_MATH1(exp10, Sleef_cinz_exp10d1_u35purec)
-ISOQUAD_MATH1(sinh, Sleef_cinz_sinhd1_u35purec)
-ISOQUAD_MATH1(cosh, Sleef_cinz_coshd1_u35purec)
 ISOQUAD_MATH1(tanh, Sleef_cinz_tanhd1_u35purec)
-ISOQUAD_MATH1(asinh, Sleef_cinz_asinhd1_u10purec)
-ISOQUAD_MATH1(acosh, Sleef_cinz_acoshd1_u10purec)
 ISOQUAD_MATH1(atanh, Sleef_cinz_atanhd1_u10purec)
 ISOQUAD_MATH1(erf, Sleef_cinz_erfd1_u10purec)
 ISOQUAD_MATH1(erfc, Sleef_cinz_erfcd1_u15purec)
 
+// SLEEF's builds of these overflow before the result does (asinh and acosh above about
+// 1.3e154, log1p near the largest double, sinh and cosh above about 709.7, where the
+// results are still finite); there the identities below take over, exact to a few ulp
+// (asinh x = log 2x + 1/(4x^2) + ..., log1p x = log x + 1/x - ...).
+namespace {
+constexpr double kLn2 = 0.69314718055994530942;
+double exp_half_squared(double x) {  // e^|x| / 2 without overflowing before it must
+  const double t = Sleef_cinz_expd1_u10purec(0.5 * __builtin_fabs(x));
+  return 0.5 * t * t;
+}
+}  // namespace
+
+extern "C" double log1p(double x) noexcept {
+  return x > 1e300 ? Sleef_cinz_logd1_u35purec(x) : Sleef_cinz_log1pd1_u10purec(x);
+}
+extern "C" double asinh(double x) noexcept {
+  if (__builtin_fabs(x) <= 1e150) return Sleef_cinz_asinhd1_u10purec(x);
+  return __builtin_copysign(Sleef_cinz_logd1_u35purec(__builtin_fabs(x)) + kLn2, x);
+}
+extern "C" double acosh(double x) noexcept {
+  return x > 1e150 ? Sleef_cinz_logd1_u35purec(x) + kLn2 : Sleef_cinz_acoshd1_u10purec(x);
+}
+extern "C" double sinh(double x) noexcept {
+  if (__builtin_fabs(x) <= 709.0) return Sleef_cinz_sinhd1_u35purec(x);
+  return __builtin_copysign(exp_half_squared(x), x);
+}
+extern "C" double cosh(double x) noexcept {
+  return __builtin_fabs(x) <= 709.0 ? Sleef_cinz_coshd1_u35purec(x) : exp_half_squared(x);
+}
 extern "C" double atan2(double y, double x) noexcept {
   return Sleef_cinz_atan2d1_u35purec(y, x);
 }
