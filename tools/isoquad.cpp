@@ -27,6 +27,7 @@
 #include "app/mesh_job.h"
 #include "app/mesh_outputs.h"
 #include "app/summary.h"
+#include "app/versions.h"
 #include "core/error.h"
 #include "gis/atomic_output.h"
 #include "gis/raster_field.h"
@@ -1000,7 +1001,10 @@ int main(int argc, char** argv) {
       "areas) that follow a sizing field and a cross field."};
   app.footer(kExitCodes);
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("isoquad ") + ISOQUAD_VERSION);
+  app.set_version_flag("--version", [] {
+    return std::string("isoquad ") + ISOQUAD_VERSION +
+           "\nlibraries: " + isoquad::library_versions_line();
+  });
 
   CommonArgs domain_args;
   CLI::App* domain_cmd = app.add_subcommand(

@@ -313,7 +313,7 @@ void add_stage_times(JsonWriter& j, const std::vector<StageTime>& times) {
 std::string fields_report_json(const FieldsResult& r, const std::string& command_line) {
   JsonWriter j;
   j.begin_object();
-  j.value("isoquad_version", ISOQUAD_VERSION).value("command_line", command_line);
+  add_report_header(j, command_line);
   j.begin_object("domain");
   add_domain_summary(j, r.front.summary);
   j.end_object();

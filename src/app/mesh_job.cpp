@@ -253,7 +253,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
                              const MeshBoundary* boundary, const VertexDepths* depths) {
   JsonWriter j;
   j.begin_object();
-  j.value("isoquad_version", ISOQUAD_VERSION).value("command_line", command_line);
+  add_report_header(j, command_line);
   j.begin_object("domain");
   add_domain_summary(j, r.fields.front.summary);
   j.end_object();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/versions.h"
 #include "gis/atomic_output.h"
 #include "gis/raster_field.h"
 #include "io/mesh_boundary.h"
@@ -72,6 +73,7 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
       data.time_step_s = std::move(written.depths->time_steps.per_quad_s);
     }
     data.command_line = o.command_line;
+    data.libraries = library_versions_line();
     data.quality = quality_items(r.quality);
     written.files = write_mesh_outputs(data, o.meshes, o.write, set);
   }

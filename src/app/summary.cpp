@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "app/versions.h"
+
 namespace isoquad {
 
 namespace {
@@ -105,6 +107,13 @@ std::string domain_summary_json(const DomainSummary& s) {
   add_domain_summary(j, s);
   j.end_object();
   return j.str();
+}
+
+void add_report_header(JsonWriter& json, const std::string& command_line) {
+  json.value("isoquad_version", ISOQUAD_VERSION).value("command_line", command_line);
+  json.begin_object("libraries");
+  for (const auto& [name, version] : library_versions()) json.value(name, version);
+  json.end_object();
 }
 
 }  // namespace isoquad

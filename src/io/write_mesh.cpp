@@ -101,6 +101,7 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
   };
   row("isoquad_version", ISOQUAD_VERSION);
   row("command_line", v.data->command_line);
+  row("libraries", v.data->libraries);
   row("crs_wkt", v.crs_wkt);
   row("mesh_crs_wkt", v.data->crs_wkt);
   row("num_open_boundary_edges", std::to_string(v.data->boundary.num_open_edges));

@@ -51,6 +51,7 @@ struct MeshOutputData {
   std::vector<double> time_step_s;
   // GeoPackage metadata.
   std::string command_line;
+  std::string libraries;  // "CGAL 5.5.1, Eigen 3.4.0, ..." (app/versions.h)
   std::vector<std::pair<std::string, std::string>> quality;  // name, value
 };
 

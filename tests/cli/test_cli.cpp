@@ -147,6 +147,22 @@ TEST(Cli, HelpListsExitCodes) {
     EXPECT_NE(r.out.find(opt), std::string::npos) << opt;
 }
 
+TEST(Cli, VersionNamesTheLibrariesThatDecideTheOutput) {
+  // The libraries as the process loads them: GDAL's and GEOS's versions as this test
+  // process sees them (the same shared libraries).
+  TempDir dir;
+  const CliResult r = run_cli({"--version"}, dir);
+  EXPECT_EQ(r.exit_code, 0);
+  EXPECT_EQ(r.out.rfind("isoquad " ISOQUAD_VERSION "\nlibraries: CGAL ", 0), 0u) << r.out;
+  EXPECT_NE(r.out.find(std::string("GDAL ") + GDALVersionInfo("RELEASE_NAME") + ","),
+            std::string::npos)
+      << r.out;
+  for (const char* name :
+       {"Eigen 3.", "GEOS 3.", "PROJ 9.", "GeographicLib 2.", "netCDF 4.", "SLEEF 3."})
+    EXPECT_NE(r.out.find(std::string(", ") + name), std::string::npos) << name << ": " << r.out;
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 2) << r.out;
+}
+
 TEST(Cli, DomainWritesAGeoPackageInTheMeshingCrs) {
   TempDir dir;
   const std::string out = dir.file("france.gpkg");

@@ -265,6 +265,10 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
   std::map<std::string, std::string> meta;
   for (auto& f : *metadata) meta[f->GetFieldAsString("key")] = f->GetFieldAsString("value");
   EXPECT_FALSE(meta["isoquad_version"].empty());
+  EXPECT_EQ(meta["libraries"].rfind("CGAL ", 0), 0u) << meta["libraries"];
+  EXPECT_NE(meta["libraries"].find(std::string(", GDAL ") + GDALVersionInfo("RELEASE_NAME")),
+            std::string::npos)
+      << meta["libraries"];
   EXPECT_NE(meta["command_line"].find("--output-crs EPSG:4326"), std::string::npos);
   EXPECT_NE(meta["crs_wkt"].find("WGS 84"), std::string::npos);
   EXPECT_EQ(meta["quality.num_quads"], std::to_string(ne));
