@@ -24,32 +24,38 @@
 // signgam). Unlike glibc's, these never set errno; isoquad never reads it after one.
 #include <sleef.h>
 
-#define ISOQUAD_MATH1(name, sleef)            \
-  extern "C" double name(double x) noexcept { \
-    return sleef(x);                          \
+#define ISOQUAD_MATH1(name, T, sleef) \
+  extern "C" T name(T x) noexcept {   \
+    return sleef(x);                  \
   }
-#define ISOQUAD_MATH1F(name, sleef)         \
-  extern "C" float name(float x) noexcept { \
-    return sleef(x);                        \
+#define ISOQUAD_MATH2(name, T, sleef)    \
+  extern "C" T name(T x, T y) noexcept { \
+    return sleef(x, y);                  \
+  }
+#define ISOQUAD_SINCOS(name, T, sleef)             \
+  extern "C" void name(T x, T* s, T* c) noexcept { \
+    const auto r = sleef(x);                       \
+    *s = r.x;                                      \
+    *c = r.y;                                      \
   }
 
-ISOQUAD_MATH1(sin, Sleef_cinz_sind1_u35purec)
-ISOQUAD_MATH1(cos, Sleef_cinz_cosd1_u35purec)
-ISOQUAD_MATH1(tan, Sleef_cinz_tand1_u35purec)
-ISOQUAD_MATH1(asin, Sleef_cinz_asind1_u35purec)
-ISOQUAD_MATH1(acos, Sleef_cinz_acosd1_u35purec)
-ISOQUAD_MATH1(atan, Sleef_cinz_atand1_u35purec)
-ISOQUAD_MATH1(exp, Sleef_cinz_expd1_u10purec)
-ISOQUAD_MATH1(exp2, Sleef_cinz_exp2d1_u35purec)
-ISOQUAD_MATH1(expm1, Sleef_cinz_expm1d1_u10purec)
-ISOQUAD_MATH1(log, Sleef_cinz_logd1_u35purec)
-ISOQUAD_MATH1(log2, Sleef_cinz_log2d1_u35purec)
-ISOQUAD_MATH1(log10, Sleef_cinz_log10d1_u10purec)
-ISOQUAD_MATH1(exp10, Sleef_cinz_exp10d1_u35purec)
-ISOQUAD_MATH1(tanh, Sleef_cinz_tanhd1_u35purec)
-ISOQUAD_MATH1(atanh, Sleef_cinz_atanhd1_u10purec)
-ISOQUAD_MATH1(erf, Sleef_cinz_erfd1_u10purec)
-ISOQUAD_MATH1(erfc, Sleef_cinz_erfcd1_u15purec)
+ISOQUAD_MATH1(sin, double, Sleef_cinz_sind1_u35purec)
+ISOQUAD_MATH1(cos, double, Sleef_cinz_cosd1_u35purec)
+ISOQUAD_MATH1(tan, double, Sleef_cinz_tand1_u35purec)
+ISOQUAD_MATH1(asin, double, Sleef_cinz_asind1_u35purec)
+ISOQUAD_MATH1(acos, double, Sleef_cinz_acosd1_u35purec)
+ISOQUAD_MATH1(atan, double, Sleef_cinz_atand1_u35purec)
+ISOQUAD_MATH1(exp, double, Sleef_cinz_expd1_u10purec)
+ISOQUAD_MATH1(exp2, double, Sleef_cinz_exp2d1_u35purec)
+ISOQUAD_MATH1(expm1, double, Sleef_cinz_expm1d1_u10purec)
+ISOQUAD_MATH1(log, double, Sleef_cinz_logd1_u35purec)
+ISOQUAD_MATH1(log2, double, Sleef_cinz_log2d1_u35purec)
+ISOQUAD_MATH1(log10, double, Sleef_cinz_log10d1_u10purec)
+ISOQUAD_MATH1(exp10, double, Sleef_cinz_exp10d1_u35purec)
+ISOQUAD_MATH1(tanh, double, Sleef_cinz_tanhd1_u35purec)
+ISOQUAD_MATH1(atanh, double, Sleef_cinz_atanhd1_u10purec)
+ISOQUAD_MATH1(erf, double, Sleef_cinz_erfd1_u10purec)
+ISOQUAD_MATH1(erfc, double, Sleef_cinz_erfcd1_u15purec)
 
 // SLEEF's builds of these overflow before the result does (asinh and acosh above about
 // 1.3e154, log1p near the largest double, sinh and cosh above about 709.7, where the
@@ -80,34 +86,18 @@ extern "C" double sinh(double x) noexcept {
 extern "C" double cosh(double x) noexcept {
   return __builtin_fabs(x) <= 709.0 ? Sleef_cinz_coshd1_u35purec(x) : exp_half_squared(x);
 }
-extern "C" double atan2(double y, double x) noexcept {
-  return Sleef_cinz_atan2d1_u35purec(y, x);
-}
-extern "C" double pow(double x, double y) noexcept {
-  return Sleef_cinz_powd1_u10purec(x, y);
-}
-extern "C" void sincos(double x, double* s, double* c) noexcept {
-  const Sleef_double_2 r = Sleef_cinz_sincosd1_u35purec(x);
-  *s = r.x;
-  *c = r.y;
-}
+ISOQUAD_MATH2(atan2, double, Sleef_cinz_atan2d1_u35purec)
+ISOQUAD_MATH2(pow, double, Sleef_cinz_powd1_u10purec)
+ISOQUAD_SINCOS(sincos, double, Sleef_cinz_sincosd1_u35purec)
 
-ISOQUAD_MATH1F(sinf, Sleef_cinz_sinf1_u35purec)
-ISOQUAD_MATH1F(cosf, Sleef_cinz_cosf1_u35purec)
-ISOQUAD_MATH1F(tanf, Sleef_cinz_tanf1_u35purec)
-ISOQUAD_MATH1F(expf, Sleef_cinz_expf1_u10purec)
-ISOQUAD_MATH1F(exp2f, Sleef_cinz_exp2f1_u35purec)
-ISOQUAD_MATH1F(logf, Sleef_cinz_logf1_u35purec)
-ISOQUAD_MATH1F(log2f, Sleef_cinz_log2f1_u35purec)
+ISOQUAD_MATH1(sinf, float, Sleef_cinz_sinf1_u35purec)
+ISOQUAD_MATH1(cosf, float, Sleef_cinz_cosf1_u35purec)
+ISOQUAD_MATH1(tanf, float, Sleef_cinz_tanf1_u35purec)
+ISOQUAD_MATH1(expf, float, Sleef_cinz_expf1_u10purec)
+ISOQUAD_MATH1(exp2f, float, Sleef_cinz_exp2f1_u35purec)
+ISOQUAD_MATH1(logf, float, Sleef_cinz_logf1_u35purec)
+ISOQUAD_MATH1(log2f, float, Sleef_cinz_log2f1_u35purec)
 
-extern "C" float atan2f(float y, float x) noexcept {
-  return Sleef_cinz_atan2f1_u35purec(y, x);
-}
-extern "C" float powf(float x, float y) noexcept {
-  return Sleef_cinz_powf1_u10purec(x, y);
-}
-extern "C" void sincosf(float x, float* s, float* c) noexcept {
-  const Sleef_float_2 r = Sleef_cinz_sincosf1_u35purec(x);
-  *s = r.x;
-  *c = r.y;
-}
+ISOQUAD_MATH2(atan2f, float, Sleef_cinz_atan2f1_u35purec)
+ISOQUAD_MATH2(powf, float, Sleef_cinz_powf1_u10purec)
+ISOQUAD_SINCOS(sincosf, float, Sleef_cinz_sincosf1_u35purec)
