@@ -76,8 +76,11 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
   if (!geos.validity(original).valid) return result;
   const GeosGeometry opened = geos.buffer_mitre(
       geos.buffer_mitre(original, -r, params.mitre_limit), r, params.mitre_limit);
-  const GeosGeometry closed = geos.buffer_mitre(
-      geos.buffer_mitre(opened, r, params.mitre_limit), -r, params.mitre_limit);
+  GeosGeometry closed =
+      geos.buffer_mitre(geos.buffer_mitre(opened, r, params.mitre_limit), -r, params.mitre_limit);
+  // The mitred offsets may cross themselves by a rounding error where a spike's mitre
+  // meets another edge (Brazil at 1:10m: GEOS's overlays then refused it as input).
+  if (!geos.validity(closed).valid) closed = geos.make_valid(closed);
 
   // The two differences at once (on large domains each takes a second or more); the
   // second works on copies in a context of its own.
