@@ -513,6 +513,36 @@ TEST(CliMesh, SameOutputWhicheverBuildOfLibmTheCpuGets) {
   }
 }
 
+#ifdef ISOQUAD_CLI_X86_64_V3
+// The build system compiles isoquad a second time for x86-64-v3 (AVX2 and FMA, what
+// -march=native gives on most x86-64 CPUs) where this machine runs such code. Both must
+// write the same bytes. Without ISOQUAD_FP_OPTIONS (CMakeLists.txt) GCC fuses a * b + c
+// into one multiply-add there, and Corsica's and France's meshes changed; with
+// -ffp-contract=off alone, GCC's vectorizer still fused the complex products of the cross
+// field's solve, and this mesh's vertices moved by up to 6e-11 m.
+TEST(CliMesh, SameOutputWhicheverInstructionSetTheBuildTargets) {
+  TempDir dir;
+  const std::string corsica = source_dir() + "/shapefiles/corsica.geojson";
+  const std::vector<std::string> outputs = {"out.vtu", "out.gr3"};
+  std::vector<std::string> bytes[2];
+  const char* programs[2] = {ISOQUAD_CLI, ISOQUAD_CLI_X86_64_V3};
+  for (int i = 0; i < 2; ++i) {
+    // The same file names in two directories (the outputs may record the command line).
+    const std::string sub = dir.file("build" + std::to_string(i));
+    std::filesystem::create_directories(sub);
+    std::vector<std::string> args = {"mesh", corsica, "--hmax", "4000", "-q"};
+    for (const std::string& out : outputs) args.insert(args.end(), {"-o", sub + "/" + out});
+    const CliResult r = run_cli_program(programs[i], args, dir);
+    ASSERT_EQ(r.exit_code, 0) << programs[i] << ": " << r.err;
+    for (const std::string& out : outputs) bytes[i].push_back(read_file(sub + "/" + out));
+  }
+  for (size_t k = 0; k < outputs.size(); ++k) {
+    EXPECT_FALSE(bytes[0][k].empty()) << outputs[k];
+    EXPECT_TRUE(bytes[0][k] == bytes[1][k]) << outputs[k] << ": the files differ";
+  }
+}
+#endif
+
 TEST(CliMesh, HolesTouchingAtAPointAreCutApartWithAWarning) {
   // Valid for GEOS and OGC (two holes sharing a vertex), not triangulable as it is.
   TempDir dir;
