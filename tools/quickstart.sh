@@ -5,7 +5,7 @@ set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
 cd "$ROOT"
 bash tools/install-deps.sh
-bash tools/build.sh
+bash tools/build.sh --target isoquad  # the tests build with tools/run-tests.sh
 mkdir -p out
 SAMPLE=${1:-shapefiles/corsica.shp}
 OUT=out/$(basename "${SAMPLE%.*}")_mesh.gpkg
