@@ -8,7 +8,10 @@
 #include <ogrsf_frmts.h>
 #include <sys/stat.h>
 
+#include <algorithm>
+#include <cctype>
 #include <mutex>
+#include <vector>
 
 #include "core/error.h"
 
@@ -44,6 +47,99 @@ void GdalDatasetCloser::operator()(GDALDataset* ds) const {
   GDALClose(ds);
 }
 
+namespace {
+
+bool ends_with(const std::string& text, const std::string& tail) {
+  return text.size() >= tail.size() &&
+         text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
+}
+
+std::string lower(std::string text) {
+  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+// GDAL's virtual file system for an archive's name, or "" for another file (or a path
+// GDAL's virtual file systems already name).
+std::string archive_prefix(const std::string& path) {
+  if (path.rfind("/vsi", 0) == 0) return "";
+  const std::string name = lower(path);
+  if (ends_with(name, ".zip")) return "/vsizip/";
+  if (ends_with(name, ".tar") || ends_with(name, ".tgz") || ends_with(name, ".tar.gz"))
+    return "/vsitar/";
+  if (ends_with(name, ".gz")) return "/vsigzip/";
+  return "";
+}
+
+// Whether a member of an archive is a file (or a File Geodatabase's directory) of the
+// kind asked for, by its extension.
+bool is_data_member(const std::string& member, ArchiveContent content) {
+  static const char* const kVector[] = {".shp", ".gpkg", ".geojson", ".json", ".topojson", ".kml",
+                                        ".gml", ".fgb",  ".sqlite",  ".tab",  ".mif",      ".gdb"};
+  static const char* const kRaster[] = {".tif", ".tiff", ".nc",  ".asc", ".vrt", ".img",
+                                        ".grd", ".bil",  ".hgt", ".jp2", ".dem", ".bag"};
+  const std::string name = lower(member);
+  if (content == ArchiveContent::vector) {
+    for (const char* ext : kVector)
+      if (ends_with(name, ext)) return true;
+  } else {
+    for (const char* ext : kRaster)
+      if (ends_with(name, ext)) return true;
+  }
+  return false;
+}
+
+bool gdal_opens(const std::string& path, ArchiveContent content) {
+  GdalErrorCapture capture;  // quiet: a failure here only means "look inside"
+  const unsigned flags =
+      (content == ArchiveContent::vector ? GDAL_OF_VECTOR : GDAL_OF_RASTER) | GDAL_OF_READONLY;
+  GdalDataset ds(
+      static_cast<GDALDataset*>(GDALOpenEx(path.c_str(), flags, nullptr, nullptr, nullptr)));
+  return ds && (content == ArchiveContent::raster || ds->GetLayerCount() > 0);
+}
+
+std::string joined(const std::vector<std::string>& names, std::size_t at_most) {
+  std::string text;
+  for (std::size_t i = 0; i < names.size() && i < at_most; ++i) text += (i ? ", " : "") + names[i];
+  if (names.size() > at_most) text += " and " + std::to_string(names.size() - at_most) + " more";
+  return text;
+}
+
+}  // namespace
+
+std::string gdal_path(const std::string& path, ArchiveContent content, std::string& problem) {
+  ensure_gdal_registered();
+  problem.clear();
+  const std::string prefix = archive_prefix(path);
+  if (prefix.empty()) return path;
+  const std::string root = prefix + path;
+  // A gzipped file is one file: GDAL's own error, if any, comes when it is opened.
+  if (prefix == "/vsigzip/" || gdal_opens(root, content)) return root;
+  std::vector<std::string> all, data;
+  char** list = VSIReadDirRecursive(root.c_str());
+  for (char** entry = list; entry && *entry; ++entry) {
+    std::string member = *entry;
+    if (!member.empty() && member.back() == '/') member.pop_back();
+    if (member.empty()) continue;
+    all.push_back(member);
+    if (is_data_member(member, content)) data.push_back(member);
+  }
+  CSLDestroy(list);
+  std::sort(all.begin(), all.end());
+  std::sort(data.begin(), data.end());
+  const char* kind = content == ArchiveContent::vector ? "vector" : "raster";
+  if (data.size() == 1) return root + "/" + data[0];
+  if (data.empty()) {
+    problem = std::string("the archive holds no ") + kind + " file GDAL reads" +
+              (all.empty() ? std::string(" (it is empty or unreadable)")
+                           : " (it holds " + joined(all, 8) + ")");
+  } else {
+    problem = std::string("the archive holds ") + std::to_string(data.size()) + " " + kind +
+              " files (" + joined(data, 8) + "): name one, e.g. " + root + "/" + data[0];
+  }
+  return "";
+}
+
 GdalDataset open_vector_dataset(const std::string& path, const std::string& stage) {
   ensure_gdal_registered();
   auto fail = [&](const std::string& what) {
@@ -55,9 +151,12 @@ GdalDataset open_vector_dataset(const std::string& path, const std::string& stag
     if (stat(path.c_str(), &st) != 0) fail("no such file or directory");
     if (S_ISREG(st.st_mode) && st.st_size == 0) fail("file is empty");
   }
+  std::string problem;
+  const std::string open_path = gdal_path(path, ArchiveContent::vector, problem);
+  if (open_path.empty()) fail(problem);
   GdalErrorCapture capture;
   GdalDataset ds(static_cast<GDALDataset*>(
-      GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+      GDALOpenEx(open_path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!ds) {
     const std::string why = capture.last_message();
     fail("cannot read as a vector data set" +

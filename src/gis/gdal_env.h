@@ -30,8 +30,19 @@ using GdalDataset = std::unique_ptr<GDALDataset, GdalDatasetCloser>;
 
 // Opens a vector data set read-only, with at least one layer. Throws Error(input) that
 // names the file and `stage`: no such file, an empty file, not a vector format GDAL
-// reads (with GDAL's reason), no layer.
+// reads (with GDAL's reason), no layer. An archive (.zip, .tar, .tgz, .tar.gz; .gz of
+// one file) is read through GDAL's virtual file systems, as downloads come (Natural
+// Earth's ne_10m_land.zip): its top level as one data set, or else the one vector file
+// it holds; several are named in the error, to pick one as /vsizip/FILE.zip/MEMBER.
 GdalDataset open_vector_dataset(const std::string& path, const std::string& stage);
+
+enum class ArchiveContent { vector, raster };
+// The path for GDAL to open `path` with: itself, unless it names an archive (see
+// open_vector_dataset): then "/vsizip/path" (or /vsitar/, /vsigzip/) where GDAL opens
+// that as `content` (a directory of shapefiles, an archive of one file), or else the one
+// member of that kind inside. Empty, with `problem` set, when the archive holds several
+// such files (named, to pick one) or none.
+std::string gdal_path(const std::string& path, ArchiveContent content, std::string& problem);
 
 // "name1, name2, ...": the data set's layers, for a message about a missing one.
 std::string layer_names(GDALDataset& ds);

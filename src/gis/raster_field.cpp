@@ -28,9 +28,12 @@ std::unique_ptr<GDALDataset> open_raster(const std::string& path, const std::str
   auto fail = [&](const std::string& problem) { raster_error(what, path, problem); };
   struct stat st {};
   if (path.rfind("/vsi", 0) != 0 && stat(path.c_str(), &st) != 0) fail("no such file");
+  std::string problem;
+  const std::string open_path = gdal_path(path, ArchiveContent::raster, problem);
+  if (open_path.empty()) fail(problem);
   GdalErrorCapture capture;
   std::unique_ptr<GDALDataset> ds(static_cast<GDALDataset*>(
-      GDALOpenEx(path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+      GDALOpenEx(open_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!ds) fail("cannot read as a raster (" + capture.last_message() + ")");
   if (ds->GetRasterCount() < 1) fail("has no raster band");
   double gt[6];

@@ -6,9 +6,11 @@
 
 #include <cmath>
 
+#include "core/error.h"
 #include "gis/crs.h"
 #include "gis/gdal_env.h"
 #include "support/test_support.h"
+#include "support/write_archive.h"
 #include "support/write_raster.h"
 
 using namespace isoquad;
@@ -64,4 +66,34 @@ TEST(RasterField, UnderAnExtentOnlyThatPartIsRead) {
   // Across the antimeridian (Fiji): both ends of the grid.
   const CrsInfo fiji = parse_crs("+proj=sterea +lat_0=-17.5 +lon_0=179 +datum=WGS84 +units=m", "t");
   EXPECT_LE(compare_under(path, fiji, {-300000, -300000, 300000, 300000}), 1.0);
+}
+
+// GEBCO's and EMODnet's grids come zipped, beside their licence texts: read as they are.
+TEST(RasterField, ReadsAZippedGridAsDownloaded) {
+  TempDir dir;
+  const std::string tif = world(dir);
+  const CrsInfo lonlat = parse_crs("EPSG:4326", "t");
+  const RasterField plain(tif, "--bathymetry", lonlat);
+  const std::string zip =
+      write_zip(dir.file("gebco_2024.zip"),
+                {{"GEBCO_2024_TID.pdf", "terms"}, {"gebco_2024/world.tif", read_file(tif)}});
+  const RasterField zipped(zip, "--bathymetry", lonlat);
+  for (const Point2 p : {Point2{-3.25, 48.25}, Point2{179.9, -17.6}, Point2{12.3, 45.6}})
+    EXPECT_EQ(zipped.sample(p), plain.sample(p)) << p.x << " " << p.y;
+  EXPECT_EQ(zipped.sample({-3.25, 48.25}), -3.25 + 1000 * 48.25);
+  // Two grids: the message names them and how to pick one.
+  const std::string two =
+      write_zip(dir.file("two.zip"), {{"a.tif", read_file(tif)}, {"b.tif", read_file(tif)}});
+  try {
+    check_raster(two, "--bathymetry");
+    ADD_FAILURE() << "no error for " << two;
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::input);
+    EXPECT_NE(std::string(e.what()).find(
+                  "--bathymetry '" + two +
+                  "': the archive holds 2 raster files (a.tif, b.tif): name one, e.g. /vsizip/" +
+                  two + "/a.tif"),
+              std::string::npos)
+        << e.what();
+  }
 }

@@ -4,6 +4,7 @@
 
 #include "core/error.h"
 #include "support/fixtures.h"
+#include "support/write_archive.h"
 
 using namespace isoquad;
 using namespace isoquad::test;
@@ -189,4 +190,46 @@ TEST(ReadPolygons, ABboxAcrossTheAntimeridianReadsWhatLiesBeyondIt) {
   const SourceData beyond = read_polygons(p);
   ASSERT_EQ(beyond.polygons.size(), 1u);
   EXPECT_EQ(beyond.polygons[0].part, 1);
+}
+
+// Downloads come zipped (Natural Earth's ne_10m_land.zip, a folder inside or not) or
+// gzipped: read as they are, through GDAL's virtual file systems.
+TEST(ReadPolygons, ReadsArchivesAsDownloaded) {
+  TempDir dir;
+  const std::string stem = sample("corsica.shp").substr(0, sample("corsica.shp").size() - 4);
+  const SourceData plain = read_polygons(params(stem + ".shp"));
+  auto expect_same = [&](const std::string& path, const SourceData& reference) {
+    SCOPED_TRACE(path);
+    const SourceData d = read_polygons(params(path));
+    ASSERT_EQ(d.polygons.size(), reference.polygons.size());
+    for (std::size_t i = 0; i < d.polygons.size(); ++i) {
+      ASSERT_EQ(d.polygons[i].rings.size(), reference.polygons[i].rings.size());
+      for (std::size_t k = 0; k < d.polygons[i].rings.size(); ++k)
+        EXPECT_TRUE(d.polygons[i].rings[k] == reference.polygons[i].rings[k]);
+    }
+    EXPECT_EQ(d.crs.wkt, reference.crs.wkt);
+  };
+  // At the top level (GDAL reads it as a folder of shapefiles), and in a folder beside a
+  // text file (the one shapefile inside).
+  expect_same(write_zip(dir.file("top.zip"), shapefile_members(stem, "")), plain);
+  auto in_folder = shapefile_members(stem, "ne_corsica/");
+  in_folder.emplace_back("ne_corsica/README.txt", "Made with Natural Earth.");
+  expect_same(write_zip(dir.file("Folder.ZIP"), in_folder), plain);
+  expect_same(write_gzip(dir.file("corsica.geojson.gz"), read_file(sample("corsica.geojson"))),
+              read_polygons(params(sample("corsica.geojson"))));
+
+  // Two shapefiles in two folders: which one is for the user to say, and how.
+  auto two = shapefile_members(stem, "a/");
+  for (auto& m : shapefile_members(stem, "b/")) two.push_back(m);
+  const std::string two_zip = write_zip(dir.file("two.zip"), two);
+  expect_error(params(two_zip), ErrorClass::input,
+               "the archive holds 2 vector files (a/corsica.shp, b/corsica.shp): name one, "
+               "e.g. /vsizip/" +
+                   two_zip + "/a/corsica.shp");
+  const SourceData picked = read_polygons(params("/vsizip/" + two_zip + "/b/corsica.shp"));
+  EXPECT_EQ(picked.polygons.size(), plain.polygons.size());
+  // Nothing to read.
+  expect_error(params(write_zip(dir.file("text.zip"), {{"README.txt", "no data"}})),
+               ErrorClass::input,
+               "the archive holds no vector file GDAL reads (it holds README.txt)");
 }
