@@ -14,7 +14,8 @@
 // builds ("cinz": no FMA, the same result on every platform): the faster build where
 // SLEEF has two (within 3.5 ulp of the exact value: sin, cos, atan2, log...), else the
 // one within 1 ulp (exp, pow, expm1...). With the 1-ulp builds of atan2 and log too,
-// France automatic took 17% more time than with glibc's functions; with these, 3 to 5%.
+// France automatic took 17% more time than with glibc's functions; with these, 3 to 5%
+// (and the smoothing's hottest calls now go two at a time: core/paired_math.h).
 // The executable's definitions interpose libm's for the whole process: isoquad's code,
 // and PROJ, GEOS, GDAL and CGAL as they call them (the linker exports them from the
 // executable, as shared libraries it links use them). A CLI test runs the binary with

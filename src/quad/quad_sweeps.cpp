@@ -6,6 +6,7 @@
 #include <memory>
 #include <thread>
 
+#include "core/paired_math.h"
 #include "mesh/locate.h"
 
 namespace isoquad {
@@ -178,9 +179,10 @@ class AlignedSmoother {
   std::vector<double> h_, theta_;
 };
 
-// The logistic function: a smooth step from 0 (x << 0) to 1 (x >> 0).
-double smooth_step(double x) {
-  return 1.0 / (1.0 + std::exp(-x));
+// The logistic function 1 / (1 + exp(-x)), a smooth step from 0 (x << 0) to 1 (x >> 0),
+// given exp(-x).
+double smooth_step_of(double exp_minus_x) {
+  return 1.0 / (1.0 + exp_minus_x);
 }
 
 // The angle at corner o of a quad whose corners run p, o, n counter-clockwise, in (-pi, pi]
@@ -211,47 +213,64 @@ double moving_corner_energy(const QuadMesh& m, const QuadTopology& t, int v,
     const int q = t.quad_items[k];
     const auto& c = m.quads[q];
     const int j = c[0] == v ? 0 : c[1] == v ? 1 : c[2] == v ? 2 : 3;
-    double smallest = opposite_angle[k - t.quad_start[v]], largest = smallest;
+    // The three moving corners' angles, the quad's sides and area, then the six smooth
+    // steps' exponentials two at a time (core/paired_math.h), and the terms added in
+    // the order of one quad's formula.
+    double cross[3], dot[3], l2[3], angle[3];
     for (int d = 3; d <= 5; ++d) {
       const int i = (j + d) % 4;
       const Point2 &p = m.points[c[(i + 3) % 4]], &o = m.points[c[i]],
                    &n = m.points[c[(i + 1) % 4]];
       const double ax = p.x - o.x, ay = p.y - o.y, bx = n.x - o.x, by = n.y - o.y;
-      const double cross = bx * ay - by * ax, dot = ax * bx + ay * by;
-      const double angle = std::atan2(cross, dot);
-      smallest = std::min(smallest, angle);
-      largest = std::max(largest, angle);
-      sharpest = std::min(sharpest, angle);
-      // quad_convexity's measure at this corner: the sine of the turn between edges.
-      const double l2 = (ax * ax + ay * ay) * (bx * bx + by * by);
-      if (l2 == 0 || cross <= params.min_convexity * std::sqrt(l2))
-        return std::numeric_limits<double>::infinity();
-      const double a = angle - 0.5 * M_PI;
-      e += a * a;
-      if (params.angle_range_weight > 0)
-        e += params.angle_range_weight * smooth_step((std::abs(a) - range) / softness);
+      cross[d - 3] = bx * ay - by * ax;
+      dot[d - 3] = ax * bx + ay * by;
+      l2[d - 3] = (ax * ax + ay * ay) * (bx * bx + by * by);
     }
-    if (params.angle_ratio_weight > 0)
-      e += params.angle_ratio_weight *
-           smooth_step((params.min_angle_ratio - smallest / largest) / params.angle_ratio_softness);
-    if (params.aspect_weight > 0 || params.aspect_log_weight > 0) {
-      double shortest = std::numeric_limits<double>::infinity(), longest = 0;
+    atan2_pair(cross[0], dot[0], cross[1], dot[1], angle[0], angle[1]);
+    angle[2] = std::atan2(cross[2], dot[2]);
+    double smallest = opposite_angle[k - t.quad_start[v]], largest = smallest;
+    double a[3];
+    for (int i = 0; i < 3; ++i) {
+      smallest = std::min(smallest, angle[i]);
+      largest = std::max(largest, angle[i]);
+      sharpest = std::min(sharpest, angle[i]);
+      // quad_convexity's measure at this corner: the sine of the turn between edges.
+      if (l2[i] == 0 || cross[i] <= params.min_convexity * std::sqrt(l2[i]))
+        return std::numeric_limits<double>::infinity();
+      a[i] = angle[i] - 0.5 * M_PI;
+    }
+    const bool aspect_terms = params.aspect_weight > 0 || params.aspect_log_weight > 0;
+    const bool size_terms = params.angle_area_weight > 0 || params.size_range_weight > 0;
+    double shortest = std::numeric_limits<double>::infinity(), longest = 0;
+    if (aspect_terms)
       for (int i = 0; i < 4; ++i) {
         const double l = distance(m.points[c[i]], m.points[c[(i + 1) % 4]]);
         shortest = std::min(shortest, l), longest = std::max(longest, l);
       }
-      if (shortest > 0) {
-        const double over = std::log(longest / shortest) - log_max_aspect;
-        e += params.aspect_weight * smooth_step(over / params.aspect_softness);
-        if (over > 0) e += params.aspect_log_weight * over;
-      }
+    double log_aspect, r;
+    log_pair(longest / shortest, size_terms ? quad_area(m, q) / area0[q] : 1.0, log_aspect, r);
+    const double over = log_aspect - log_max_aspect;
+    double ex[6];
+    exp_pair(-((std::abs(a[0]) - range) / softness), -((std::abs(a[1]) - range) / softness), ex[0],
+             ex[1]);
+    exp_pair(-((std::abs(a[2]) - range) / softness),
+             -((params.min_angle_ratio - smallest / largest) / params.angle_ratio_softness), ex[2],
+             ex[3]);
+    exp_pair(-(over / params.aspect_softness),
+             -((std::abs(r) - params.size_range_log_area) / params.size_range_softness), ex[4],
+             ex[5]);
+    for (int i = 0; i < 3; ++i) {
+      e += a[i] * a[i];
+      if (params.angle_range_weight > 0) e += params.angle_range_weight * smooth_step_of(ex[i]);
     }
-    if (params.angle_area_weight > 0 || params.size_range_weight > 0) {
-      const double r = std::log(quad_area(m, q) / area0[q]);
+    if (params.angle_ratio_weight > 0) e += params.angle_ratio_weight * smooth_step_of(ex[3]);
+    if (aspect_terms && shortest > 0) {
+      e += params.aspect_weight * smooth_step_of(ex[4]);
+      if (over > 0) e += params.aspect_log_weight * over;
+    }
+    if (size_terms) {
       e += params.angle_area_weight * r * r;
-      if (params.size_range_weight > 0)
-        e += params.size_range_weight *
-             smooth_step((std::abs(r) - params.size_range_log_area) / params.size_range_softness);
+      if (params.size_range_weight > 0) e += params.size_range_weight * smooth_step_of(ex[5]);
     }
   }
   return e;
