@@ -16,44 +16,42 @@
 
 namespace isoquad {
 
+// exp_pair: ea = exp(a), eb = exp(b); log_pair: la = log(a), lb = log(b); atan2_pair:
+// ta = atan2(ya, xa), tb = atan2(yb, xb); each exactly as std::exp, std::log and
+// std::atan2 give them in this process.
 #if defined(__x86_64__)
 namespace paired_math_detail {
 inline void split(__m128d r, double& ra, double& rb) {
   ra = _mm_cvtsd_f64(r);
   rb = _mm_cvtsd_f64(_mm_unpackhi_pd(r, r));
 }
+inline __m128d two(double a, double b) {
+  return _mm_set_pd(b, a);
+}
 }  // namespace paired_math_detail
-#endif
 
-// ea = exp(a), eb = exp(b), exactly as std::exp gives them in this process.
 inline void exp_pair(double a, double b, double& ea, double& eb) {
-#if defined(__x86_64__)
-  paired_math_detail::split(Sleef_cinz_expd2_u10sse2(_mm_set_pd(b, a)), ea, eb);
-#else
-  ea = Sleef_cinz_expd1_u10purec(a);
-  eb = Sleef_cinz_expd1_u10purec(b);
-#endif
+  using namespace paired_math_detail;
+  split(Sleef_cinz_expd2_u10sse2(two(a, b)), ea, eb);
 }
-
-// la = log(a), lb = log(b), exactly as std::log gives them in this process.
 inline void log_pair(double a, double b, double& la, double& lb) {
-#if defined(__x86_64__)
-  paired_math_detail::split(Sleef_cinz_logd2_u35sse2(_mm_set_pd(b, a)), la, lb);
-#else
-  la = Sleef_cinz_logd1_u35purec(a);
-  lb = Sleef_cinz_logd1_u35purec(b);
-#endif
+  using namespace paired_math_detail;
+  split(Sleef_cinz_logd2_u35sse2(two(a, b)), la, lb);
 }
-
-// ta = atan2(ya, xa), tb = atan2(yb, xb), exactly as std::atan2 gives them in this process.
 inline void atan2_pair(double ya, double xa, double yb, double xb, double& ta, double& tb) {
-#if defined(__x86_64__)
-  paired_math_detail::split(Sleef_cinz_atan2d2_u35sse2(_mm_set_pd(yb, ya), _mm_set_pd(xb, xa)), ta,
-                            tb);
-#else
-  ta = Sleef_cinz_atan2d1_u35purec(ya, xa);
-  tb = Sleef_cinz_atan2d1_u35purec(yb, xb);
-#endif
+  using namespace paired_math_detail;
+  split(Sleef_cinz_atan2d2_u35sse2(two(ya, yb), two(xa, xb)), ta, tb);
 }
+#else
+inline void exp_pair(double a, double b, double& ea, double& eb) {
+  ea = Sleef_cinz_expd1_u10purec(a), eb = Sleef_cinz_expd1_u10purec(b);
+}
+inline void log_pair(double a, double b, double& la, double& lb) {
+  la = Sleef_cinz_logd1_u35purec(a), lb = Sleef_cinz_logd1_u35purec(b);
+}
+inline void atan2_pair(double ya, double xa, double yb, double xb, double& ta, double& tb) {
+  ta = Sleef_cinz_atan2d1_u35purec(ya, xa), tb = Sleef_cinz_atan2d1_u35purec(yb, xb);
+}
+#endif
 
 }  // namespace isoquad
