@@ -9,11 +9,11 @@
 #include <sys/stat.h>
 
 #include <algorithm>
-#include <cctype>
 #include <mutex>
 #include <vector>
 
 #include "core/error.h"
+#include "core/text.h"
 
 namespace isoquad {
 
@@ -49,21 +49,11 @@ void GdalDatasetCloser::operator()(GDALDataset* ds) const {
 
 namespace {
 
-bool ends_with(const std::string& text, const std::string& tail) {
-  return text.size() >= tail.size() &&
-         text.compare(text.size() - tail.size(), tail.size(), tail) == 0;
-}
-
-std::string lower(std::string text) {
-  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return text;
-}
-
 // GDAL's virtual file system for an archive's name, or "" for another file (or a path
 // GDAL's virtual file systems already name).
 std::string archive_prefix(const std::string& path) {
   if (path.rfind("/vsi", 0) == 0) return "";
-  const std::string name = lower(path);
+  const std::string name = lower_case(path);
   if (ends_with(name, ".zip")) return "/vsizip/";
   if (ends_with(name, ".tar") || ends_with(name, ".tgz") || ends_with(name, ".tar.gz"))
     return "/vsitar/";
@@ -78,7 +68,7 @@ bool is_data_member(const std::string& member, ArchiveContent content) {
                                         ".gml", ".fgb",  ".sqlite",  ".tab",  ".mif",      ".gdb"};
   static const char* const kRaster[] = {".tif", ".tiff", ".nc",  ".asc", ".vrt", ".img",
                                         ".grd", ".bil",  ".hgt", ".jp2", ".dem", ".bag"};
-  const std::string name = lower(member);
+  const std::string name = lower_case(member);
   if (content == ArchiveContent::vector) {
     for (const char* ext : kVector)
       if (ends_with(name, ext)) return true;

@@ -5,6 +5,7 @@
 #include <map>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "gis/atomic_output.h"
 #include "gis/crs.h"
 #include "gis/gpkg_writer.h"
@@ -15,11 +16,6 @@
 namespace isoquad {
 
 namespace {
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 const std::map<std::string, MeshFormat>& format_names() {
   static const std::map<std::string, MeshFormat> names = {
@@ -199,8 +195,9 @@ bool unwrap_antimeridian(const QuadMesh& mesh, std::vector<Point2>& lonlat) {
 }
 
 MeshFormat mesh_output_format(const MeshOutput& out) {
-  const std::string ext = lower(std::filesystem::path(out.path).extension().string());
-  const std::string name = out.format.empty() ? (ext.empty() ? "" : ext.substr(1)) : lower(out.format);
+  const std::string ext = lower_case(std::filesystem::path(out.path).extension().string());
+  const std::string name =
+      out.format.empty() ? (ext.empty() ? "" : ext.substr(1)) : lower_case(out.format);
   const auto it = format_names().find(name);
   if (it == format_names().end())
     throw Error(ErrorClass::usage, "options",
