@@ -45,6 +45,7 @@ TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
   geom.barrier = corner_barriers(mesh, size, params.barriers);
   RepairParams repair;
   repair.graph = params.graph;
+  repair.verify_updates = params.verify_repairs;
   TilingResult result;
   Tiling& tiling = result.tiling;
 

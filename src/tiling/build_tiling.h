@@ -49,6 +49,7 @@ struct TilingParams {
   MetaGraphParams graph;
   CornerBarrierParams barriers;  // --corner-barrier
   TilingStep stop_after = TilingStep::none;  // --stop-after; none: the whole job
+  bool verify_repairs = false;               // RepairParams::verify_updates (tests)
 };
 
 // What one step did, for the report (--report) and the summary.

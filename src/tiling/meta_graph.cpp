@@ -29,19 +29,14 @@ MetaGraph build_meta_graph(const BackgroundMesh& mesh, const Tiling& tiling,
   MetaGraph g;
 
   // Meta-vertices (2.1): >= 3 tiles inside, >= 2 on the boundary, or a boundary corner.
-  std::vector<char> is_corner(num_vertices, 0);
-  for (const BoundaryChain& chain : mesh.chains)
-    for (std::size_t k = 0; k < chain.vertices.size(); ++k)
-      if (chain.is_corner[k]) is_corner[chain.vertices[k]] = 1;
+  const std::vector<char> is_corner = corner_flags(mesh);
   g.meta_index.assign(num_vertices, -1);
   for (int v = 0; v < num_vertices; ++v) {
-    const bool boundary = mesh.boundary_chain_of_vertex[v] >= 0;
-    const bool meta = boundary ? (sectors[v] >= 2 || is_corner[v]) : sectors[v] >= 3;
-    if (!meta) continue;
+    if (!is_meta_vertex(mesh, sectors, is_corner, v)) continue;
     g.meta_index[v] = static_cast<int>(g.vertices.size());
     g.vertices.push_back(v);
     g.vertex_num_tiles.push_back(sectors[v]);
-    g.vertex_on_boundary.push_back(boundary ? 1 : 0);
+    g.vertex_on_boundary.push_back(mesh.boundary_chain_of_vertex[v] >= 0 ? 1 : 0);
   }
 
   // Meta-edges: the runs of each boundary cycle between meta-vertices. The twin run (the
@@ -95,12 +90,34 @@ MetaGraph build_meta_graph(const BackgroundMesh& mesh, const Tiling& tiling,
   return g;
 }
 
-std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const MetaGraph& graph,
-                         std::optional<Point2>* where) {
-  auto at = [&](const Point2& p) {
-    if (where) *where = p;
-    return format_point(p);
-  };
+std::vector<char> corner_flags(const BackgroundMesh& mesh) {
+  std::vector<char> is_corner(mesh.points.size(), 0);
+  for (const BoundaryChain& chain : mesh.chains)
+    for (std::size_t k = 0; k < chain.vertices.size(); ++k)
+      if (chain.is_corner[k]) is_corner[chain.vertices[k]] = 1;
+  return is_corner;
+}
+
+std::vector<int> count_tile_meta_vertices(const BackgroundMesh& mesh,
+                                          const std::vector<int>& sectors,
+                                          const TileBoundaries& b) {
+  // build_meta_graph starts a meta-edge, and lists its first meta-vertex, at every
+  // half-edge of the outer cycle that leaves a meta-vertex.
+  const std::vector<char> is_corner = corner_flags(mesh);
+  std::vector<int> count(b.tile_outer_cycle.size(), 0);
+  for (std::size_t t = 0; t < count.size(); ++t) {
+    const int c = b.tile_outer_cycle[t];
+    if (c < 0) continue;
+    for (int k = b.cycle_begin[c]; k < b.cycle_begin[c + 1]; ++k)
+      if (is_meta_vertex(mesh, sectors, is_corner, halfedge_from(mesh, b.halfedges[k]))) ++count[t];
+  }
+  return count;
+}
+
+namespace {
+
+// What is wrong with the labelling itself (its size, labels outside the tiles), or "".
+std::string labelling_problem(const BackgroundMesh& mesh, const Tiling& tiling) {
   const int num_faces = static_cast<int>(mesh.triangles.size());
   const int num_tiles = tiling.num_tiles();
   const std::vector<int>& label = tiling.label;
@@ -111,6 +128,30 @@ std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const
     if (label[f] < 0 || label[f] >= num_tiles)
       return "triangle " + std::to_string(f) + " has label " + std::to_string(label[f]) +
              " outside [0, " + std::to_string(num_tiles) + ")";
+  return "";
+}
+
+}  // namespace
+
+std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const MetaGraph& graph,
+                         std::optional<Point2>* where) {
+  const std::string problem = labelling_problem(mesh, tiling);
+  if (!problem.empty()) return problem;
+  return check_tiling(mesh, tiling, graph,
+                      walk_tile_boundaries(mesh, tiling.label, tiling.num_tiles()), where);
+}
+
+std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const MetaGraph& graph,
+                         const TileBoundaries& b, std::optional<Point2>* where) {
+  auto at = [&](const Point2& p) {
+    if (where) *where = p;
+    return format_point(p);
+  };
+  const int num_faces = static_cast<int>(mesh.triangles.size());
+  const int num_tiles = tiling.num_tiles();
+  const std::vector<int>& label = tiling.label;
+  const std::string problem = labelling_problem(mesh, tiling);
+  if (!problem.empty()) return problem;
   if (static_cast<int>(graph.tiles.size()) != num_tiles)
     return "the meta-graph has " + std::to_string(graph.tiles.size()) + " tiles, the tiling " +
            std::to_string(num_tiles);
@@ -140,7 +181,6 @@ std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const
   for (int t = 0; t < num_tiles; ++t)
     if (!tile_seen[t]) return "tile " + std::to_string(t) + " is empty";
 
-  const TileBoundaries b = walk_tile_boundaries(mesh, label, num_tiles);
   for (int t = 0; t < num_tiles; ++t)
     if (b.tile_num_cycles[t] != 1)
       return "tile " + std::to_string(t) + " is not a disk: " +

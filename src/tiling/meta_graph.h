@@ -58,6 +58,22 @@ MetaGraph build_meta_graph(const BackgroundMesh& mesh, const Tiling& tiling,
 MetaGraph build_meta_graph(const BackgroundMesh& mesh, const Tiling& tiling,
                            const std::vector<int>& sectors, const TileBoundaries& b);
 
+// #V 1 at the domain boundary's corners (BoundaryChain::is_corner).
+std::vector<char> corner_flags(const BackgroundMesh& mesh);
+
+// Whether background vertex v is a meta-vertex, from the sectors round it
+// (count_vertex_sectors) and the corner flags.
+inline bool is_meta_vertex(const BackgroundMesh& mesh, const std::vector<int>& sectors,
+                           const std::vector<char>& is_corner, int v) {
+  return mesh.boundary_chain_of_vertex[v] >= 0 ? (sectors[v] >= 2 || is_corner[v] != 0)
+                                               : sectors[v] >= 3;
+}
+
+// #T the meta-vertices on each tile's outer cycle, as many as build_meta_graph's
+// tiles[t].vertices would hold, without building the graph.
+std::vector<int> count_tile_meta_vertices(const BackgroundMesh& mesh,
+                                          const std::vector<int>& sectors, const TileBoundaries& b);
+
 // The invariants that every tiling step keeps (checked in tests and debug builds):
 // every triangle labelled, every tile non-empty, connected and a topological disk (one
 // boundary cycle), every tile with at least 3 meta-vertices. Returns "" when they hold,
@@ -65,6 +81,9 @@ MetaGraph build_meta_graph(const BackgroundMesh& mesh, const Tiling& tiling,
 // and the violation has a place).
 std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const MetaGraph& graph,
                          std::optional<Point2>* where = nullptr);
+// The same with the tiles' boundaries of these labels (walk_tile_boundaries) at hand.
+std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const MetaGraph& graph,
+                         const TileBoundaries& b, std::optional<Point2>* where = nullptr);
 
 // A tiling whose invariants (check_tiling) the repairs cannot restore: Error(meshing),
 // with the place when the violation has one (a retry can refine the sizes there).

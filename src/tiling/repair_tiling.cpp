@@ -93,44 +93,72 @@ class Repairer {
     turning_deg_ = vertex_turning_angles_deg(mesh);
     face_stamp_.assign(num_faces, 0);
     vertex_stamp_.assign(num_vertices, 0);
+    cycle_stamp_.assign(num_vertices, 0);
     vertex_parent_.assign(num_vertices, -1);
     split_attempts_.assign(num_vertices, 0);
     dist_.assign(num_faces, 0.0);
     part_.assign(num_faces, 0);
     changed_.assign(tiling.num_tiles(), 0);
+    reshaped_.assign(tiling.num_tiles(), 0);
+    tile_size_.assign(tiling.num_tiles(), 0);
+    for (int t : label_) ++tile_size_[t];
+    visited_.assign(3 * static_cast<std::size_t>(num_faces), 0);
+    on_domain_boundary_.assign(num_vertices, 0);
+    for (int f = 0; f < num_faces; ++f)
+      for (int i = 0; i < 3; ++i)
+        if (mesh.neighbours[f][i] < 0)
+          on_domain_boundary_[mesh.triangles[f][(i + 1) % 3]] =
+              on_domain_boundary_[mesh.triangles[f][(i + 2) % 3]] = 1;
   }
 
   RepairStats run(MetaGraph* graph_out) {
     MetaGraph graph;
     bool clean = false;  // the last round found nothing to fix: `graph` is current
+    // The tiles' boundaries and the tiles round every vertex, of the labels as they are:
+    // the labels change only with a fix, after which the round ends, so they are those
+    // of the labels each fix below reads. The meta-graph is built once, at the end: the
+    // fixes need only each tile's number of meta-vertices.
+    TileBoundaries b;
+    std::vector<int> sectors;
     for (stats_.rounds = 0; stats_.rounds < params_.max_rounds; ++stats_.rounds) {
       touched_.assign(tiling_.num_tiles(), 0);
-      // The fragments, and the tiles' boundaries with the tiles round every vertex, read
-      // the same labels: found at once on two threads. The boundaries and sectors serve
-      // when there is no fragment; the labels change only with a fix, after which the
-      // round ends, so they are those of the labels each fix below reads.
+      // The first round, or one after a fix that left a tile in pieces, finds the
+      // fragments and, at once on another thread, the boundaries and sectors from all
+      // the labels. The others update the boundaries and sectors round the tiles the fix
+      // changed: the tiles it did not change are as connected as they were.
       FragmentMoves fragments;
-      TileBoundaries b;
-      std::vector<int> sectors;
-      run_in_parallel([&] { fragments = find_fragments(); },
-                      [&] {
-                        b = walk_tile_boundaries(mesh_, label_, tiling_.num_tiles());
-                        sectors = count_vertex_sectors(mesh_, label_);
-                      });
+      if (stats_.rounds == 0 || !update(b, sectors)) {
+        run_in_parallel([&] { fragments = find_fragments(); },
+                        [&] {
+                          b = walk_tile_boundaries(mesh_, label_, tiling_.num_tiles());
+                          sectors = count_vertex_sectors(mesh_, label_);
+                        });
+      } else {
+        ++stats_.rounds_updated;
+        if (params_.verify_updates) verify(b, sectors);
+      }
+      forget_fixes();
       if (apply_fragments(fragments) > 0) continue;
       if (fix_holes(b) > 0) continue;
       if (fix_pinches(b) > 0) continue;
-      // Both fixes below read the sectors; the first changes nothing unless it fixes
-      // something (and the round ends).
-      graph = build_meta_graph(mesh_, tiling_, sectors, b);
-      if (fix_small_tiles(b, graph, sectors) > 0) continue;
+      // Both fixes below read the sectors; each changes nothing (labels or corner tags)
+      // unless it fixes something (and the round ends).
+      const std::vector<int> meta_vertices = count_tile_meta_vertices(mesh_, sectors, b);
+      if (params_.verify_updates) verify_counts(b, sectors, meta_vertices);
+      if (fix_small_tiles(b, meta_vertices, sectors) > 0) continue;
       if (fix_reflex_corners(sectors) > 0) continue;
       clean = true;
+      graph = build_meta_graph(mesh_, tiling_, sectors, b);
       break;
     }
-    if (compact() || !clean) graph = build_meta_graph(mesh_, tiling_, params_.graph);
     std::optional<Point2> where;
-    const std::string problem = check_tiling(mesh_, tiling_, graph, &where);
+    std::string problem;
+    if (compact() || !clean) {  // labels renumbered, or the rounds gave up
+      graph = build_meta_graph(mesh_, tiling_, params_.graph);
+      problem = check_tiling(mesh_, tiling_, graph, &where);
+    } else {
+      problem = check_tiling(mesh_, tiling_, graph, b, &where);
+    }
     if (graph_out) *graph_out = std::move(graph);
     if (!problem.empty())
       throw TilingError("cannot restore the tiling invariants after " + std::to_string(stats_.rounds) +
@@ -146,16 +174,161 @@ class Repairer {
   }
 
   void relabel(int f, int tile) {
-    changed_[label_[f]] = 1;
+    const int old = label_[f];
+    changed_[old] = 1;
     changed_[tile] = 1;
+    if (old == tile) return;
     label_[f] = tile;
+    --tile_size_[old];
+    ++tile_size_[tile];
+    relabelled_.push_back(f);
+    for (int t : {old, tile})
+      if (!reshaped_[t]) {
+        reshaped_[t] = 1;
+        reshaped_tiles_.push_back(t);
+      }
   }
 
   int new_tile() {
     tiling_.generator.push_back(-1);
     changed_.push_back(1);
     touched_.push_back(1);
+    reshaped_.push_back(0);
+    tile_size_.push_back(0);
     return tiling_.num_tiles() - 1;
+  }
+
+  // --- The rounds' structures, updated round the tiles a fix changed (see run) ---
+
+  void forget_fixes() {
+    for (int t : reshaped_tiles_) reshaped_[t] = 0;
+    reshaped_tiles_.clear();
+    relabelled_.clear();
+  }
+
+  // Brings the boundaries and sectors of the labels before the last fix up to those of
+  // the labels now. False (nothing changed) when a tile the fix changed is in pieces:
+  // the fragments must then be found, from all the labels.
+  bool update(TileBoundaries& b, std::vector<int>& sectors) {
+    const int num_tiles = tiling_.num_tiles();
+    // A triangle of each changed tile that still has any: the tile was connected, so
+    // one of its triangles is, or borders, a relabelled one.
+    std::vector<int>& start = start_of_tile_;
+    start.assign(num_tiles, -1);
+    for (int f : relabelled_) {
+      if (start[label_[f]] < 0) start[label_[f]] = f;
+      for (int g : mesh_.neighbours[f])
+        if (g >= 0 && reshaped_[label_[g]] && start[label_[g]] < 0) start[label_[g]] = g;
+    }
+    // Each changed tile's cycles, walked from its triangles in the order of their ids,
+    // as the walk over all the labels meets them.
+    TileBoundaries walked;
+    walked.tile_outer_cycle.assign(num_tiles, -1);
+    walked.tile_num_cycles.assign(num_tiles, 0);
+    walked.cycle_begin.push_back(0);
+    auto in_pieces = [&] {
+      for (int h : walked.halfedges) visited_[h] = 0;
+      return false;
+    };
+    for (int t : reshaped_tiles_) {
+      if (tile_size_[t] == 0) continue;
+      if (start[t] < 0) return in_pieces();
+      tile_faces_ = collect(start[t], t);
+      if (static_cast<int>(tile_faces_.size()) != tile_size_[t]) return in_pieces();
+      std::sort(tile_faces_.begin(), tile_faces_.end());
+      for (int f : tile_faces_)
+        for (int i = 0; i < 3; ++i) {
+          const int h = 3 * f + i;
+          if (visited_[h] || !is_tile_boundary(mesh_, label_, h)) continue;
+          const CycleWalk w = walk_boundary_cycle(mesh_, label_, h, visited_, cycle_stamp_,
+                                                  ++cycle_round_, walked.halfedges);
+          close_cycle(walked, t, w);
+        }
+    }
+    for (int h : walked.halfedges) visited_[h] = 0;
+
+    // The cycles of the unchanged tiles and the new ones, by their first half-edges.
+    std::vector<std::pair<int, int>> cycles;  // (first half-edge, old cycle or -1 - new cycle)
+    cycles.reserve(b.num_cycles() + walked.num_cycles());
+    for (int c = 0; c < b.num_cycles(); ++c)
+      if (!reshaped_[b.cycle_tile[c]]) cycles.push_back({b.halfedges[b.cycle_begin[c]], c});
+    for (int c = 0; c < walked.num_cycles(); ++c)
+      cycles.push_back({walked.halfedges[walked.cycle_begin[c]], -1 - c});
+    std::sort(cycles.begin(), cycles.end());
+    TileBoundaries merged;
+    merged.halfedges.reserve(b.halfedges.size() + walked.halfedges.size());
+    merged.cycle_begin.reserve(cycles.size() + 1);
+    merged.cycle_begin.push_back(0);
+    merged.tile_outer_cycle.assign(num_tiles, -1);
+    merged.tile_num_cycles.assign(num_tiles, 0);
+    for (const auto& [first, id] : cycles) {
+      const TileBoundaries& from = id >= 0 ? b : walked;
+      const int c = id >= 0 ? id : -1 - id;
+      merged.halfedges.insert(merged.halfedges.end(), from.halfedges.begin() + from.cycle_begin[c],
+                              from.halfedges.begin() + from.cycle_begin[c + 1]);
+      close_cycle(merged, from.cycle_tile[c], {from.cycle_area_m2[c], from.cycle_pinch[c]});
+    }
+    b = std::move(merged);
+
+    // The sectors round the relabelled triangles' vertices.
+    sectors.resize(mesh_.points.size());
+    const int mark = ++vertex_round_;
+    for (int f : relabelled_)
+      for (int v : mesh_.triangles[f])
+        if (vertex_stamp_[v] != mark) {
+          vertex_stamp_[v] = mark;
+          sectors[v] = sectors_at(v);
+        }
+    return true;
+  }
+
+  // count_vertex_sectors at one vertex.
+  int sectors_at(int v) const {
+    int changes = 0;
+    for (int k = vertex_begin_[v]; k < vertex_begin_[v + 1]; ++k) {
+      const int f = vertex_faces_[k];
+      const auto& t = mesh_.triangles[f];
+      for (int i = 0; i < 3; ++i) {
+        if (t[i] == v) continue;  // the edge opposite v does not end at v
+        const int g = mesh_.neighbours[f][i];
+        if (g > f && label_[g] != label_[f]) ++changes;
+      }
+    }
+    return on_domain_boundary_[v] ? changes + 1 : std::max(changes, 1);
+  }
+
+  // RepairParams::verify_updates: the meta-vertices counted per tile against the graph's.
+  void verify_counts(const TileBoundaries& b, const std::vector<int>& sectors,
+                     const std::vector<int>& meta_vertices) {
+    const MetaGraph graph = build_meta_graph(mesh_, tiling_, sectors, b);
+    for (int t = 0; t < tiling_.num_tiles(); ++t)
+      if (meta_vertices[t] != static_cast<int>(graph.tiles[t].vertices.size()))
+        throw Error(ErrorClass::internal, "tiling",
+                    "repair round " + std::to_string(stats_.rounds) + ": tile " +
+                        std::to_string(t) + " has " + std::to_string(meta_vertices[t]) +
+                        " meta-vertices by count, " +
+                        std::to_string(graph.tiles[t].vertices.size()) + " in the graph");
+  }
+
+  // RepairParams::verify_updates: the updated structures against those of all the labels.
+  void verify(const TileBoundaries& b, const std::vector<int>& sectors) {
+    const TileBoundaries all = walk_tile_boundaries(mesh_, label_, tiling_.num_tiles());
+    const char* what = nullptr;
+    if (!find_fragments().moves.empty())
+      what = "a fragment";
+    else if (sectors != count_vertex_sectors(mesh_, label_))
+      what = "the vertex sectors";
+    else if (b.halfedges != all.halfedges || b.cycle_begin != all.cycle_begin)
+      what = "the cycles";
+    else if (b.cycle_tile != all.cycle_tile || b.cycle_area_m2 != all.cycle_area_m2 ||
+             b.cycle_pinch != all.cycle_pinch)
+      what = "the cycles' tiles, areas or pinches";
+    else if (b.tile_outer_cycle != all.tile_outer_cycle || b.tile_num_cycles != all.tile_num_cycles)
+      what = "the tiles' cycles";
+    if (what)
+      throw Error(ErrorClass::internal, "tiling",
+                  std::string("repair round ") + std::to_string(stats_.rounds) + ": " + what +
+                      " differ from those of all the labels");
   }
 
   // The triangles of `tile` connected to `start` (which must carry that label).
@@ -448,15 +621,16 @@ class Repairer {
     return next_on_boundary_[v] >= 0 && turning_deg_[v] < 0.0;
   }
 
-  // Tiles with fewer than 3 meta-vertices join the neighbour they share the longest
-  // boundary with, unless that would leave a reflex corner in a single tile.
-  int fix_small_tiles(const TileBoundaries& b, const MetaGraph& graph,
+  // Tiles with fewer than 3 meta-vertices (count_tile_meta_vertices) join the neighbour
+  // they share the longest boundary with, unless that would leave a reflex corner in a
+  // single tile.
+  int fix_small_tiles(const TileBoundaries& b, const std::vector<int>& meta_vertices,
                       const std::vector<int>& sectors) {
     int fixes = 0;
     SharedLengths shared;
     std::vector<int> forbidden;
     for (int t = 0; t < tiling_.num_tiles(); ++t) {
-      if (graph.tiles[t].vertices.size() >= 3 || touched_[t]) continue;
+      if (touched_[t] || meta_vertices[t] >= 3) continue;  // new tiles are touched
       const int c = b.tile_outer_cycle[t];
       if (c < 0) continue;
       shared.clear();
@@ -757,6 +931,15 @@ class Repairer {
   std::vector<double> dist_;  // #F scratch of split_from_corner
   std::vector<int> part_;     // #F scratch of split_from_corner
   std::vector<char> changed_, touched_;
+  // Since the round's structures were found: the triangles relabelled, the tiles they
+  // left or joined (reshaped_ #T), and every tile's number of triangles.
+  std::vector<int> relabelled_, reshaped_tiles_, tile_size_;
+  std::vector<char> reshaped_;
+  std::vector<char> on_domain_boundary_;  // #V
+  std::vector<char> visited_;             // #3F scratch of update, all 0 between calls
+  std::vector<int> cycle_stamp_;          // #V scratch of update
+  int cycle_round_ = 0;
+  std::vector<int> start_of_tile_, tile_faces_;
 };
 
 }  // namespace

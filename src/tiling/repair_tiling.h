@@ -24,6 +24,10 @@ struct RepairParams {
   // tag (demote_corner).
   int max_corner_splits = 4;
   int max_rounds = 200;
+  // Checks every round's structures, brought up to date from the tiles a fix changed,
+  // against those found again from all the labels (slow; for tests). A difference is an
+  // internal error.
+  bool verify_updates = false;
 };
 
 struct RepairStats {
@@ -36,6 +40,7 @@ struct RepairStats {
   int corners_demoted = 0;     // reflex corners whose tag was cleared (see RepairParams)
   int corners_added = 0;       // islands of about one tile given four corners
   int rounds = 0;
+  int rounds_updated = 0;  // rounds whose structures were updated from the last fix
   int total() const {
     return fragments_merged + enclosed_merged + rings_cut + pinches_split + small_tiles_merged +
            tiles_split;
@@ -43,11 +48,13 @@ struct RepairStats {
 };
 
 // Repairs in rounds, one kind of violation per round in the order above, until
-// check_tiling passes. Tile ids are renumbered when tiles disappear (surviving tiles keep
-// their order); tiles whose triangles changed get the relocated generator (2.3), others
-// keep theirs. Throws Error(meshing) when the invariants still fail after max_rounds.
-// The mesh's corner tags may be cleared (RepairParams::max_corner_splits). With `graph`,
-// also gives the meta-graph of the repaired tiling (built for the final check anyway).
+// check_tiling passes. The first round finds the tiles' fragments, boundaries and vertex
+// sectors from all the labels; later rounds update them round the tiles the last fix
+// changed (the same structures, at a fraction of the cost). Tile ids are renumbered when tiles
+// disappear (surviving tiles keep their order); tiles whose triangles changed get the relocated
+// generator (2.3), others keep theirs. Throws Error(meshing) when the invariants still fail after
+// max_rounds. The mesh's corner tags may be cleared (RepairParams::max_corner_splits). With
+// `graph`, also gives the meta-graph of the repaired tiling (built for the final check anyway).
 RepairStats repair_tiling(BackgroundMesh& mesh, const TriangleGeometry& geom,
                           Tiling& tiling, const RepairParams& params = RepairParams(),
                           MetaGraph* graph = nullptr);

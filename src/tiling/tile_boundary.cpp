@@ -65,6 +65,38 @@ std::vector<double> vertex_turning_angles_deg(const BackgroundMesh& mesh) {
   return angle;
 }
 
+CycleWalk walk_boundary_cycle(const BackgroundMesh& mesh, const std::vector<int>& label, int start,
+                              std::vector<char>& visited, std::vector<int>& vertex_stamp, int stamp,
+                              std::vector<int>& halfedges) {
+  CycleWalk w;
+  const Point2 origin = mesh.points[halfedge_from(mesh, start)];
+  double twice_area = 0.0;
+  int h = start;
+  do {
+    visited[h] = 1;
+    halfedges.push_back(h);
+    const int a = halfedge_from(mesh, h), c = halfedge_to(mesh, h);
+    if (vertex_stamp[a] == stamp && w.pinch < 0) w.pinch = a;
+    vertex_stamp[a] = stamp;
+    const Point2 &pa = mesh.points[a], &pc = mesh.points[c];
+    twice_area += (pa.x - origin.x) * (pc.y - origin.y) - (pc.x - origin.x) * (pa.y - origin.y);
+    h = next_tile_boundary_halfedge(mesh, label, h);
+  } while (h != start);
+  w.area_m2 = 0.5 * twice_area;
+  return w;
+}
+
+void close_cycle(TileBoundaries& b, int tile, const CycleWalk& walk) {
+  const int cycle = b.num_cycles();
+  b.cycle_begin.push_back(static_cast<int>(b.halfedges.size()));
+  b.cycle_tile.push_back(tile);
+  b.cycle_area_m2.push_back(walk.area_m2);
+  b.cycle_pinch.push_back(walk.pinch);
+  ++b.tile_num_cycles[tile];
+  const int outer = b.tile_outer_cycle[tile];
+  if (outer < 0 || walk.area_m2 > b.cycle_area_m2[outer]) b.tile_outer_cycle[tile] = cycle;
+}
+
 TileBoundaries walk_tile_boundaries(const BackgroundMesh& mesh, const std::vector<int>& label,
                                     int num_tiles) {
   const int num_faces = static_cast<int>(mesh.triangles.size());
@@ -79,30 +111,9 @@ TileBoundaries walk_tile_boundaries(const BackgroundMesh& mesh, const std::vecto
     for (int i = 0; i < 3; ++i) {
       const int start = 3 * f + i;
       if (visited[start] || !is_tile_boundary(mesh, label, start)) continue;
-      const int cycle = b.num_cycles();
-      const int tile = label[f];
-      const Point2 origin = mesh.points[halfedge_from(mesh, start)];
-      double twice_area = 0.0;
-      int pinch = -1;
-      int h = start;
-      do {
-        visited[h] = 1;
-        b.halfedges.push_back(h);
-        const int a = halfedge_from(mesh, h), c = halfedge_to(mesh, h);
-        if (stamp[a] == cycle + 1 && pinch < 0) pinch = a;
-        stamp[a] = cycle + 1;
-        const Point2 &pa = mesh.points[a], &pc = mesh.points[c];
-        twice_area += (pa.x - origin.x) * (pc.y - origin.y) - (pc.x - origin.x) * (pa.y - origin.y);
-        h = next_tile_boundary_halfedge(mesh, label, h);
-      } while (h != start);
-      b.cycle_begin.push_back(static_cast<int>(b.halfedges.size()));
-      b.cycle_tile.push_back(tile);
-      b.cycle_area_m2.push_back(0.5 * twice_area);
-      b.cycle_pinch.push_back(pinch);
-      ++b.tile_num_cycles[tile];
-      const int outer = b.tile_outer_cycle[tile];
-      if (outer < 0 || b.cycle_area_m2[cycle] > b.cycle_area_m2[outer])
-        b.tile_outer_cycle[tile] = cycle;
+      const CycleWalk w =
+          walk_boundary_cycle(mesh, label, start, visited, stamp, b.num_cycles() + 1, b.halfedges);
+      close_cycle(b, label[f], w);
     }
   }
   return b;

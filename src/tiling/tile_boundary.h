@@ -62,8 +62,24 @@ struct TileBoundaries {
   int num_cycles() const { return static_cast<int>(cycle_tile.size()); }
 };
 
-// Walks every tile boundary. Labels must lie in [0, num_tiles).
+// Walks every tile boundary. Labels must lie in [0, num_tiles). The cycles come in the
+// order of their first half-edge (the smallest id in the cycle), each starting there.
 TileBoundaries walk_tile_boundaries(const BackgroundMesh& mesh, const std::vector<int>& label,
                                     int num_tiles);
+
+// The pieces of that walk, for callers that walk some tiles again (the repairs).
+struct CycleWalk {
+  double area_m2 = 0.0;  // signed area
+  int pinch = -1;        // a vertex the cycle passes twice, or -1
+};
+// Walks the cycle of tile boundary half-edge `start`: appends its half-edges to
+// `halfedges` and marks them in `visited` (#3F). `vertex_stamp` (#V) must hold no
+// `stamp` before the walk: the walk writes it at the cycle's vertices.
+CycleWalk walk_boundary_cycle(const BackgroundMesh& mesh, const std::vector<int>& label, int start,
+                              std::vector<char>& visited, std::vector<int>& vertex_stamp, int stamp,
+                              std::vector<int>& halfedges);
+// Ends the cycle of `tile` whose half-edges were appended last to b.halfedges (b's
+// per-tile arrays sized for every tile).
+void close_cycle(TileBoundaries& b, int tile, const CycleWalk& walk);
 
 }  // namespace isoquad

@@ -19,6 +19,7 @@
 #include "tiling/corner_barriers.h"
 #include "tiling/flood_tiling.h"
 #include "tiling/meta_graph.h"
+#include "tiling/repair_tiling.h"
 #include "tiling/seed_tiling.h"
 #include "unit/mesh/test_domains.h"
 #include "unit/tiling/tiling_fixtures.h"
@@ -267,6 +268,46 @@ TEST(Tiling, CoastlineWithIslandsKeepsInvariants) {
     p.stop_after = s;
     const TilingResult r = build_tiling(f.mesh, f.size, f.cross, p);
     EXPECT_EQ(check_tiling(f.mesh, r.tiling, r.graph), "") << r.steps.back().step;
+  }
+}
+
+TEST(Tiling, RepairsUpdateTheirStructuresAsTheLabelsWouldGiveThem) {
+  // Brittany's water (islands: rings, holes, enclosed tiles) and France, automatic sizes:
+  // every round's boundaries, sectors and fragments, updated from the last fix, equal
+  // those found from all the labels (RepairParams::verify_updates throws otherwise).
+  FieldsOptions brittany;
+  brittany.front.read.path = sample("brittany_land.shp");
+  brittany.front.kind = DomainKind::water;
+  brittany.front.read.bbox = std::array<double, 4>{-3.6, 47.2, -2.4, 47.9};
+  brittany.sizing.hmax_m = 3000.0;
+  FieldsOptions france;
+  france.front.read.path = sample("france.shp");
+  france.sizing.hmax_m = 28000.0;
+  for (const FieldsOptions& o : {brittany, france}) {
+    FieldsResult f = build_fields(o);
+    tag_corners(f.mesh, f.size, CornerParams());
+    TilingParams p;
+    p.verify_repairs = true;
+    TilingResult r;
+    EXPECT_NO_THROW(r = build_tiling(f.mesh, f.size, f.cross, p)) << o.front.read.path;
+    EXPECT_EQ(check_tiling(f.mesh, r.tiling, r.graph), "") << o.front.read.path;
+
+    // A tiling broken on purpose: every 7th triangle given to the tile across its first
+    // edge (fragments, pinches, tiles wrapping others, small tiles at once).
+    Tiling broken = r.tiling;
+    for (std::size_t k = 0; k < broken.label.size(); k += 7) {
+      const int g = f.mesh.neighbours[k][0];
+      if (g >= 0) broken.label[k] = r.tiling.label[g];
+    }
+    RepairParams rp;
+    rp.verify_updates = true;
+    RepairStats stats;
+    EXPECT_NO_THROW(stats = repair_tiling(f.mesh, triangle_geometry(f.mesh, f.size), broken, rp))
+        << o.front.read.path;
+    EXPECT_GT(stats.fragments_merged, 0) << o.front.read.path;
+    EXPECT_GT(stats.rounds_updated, 0) << o.front.read.path;
+    const MetaGraph g = build_meta_graph(f.mesh, broken, MetaGraphParams());
+    EXPECT_EQ(check_tiling(f.mesh, broken, g), "") << o.front.read.path;
   }
 }
 
