@@ -253,14 +253,22 @@ TEST(Tiling, SameInputGivesSameLabels) {
   EXPECT_EQ(ra.tiling.generator, rb.tiling.generator);
 }
 
-TEST(Tiling, CoastlineWithIslandsKeepsInvariants) {
-  // Brittany's water with its islands (holes), automatic sizing and boundary cross field.
+namespace {
+
+// Brittany's water with its islands (holes), automatic sizing and boundary cross field.
+FieldsOptions brittany_water() {
   FieldsOptions o;
   o.front.read.path = sample("brittany_land.shp");
   o.front.kind = DomainKind::water;
   o.front.read.bbox = std::array<double, 4>{-3.6, 47.2, -2.4, 47.9};
   o.sizing.hmax_m = 3000.0;
-  FieldsResult f = build_fields(o);
+  return o;
+}
+
+}  // namespace
+
+TEST(Tiling, CoastlineWithIslandsKeepsInvariants) {
+  FieldsResult f = build_fields(brittany_water());
   tag_corners(f.mesh, f.size, CornerParams());
   for (TilingStep s : {TilingStep::init, TilingStep::relax, TilingStep::conform, TilingStep::butterfly,
                        TilingStep::resplit}) {
@@ -275,15 +283,10 @@ TEST(Tiling, RepairsUpdateTheirStructuresAsTheLabelsWouldGiveThem) {
   // Brittany's water (islands: rings, holes, enclosed tiles) and France, automatic sizes:
   // every round's boundaries, sectors and fragments, updated from the last fix, equal
   // those found from all the labels (RepairParams::verify_updates throws otherwise).
-  FieldsOptions brittany;
-  brittany.front.read.path = sample("brittany_land.shp");
-  brittany.front.kind = DomainKind::water;
-  brittany.front.read.bbox = std::array<double, 4>{-3.6, 47.2, -2.4, 47.9};
-  brittany.sizing.hmax_m = 3000.0;
   FieldsOptions france;
   france.front.read.path = sample("france.shp");
   france.sizing.hmax_m = 28000.0;
-  for (const FieldsOptions& o : {brittany, france}) {
+  for (const FieldsOptions& o : {brittany_water(), france}) {
     FieldsResult f = build_fields(o);
     tag_corners(f.mesh, f.size, CornerParams());
     TilingParams p;
