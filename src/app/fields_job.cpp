@@ -80,7 +80,7 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
   check_quad_budget(estimate, "estimated on a grid", smallest, domain, options);
   timer.lap("sizing sources");
 
-  progress.report("background", 0.2);
+  progress.report("background", 0.2);  // to 0.6 as the background mesh is built
   BackgroundMeshParams bp;
   const double factor = 2.0 * options.background_factor;  // tiles are 2h wide
   // Refinement evaluates the size many times, at scattered points: it reads a quadtree
@@ -104,6 +104,8 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
     return cache ? (*cache)(p) : oracle(p);
   };
   bp.max_edge_m = [&size_at, factor](const Point2& p) { return factor * size_at(p); };
+  const Progress background = progress.slice(0.2, 0.6);
+  bp.progress = [&background](double done) { background.report("background", done); };
   r.mesh = build_background_mesh(domain, bp);
   // The triangulation's many small blocks, freed, would otherwise stay resident beside
   // the cross field's large ones.

@@ -30,6 +30,9 @@ struct BackgroundMeshParams {
   // Seed the inside with a quadtree of points at the requested density before
   // refinement (same guarantees, several times faster on large meshes).
   bool seed_interior = true;
+  // Told the share of the work done, in [0, 1], as the steps end (seeds, refinement,
+  // arrays); may be empty.
+  std::function<void(double)> progress;
 };
 
 // One closed boundary chain per domain ring: the ring with every Steiner point that

@@ -65,7 +65,7 @@ class AlignedSmoother {
                   const SizingField& size, const CrossField& cross, const SmoothParams& params)
       : bg_(bg), m_(m), t_(t), size_(size), cross_(cross), params_(params), locator_(bg) {}
 
-  void run() {
+  void run(const Progress& progress) {
     const int nv = static_cast<int>(m_.points.size());
     h_.resize(nv);
     theta_.resize(nv);
@@ -87,6 +87,7 @@ class AlignedSmoother {
         else
           move_interior(v);
       }
+      progress.report("smooth", (it + 1.0) / params_.aligned_iterations);
     }
   }
 
@@ -414,8 +415,9 @@ void untangle(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
 }
 
 void aligned_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
-                    const SizingField& size, const CrossField& cross, const SmoothParams& params) {
-  AlignedSmoother(bg, m, t, size, cross, params).run();
+                    const SizingField& size, const CrossField& cross, const SmoothParams& params,
+                    const Progress& progress) {
+  AlignedSmoother(bg, m, t, size, cross, params).run(progress);
 }
 
 // Angle sweeps: every free vertex takes the best of its candidate moves (interior: eight
@@ -427,7 +429,7 @@ void aligned_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t
 // vertices it marks move, the others stay.
 void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
                   const SmoothParams& params, const CrossField* cross, const SizingField* size,
-                  const std::vector<char>* only, int iterations) {
+                  const std::vector<char>* only, int iterations, const Progress& progress) {
   const int nv = static_cast<int>(m.points.size());
   if (iterations < 0) iterations = params.angle_iterations;
   const double ow = params.angle_orientation_weight;
@@ -574,6 +576,7 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
             }
           });
     }
+    progress.report("smooth", (it + 1.0) / iterations);
   }
 }
 

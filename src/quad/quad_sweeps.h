@@ -24,13 +24,15 @@ void untangle(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
 
 // The field-aligned sweeps (SmoothParams::aligned_iterations).
 void aligned_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
-                    const SizingField& size, const CrossField& cross, const SmoothParams& params);
+                    const SizingField& size, const CrossField& cross, const SmoothParams& params,
+                    const Progress& progress = Progress());
 
 // The angle sweeps (SmoothParams::angle_iterations, or `iterations`); with `only`, the
 // vertices it marks move, the others stay. The mesh is the same with any number of
 // threads.
 void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
                   const SmoothParams& params, const CrossField* cross, const SizingField* size,
-                  const std::vector<char>* only = nullptr, int iterations = -1);
+                  const std::vector<char>* only = nullptr, int iterations = -1,
+                  const Progress& progress = Progress());
 
 }  // namespace isoquad

@@ -5,6 +5,7 @@
 // topology in quad_repairs.h; smooth_quads runs them in order.
 #pragma once
 
+#include "core/progress.h"
 #include "fields/cross_field.h"
 #include "fields/sizing_field.h"
 #include "mesh/background_mesh.h"
@@ -212,12 +213,13 @@ struct SmoothStats {
   int num_thin_repairs = 0;
 };
 
-// Smooths in place. Does not throw; the caller decides what a remaining non-convex quad
-// or fold (count_boundary_crossings) means (the pipeline retries the tiling, then stops
-// with Error(internal)). Collapses drop vertices: ids may be renumbered.
-// With `size` and `cross`, the field-aligned sweeps run too.
+// Smooths in place. Does not throw (but for a cancelled `progress`); the caller decides
+// what a remaining non-convex quad or fold (count_boundary_crossings) means (the
+// pipeline retries the tiling, then stops with Error(internal)). Collapses drop
+// vertices: ids may be renumbered. With `size` and `cross`, the field-aligned sweeps run
+// too. Reports progress as stage "smooth", sweep by sweep.
 SmoothStats smooth_quads(const BackgroundMesh& background, QuadMesh& mesh,
                          const SmoothParams& params, const SizingField* size = nullptr,
-                         const CrossField* cross = nullptr);
+                         const CrossField* cross = nullptr, const Progress& progress = Progress());
 
 }  // namespace isoquad

@@ -25,6 +25,7 @@ namespace {
 // butterfly (the region boundary keeps its tiles, the centre has 4), so later rounds
 // only retry failed butterflies whose region changed since; two usually suffice.
 constexpr int kMaxRounds = 8;
+const char* const kStage = "tiling butterflies";
 // Centre candidates tried, nearest to phi(v*) first, before giving a butterfly up.
 constexpr int kMaxCentreCandidates = 8;
 
@@ -168,7 +169,7 @@ class ButterflyRemover {
         face_mark_(mesh.triangles.size(), 0),
         vertex_mark_(mesh.points.size(), 0) {}
 
-  ButterflyStats run();
+  ButterflyStats run(const Progress& progress);
 
  private:
   bool on_domain_boundary(int v) const { return mesh_.boundary_chain_of_vertex[v] >= 0; }
@@ -798,7 +799,7 @@ bool ButterflyRemover::reparameterize(const Butterfly& b, const std::vector<int>
   return fail();
 }
 
-ButterflyStats ButterflyRemover::run() {
+ButterflyStats ButterflyRemover::run(const Progress& progress) {
   std::set<std::pair<int, int>> found;
   std::map<std::pair<int, int>, std::uint64_t> failed;  // signature of the region when it failed
   int removed = 0;
@@ -825,8 +826,13 @@ ButterflyStats ButterflyRemover::run() {
 
     // Increasing length; an entry is re-validated against the current labels when popped
     // (a removal changes the tiles of overlapping butterflies) and re-queued if longer.
+    // The first round does most of the work: it takes the progress to 0.85.
     int removed_in_round = 0;
-    while (!queue.empty()) {
+    const double queued = static_cast<double>(queue.size());
+    progress.report(kStage, round == 0 ? 0.0 : 0.85 + 0.15 * round / kMaxRounds);
+    for (long popped = 1; !queue.empty(); ++popped) {
+      if (round == 0 && popped % 256 == 0)
+        progress.report(kStage, 0.85 * std::min(1.0, popped / queued));
       const auto [length, a, b] = queue.top();
       queue.pop();
       const std::optional<Butterfly> butterfly = identify(a, b);
@@ -859,9 +865,10 @@ ButterflyStats ButterflyRemover::run() {
 }  // namespace
 
 ButterflyStats remove_butterflies(const BackgroundMesh& mesh, const SizingField& size,
-                                  Tiling& tiling, const ButterflyParams& params) {
+                                  Tiling& tiling, const ButterflyParams& params,
+                                  const Progress& progress) {
   ButterflyRemover remover(mesh, size, tiling, params);
-  return remover.run();
+  return remover.run(progress);
 }
 
 }  // namespace isoquad

@@ -4,6 +4,7 @@
 // coordinates) and relabelling their triangles along four non-crossing edge paths.
 #pragma once
 
+#include "core/progress.h"
 #include "fields/sizing_field.h"
 #include "mesh/background_mesh.h"
 #include "tiling/meta_graph.h"
@@ -24,8 +25,9 @@ struct ButterflyStats {
 
 // Removes butterflies in order of increasing inner meta-edge length (dynamic priority
 // queue). A butterfly that fails any check is left unchanged. Keeps the invariants of
-// check_tiling.
+// check_tiling. Reports progress as stage "tiling butterflies".
 ButterflyStats remove_butterflies(const BackgroundMesh& mesh, const SizingField& size,
-                                  Tiling& tiling, const ButterflyParams& params);
+                                  Tiling& tiling, const ButterflyParams& params,
+                                  const Progress& progress = Progress());
 
 }  // namespace isoquad

@@ -499,10 +499,13 @@ class Resplitter {
 
 }  // namespace
 
-ResplitStats resplit_pairs(const BackgroundMesh& mesh, Tiling& tiling, const ResplitParams& params) {
+ResplitStats resplit_pairs(const BackgroundMesh& mesh, Tiling& tiling, const ResplitParams& params,
+                           const Progress& progress) {
   ResplitStats stats;
   Resplitter r(mesh, tiling, params);
   for (int k = 0; k < params.max_rounds; ++k) {
+    // Each round finds fewer pairs: the first is told as half the work.
+    progress.report("tiling pairs", 1.0 - std::pow(0.5, k));
     int candidates = 0;
     const int applied = r.round(&candidates);
     if (k == 0) stats.candidates = candidates;

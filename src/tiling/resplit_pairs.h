@@ -17,6 +17,7 @@
 // max_area_ratio.
 #pragma once
 
+#include "core/progress.h"
 #include "mesh/background_mesh.h"
 #include "tiling/meta_graph.h"
 #include "tiling/tiling.h"
@@ -54,6 +55,7 @@ struct ResplitStats {
 };
 
 // Keeps the invariants of check_tiling (each new tile is a disk). Deterministic.
-ResplitStats resplit_pairs(const BackgroundMesh& mesh, Tiling& tiling, const ResplitParams& params);
+ResplitStats resplit_pairs(const BackgroundMesh& mesh, Tiling& tiling, const ResplitParams& params,
+                           const Progress& progress = Progress());
 
 }  // namespace isoquad

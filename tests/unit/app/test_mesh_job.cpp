@@ -6,8 +6,12 @@
 
 #include <algorithm>
 #include <optional>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include "core/error.h"
+#include "core/progress.h"
 #include "fields/cross_field.h"
 #include "mesh/locate.h"
 #include "quad/quad_mesh.h"
@@ -99,6 +103,30 @@ TEST(MeshJob, EveryQuadStrictlyConvexAndTheAttemptsAreReported) {
   EXPECT_NE(json.find("\"narrow_medial_points\": " +
                       std::to_string(r.fields.sizing.num_narrow_sites)),
             std::string::npos);
+}
+
+TEST(MeshJob, ProgressMovesThroughTheLongStagesAndNeverBack) {
+  // France automatic at hmax 18 km: the background mesh, the butterflies and the
+  // smoothing each report several times as they go (a large mesh spends a minute in each),
+  // and the job's fraction never goes back.
+  std::vector<std::pair<std::string, double>> reports;
+  const Progress progress([&reports](const std::string& stage, double fraction) {
+    reports.emplace_back(stage, fraction);
+    return true;
+  });
+  const MeshResult r = build_mesh(france(18000.0), progress);
+  ASSERT_EQ(r.attempts, 1) << "the premise: one tiling (a retry starts the tiling again)";
+  ASSERT_FALSE(reports.empty());
+  EXPECT_EQ(reports.back().second, 1.0);
+  for (std::size_t k = 1; k < reports.size(); ++k)
+    EXPECT_GE(reports[k].second, reports[k - 1].second)
+        << reports[k - 1].first << " then " << reports[k].first;
+  for (const char* stage : {"background", "tiling butterflies", "smooth"}) {
+    std::vector<double> fractions;
+    for (const auto& [s, f] : reports)
+      if (s == stage && (fractions.empty() || f > fractions.back())) fractions.push_back(f);
+    EXPECT_GE(fractions.size(), 4u) << stage;
+  }
 }
 
 TEST(MeshJob, FlatQuadsAreRemovedByDiagonalCollapsesWhenThatHelps) {
