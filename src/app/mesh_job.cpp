@@ -50,8 +50,8 @@ std::vector<LocalRefinement> refinements_at(const FieldsResult& f, const std::ve
 
 MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
   MeshResult r;
-  // The shares of the progress line follow France at a uniform 3 km: the fields a
-  // quarter of the time, the tiling half, the smoothing a quarter.
+  // The shares of the progress line follow France at a uniform 3 km (fields 4.4 s,
+  // tiling 8.8, smoothing 4.4): the fields 30%, the tiling 45%, the smoothing 20%.
   r.fields = build_fields(options.fields, progress.slice(0.0, 0.3));
   FieldsOptions fields = options.fields;  // with the local refinements of failed attempts
 
