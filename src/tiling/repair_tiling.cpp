@@ -103,12 +103,6 @@ class Repairer {
     tile_size_.assign(tiling.num_tiles(), 0);
     for (int t : label_) ++tile_size_[t];
     visited_.assign(3 * static_cast<std::size_t>(num_faces), 0);
-    on_domain_boundary_.assign(num_vertices, 0);
-    for (int f = 0; f < num_faces; ++f)
-      for (int i = 0; i < 3; ++i)
-        if (mesh.neighbours[f][i] < 0)
-          on_domain_boundary_[mesh.triangles[f][(i + 1) % 3]] =
-              on_domain_boundary_[mesh.triangles[f][(i + 2) % 3]] = 1;
   }
 
   RepairStats run(MetaGraph* graph_out) {
@@ -294,7 +288,8 @@ class Repairer {
         if (g > f && label_[g] != label_[f]) ++changes;
       }
     }
-    return on_domain_boundary_[v] ? changes + 1 : std::max(changes, 1);
+    // The boundary chains hold every vertex of a domain boundary edge.
+    return next_on_boundary_[v] >= 0 ? changes + 1 : std::max(changes, 1);
   }
 
   // RepairParams::verify_updates: the meta-vertices counted per tile against the graph's.
@@ -935,7 +930,6 @@ class Repairer {
   // left or joined (reshaped_ #T), and every tile's number of triangles.
   std::vector<int> relabelled_, reshaped_tiles_, tile_size_;
   std::vector<char> reshaped_;
-  std::vector<char> on_domain_boundary_;  // #V
   std::vector<char> visited_;             // #3F scratch of update, all 0 between calls
   std::vector<int> cycle_stamp_;          // #V scratch of update
   int cycle_round_ = 0;
