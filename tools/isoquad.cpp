@@ -88,7 +88,9 @@ struct CommonArgs {
 };
 
 void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
-  cmd->add_option("INPUT", a.input, "Input vector file (shapefile, GeoJSON, TopoJSON, GeoPackage...)")
+  cmd->add_option("INPUT", a.input,
+                  "Input vector file (shapefile, GeoJSON, TopoJSON, GeoPackage...) of polygons, or "
+                  "of lines whose rings make them (a coastline drawn as lines)")
       ->required();
   cmd->add_option("-o,--output", a.outputs,
                   a.many_outputs ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .pli, "

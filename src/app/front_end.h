@@ -56,6 +56,11 @@ struct DomainSummary {
   std::size_t num_repaired = 0;
   std::size_t num_rings_closed = 0;
   std::size_t num_rings_dropped = 0;
+  // A layer of lines read as the rings of polygons (SourceData's counts).
+  std::size_t num_line_features = 0;
+  std::size_t num_rings_from_lines = 0;
+  std::size_t num_rings_joined = 0;
+  std::size_t num_lines_joined = 0;
   std::size_t num_points_removed = 0;
   std::size_t num_components = 0;
   std::size_t num_rings = 0;

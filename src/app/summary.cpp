@@ -51,6 +51,10 @@ std::string format_domain_summary(const DomainSummary& s) {
       os << " (" << s.spikes.num_cut_at_base << " narrower, at the base of a spit)";
     os << ": " << num(s.spikes.area_removed_m2 / 1e6, 4) << " km2 removed\n";
   }
+  if (s.num_rings_from_lines)
+    os << "lines:        " << s.num_line_features << " feature(s) of lines made "
+       << s.num_rings_from_lines << " ring(s) (" << s.num_rings_joined << " joined from "
+       << s.num_lines_joined << " open lines), " << s.num_source_polygons << " polygon(s)\n";
   if (s.num_repaired || s.num_rings_closed || s.num_rings_dropped || s.num_points_removed)
     os << "repairs:      " << s.num_repaired << " invalid polygon(s) fixed, " << s.num_rings_closed
        << " ring(s) closed, " << s.num_rings_dropped << " degenerate ring(s) dropped, "
@@ -94,6 +98,11 @@ void add_domain_summary(JsonWriter& j, const DomainSummary& s) {
       .value("num_repaired", s.num_repaired)
       .value("num_rings_closed", s.num_rings_closed)
       .value("num_points_removed", s.num_points_removed);
+  if (s.num_rings_from_lines)
+    j.value("num_line_features", s.num_line_features)
+        .value("num_rings_from_lines", s.num_rings_from_lines)
+        .value("num_rings_joined", s.num_rings_joined)
+        .value("num_lines_joined", s.num_lines_joined);
   if (!s.open_boundary_path.empty())
     j.value("open_boundary", s.open_boundary_path)
         .value("open_boundary_num_lines", s.open_boundary_num_lines)

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "gis/gdal_env.h"
+#include "gis/rings_from_lines.h"
 
 namespace isoquad {
 
@@ -30,6 +31,12 @@ bool is_polygonal(OGRwkbGeometryType t) {
   const OGRwkbGeometryType f = wkbFlatten(t);
   return f == wkbPolygon || f == wkbMultiPolygon || f == wkbCurvePolygon ||
          f == wkbMultiSurface || f == wkbPolyhedralSurface || f == wkbTIN;
+}
+
+bool is_linear(OGRwkbGeometryType t) {
+  const OGRwkbGeometryType f = wkbFlatten(t);
+  return f == wkbLineString || f == wkbMultiLineString || f == wkbCircularString ||
+         f == wkbCompoundCurve || f == wkbMultiCurve || f == wkbLinearRing;
 }
 
 // Fewer than 3 distinct points, or every point on one line: no area at all. (A ring
@@ -182,7 +189,12 @@ class Reader {
     // OGR's filter tests the geometry itself, drawn in lon/lat: land round a pole that
     // it does not reach as drawn (reach_pole) would miss a bbox near the pole. Polar
     // bboxes read every feature; add_polygon selects the parts.
+    // A layer of lines is read whole (polygons_from_lines).
     const bool polar = out_.crs.geographic && (ymax <= -60.0 || ymin >= 60.0);
+    if (is_linear(layer_->GetGeomType())) {
+      out_.bbox_ring = std::move(ring);
+      return;
+    }
     if (!polar && filters_.size() == 1) layer_->SetSpatialFilterRect(xmin, ymin, xmax, ymax);
     if (!polar && filters_.size() > 1) layer_->SetSpatialFilter(&area);
     out_.bbox_ring = std::move(ring);
@@ -200,6 +212,8 @@ class Reader {
     layer_->ResetReading();
     std::size_t num_other = 0, num_empty = 0;
     GdalErrorCapture capture;
+    std::vector<SourceLine> lines;
+    std::size_t num_polygonal = 0;
     for (auto& feature : *layer_) {
       ++out_.num_features;
       const OGRGeometry* g = feature->GetGeometryRef();
@@ -207,8 +221,11 @@ class Reader {
         ++out_.num_features_skipped;
         if (g && !g->IsEmpty()) ++num_other;
         else ++num_empty;
+        if (g && !g->IsEmpty() && is_linear(g->getGeometryType())) ++out_.num_line_features;
+        if (g && num_polygonal == 0) add_lines(feature->GetFID(), *g, lines);
         continue;
       }
+      ++num_polygonal;
       std::unique_ptr<OGRGeometry> linear(g->getLinearGeometry());
       part_count_ = 0;
       add_geometry(feature->GetFID(), *linear);
@@ -216,6 +233,10 @@ class Reader {
     if (!capture.last_message().empty() && out_.num_features == 0)
       fail(ErrorClass::input, "reading layer " + quote(out_.layer_name) + " failed: " +
                                   capture.last_message());
+    if (num_polygonal == 0 && out_.num_line_features > 0) {
+      num_other -= out_.num_line_features;  // before a second reading counts them again
+      polygons_from_lines(std::move(lines));
+    }
     std::string selection;
     if (!p_.where.empty()) selection += " --where " + quote(p_.where);
     if (p_.bbox) selection += " --bbox";
@@ -225,6 +246,10 @@ class Reader {
                               " reaches the bbox: the water domain is the whole bbox");
       return;
     }
+    if (out_.polygons.empty() && out_.num_rings_from_lines > 0 && !selection.empty())
+      fail(ErrorClass::input, "the " + std::to_string(out_.num_rings_from_lines) +
+                                  " ring(s) the lines of layer " + quote(out_.layer_name) +
+                                  " make all miss the selection (" + selection.substr(1) + ")");
     if (out_.num_features == 0) {
       if (selection.empty()) fail(ErrorClass::input, "layer " + quote(out_.layer_name) + " is empty");
       fail(ErrorClass::input, "the selection (" + selection.substr(1) +
@@ -263,34 +288,100 @@ class Reader {
     if (e.MinY > 0.0) e.MaxY = 90.0;
   }
 
-  void add_polygon(long long fid, int part, const OGRPolygon& poly) {
-    // The bbox filter selects whole features; a part of a multipolygon (the land of the
-    // world as one feature) that misses the bbox is not read, nor checked.
-    if (!filters_.empty()) {
-      OGREnvelope e;
-      poly.getEnvelope(&e);
-      reach_pole(e);
-      if (std::none_of(filters_.begin(), filters_.end(),
-                       [&](const OGREnvelope& f) { return e.Intersects(f); }))
-        return;
+  static std::string ring_name(long long fid, int part, int ring_index) {
+    return "feature " + std::to_string(fid) +
+           (part ? " part " + std::to_string(part) : std::string()) + " ring " +
+           std::to_string(ring_index);
+  }
+
+  // The points of a line or ring, checked to be finite.
+  std::vector<Point2> finite_points(const OGRSimpleCurve& curve, const std::string& where) const {
+    std::vector<Point2> points;
+    points.reserve(curve.getNumPoints());
+    for (int i = 0; i < curve.getNumPoints(); ++i) {
+      const double x = curve.getX(i), y = curve.getY(i);
+      if (!std::isfinite(x) || !std::isfinite(y))
+        fail(ErrorClass::input, where + " vertex " + std::to_string(i) +
+                                    ": coordinate is not finite (" + fmt(x) + ", " + fmt(y) + ")");
+      points.push_back({x, y});
     }
-    SourcePolygon sp;
-    sp.fid = fid;
-    sp.part = part;
+    return points;
+  }
+
+  void add_lines(long long fid, const OGRGeometry& g, std::vector<SourceLine>& lines) const {
+    if (!is_linear(g.getGeometryType()) || g.IsEmpty()) return;
+    std::unique_ptr<OGRGeometry> linear(g.getLinearGeometry());
+    std::vector<const OGRLineString*> parts;
+    if (const auto* coll = dynamic_cast<const OGRGeometryCollection*>(linear.get())) {
+      for (const OGRGeometry* part : *coll)
+        if (const auto* ls = dynamic_cast<const OGRLineString*>(part)) parts.push_back(ls);
+    } else if (const auto* ls = dynamic_cast<const OGRLineString*>(linear.get())) {
+      parts.push_back(ls);
+    }
+    for (std::size_t k = 0; k < parts.size(); ++k) {
+      SourceLine line;
+      line.fid = fid;
+      line.part = static_cast<int>(k);
+      line.points =
+          finite_points(*parts[k], "feature " + std::to_string(fid) +
+                                       (k ? " part " + std::to_string(k) : std::string()));
+      lines.push_back(std::move(line));
+    }
+  }
+
+  // A layer of lines without polygons: the lines' rings, nested, are the polygons. The
+  // bbox selects the polygons, not the lines: a ring drawn as several lines is read
+  // whole where only some of them reach the bbox.
+  void polygons_from_lines(std::vector<SourceLine> lines) {
+    if (layer_->GetSpatialFilter()) {
+      layer_->SetSpatialFilter(nullptr);
+      layer_->ResetReading();
+      lines.clear();
+      out_.num_line_features = 0;
+      for (auto& feature : *layer_) {
+        const OGRGeometry* g = feature->GetGeometryRef();
+        if (!g || g->IsEmpty() || !is_linear(g->getGeometryType())) continue;
+        ++out_.num_line_features;
+        add_lines(feature->GetFID(), *g, lines);
+      }
+    }
+    LineRings built;
+    try {
+      built = rings_from_lines(lines, out_.crs.geographic ? "degrees" : "CRS units");
+    } catch (const LinesError& e) {
+      fail(ErrorClass::input,
+           "layer " + quote(out_.layer_name) +
+               " has no polygons, and its lines do not close into rings: " + e.what());
+    }
+    out_.num_rings_from_lines = built.num_rings;
+    out_.num_rings_joined = built.num_joined_rings;
+    out_.num_lines_joined = built.num_lines_joined;
+    for (SourcePolygon& sp : built.polygons) {
+      const std::array<double, 4> b = bounding_box(sp.rings[0]);
+      OGREnvelope envelope;
+      envelope.MinX = b[0], envelope.MinY = b[1], envelope.MaxX = b[2], envelope.MaxY = b[3];
+      if (!misses_bbox(envelope)) add_rings(sp.fid, sp.part, std::move(sp.rings));
+    }
+  }
+
+  // The bbox filter selects whole features; a part of a multipolygon (the land of the
+  // world as one feature) that misses the bbox is not read, nor checked.
+  bool misses_bbox(OGREnvelope e) const {
+    if (filters_.empty()) return false;
+    reach_pole(e);
+    return std::none_of(filters_.begin(), filters_.end(),
+                        [&](const OGREnvelope& f) { return e.Intersects(f); });
+  }
+
+  void add_polygon(long long fid, int part, const OGRPolygon& poly) {
+    OGREnvelope envelope;
+    poly.getEnvelope(&envelope);
+    if (misses_bbox(envelope)) return;
+    std::vector<Ring> rings;
     int ring_index = 0;
     for (const OGRLinearRing* r : poly) {
-      const std::string where = "feature " + std::to_string(fid) +
-                                (part ? " part " + std::to_string(part) : std::string()) +
-                                " ring " + std::to_string(ring_index);
-      Ring ring;
-      ring.reserve(r->getNumPoints());
-      for (int i = 0; i < r->getNumPoints(); ++i) {
-        const double x = r->getX(i), y = r->getY(i);
-        if (!std::isfinite(x) || !std::isfinite(y))
-          fail(ErrorClass::input, where + " vertex " + std::to_string(i) +
-                                      ": coordinate is not finite (" + fmt(x) + ", " + fmt(y) + ")");
-        ring.push_back({x, y});
-      }
+      const std::string where = ring_name(fid, part, ring_index++);
+      Ring ring = finite_points(*r, where);
       const bool closed = ring.size() >= 2 && ring.front() == ring.back();
       if (!closed && !ring.empty()) {
         if (!p_.repair)
@@ -301,6 +392,19 @@ class Reader {
         ++out_.num_rings_closed;
       }
       if (closed) ring.pop_back();
+      rings.push_back(std::move(ring));
+    }
+    add_rings(fid, part, std::move(rings));
+  }
+
+  // A polygon's rings, stored open: rings[0] the outer one.
+  void add_rings(long long fid, int part, std::vector<Ring> rings) {
+    SourcePolygon sp;
+    sp.fid = fid;
+    sp.part = part;
+    int ring_index = 0;
+    for (Ring& ring : rings) {
+      const std::string where = ring_name(fid, part, ring_index);
       out_.num_points_removed += remove_duplicates_and_spikes(ring);
       if (is_degenerate(ring)) {
         if (!p_.repair)

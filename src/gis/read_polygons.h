@@ -44,10 +44,18 @@ struct SourceData {
   std::size_t num_points_removed = 0;    // duplicate points and spikes
   std::size_t num_rings_closed = 0;      // unclosed rings accepted with repair
   std::size_t num_rings_dropped = 0;     // degenerate rings dropped with repair
+  // A layer of lines and no polygons: its closed lines, and its open lines joined end
+  // to end, are the rings of the polygons (rings_from_lines).
+  std::size_t num_line_features = 0;     // features with a line geometry
+  std::size_t num_rings_from_lines = 0;  // rings the lines made
+  std::size_t num_rings_joined = 0;      // of which made of two or more open lines
+  std::size_t num_lines_joined = 0;      // the open lines in those
   std::vector<std::string> warnings;
 };
 
-// Reads the polygons of the selected layer and features. Throws Error(input) for a
+// Reads the polygons of the selected layer and features; a layer of lines without
+// polygons gives the polygons its lines' rings make (closed lines, and open lines
+// joined where exactly two ends meet), nested by containment. Throws Error(input) for a
 // missing, unreadable or empty source, Error(crs) for a missing or unusable CRS or
 // coordinates outside its valid range, Error(usage) for a bad --where or --bbox.
 SourceData read_polygons(const ReadParams& params);

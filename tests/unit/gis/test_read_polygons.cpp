@@ -2,6 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
 #include "core/error.h"
 #include "support/fixtures.h"
 #include "support/write_archive.h"
@@ -232,4 +236,93 @@ TEST(ReadPolygons, ReadsArchivesAsDownloaded) {
   expect_error(params(write_zip(dir.file("text.zip"), {{"README.txt", "no data"}})),
                ErrorClass::input,
                "the archive holds no vector file GDAL reads (it holds README.txt)");
+}
+
+namespace {
+
+// The rings of `d` cut into lines of up to `per_line` segments, every other line
+// reversed and the lines in reverse order, as a GeoJSON layer of LineStrings in lon/lat.
+std::string rings_as_lines(const SourceData& d, std::size_t per_line, const std::string& path) {
+  std::vector<std::vector<Point2>> lines;
+  for (const SourcePolygon& p : d.polygons)
+    for (Ring r : p.rings) {
+      r.push_back(r.front());
+      for (std::size_t k = 0; k + 1 < r.size(); k += per_line)
+        lines.emplace_back(
+            r.begin() + static_cast<std::ptrdiff_t>(k),
+            r.begin() + static_cast<std::ptrdiff_t>(std::min(r.size(), k + per_line + 1)));
+    }
+  std::reverse(lines.begin(), lines.end());
+  std::ostringstream os;
+  os.precision(17);
+  os << R"({"type":"FeatureCollection","features":[)";
+  for (std::size_t i = 0; i < lines.size(); ++i) {
+    if (i % 2) std::reverse(lines[i].begin(), lines[i].end());
+    os << (i ? "," : "") << R"({"type":"Feature","properties":{"id":)" << i
+       << R"(},"geometry":{"type":"LineString","coordinates":[)";
+    for (std::size_t k = 0; k < lines[i].size(); ++k)
+      os << (k ? "," : "") << "[" << lines[i][k].x << "," << lines[i][k].y << "]";
+    os << "]}}";
+  }
+  os << "]}";
+  write_file(path, os.str());
+  return path;
+}
+
+std::vector<std::pair<double, double>> sorted_points(const Ring& r) {
+  std::vector<std::pair<double, double>> v;
+  for (const Point2& p : r) v.emplace_back(p.x, p.y);
+  std::sort(v.begin(), v.end());
+  return v;
+}
+
+}  // namespace
+
+// A coastline drawn as lines (closed or in pieces, in any direction and order) is read
+// as the polygons its rings make.
+TEST(ReadPolygons, ReadsTheRingsOfALayerOfLines) {
+  TempDir dir;
+  const SourceData shape = read_polygons(params(sample("france.shp")));
+  ASSERT_EQ(shape.polygons.size(), 1u);
+  ASSERT_EQ(shape.polygons[0].rings.size(), 2u);  // the mainland and the Llivia enclave
+  const std::string path = rings_as_lines(shape, 40, dir.file("france_lines.geojson"));
+  const SourceData lines = read_polygons(params(path));
+  EXPECT_GT(lines.num_line_features, 70u);
+  EXPECT_EQ(lines.num_rings_from_lines, 2u);
+  // The mainland in many lines; the enclave's ring, if under 40 segments, in one.
+  EXPECT_GE(lines.num_rings_joined, 1u);
+  EXPECT_EQ(lines.num_lines_joined + (2 - lines.num_rings_joined), lines.num_line_features);
+  ASSERT_EQ(lines.polygons.size(), 1u);
+  ASSERT_EQ(lines.polygons[0].rings.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const Ring &a = shape.polygons[0].rings[k], &b = lines.polygons[0].rings[k];
+    EXPECT_EQ(sorted_points(a), sorted_points(b));
+    EXPECT_NEAR(std::abs(signed_area(a)), std::abs(signed_area(b)),
+                1e-9 * std::abs(signed_area(a)));
+  }
+  // The bbox selects the polygons, not the lines: Brittany's bbox reaches only some of
+  // the lines of France's ring, and still gives the whole ring.
+  ReadParams p = params(path);
+  p.bbox = std::array<double, 4>{-5.0, 47.5, -3.0, 48.5};
+  const SourceData brittany = read_polygons(p);
+  ASSERT_EQ(brittany.polygons.size(), 1u);
+  EXPECT_EQ(sorted_points(brittany.polygons[0].rings[0]),
+            sorted_points(shape.polygons[0].rings[0]));
+  // Two squares drawn as lines, and a bbox between them.
+  write_file(dir.file("squares.geojson"),
+             R"({"type":"FeatureCollection","features":[)"
+             R"({"type":"Feature","properties":{},"geometry":{"type":"LineString","coordinates":)"
+             R"([[-3,47],[-2,47],[-2,48],[-3,48],[-3,47]]}},)"
+             R"({"type":"Feature","properties":{},"geometry":{"type":"LineString","coordinates":)"
+             R"([[-1,47],[0,47],[0,48],[-1,48],[-1,47]]}}]})");
+  p = params(dir.file("squares.geojson"));
+  EXPECT_EQ(read_polygons(p).polygons.size(), 2u);
+  p.bbox = std::array<double, 4>{-1.8, 47.2, -1.2, 47.8};
+  expect_error(p, ErrorClass::input,
+               "the 2 ring(s) the lines of layer 'squares' make all miss the selection (--bbox)");
+  // A line left out: the ring does not close, and the message says where.
+  p = params(path);
+  p.where = "id <> 3";
+  expect_error(p, ErrorClass::input, "its lines do not close into rings: feature");
+  expect_error(p, ErrorClass::input, "2 loose end(s) in all");
 }
