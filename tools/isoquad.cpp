@@ -90,7 +90,8 @@ struct CommonArgs {
 void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
   cmd->add_option("INPUT", a.input,
                   "Input vector file (shapefile, GeoJSON, TopoJSON, GeoPackage...) of polygons, or "
-                  "of lines whose rings make them (a coastline drawn as lines)")
+                  "of lines whose rings make them (a coastline drawn as lines; also Delft3D/D-Flow "
+                  "FM .ldb, .pol, .pli and Blue Kenue .i2s, with --src-crs)")
       ->required();
   cmd->add_option("-o,--output", a.outputs,
                   a.many_outputs ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .pli, "

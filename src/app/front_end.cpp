@@ -141,8 +141,8 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   s.meshing_crs_proj = crs_proj_string(CrsInfo{result.domain.crs_wkt, result.domain.crs_name});
   const CrsInfo meshing_crs{result.domain.crs_wkt, result.domain.crs_name};
   if (!options.open_boundary_path.empty()) {
-    const SourceLines lines =
-        read_lines(options.open_boundary_path, options.open_boundary_layer, "open boundary");
+    const SourceLines lines = read_lines(options.open_boundary_path, options.open_boundary_layer,
+                                         "open boundary", &source.crs);
     s.open_boundary_path = options.open_boundary_path;
     s.open_boundary_num_lines = lines.lines.size();
     // Each segment on its own, with its own sag: a long segment's (500 m for 150 km of a

@@ -14,6 +14,7 @@
 
 #include "core/error.h"
 #include "core/text.h"
+#include "gis/model_lines.h"
 
 namespace isoquad {
 
@@ -141,6 +142,7 @@ GdalDataset open_vector_dataset(const std::string& path, const std::string& stag
     if (stat(path.c_str(), &st) != 0) fail("no such file or directory");
     if (S_ISREG(st.st_mode) && st.st_size == 0) fail("file is empty");
   }
+  if (is_model_lines_file(path)) return read_model_lines(path, stage);
   std::string problem;
   const std::string open_path = gdal_path(path, ArchiveContent::vector, problem);
   if (open_path.empty()) fail(problem);

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "gis/gdal_env.h"
+#include "gis/model_lines.h"
 
 namespace isoquad {
 
@@ -47,7 +48,7 @@ void add_lines(const OGRGeometry& g, std::vector<std::vector<Point2>>& out, bool
 }  // namespace
 
 SourceLines read_lines(const std::string& path, const std::string& layer_name,
-                       const std::string& what) {
+                       const std::string& what, const CrsInfo* model_file_crs) {
   GdalDataset ds = open_vector_dataset(path, what);
   auto fail = [&](ErrorClass cls, const std::string& why) {
     throw Error(cls, what, "'" + path + "': " + why);
@@ -69,8 +70,12 @@ SourceLines read_lines(const std::string& path, const std::string& layer_name,
   SourceLines out;
   out.layer_name = layer->GetName();
   const OGRSpatialReference* srs = layer->GetSpatialRef();
-  if (!srs) fail(ErrorClass::crs, "layer '" + out.layer_name + "' has no CRS");
-  out.crs = crs_from_srs(*srs);
+  if (srs)
+    out.crs = crs_from_srs(*srs);
+  else if (model_file_crs && is_model_lines_file(path))
+    out.crs = *model_file_crs;
+  else
+    fail(ErrorClass::crs, "layer '" + out.layer_name + "' has no CRS");
   layer->ResetReading();
   for (auto& feature : *layer) {
     const OGRGeometry* g = feature->GetGeometryRef();

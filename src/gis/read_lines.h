@@ -25,7 +25,9 @@ struct SourceLines {
 // where needed).
 // `what` names the option in messages. Throws Error(input) for a missing or unreadable
 // file, a point geometry or no line at all (naming the file and feature), Error(usage)
-// for no such layer, Error(crs) for a layer without a CRS.
-SourceLines read_lines(const std::string& path, const std::string& layer, const std::string& what);
+// for no such layer, Error(crs) for a layer without a CRS. A modelling package's line
+// file (model_lines.h), whose format has no CRS, takes `model_file_crs` when given.
+SourceLines read_lines(const std::string& path, const std::string& layer, const std::string& what,
+                       const CrsInfo* model_file_crs = nullptr);
 
 }  // namespace isoquad

@@ -127,3 +127,19 @@ TEST(ReadLines, BadInputsNameTheFileAndTheProblem) {
   write_file(empty, collection({"null"}));
   expect_error(empty, ErrorClass::input, "has no line or polygon");
 }
+
+// A D-Flow FM .pli has no CRS: it takes the domain's when given, and only then.
+TEST(ReadLines, AModellingPackagesLineFileTakesTheDomainsCrs) {
+  TempDir dir;
+  const std::string path = dir.file("sea.pli");
+  write_file(
+      path,
+      "* the open boundary\nsea\n    3    2\n540000 5000000\n540000 5015000\n540000 5030000\n");
+  const CrsInfo utm = parse_crs("EPSG:32630", "--src-crs");
+  const SourceLines lines = read_lines(path, "", "open boundary", &utm);
+  EXPECT_EQ(lines.layer_name, "sea");
+  ASSERT_EQ(lines.lines.size(), 1u);
+  EXPECT_EQ(lines.lines[0].size(), 3u);
+  EXPECT_EQ(lines.crs.wkt, utm.wkt);
+  expect_error(path, ErrorClass::crs, "has no CRS");
+}

@@ -326,3 +326,49 @@ TEST(ReadPolygons, ReadsTheRingsOfALayerOfLines) {
   expect_error(p, ErrorClass::input, "its lines do not close into rings: feature");
   expect_error(p, ErrorClass::input, "2 loose end(s) in all");
 }
+
+// Delft3D / D-Flow FM Tekal files (.pol, .ldb, .pli) and Blue Kenue line sets (.i2s):
+// lines without a CRS, read as a layer named after the file with the lines' names.
+TEST(ReadPolygons, ReadsTheLineFilesOfModellingPackages) {
+  TempDir dir;
+  auto read = [&](const std::string& name, const std::string& text, const std::string& where = "") {
+    write_file(dir.file(name), text);
+    ReadParams p = params(dir.file(name));
+    p.src_crs = "EPSG:32630";
+    p.where = where;
+    return read_polygons(p);
+  };
+  auto areas = [](const SourceData& d) {
+    std::vector<double> a;
+    for (const SourcePolygon& p : d.polygons)
+      for (const Ring& r : p.rings) a.push_back(std::abs(signed_area(r)));
+    return a;
+  };
+  // A .pol block is a closed ring whether or not it repeats its first point.
+  const std::string pol =
+      "* land and a lake\nland\n 5 2\n0 0\n1000 0\n1000 1000\n0 1000\n0 0\n"
+      "lake\n 4 2\n400 400\n600 400\n600 600\n400 600\n";
+  SourceData d = read("coast.pol", pol);
+  EXPECT_EQ(d.layer_name, "coast");
+  EXPECT_EQ(areas(d), (std::vector<double>{1e6, 4e4}));
+  EXPECT_EQ(read("coast.pol", pol, "name = 'land'").polygons[0].rings.size(), 1u);
+  // An .ldb's 999.999 999.999 ends a line within a block; its lines join into a ring.
+  d = read("coast.ldb",
+           "L001\n 7 2\n0 0\n1000 0\n1000 1000\n999.999 999.999\n1000 1000\n0 1000\n0 0\n");
+  EXPECT_EQ(d.num_rings_joined, 1u);
+  EXPECT_EQ(areas(d), (std::vector<double>{1e6}));
+  // .i2s: a header, then lines of "count value" and their points.
+  d = read(
+      "coast.i2s",
+      ":FileType i2s  ASCII  EnSim 1.0\n:EndHeader\n5 0\n0 0\n1000 0\n1000 1000\n0 1000\n0 0\n");
+  EXPECT_EQ(areas(d), (std::vector<double>{1e6}));
+  // Malformed: the line and what was expected.
+  write_file(dir.file("bad.pol"), "land\n 5 2\n0 0\n1000 zero\n");
+  expect_error(params(dir.file("bad.pol")), ErrorClass::input,
+               "line 4: expected two numbers x y, found '1000 zero'");
+  write_file(dir.file("bad.i2s"), "5 0\n0 0\n");
+  expect_error(params(dir.file("bad.i2s")), ErrorClass::input, "no ':EndHeader' line");
+  // Without --src-crs: the CRS is asked for.
+  write_file(dir.file("nocrs.pol"), pol);
+  expect_error(params(dir.file("nocrs.pol")), ErrorClass::crs, "give the CRS of the coordinates");
+}
