@@ -110,15 +110,20 @@ StageClock::StageClock(std::vector<StageTime>& out) : out_(out) {
 }
 
 void StageClock::start() {
-  if (stage_peaks_supported()) ResidentSampler::instance().restart();
+  if (stage_peaks_supported()) {
+    ResidentSampler::instance().restart();
+    process_peak_at_start_mb_ = process_peak_mb();
+  }
   t0_ = std::chrono::steady_clock::now();
 }
 
 void StageClock::lap(const std::string& stage) {
   const auto now = std::chrono::steady_clock::now();
-  const double peak = stage_peaks_supported()
-                          ? ResidentSampler::instance().stage_max() / (1024.0 * 1024.0)
-                          : process_peak_mb();
+  double peak = process_peak_mb();
+  // A stage that raised the process's high-water mark peaked there, however briefly;
+  // the samples, every 5 ms when the sampler gets a core, could miss it.
+  if (stage_peaks_supported() && peak <= process_peak_at_start_mb_)
+    peak = ResidentSampler::instance().stage_max() / (1024.0 * 1024.0);
   out_.push_back({stage, std::chrono::duration<double>(now - t0_).count(), peak});
   start();
 }

@@ -10,9 +10,9 @@ namespace isoquad {
 struct StageTime {
   std::string stage;
   double seconds = 0.0;
-  // The stage's own peak resident memory, in MB: the highest of samples taken every 5 ms
-  // from the stage's start (/proc/self/statm). Where that file is missing, the process
-  // peak so far.
+  // The stage's own peak resident memory, in MB: the process's high-water mark when the
+  // stage raised it, else the highest of samples taken every 5 ms from the stage's start
+  // (/proc/self/statm). Where that file is missing, the process peak so far.
   double peak_mb = 0.0;
 };
 
@@ -38,6 +38,7 @@ class StageClock {
   void start();
   std::vector<StageTime>& out_;
   std::chrono::steady_clock::time_point t0_;
+  double process_peak_at_start_mb_ = 0.0;
 };
 
 }  // namespace isoquad
