@@ -97,6 +97,13 @@ void orient_polygon(Polygon& polygon) {
     if (signed_area(h) > 0) std::reverse(h.begin(), h.end());
 }
 
+void start_at_lowest_vertex(Ring& ring) {
+  const auto lowest = std::min_element(
+      ring.begin(), ring.end(),
+      [](const Point2& a, const Point2& b) { return a.y < b.y || (a.y == b.y && a.x < b.x); });
+  std::rotate(ring.begin(), lowest, ring.end());
+}
+
 std::size_t remove_duplicates_and_spikes(Ring& ring) {
   const std::size_t before = ring.size();
   bool changed = true;

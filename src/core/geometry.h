@@ -62,6 +62,9 @@ std::size_t num_holes(const Domain& domain);
 // Makes the outer ring counter-clockwise and the holes clockwise.
 void orient_polygon(Polygon& polygon);
 
+// Rotates the ring to start at its lowest vertex (least y, then least x).
+void start_at_lowest_vertex(Ring& ring);
+
 // Removes consecutive duplicate points (including a closing copy of the first point)
 // and spikes (a vertex where the ring turns back on itself: prev == next). Returns the
 // number of points removed.

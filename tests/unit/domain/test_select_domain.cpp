@@ -47,6 +47,30 @@ TEST(SelectDomain, LandIsTheUnionOfOverlappingPolygons) {
   EXPECT_GT(signed_area(r.polygons[0].outer), 0.0);
 }
 
+// Where a source draws its rings from, and in which direction, does not change the
+// domain: each ring starts at its lowest vertex, the outer ones counter-clockwise.
+TEST(SelectDomain, TheDomainDoesNotDependOnWhereTheRingsStart) {
+  const Ring outer = {{0, 0}, {10, -1}, {12, 6}, {4, 9}, {-3, 5}};
+  const Ring hole = {{3, 2}, {5, 2}, {6, 4}, {4, 5}};
+  const SelectResult a = select_domain(source({{outer, hole}}), params(DomainKind::land));
+  for (std::size_t shift = 0; shift < 4; ++shift) {
+    Ring o = outer, h = hole;
+    std::rotate(o.begin(), o.begin() + static_cast<std::ptrdiff_t>(shift), o.end());
+    std::rotate(h.begin(), h.begin() + static_cast<std::ptrdiff_t>(shift), h.end());
+    if (shift % 2) std::reverse(o.begin(), o.end());
+    if (shift >= 2) std::reverse(h.begin(), h.end());
+    const SelectResult b = select_domain(source({{o, h}}), params(DomainKind::land));
+    ASSERT_EQ(b.polygons.size(), 1u);
+    ASSERT_EQ(b.polygons[0].holes.size(), 1u);
+    EXPECT_TRUE(b.polygons[0].outer == a.polygons[0].outer) << shift;
+    EXPECT_TRUE(b.polygons[0].holes[0] == a.polygons[0].holes[0]) << shift;
+  }
+  EXPECT_TRUE(a.polygons[0].outer[0] == (Point2{10, -1}));
+  EXPECT_GT(signed_area(a.polygons[0].outer), 0.0);
+  EXPECT_TRUE(a.polygons[0].holes[0][0] == (Point2{3, 2}));
+  EXPECT_LT(signed_area(a.polygons[0].holes[0]), 0.0);
+}
+
 TEST(SelectDomain, LandIsClippedToTheBbox) {
   SourceData d = source({{square(0, 0, 10)}});
   d.bbox_ring = square(5, -5, 20);
