@@ -188,6 +188,32 @@ TEST(Cli, DomainWritesAGeoPackageInTheMeshingCrs) {
   GDALClose(ds);
 }
 
+// A D-Flow FM .pol of land and a lake, and its open boundary as a .pli, both without a
+// CRS: --src-crs gives it to both; the summary says what the lines made.
+TEST(Cli, AModelsLineFilesMeshWithTheirOpenBoundary) {
+  TempDir dir;
+  write_file(dir.file("bay.pol"),
+             "* land with a lake, metres in UTM 30N\nbay\n 4 2\n500000 5000000\n540000 5000000\n"
+             "540000 5030000\n500000 5030000\nlake\n 5 2\n510000 5010000\n510000 5020000\n"
+             "520000 5020000\n520000 5010000\n510000 5010000\n");
+  write_file(dir.file("sea.pli"), "sea\n 2 2\n540000 5000000\n540000 5030000\n");
+  const CliResult r = run_cli({"mesh", dir.file("bay.pol"), "--src-crs", "EPSG:32630",
+                               "--open-boundary", dir.file("sea.pli"), "--size", "2000", "-o",
+                               dir.file("bay.gr3"), "--report", dir.file("bay.json")},
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("lines:        2 feature(s) of lines made 2 ring(s) (0 joined from 0 open "
+                       "lines), 1 polygon(s)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("domain:       1 component(s), 2 ring(s), 1 hole(s)"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("open lines:   " + dir.file("sea.pli") + ": 1 line(s)"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("boundary:     0 open edges"), std::string::npos) << r.err;
+  EXPECT_NE(read_file(dir.file("bay.json")).find("\"num_rings_from_lines\": 2"), std::string::npos);
+}
+
 TEST(Cli, WaterDomainAndRepairFromTheCommandLine) {
   TempDir dir;
   CliResult r = run_cli({"domain", sample("brittany_land.geojson"), "-o", dir.file("sea.gpkg"),
