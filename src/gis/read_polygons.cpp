@@ -411,7 +411,18 @@ class Reader {
           fail(ErrorClass::input, where + " is degenerate (fewer than 3 distinct points, or all "
                                           "on one line); use --repair to drop it");
         ++out_.num_rings_dropped;
-        if (ring_index == 0) return;  // without its outer ring the polygon is gone
+        if (ring_index == 0) {
+          // Without its outer ring each hole is a polygon of its own. A spherical polygon
+          // drawn round a pole is so (world-atlas's Antarctica at 1:50m: a ring along
+          // 89.999 S, with the coast as its hole); the coast is the land.
+          if (rings.size() > 1)
+            out_.warnings.push_back(where + " has no area; its " +
+                                    std::to_string(rings.size() - 1) +
+                                    " hole(s) are read as polygons of their own");
+          for (std::size_t k = 1; k < rings.size(); ++k)
+            add_rings(fid, part, {std::move(rings[k])});
+          return;
+        }
       } else {
         sp.rings.push_back(std::move(ring));
       }

@@ -372,3 +372,27 @@ TEST(ReadPolygons, ReadsTheLineFilesOfModellingPackages) {
   write_file(dir.file("nocrs.pol"), pol);
   expect_error(params(dir.file("nocrs.pol")), ErrorClass::crs, "give the CRS of the coordinates");
 }
+
+// A spherical polygon drawn round a pole (world-atlas's Antarctica at 1:50m): its outer
+// ring runs along 89.999 S, a line in lon/lat, and the coast is its hole. With
+// --repair the degenerate ring is dropped and the hole read as a polygon of its own,
+// with a warning; it was once dropped with it, and the continent with it.
+TEST(ReadPolygons, TheHolesOfAnOuterRingWithoutAreaArePolygonsOfTheirOwn) {
+  TempDir dir;
+  const std::string path = dir.file("pole.geojson");
+  write_file(path, geojson_polygons({"[[[-180,-89.999],[0,-89.999],[179,-89.999],[-180,-89.999]],"
+                                     "[[-60,-70],[-50,-70],[-50,-65],[-60,-65],[-60,-70]]]"}));
+  expect_error(params(path), ErrorClass::input, "ring 0 is degenerate");
+  ReadParams p = params(path);
+  p.repair = true;
+  const SourceData d = read_polygons(p);
+  ASSERT_EQ(d.polygons.size(), 1u);
+  ASSERT_EQ(d.polygons[0].rings.size(), 1u);
+  EXPECT_DOUBLE_EQ(std::abs(signed_area(d.polygons[0].rings[0])), 50.0);
+  EXPECT_EQ(d.num_rings_dropped, 1u);
+  ASSERT_EQ(d.warnings.size(), 1u);
+  EXPECT_NE(
+      d.warnings[0].find("ring 0 has no area; its 1 hole(s) are read as polygons of their own"),
+      std::string::npos)
+      << d.warnings[0];
+}
