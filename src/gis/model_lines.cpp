@@ -49,10 +49,8 @@ class Parser {
       if (!next(size_line)) fail("the block " + quote(name) + " ends before its size line");
       std::istringstream size(size_line);
       if (!(size >> rows >> columns) || rows < 0 || columns < 2)
-        fail("expected the block " + quote(name) +
-             "'s rows and columns (two integers, at least 2 "
-             "columns), found " +
-             quote(size_line));
+        fail("expected the rows and columns of block " + quote(name) +
+             " (two integers, at least 2 columns), found " + quote(size_line));
       NamedLine current{name, {}};
       for (long r = 0; r < rows; ++r) {
         std::string row;
