@@ -60,7 +60,7 @@ class Reader {
     open();
     choose_layer();
     set_crs();
-    apply_bbox();
+    apply_bbox(true);
     apply_where();
     OGRFeatureDefn* defn = layer_->GetLayerDefn();
     const int index = defn->GetFieldIndex(field.c_str());
@@ -96,7 +96,7 @@ class Reader {
     open();
     choose_layer();
     set_crs();
-    apply_bbox();
+    apply_bbox(false);
     apply_where();
     read_features();
     check_coordinate_range();
@@ -139,7 +139,9 @@ class Reader {
     }
   }
 
-  void apply_bbox() {
+  // `filter_lines`: a layer of lines is filtered too (the values of --each: those of the
+  // lines that reach the bbox); otherwise it is read whole (polygons_from_lines).
+  void apply_bbox(bool filter_lines) {
     if (!p_.bbox) return;
     const auto& b = *p_.bbox;
     for (double v : b)
@@ -189,9 +191,8 @@ class Reader {
     // OGR's filter tests the geometry itself, drawn in lon/lat: land round a pole that
     // it does not reach as drawn (reach_pole) would miss a bbox near the pole. Polar
     // bboxes read every feature; add_polygon selects the parts.
-    // A layer of lines is read whole (polygons_from_lines).
     const bool polar = out_.crs.geographic && (ymax <= -60.0 || ymin >= 60.0);
-    if (is_linear(layer_->GetGeomType())) {
+    if (!filter_lines && is_linear(layer_->GetGeomType())) {
       out_.bbox_ring = std::move(ring);
       return;
     }

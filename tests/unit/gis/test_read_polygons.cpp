@@ -311,12 +311,17 @@ TEST(ReadPolygons, ReadsTheRingsOfALayerOfLines) {
   // Two squares drawn as lines, and a bbox between them.
   write_file(dir.file("squares.geojson"),
              R"({"type":"FeatureCollection","features":[)"
-             R"({"type":"Feature","properties":{},"geometry":{"type":"LineString","coordinates":)"
-             R"([[-3,47],[-2,47],[-2,48],[-3,48],[-3,47]]}},)"
-             R"({"type":"Feature","properties":{},"geometry":{"type":"LineString","coordinates":)"
-             R"([[-1,47],[0,47],[0,48],[-1,48],[-1,47]]}}]})");
+             R"({"type":"Feature","properties":{"name":"a"},"geometry":{"type":"LineString",)"
+             R"("coordinates":[[-3,47],[-2,47],[-2,48],[-3,48],[-3,47]]}},)"
+             R"({"type":"Feature","properties":{"name":"b"},"geometry":{"type":"LineString",)"
+             R"("coordinates":[[-1,47],[0,47],[0,48],[-1,48],[-1,47]]}}]})");
   p = params(dir.file("squares.geojson"));
   EXPECT_EQ(read_polygons(p).polygons.size(), 2u);
+  // --each's values are those of the lines that reach the bbox.
+  p.bbox = std::array<double, 4>{-2.5, 47.2, -1.5, 47.8};
+  const std::vector<SelectionValue> values = selection_values(p, "name");
+  ASSERT_EQ(values.size(), 1u);
+  EXPECT_EQ(values[0].text, "a");
   p.bbox = std::array<double, 4>{-1.8, 47.2, -1.2, 47.8};
   expect_error(p, ErrorClass::input,
                "the 2 ring(s) the lines of layer 'squares' make all miss the selection (--bbox)");
