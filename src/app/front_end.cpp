@@ -115,12 +115,10 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   s.num_source_polygons = source.polygons.size();
   s.num_rings_closed = source.num_rings_closed;
   s.num_rings_dropped = source.num_rings_dropped;
-  if (source.num_rings_from_lines) {
-    s.num_line_features = source.num_line_features;
-    s.num_rings_from_lines = source.num_rings_from_lines;
-    s.num_rings_joined = source.num_rings_joined;
-    s.num_lines_joined = source.num_lines_joined;
-  }
+  s.num_line_features = source.num_line_features;
+  s.num_rings_from_lines = source.num_rings_from_lines;
+  s.num_rings_joined = source.num_rings_joined;
+  s.num_lines_joined = source.num_lines_joined;
   s.num_points_removed = source.num_points_removed;
   s.warnings = source.warnings;
 
