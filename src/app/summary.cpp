@@ -51,10 +51,13 @@ std::string format_domain_summary(const DomainSummary& s) {
       os << " (" << s.spikes.num_cut_at_base << " narrower, at the base of a spit)";
     os << ": " << num(s.spikes.area_removed_m2 / 1e6, 4) << " km2 removed\n";
   }
-  if (s.num_rings_from_lines)
+  if (s.num_rings_from_lines) {
     os << "lines:        " << s.num_line_features << " feature(s) of lines made "
-       << s.num_rings_from_lines << " ring(s) (" << s.num_rings_joined << " joined from "
-       << s.num_lines_joined << " open lines), " << s.num_source_polygons << " polygon(s)\n";
+       << s.num_rings_from_lines << " ring(s)";
+    if (s.num_rings_joined)
+      os << " (" << s.num_rings_joined << " joined from " << s.num_lines_joined << " open lines)";
+    os << ", " << s.num_source_polygons << " polygon(s)\n";
+  }
   if (s.num_repaired || s.num_rings_closed || s.num_rings_dropped || s.num_points_removed)
     os << "repairs:      " << s.num_repaired << " invalid polygon(s) fixed, " << s.num_rings_closed
        << " ring(s) closed, " << s.num_rings_dropped << " degenerate ring(s) dropped, "
