@@ -5,13 +5,13 @@
 #include <ogrsf_frmts.h>
 
 #include <algorithm>
-#include <cctype>
 #include <cmath>
 #include <sstream>
 #include <vector>
 
 #include "core/error.h"
 #include "core/geometry.h"
+#include "core/text.h"
 
 namespace isoquad {
 
@@ -20,9 +20,7 @@ namespace {
 std::string extension(const std::string& path) {
   const std::size_t dot = path.find_last_of('.'), slash = path.find_last_of('/');
   if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
-  std::string e = path.substr(dot + 1);
-  for (char& c : e) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return e;
+  return lower_case(path.substr(dot + 1));
 }
 
 struct NamedLine {
