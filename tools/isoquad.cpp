@@ -213,6 +213,7 @@ struct FieldArgs {
   double cross_angle_deg = std::numeric_limits<double>::quiet_NaN();
   std::string cross_raster;
   double cross_conformal = CrossParams{}.conformal;
+  std::string align_path, align_layer;
   double background_factor = 0.25;
   double max_quads = FieldsOptions{}.max_quads;
   std::optional<double> min_depth_m;  // --min-depth
@@ -330,6 +331,16 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
                   "F: the boundary field turns, inside, by F times the rotation a conformal grid with the sizes has (its singularities go where sizes grade); 0: the smoothest field, as the paper (default 0.5)")
       ->check(CLI::Range(0.0, 1.0))
       ->group(c);
+  cmd->add_option("--align", f.align_path,
+                  "Vector file (any format, with a CRS) of lines inside the domain that the "
+                  "cross field follows as it follows the coast: rows of quads run along a "
+                  "channel's axis, a breakwater or a shipping lane (with --refine on the same "
+                  "file, smaller quads there too)")
+      ->group(c);
+  cmd->add_option(
+         "--align-layer", f.align_layer,
+         "Layer of --align to read (default: its first layer of lines, or its first layer)")
+      ->group(c);
   cmd->add_option("--background-factor", f.background_factor,
                   "Background triangles are at most this fraction of the tile size 2h (default 0.25)")
       ->check(CLI::Range(0.001, 1.0))
@@ -359,6 +370,13 @@ FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {
     o.cross.raster_path = f.cross_raster;
   }
   o.cross.conformal = f.cross_conformal;
+  if (!f.align_layer.empty() && f.align_path.empty())
+    throw Error(ErrorClass::usage, "options", "--align-layer needs --align");
+  if (!f.align_path.empty() && o.cross.source == CrossSource::constant)
+    throw Error(ErrorClass::usage, "options",
+                "--align shapes the boundary-aligned cross field: not with --cross-angle");
+  o.front.align_path = f.align_path;
+  o.front.align_layer = f.align_layer;
   o.background_factor = f.background_factor;
   o.max_quads = f.max_quads;
   return o;

@@ -10,6 +10,7 @@
 #include "app/summary.h"
 #include "core/error.h"
 #include "core/stage_clock.h"
+#include "fields/align_lines.h"
 #include "fields/size_cache.h"
 #include "gis/raster_field.h"
 #include "mesh/locate.h"
@@ -130,11 +131,16 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
   }
 }
 
-// The boundary-aligned field. With a coarse mesh of the domain, solved there and
-// interpolated (in 4 theta), the boundary vertices keeping their own crosses.
+// The boundary-aligned field, and the lines' crosses (`lines`, on `mesh`: --align) fixed
+// as the boundary's. With a coarse mesh of the domain, solved there (with the lines'
+// crosses on it) and interpolated (in 4 theta), the boundary vertices and those the
+// lines fix keeping their own crosses.
 CrossField boundary_field(const BackgroundMesh& mesh, const SizingField& size, double conformal,
-                          const BackgroundMesh* coarse) {
-  if (!coarse) return boundary_aligned_cross_field(mesh, size.size_m, conformal);
+                          const BackgroundMesh* coarse, const LineCrosses* lines,
+                          const std::vector<std::vector<Point2>>& align_lines) {
+  if (!coarse)
+    return boundary_aligned_cross_field(mesh, size.size_m, conformal,
+                                        lines ? &lines->crosses : nullptr);
   // Each locator lives only while used: the solve between them is the stage's peak.
   std::vector<double> coarse_size(coarse->points.size());
   {
@@ -144,14 +150,24 @@ CrossField boundary_field(const BackgroundMesh& mesh, const SizingField& size, d
       coarse_size[v] = size.at(mesh, l.triangle, l.bary);
     }
   }
-  const CrossField solved = boundary_aligned_cross_field(*coarse, coarse_size, conformal);
+  std::optional<LineCrosses> coarse_lines;
+  if (lines) coarse_lines = line_crosses(*coarse, align_lines);
+  const CrossField solved = boundary_aligned_cross_field(
+      *coarse, coarse_size, conformal, coarse_lines ? &coarse_lines->crosses : nullptr);
   const TriangleLocator locator(*coarse);
-  const BoundaryCrosses boundary = boundary_crosses(mesh);
+  FixedCrosses fixed = boundary_crosses(mesh);
+  if (lines)
+    for (std::size_t v = 0; v < mesh.points.size(); ++v)
+      if (lines->crosses.is_fixed[v] && !fixed.is_fixed[v]) {
+        fixed.is_fixed[v] = 1;
+        fixed.uc[v] = lines->crosses.uc[v];
+        fixed.us[v] = lines->crosses.us[v];
+      }
   CrossField field;
   field.angle_rad.resize(mesh.points.size());
   for (std::size_t v = 0; v < mesh.points.size(); ++v) {
-    if (boundary.is_fixed[v]) {
-      field.angle_rad[v] = cross_angle_of(boundary.uc[v], boundary.us[v]);
+    if (fixed.is_fixed[v]) {
+      field.angle_rad[v] = cross_angle_of(fixed.uc[v], fixed.us[v]);
       continue;
     }
     const Location l = locator.locate(mesh.points[v]);
@@ -172,18 +188,43 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options, 
   release_free_memory();  // the sources' and the cache's blocks too
 
   progress.report("cross", 0.8);
+  // --align: the lines' crosses, and the lines that lie nowhere in the domain.
+  const std::vector<std::vector<Point2>>& align_lines = r.front.align_lines;
+  std::optional<LineCrosses> lines;
+  if (!align_lines.empty()) {
+    const std::string& path = r.front.summary.align_path;
+    if (options.cross.source == CrossSource::constant)
+      throw Error(ErrorClass::usage, "options",
+                  "--align shapes the boundary-aligned cross field: not with --cross-angle");
+    lines = line_crosses(r.mesh, align_lines);
+    const auto outside = static_cast<std::size_t>(
+        std::count(lines->line_inside.begin(), lines->line_inside.end(), 0));
+    if (outside == align_lines.size() || lines->num_fixed == 0)
+      throw Error(ErrorClass::input, "align",
+                  "'" + path + "': none of its " + std::to_string(align_lines.size()) +
+                      " line(s) lies inside the domain");
+    // Once, though a retried tiling builds the fields again.
+    const std::string warning = std::to_string(outside) + " of the " +
+                                std::to_string(align_lines.size()) + " lines of '" + path +
+                                "' lie wholly outside the domain";
+    std::vector<std::string>& warnings = r.front.summary.warnings;
+    if (outside > 0 && std::find(warnings.begin(), warnings.end(), warning) == warnings.end())
+      warnings.push_back(warning);
+    r.num_aligned_vertices = lines->num_fixed;
+  }
+  const LineCrosses* fixed_lines = lines ? &*lines : nullptr;
   switch (options.cross.source) {
     case CrossSource::boundary:
-      r.cross =
-          boundary_field(r.mesh, r.size, options.cross.conformal, coarse ? &*coarse : nullptr);
+      r.cross = boundary_field(r.mesh, r.size, options.cross.conformal, coarse ? &*coarse : nullptr,
+                               fixed_lines, align_lines);
       break;
     case CrossSource::constant: r.cross = constant_cross_field(r.mesh, options.cross.angle_deg); break;
     case CrossSource::raster: {
       const CrsInfo crs{domain.crs_wkt, domain.crs_name, false, true, 1.0};
       RasterField raster(options.cross.raster_path, "--cross-raster", crs, bounding_box(domain));
       // Where the raster has no data, the boundary-aligned field fills in.
-      r.cross =
-          boundary_field(r.mesh, r.size, options.cross.conformal, coarse ? &*coarse : nullptr);
+      r.cross = boundary_field(r.mesh, r.size, options.cross.conformal, coarse ? &*coarse : nullptr,
+                               fixed_lines, align_lines);
       for (std::size_t v = 0; v < r.mesh.points.size(); ++v) {
         const double deg = raster.sample(r.mesh.points[v]);
         if (std::isnan(deg)) continue;
@@ -258,6 +299,9 @@ std::string format_fields_summary(const FieldsResult& r) {
                 "total index %d/4)\n",
                 r.singularities.size(), c.plus, c.minus, c.total_quarters);
   os << buf;
+  if (r.num_aligned_vertices > 0)
+    os << "aligned:      " << r.num_aligned_vertices << " background vertices along the "
+       << r.front.summary.align_num_lines << " line(s) of " << r.front.summary.align_path << "\n";
   os << "times:       ";
   for (const StageTime& t : r.times) {
     std::snprintf(buf, sizeof buf, " %s %.3f s %.0f MB;", t.stage.c_str(), t.seconds, t.peak_mb);
@@ -297,8 +341,12 @@ void add_background_report(JsonWriter& j, const FieldsResult& r) {
       .value("num_singularities", r.singularities.size())
       .value("num_index_plus_quarter", c.plus)
       .value("num_index_minus_quarter_or_less", c.minus)
-      .value("total_index_quarters", c.total_quarters)
-      .end_object();
+      .value("total_index_quarters", c.total_quarters);
+  if (r.num_aligned_vertices > 0)
+    j.value("align_path", r.front.summary.align_path)
+        .value("align_num_lines", r.front.summary.align_num_lines)
+        .value("num_aligned_vertices", r.num_aligned_vertices);
+  j.end_object();
 }
 
 void add_stage_times(JsonWriter& j, const std::vector<StageTime>& times) {

@@ -66,6 +66,8 @@ struct FieldsResult {
   SizingField size;
   CrossField cross;
   std::vector<Singularity> singularities;
+  // --align (the lines in front.align_lines): the background vertices fixed to them.
+  std::size_t num_aligned_vertices = 0;
   std::vector<StageTime> times;
 };
 

@@ -17,6 +17,7 @@ struct ProjectedLines {
   std::vector<std::vector<Point2>> lines;
   std::vector<double> sag_m;  // by line: the largest gap between a projected segment and its chord
   long failed_line = -1;      // the first line with a point that cannot be transformed
+  std::size_t num_source_lines = 0;  // the lines read (read_projected_lines)
 };
 
 // Each segment cut into 16, so that the lines follow the segments' curved images, then
@@ -63,6 +64,21 @@ ProjectedLines project_lines(const std::vector<std::vector<Point2>>& lines, cons
     }
   }
   return out;
+}
+
+// The lines of `path` (read_lines; a modelling package's line file in the input's CRS)
+// projected to the meshing CRS. Throws Error(crs) for a point that cannot be.
+ProjectedLines read_projected_lines(const std::string& path, const std::string& layer,
+                                    const std::string& what, const CrsInfo& source_crs,
+                                    const CrsInfo& meshing_crs, bool by_segment) {
+  const SourceLines lines = read_lines(path, layer, what, &source_crs);
+  ProjectedLines p = project_lines(lines.lines, lines.crs, meshing_crs, by_segment);
+  if (p.failed_line >= 0)
+    throw Error(ErrorClass::crs, what,
+                "'" + path + "': a point of line " + std::to_string(p.failed_line + 1) +
+                    " cannot be transformed from " + lines.crs.name + " to the meshing CRS");
+  p.num_source_lines = lines.lines.size();
+  return p;
 }
 
 // The domain's edges are projected as chords between their ends; lines with more
@@ -139,10 +155,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   s.meshing_crs_proj = crs_proj_string(CrsInfo{result.domain.crs_wkt, result.domain.crs_name});
   const CrsInfo meshing_crs{result.domain.crs_wkt, result.domain.crs_name};
   if (!options.open_boundary_path.empty()) {
-    const SourceLines lines = read_lines(options.open_boundary_path, options.open_boundary_layer,
-                                         "open boundary", &source.crs);
     s.open_boundary_path = options.open_boundary_path;
-    s.open_boundary_num_lines = lines.lines.size();
     // Each segment on its own, with its own sag: a long segment's (500 m for 150 km of a
     // line in lon/lat) would otherwise widen the tolerance round the short ones, and
     // beyond the lines' ends. The domain's boundary along a segment runs from vertex to
@@ -151,12 +164,10 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     // Each such chord lies within 0.64 sag of the curve or of the whole chord (a chord
     // over a fraction f of the segment lies within f^2 sag of the curve, and its far end
     // 4 f (1 - f) sag from the whole chord): 0.7 sag is enough.
-    const ProjectedLines p = project_lines(lines.lines, lines.crs, meshing_crs, true);
-    if (p.failed_line >= 0)
-      throw Error(ErrorClass::crs, "open boundary",
-                  "'" + options.open_boundary_path + "': a point of line " +
-                      std::to_string(p.failed_line + 1) + " cannot be transformed from " +
-                      lines.crs.name + " to the meshing CRS");
+    const ProjectedLines p =
+        read_projected_lines(options.open_boundary_path, options.open_boundary_layer,
+                             "open boundary", source.crs, meshing_crs, true);
+    s.open_boundary_num_lines = p.num_source_lines;
     result.open_boundary_lines = p.lines;
     for (double sag : p.sag_m) result.open_boundary_slack_m.push_back(0.7 * sag);
     result.open_boundary_chord_share = 0.2;
@@ -169,6 +180,14 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
       result.open_boundary_tolerance_m =
           2.0 * p.sag_m[0];  // the simplification tolerance added below
     }
+  }
+
+  if (!options.align_path.empty()) {
+    s.align_path = options.align_path;
+    const ProjectedLines p = read_projected_lines(options.align_path, options.align_layer, "align",
+                                                  source.crs, meshing_crs, false);
+    s.align_num_lines = p.num_source_lines;
+    result.align_lines = p.lines;
   }
 
   progress.report("clean", 0.7);

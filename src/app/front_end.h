@@ -40,6 +40,9 @@ struct FrontEndOptions {
   // boundary they follow is open, the rest land, instead of a water domain's bbox.
   std::string open_boundary_path;
   std::string open_boundary_layer;  // empty: its first layer of lines, or its first layer
+  // A vector file of lines inside the domain that the cross field follows (--align).
+  std::string align_path;
+  std::string align_layer;  // empty: its first layer of lines, or its first layer
 };
 
 // What the front end did, for the summary and the report.
@@ -81,6 +84,9 @@ struct DomainSummary {
   std::string open_boundary_path;
   std::size_t open_boundary_num_lines = 0;
   double open_boundary_length_m = 0.0;
+  // --align: the file and its lines.
+  std::string align_path;
+  std::size_t align_num_lines = 0;
   std::vector<std::string> warnings;
 };
 
@@ -105,6 +111,8 @@ struct FrontEndResult {
   // are the mesh's corners); 20% for --open-boundary, whose lines may turn by up to 45
   // degrees (--corner-angle's default) at a vertex that the mesh's edges cut across.
   double open_boundary_chord_share = 0.01;
+  // The lines of --align in the meshing CRS, densified as the open boundary's.
+  std::vector<std::vector<Point2>> align_lines;
 };
 
 FrontEndResult build_planar_domain(const FrontEndOptions& options,

@@ -72,6 +72,7 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
   int variant = 0;
   for (int attempt = 0;; ++attempt) {
     MeshOptions o = options;
+    o.tiling.seed.lines = r.fields.front.align_lines;  // rows of tiles along --align's lines
     o.tiling.conform_iters += variant / 2;
     if (variant >= 2) o.tiling.resplit_rounds = 0;
     if (variant % 2 == 1)

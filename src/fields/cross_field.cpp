@@ -141,7 +141,7 @@ CrossField constant_cross_field(const BackgroundMesh& mesh, double angle_deg) {
   return field;
 }
 
-BoundaryCrosses boundary_crosses(const BackgroundMesh& mesh) {
+FixedCrosses boundary_crosses(const BackgroundMesh& mesh) {
   const int num_vertices = static_cast<int>(mesh.points.size());
   // Sum of exp(4 i phi) over the two boundary edges of each chain vertex. Averaging in
   // 4-phi space keeps a 90-degree corner's cross aligned with both edges.
@@ -162,7 +162,7 @@ BoundaryCrosses boundary_crosses(const BackgroundMesh& mesh) {
   }
   // A vertex is fixed when its two edges agree on a cross; at a 45-degree (mod 90)
   // corner the sum vanishes and any cross is as good, so the vertex is left free.
-  BoundaryCrosses b;
+  FixedCrosses b;
   b.is_fixed.assign(num_vertices, 0);
   b.uc.assign(num_vertices, 0.0);
   b.us.assign(num_vertices, 0.0);
@@ -177,9 +177,17 @@ BoundaryCrosses boundary_crosses(const BackgroundMesh& mesh) {
 }
 
 CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
-                                        const std::vector<double>& size_m, double conformal) {
+                                        const std::vector<double>& size_m, double conformal,
+                                        const FixedCrosses* lines) {
   const int num_vertices = static_cast<int>(mesh.points.size());
-  BoundaryCrosses boundary = boundary_crosses(mesh);
+  FixedCrosses boundary = boundary_crosses(mesh);
+  if (lines)
+    for (int v = 0; v < num_vertices; ++v)
+      if (lines->is_fixed[v] && !boundary.is_fixed[v]) {
+        boundary.is_fixed[v] = 1;
+        boundary.uc[v] = lines->uc[v];
+        boundary.us[v] = lines->us[v];
+      }
   const std::vector<char>& is_fixed = boundary.is_fixed;
   std::vector<double>& uc = boundary.uc;
   std::vector<double>& us = boundary.us;

@@ -29,16 +29,19 @@ struct CrossField {
 // smooth field follows it (the Laplacian of log h is large, or the boundary holds the
 // field against it, as along a coast with sizes growing inland), the minimiser places
 // singularities: where a quad mesh that follows the sizes needs its irregular vertices.
-CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
-                                        const std::vector<double>& size_m = {},
-                                        double conformal = 0.0);
-
-// The boundary data of that field: per vertex, whether it is fixed, and its u there.
-struct BoundaryCrosses {
+//
+// `lines` (--align, align_lines.h) fixes more vertices inside, as the boundary's are.
+struct FixedCrosses {
   std::vector<char> is_fixed;  // #V
   std::vector<double> uc, us;  // #V cos and sin of 4 theta (0 where not fixed)
 };
-BoundaryCrosses boundary_crosses(const BackgroundMesh& mesh);
+CrossField boundary_aligned_cross_field(const BackgroundMesh& mesh,
+                                        const std::vector<double>& size_m = {},
+                                        double conformal = 0.0,
+                                        const FixedCrosses* lines = nullptr);
+
+// The boundary data of that field: per vertex, whether it is fixed, and its u there.
+FixedCrosses boundary_crosses(const BackgroundMesh& mesh);
 
 // theta = arg(u) / 4 for u = c + i s, as the cross's representative in [0, pi/2).
 double cross_angle_of(double c, double s);

@@ -23,7 +23,7 @@ struct Seed {
 class SeedSet {
  public:
   SeedSet(const BackgroundMesh& mesh, const SizingField& size, const SeedParams& params)
-      : params_(params) {
+      : min_gap_(params.min_gap) {
     double x1 = -1e300, y1 = -1e300;
     x0_ = y0_ = 1e300;
     for (const Point2& p : mesh.points) {
@@ -42,7 +42,7 @@ class SeedSet {
 
   // Whether no placed seed is within min_gap (h + h_j) of `q` in q's frame.
   bool has_room(const Seed& q) const {
-    const double reach = std::sqrt(2.0) * params_.min_gap * (q.h + hmax_);
+    const double reach = std::sqrt(2.0) * min_gap_ * (q.h + hmax_);
     const int i0 = cell_x(q.p.x - reach), i1 = cell_x(q.p.x + reach);
     const int j0 = cell_y(q.p.y - reach), j1 = cell_y(q.p.y + reach);
     for (int j = j0; j <= j1; ++j)
@@ -51,7 +51,7 @@ class SeedSet {
           const Seed& o = seeds[k];
           const double dx = o.p.x - q.p.x, dy = o.p.y - q.p.y;
           const double d = std::max(std::abs(dx * q.c + dy * q.s), std::abs(dy * q.c - dx * q.s));
-          if (d < params_.min_gap * (q.h + o.h)) return false;
+          if (d < min_gap_ * (q.h + o.h)) return false;
         }
     return true;
   }
@@ -68,7 +68,7 @@ class SeedSet {
   int cell_x(double x) const { return std::clamp(static_cast<int>((x - x0_) / cell_), 0, nx_ - 1); }
   int cell_y(double y) const { return std::clamp(static_cast<int>((y - y0_) / cell_), 0, ny_ - 1); }
 
-  SeedParams params_;
+  double min_gap_;
   double x0_, y0_, cell_, hmax_;
   int nx_, ny_;
   std::vector<std::vector<int>> cells_;
@@ -179,7 +179,31 @@ Tiling seed_tiling(const BackgroundMesh& mesh, const TriangleGeometry& geom,
     }
   }
 
-  // Fronts: breadth first from the boundary rows, one tile along each cross direction.
+  // The lines' rows: along each line, a generator every tile (2h), where there is room.
+  for (const std::vector<Point2>& line : params.lines) {
+    double to_next = 0.0;  // tiles until the next generator
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      const Point2 a = line[i], b = line[i + 1];
+      const double length = distance(a, b);
+      // Walked in steps of at most a quarter of h, counting tiles as ds / 2h.
+      for (double t = 0.0; t < length;) {
+        const Point2 p{a.x + (b.x - a.x) * t / length, a.y + (b.y - a.y) * t / length};
+        const Location loc = locator.locate(p);
+        const double h = loc.triangle >= 0 ? size.at(mesh, loc.triangle, loc.bary) : 0.0;
+        if (!(h > 0)) break;
+        if (to_next <= 0.0) {
+          if (try_add(p, params.clearance)) ++st.num_lines;
+          to_next += 1.0;
+        }
+        const double step = std::min(0.25 * h, length - t);
+        to_next -= step / (2.0 * h);
+        t += step;
+      }
+    }
+  }
+
+  // Fronts: breadth first from the boundary and lines' rows, one tile along each cross
+  // direction.
   for (std::size_t k = 0; k < set.seeds.size(); ++k) {
     const Seed s = set.seeds[k];
     for (int dir = 0; dir < 4; ++dir) {

@@ -14,6 +14,9 @@
 // should converge to.
 #pragma once
 
+#include <vector>
+
+#include "core/geometry.h"
 #include "fields/cross_field.h"
 #include "fields/sizing_field.h"
 #include "mesh/background_mesh.h"
@@ -31,10 +34,15 @@ struct SeedParams {
   // An interior candidate keeps this many h from the boundary along its frame axes;
   // nearer the boundary, the boundary row covers it.
   double clearance = 0.6;
+  // Lines inside the domain (metres; --align, whose lines the cross field follows): a
+  // row of generators on each, one tile apart, after the boundary rows, so that rows of
+  // tiles start from the lines as from the coast.
+  std::vector<std::vector<Point2>> lines;
 };
 
 struct SeedStats {
   int num_boundary = 0;  // generators of the boundary rows
+  int num_lines = 0;     // generators of the lines' rows
   int num_interior = 0;  // generators placed by the fronts
   int num_filled = 0;    // generators added in triangles no flood reached
 };

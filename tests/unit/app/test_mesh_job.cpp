@@ -453,7 +453,7 @@ TEST(MeshJob, ALargeBackgroundMeshHasItsCrossFieldSolvedOnACoarserMesh) {
   const FieldsResult coarse = build_fields(o);
   ASSERT_EQ(coarse.mesh.points.size(), fine.mesh.points.size());
   ASSERT_GT(fine.mesh.points.size(), 1000u);
-  const BoundaryCrosses boundary = boundary_crosses(fine.mesh);
+  const FixedCrosses boundary = boundary_crosses(fine.mesh);
   std::vector<double> inside;
   for (std::size_t v = 0; v < fine.mesh.points.size(); ++v) {
     const double d =
