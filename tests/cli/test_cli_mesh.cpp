@@ -1033,8 +1033,9 @@ TEST(CliMesh, AlignTurnsTheQuadsAlongALine) {
     return r;
   };
   mesh({}, "plain.gpkg");
-  const CliResult aligned = mesh({"--align", lane}, "aligned.gpkg");
+  const CliResult aligned = mesh({"--align", lane, "--report", dir.file("r.json")}, "aligned.gpkg");
   EXPECT_NE(aligned.err.find("\naligned:      "), std::string::npos) << aligned.err;
+  EXPECT_GT(report_number(read_file(dir.file("r.json")), "num_aligned_vertices"), 20);
   const QuadLayer plain_quads = read_quads(dir.file("plain.gpkg"));
   const QuadLayer aligned_quads = read_quads(dir.file("aligned.gpkg"));
   EXPECT_GT(deviation_from_lane(plain_quads, 2000), 25.0);

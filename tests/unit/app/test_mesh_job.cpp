@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/progress.h"
+#include "fields/align_lines.h"
 #include "fields/cross_field.h"
 #include "mesh/locate.h"
 #include "quad/quad_mesh.h"
@@ -473,4 +474,34 @@ TEST(MeshJob, ALargeBackgroundMeshHasItsCrossFieldSolvedOnACoarserMesh) {
   EXPECT_LT(inside[inside.size() * 95 / 100], 8.0);
   EXPECT_NEAR(static_cast<double>(coarse.singularities.size()),
               static_cast<double>(fine.singularities.size()), 0.2 * fine.singularities.size());
+}
+
+// --align on the coarse mesh's path: the lines' crosses are fixed on the coarse mesh for
+// the solve, and the fine mesh's vertices nearest the lines keep them exactly.
+TEST(MeshJob, AlignedLinesKeepTheirCrossesWhenTheFieldIsSolvedOnACoarserMesh) {
+  TempDir dir;
+  const std::string line = dir.file("line.geojson");
+  write_file(line,
+             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+             R"("geometry":{"type":"LineString","coordinates":[[8.95,42.05],[9.25,42.45]]}}]})");
+  FieldsOptions o = corsica(8000.0).fields;
+  o.front.align_path = line;
+  o.coarse_cross_above = 0;  // never
+  const FieldsResult fine = build_fields(o);
+  o.coarse_cross_above = 1000;
+  const FieldsResult coarse = build_fields(o);
+  ASSERT_EQ(coarse.mesh.points.size(), fine.mesh.points.size());
+  ASSERT_EQ(fine.front.align_lines.size(), 1u);
+  EXPECT_GT(fine.num_aligned_vertices, 10u);
+  EXPECT_EQ(coarse.num_aligned_vertices, fine.num_aligned_vertices);
+  const LineCrosses lc = line_crosses(fine.mesh, fine.front.align_lines);
+  std::size_t fixed = 0;
+  for (std::size_t v = 0; v < fine.mesh.points.size(); ++v) {
+    if (!lc.crosses.is_fixed[v]) continue;
+    ++fixed;
+    const double expected = cross_angle_of(lc.crosses.uc[v], lc.crosses.us[v]);
+    EXPECT_EQ(fine.cross.angle_rad[v], expected) << v;
+    EXPECT_EQ(coarse.cross.angle_rad[v], expected) << v;
+  }
+  EXPECT_EQ(fixed, fine.num_aligned_vertices);
 }
