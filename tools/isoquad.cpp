@@ -241,6 +241,11 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
   cmd->add_option("--refine-field", f.sizing.refine_field,
                   "Attribute of --refine holding the sizes (default: size)")
       ->group(g);
+  cmd->add_option("--refine-width-field", f.sizing.refine_width_field,
+                  "Attribute of --refine holding widths in metres: the size holds within half "
+                  "the width of each feature's lines, points and polygons, and grows by "
+                  "--gradation beyond (default: none, the size on the features only)")
+      ->group(g);
   cmd->add_option("--refine-layer", f.sizing.refine_layer,
                   "Layer of --refine to read (default: its first)")
       ->group(g);
@@ -370,6 +375,8 @@ FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {
     o.cross.raster_path = f.cross_raster;
   }
   o.cross.conformal = f.cross_conformal;
+  if (!f.sizing.refine_width_field.empty() && f.sizing.refine_path.empty())
+    throw Error(ErrorClass::usage, "options", "--refine-width-field needs --refine");
   if (!f.align_layer.empty() && f.align_path.empty())
     throw Error(ErrorClass::usage, "options", "--align-layer needs --align");
   if (!f.align_path.empty() && o.cross.source == CrossSource::constant)

@@ -25,6 +25,7 @@ FeatureSizes::FeatureSizes(const std::vector<SizeFeature>& features, double grad
   for (const SizeFeature& f : features) {
     Item item;
     item.size_m = f.size_m;
+    item.half_width_m = 0.5 * f.width_m;
     item.xmin = item.ymin = INFINITY;
     item.xmax = item.ymax = -INFINITY;
     auto grow = [&item](const Point2& p) {
@@ -62,6 +63,7 @@ FeatureSizes::FeatureSizes(const std::vector<SizeFeature>& features, double grad
   x0_ = y0_ = INFINITY;
   for (const Item& item : items_) {
     min_size_m_ = std::min(min_size_m_, item.size_m);
+    max_half_width_m_ = std::max(max_half_width_m_, item.half_width_m);
     x0_ = std::min(x0_, item.xmin), y0_ = std::min(y0_, item.ymin);
     x1 = std::max(x1, item.xmax), y1 = std::max(y1, item.ymax);
   }
@@ -104,10 +106,11 @@ bool FeatureSizes::inside(const Item& item, const Point2& p) const {
 }
 
 double FeatureSizes::limit(const Point2& p, double h) const {
-  // Only items within (h - the smallest size) / K of p can lower h: those of the cells
-  // within that reach, each once (in ascending order; the minimum is the same in any).
-  const double reach = (h - min_size_m_) / gradation_;
-  if (!(reach > 0) || n_ == 0) return h;
+  // Only items within (h - the smallest size) / K (and the largest half width) of p can
+  // lower h: those of the cells within that reach, each once (in ascending order; the
+  // minimum is the same in any).
+  if (!(h > min_size_m_) || n_ == 0) return h;
+  const double reach = (h - min_size_m_) / gradation_ + max_half_width_m_;
   const double fx0 = std::floor((p.x - reach - x0_) / cell_);
   const double fx1 = std::floor((p.x + reach - x0_) / cell_);
   const double fy0 = std::floor((p.y - reach - y0_) / cell_);
@@ -137,7 +140,7 @@ double FeatureSizes::limit(const Point2& p, double h) const {
 
 double FeatureSizes::limit_by(const Item& item, const Point2& p, double h) const {
   if (!(item.size_m < h)) return h;
-  const double bound = (h - item.size_m) / gradation_;
+  const double bound = (h - item.size_m) / gradation_ + item.half_width_m;
   if (box_distance2(p, item.xmin, item.ymin, item.xmax, item.ymax) >= bound * bound) return h;
   if (inside(item, p)) return item.size_m;
   // The nearest segment or point, looked for only where it could lower h.
@@ -152,7 +155,7 @@ double FeatureSizes::limit_by(const Item& item, const Point2& p, double h) const
   }
   for (int k = item.first_point; k < item.last_point; ++k)
     best = std::min(best, distance(p, points_[k]));
-  return std::min(h, item.size_m + gradation_ * best);
+  return std::min(h, item.size_m + gradation_ * std::max(0.0, best - item.half_width_m));
 }
 
 }  // namespace isoquad

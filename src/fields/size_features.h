@@ -1,6 +1,7 @@
 // Sizes asked for by vector features (--refine): at most a feature's size inside its
-// polygons and on its lines and points, growing by the gradation K with the distance
-// from them (a graded cone, as the sizing field's gradation would make it).
+// polygons and on its lines and points (and within half its width of them), growing by
+// the gradation K with the distance beyond (a graded cone, as the sizing field's
+// gradation would make it).
 #pragma once
 
 #include <vector>
@@ -15,8 +16,8 @@ class FeatureSizes {
  public:
   // `features` in the meshing CRS.
   FeatureSizes(const std::vector<SizeFeature>& features, double gradation);
-  // min(h, the smallest of size + K * distance over the features): features whose
-  // bound cannot go below h are skipped.
+  // min(h, the smallest of size + K * max(0, distance - width / 2) over the features):
+  // features whose bound cannot go below h are skipped.
   double limit(const Point2& p, double h) const;
 
  private:
@@ -26,6 +27,7 @@ class FeatureSizes {
   };
   struct Item {
     double size_m = 0.0;
+    double half_width_m = 0.0;
     double xmin = 0, ymin = 0, xmax = 0, ymax = 0;
     int first_ring = 0, last_ring = 0;  // polylines [first_ring, last_ring) are rings
     int first_run = 0, last_run = 0;    // runs of its rings and lines
@@ -37,6 +39,7 @@ class FeatureSizes {
 
   double gradation_ = 0.2;
   double min_size_m_ = 0.0;
+  double max_half_width_m_ = 0.0;
   std::vector<std::vector<Point2>> polylines_;
   std::vector<Point2> points_;
   std::vector<Run> runs_;

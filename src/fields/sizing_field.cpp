@@ -100,10 +100,11 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
         summary_.sources.push_back((r.elevation ? "elevation " : "bathymetry ") + r.path);
   }
   if (!params.refine_path.empty()) {
-    SizeFeatures in = read_size_features(params.refine_path, params.refine_layer,
-                                         params.refine_field, "--refine");
+    SizeFeatures in =
+        read_size_features(params.refine_path, params.refine_layer, params.refine_field, "--refine",
+                           params.refine_width_field);
     CrsTransform to_mesh(in.crs, crs);
-    double smallest = INFINITY, largest = 0;
+    double smallest = INFINITY, largest = 0, widest = 0;
     for (SizeFeature& f : in.features) {
       bool ok = true;
       for (auto* parts : {&f.rings, &f.lines})
@@ -114,12 +115,15 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
                     "'" + params.refine_path + "': feature " + std::to_string(f.fid) +
                         " has a point that cannot be transformed to the meshing CRS");
       smallest = std::min(smallest, f.size_m), largest = std::max(largest, f.size_m);
+      widest = std::max(widest, f.width_m);
     }
     features_ = std::make_unique<FeatureSizes>(in.features, params.gradation);
     std::ostringstream s;
     s << "features " << params.refine_path << " (" << in.features.size() << ", " << smallest;
     if (largest > smallest) s << " to " << largest;
-    s << " m)";
+    s << " m";
+    if (widest > 0) s << ", up to " << widest << " m wide";
+    s << ")";
     summary_.sources.push_back(s.str());
   }
   if (automatic) {

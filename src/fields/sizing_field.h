@@ -58,9 +58,10 @@ struct SizingParams {
   double time_step_s = 0.0;
   double courant = 1.0;
   // --refine: vector features (any OGR format with a CRS) whose attribute refine_field
-  // gives the size in metres inside their polygons and on their lines and points,
-  // growing by the gradation away from them; not clamped to hmin.
-  std::string refine_path, refine_layer, refine_field = "size";
+  // gives the size in metres inside their polygons and on their lines and points (and,
+  // with refine_width_field, within half the width it gives), growing by the gradation
+  // away from them; not clamped to hmin.
+  std::string refine_path, refine_layer, refine_field = "size", refine_width_field;
 
   double cells_across = 2.0;  // --cells-across: elements across a narrow channel
   bool narrow_sizes = true;   // one element across narrower ones, down to hmin/2

@@ -49,7 +49,8 @@ bool add_geometry(const OGRGeometry& g, SizeFeature& f) {
 }  // namespace
 
 SizeFeatures read_size_features(const std::string& path, const std::string& layer_name,
-                                const std::string& field, const std::string& what) {
+                                const std::string& field, const std::string& what,
+                                const std::string& width_field) {
   GdalDataset ds = open_vector_dataset(path, what);
   auto fail = [&](ErrorClass cls, const std::string& why) {
     throw Error(cls, what, "'" + path + "': " + why);
@@ -63,10 +64,23 @@ SizeFeatures read_size_features(const std::string& path, const std::string& laye
   if (!srs) fail(ErrorClass::crs, "layer '" + out.layer_name + "' has no CRS");
   out.crs = crs_from_srs(*srs);
   OGRFeatureDefn* defn = layer->GetLayerDefn();
-  const int index = defn->GetFieldIndex(field.c_str());
-  if (index < 0)
-    fail(ErrorClass::usage, "layer '" + out.layer_name + "' has no attribute '" + field +
-                                "' for the sizes (attributes: " + field_names(*layer) + ")");
+  auto attribute = [&](const std::string& name, const char* purpose) {
+    const int index = defn->GetFieldIndex(name.c_str());
+    if (index < 0)
+      fail(ErrorClass::usage, "layer '" + out.layer_name + "' has no attribute '" + name +
+                                  "' for the " + purpose + " (attributes: " + field_names(*layer) +
+                                  ")");
+    return index;
+  };
+  const int index = attribute(field, "sizes");
+  const int width_index = width_field.empty() ? -1 : attribute(width_field, "widths");
+  // The attribute's number; NaN when it is not set, not a number or not finite.
+  auto number = [](OGRFeature& feature, int i, const char*& text) {
+    char* end = nullptr;
+    text = feature.GetFieldAsString(i);
+    const double v = feature.IsFieldSetAndNotNull(i) ? std::strtod(text, &end) : NAN;
+    return std::isfinite(v) && !(end && *end) ? v : NAN;
+  };
   layer->ResetReading();
   for (auto& feature : *layer) {
     const OGRGeometry* g = feature->GetGeometryRef();
@@ -77,12 +91,17 @@ SizeFeatures read_size_features(const std::string& path, const std::string& laye
     if (!add_geometry(*g, f))
       fail(ErrorClass::input, name + " is a " + OGRGeometryTypeToName(g->getGeometryType()) +
                                   "; sizes go on points, lines and polygons");
-    char* end = nullptr;
-    const char* text = feature->GetFieldAsString(index);
-    f.size_m = feature->IsFieldSetAndNotNull(index) ? std::strtod(text, &end) : NAN;
-    if (!(f.size_m > 0) || !std::isfinite(f.size_m) || (end && *end))
+    const char* text = nullptr;
+    f.size_m = number(*feature, index, text);
+    if (!(f.size_m > 0))
       fail(ErrorClass::input,
            name + " has " + field + " '" + text + "'; sizes are positive numbers of metres");
+    if (width_index >= 0) {
+      f.width_m = number(*feature, width_index, text);
+      if (!(f.width_m >= 0))
+        fail(ErrorClass::input, name + " has " + width_field + " '" + text +
+                                    "'; widths are numbers of metres, 0 or more");
+    }
     for (const auto* parts : {&f.rings, &f.lines})
       for (const auto& part : *parts)
         for (const Point2& p : part)

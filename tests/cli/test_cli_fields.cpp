@@ -184,3 +184,44 @@ TEST(CliFields, RefineFeaturesSetTheSizesAroundThem) {
   EXPECT_NE(r.err.find("no attribute 'h' for the sizes (attributes: size)"), std::string::npos)
       << r.err;
 }
+
+// --refine-width-field: a point asking for 400 m within 5 km of it (a width of 10 km),
+// growing by the gradation beyond; the option needs --refine.
+TEST(CliFields, ARefineWidthHoldsTheSizeRoundTheFeature) {
+  TempDir dir;
+  const std::string domain = dir.file("square.geojson");
+  write_file(domain, geojson_polygons({"[[[0,0],[0.5,0],[0.5,0.5],[0,0.5],[0,0]]]"}));
+  const std::string refine = dir.file("refine.geojson");
+  write_file(refine,
+             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":)"
+             R"({"size":400,"w":10000},"geometry":{"type":"Point","coordinates":[0.25,0.25]}}]})");
+  const std::string vtu = dir.file("f.vtu");
+  CliResult r = run_cli({"fields", domain, "--dst-crs", "EPSG:3857", "--size", "3000", "--refine",
+                         refine, "--refine-width-field", "w", "-o", vtu},
+                        dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("features " + refine + " (1, 400 m, up to 10000 m wide)"), std::string::npos)
+      << r.err;
+  python_check(dir,
+               "import sys, meshio, numpy as np\n"
+               "from osgeo import osr\n"
+               "m = meshio.read(sys.argv[1])\n"
+               "x, y, h = m.points[:, 0], m.points[:, 1], m.point_data['size']\n"
+               "src = osr.SpatialReference(); src.ImportFromEPSG(4326)\n"
+               "dst = osr.SpatialReference(); dst.ImportFromEPSG(3857)\n"
+               "for s in (src, dst): s.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)\n"
+               "px, py, _ = osr.CoordinateTransformation(src, dst).TransformPoint(0.25, 0.25)\n"
+               "d = np.hypot(x - px, y - py)\n"
+               "bound = np.minimum(3000, 400 + 0.2 * np.maximum(d - 5000, 0))\n"
+               "assert (h <= bound * (1 + 1e-9)).all(), (h - bound).max()\n"
+               "band = d < 4900\n"
+               "assert band.sum() > 100 and np.allclose(h[band], 400), h[band].max()\n"
+               "ring = (d > 6000) & (d < 9000)\n"
+               "assert ring.sum() > 20 and (h[ring] > 400).all()\n",
+               {vtu});
+  r = run_cli(
+      {"fields", domain, "--size", "3000", "--refine-width-field", "w", "-o", vtu, "--overwrite"},
+      dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--refine-width-field needs --refine"), std::string::npos) << r.err;
+}

@@ -69,9 +69,12 @@ TEST(FeatureSizes, TheSmallestGradedSizeOfAnyFeature) {
   EXPECT_EQ(sizes.limit({500, 500}, 400), 400);              // never above h
 }
 
+namespace {
+
 // Many features (the grid's cells hold few of them): points, small squares and short
-// lines scattered over 100 km, sizes 200 to 1,000 m.
-TEST(FeatureSizes, ManyFeaturesThroughTheGridGiveThePlainMinimum) {
+// lines scattered over 100 km, sizes 200 to 1,000 m, and with `widths` widths of 0 to
+// 3,000 m.
+std::vector<SizeFeature> scattered_features(bool widths) {
   std::vector<SizeFeature> features(400);
   std::uint32_t seed = 12345;
   auto uniform = [&seed](double a, double b) {
@@ -85,7 +88,14 @@ TEST(FeatureSizes, ManyFeaturesThroughTheGridGiveThePlainMinimum) {
     if (k % 3 == 0) f.points = {c};
     if (k % 3 == 1) f.rings = {{c, {c.x + 800, c.y}, {c.x + 800, c.y + 800}, {c.x, c.y + 800}, c}};
     if (k % 3 == 2) f.lines = {{c, {c.x + uniform(-3000, 3000), c.y + uniform(-3000, 3000)}}};
+    if (widths && k % 2 == 0) f.width_m = uniform(0, 3000);
   }
+  return features;
+}
+
+// FeatureSizes against the plain minimum of size + K max(0, distance - width / 2) on
+// a lattice of points, for h 2,500 and 700 m.
+void expect_the_plain_minimum(const std::vector<SizeFeature>& features) {
   const double k = 0.3, h0 = 2500;
   const FeatureSizes sizes(features, k);
   for (int i = -10; i <= 110; ++i)
@@ -94,10 +104,31 @@ TEST(FeatureSizes, ManyFeaturesThroughTheGridGiveThePlainMinimum) {
       for (double h : {h0, 700.0}) {
         double want = h;
         for (const SizeFeature& f : features)
-          want = std::min(want, f.size_m + k * plain_distance(f, p));
+          want =
+              std::min(want, f.size_m + k * std::max(0.0, plain_distance(f, p) - 0.5 * f.width_m));
         ASSERT_NEAR(sizes.limit(p, h), want, 1e-9) << p.x << " " << p.y << " " << h;
       }
     }
+}
+
+}  // namespace
+
+TEST(FeatureSizes, ManyFeaturesThroughTheGridGiveThePlainMinimum) {
+  expect_the_plain_minimum(scattered_features(false));
+}
+
+TEST(FeatureSizes, AWidthHoldsTheSizeWithinHalfOfItThenItGrows) {
+  expect_the_plain_minimum(scattered_features(true));
+  // A line of size 100 and width 1,000: 100 up to 500 m from it, then growing by K.
+  std::vector<SizeFeature> one(1);
+  one[0].size_m = 100;
+  one[0].width_m = 1000;
+  one[0].lines = {{{0, 0}, {10000, 0}}};
+  const FeatureSizes sizes(one, 0.2);
+  EXPECT_EQ(sizes.limit({5000, 499}, 3000), 100);
+  EXPECT_NEAR(sizes.limit({5000, -1500}, 3000), 100 + 0.2 * 1000, 1e-9);
+  EXPECT_NEAR(sizes.limit({-700, 0}, 3000), 100 + 0.2 * 200, 1e-9);  // beyond its end
+  EXPECT_EQ(sizes.limit({5000, 20000}, 3000), 3000);
 }
 
 TEST(FeatureSizes, TheReaderNamesWhatIsWrong) {
@@ -112,6 +143,10 @@ TEST(FeatureSizes, TheReaderNamesWhatIsWrong) {
   };
   const SizeFeatures ok =
       read_size_features(file("ok.geojson", R"({"size":250,"name":"x"})"), "", "size", "--refine");
+  EXPECT_EQ(ok.features.at(0).width_m, 0);
+  const SizeFeatures wide = read_size_features(file("wide.geojson", R"({"size":250,"w":3000})"), "",
+                                               "size", "--refine", "w");
+  EXPECT_EQ(wide.features.at(0).width_m, 3000);
   ASSERT_EQ(ok.features.size(), 1u);
   EXPECT_EQ(ok.features[0].size_m, 250);
   EXPECT_EQ(ok.features[0].points.size(), 1u);
@@ -136,6 +171,15 @@ TEST(FeatureSizes, TheReaderNamesWhatIsWrong) {
       message([&] { read_size_features(negative, "", "size", "--refine"); }, ErrorClass::input)
           .find("feature 0 has size '-5'; sizes are positive numbers of metres"),
       std::string::npos);
+  const std::string narrow = file("n.geojson", R"({"size":5,"w":-1})");
+  EXPECT_NE(
+      message([&] { read_size_features(narrow, "", "size", "--refine", "w"); }, ErrorClass::input)
+          .find("feature 0 has w '-1'; widths are numbers of metres, 0 or more"),
+      std::string::npos);
+  EXPECT_NE(message([&] { read_size_features(narrow, "", "size", "--refine", "width"); },
+                    ErrorClass::usage)
+                .find("has no attribute 'width' for the widths (attributes: size, w)"),
+            std::string::npos);
   const std::string text = file("c.geojson", R"({"size":"big"})");
   EXPECT_NE(message([&] { read_size_features(text, "", "size", "--refine"); }, ErrorClass::input)
                 .find("has size 'big'"),
