@@ -884,6 +884,7 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
       return path;
     };
     Region r{a, f};
+    r.a.fe.align_optional = true;  // one file of --align lines for all the regions
     for (std::string& o : r.a.outputs) o = fill(o);
     r.a.report_path = fill(r.a.report_path);
     r.f.plot_path = fill(r.f.plot_path);

@@ -199,18 +199,21 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options, 
     lines = line_crosses(r.mesh, align_lines);
     const auto outside = static_cast<std::size_t>(
         std::count(lines->line_inside.begin(), lines->line_inside.end(), 0));
-    if (outside == align_lines.size() || lines->num_fixed == 0)
-      throw Error(ErrorClass::input, "align",
-                  "'" + path + "': none of its " + std::to_string(align_lines.size()) +
-                      " line(s) lies inside the domain");
+    const bool none = outside == align_lines.size() || lines->num_fixed == 0;
+    const std::string none_inside = "'" + path + "': none of its " +
+                                    std::to_string(align_lines.size()) +
+                                    " line(s) lies inside the domain";
+    if (none && !options.front.align_optional) throw Error(ErrorClass::input, "align", none_inside);
     // Once, though a retried tiling builds the fields again.
-    const std::string warning = std::to_string(outside) + " of the " +
-                                std::to_string(align_lines.size()) + " lines of '" + path +
-                                "' lie wholly outside the domain";
+    const std::string warning = none ? none_inside + ": the field follows the boundary alone"
+                                     : std::to_string(outside) + " of the " +
+                                           std::to_string(align_lines.size()) + " lines of '" +
+                                           path + "' lie wholly outside the domain";
     std::vector<std::string>& warnings = r.front.summary.warnings;
     if (outside > 0 && std::find(warnings.begin(), warnings.end(), warning) == warnings.end())
       warnings.push_back(warning);
     r.num_aligned_vertices = lines->num_fixed;
+    if (none) lines.reset();
   }
   const LineCrosses* fixed_lines = lines ? &*lines : nullptr;
   switch (options.cross.source) {

@@ -43,6 +43,9 @@ struct FrontEndOptions {
   // A vector file of lines inside the domain that the cross field follows (--align).
   std::string align_path;
   std::string align_layer;  // empty: its first layer of lines, or its first layer
+  // Whether a domain that none of the lines reaches is meshed (with a warning) rather
+  // than stopped: --each, where one file of lines serves many regions.
+  bool align_optional = false;
 };
 
 // What the front end did, for the summary and the report.

@@ -1082,3 +1082,28 @@ TEST(CliMesh, AlignNeedsLinesInsideTheDomainAndTheBoundaryField) {
       std::string::npos)
       << partly.err;
 }
+
+// With --each, one file of lines serves every region: a region that none of them
+// reaches is meshed along its boundary's field alone, with a warning, not stopped.
+TEST(CliMesh, WithEachARegionNoAlignLineReachesIsMeshedWithAWarning) {
+  TempDir dir;
+  const std::string regions = dir.file("regions.geojson"), line = dir.file("line.geojson");
+  write_file(regions, R"({"type":"FeatureCollection","features":[)" +
+                          square_feature(0, 0, 0.5, "a") + "," + square_feature(1, 0, 0.5, "b") +
+                          "]}");
+  write_file(line, R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+                   R"("geometry":{"type":"LineString","coordinates":[[0.1,0.1],[0.4,0.3]]}}]})");
+  const CliResult r = run_cli({"mesh", regions, "--each", "region", "--size", "3000", "--align",
+                               line, "-o", dir.file("{}.vtu")},
+                              dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("--each region: 2 of 2 meshed"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("none of its 1 line(s) lies inside the domain: the field follows the "
+                       "boundary alone"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("\naligned:      "), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("\naligned:      "), r.err.rfind("\naligned:      ")) << r.err;  // a only
+  EXPECT_TRUE(std::filesystem::exists(dir.file("a.vtu")));
+  EXPECT_TRUE(std::filesystem::exists(dir.file("b.vtu")));
+}
