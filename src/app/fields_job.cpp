@@ -202,7 +202,7 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options, 
     const bool none = outside == align_lines.size() || lines->num_fixed == 0;
     const std::string none_inside = "'" + path + "': none of its " +
                                     std::to_string(align_lines.size()) +
-                                    " line(s) lies inside the domain";
+                                    " line(s) lies inside the domain, away from its boundary";
     if (none && !options.front.align_optional) throw Error(ErrorClass::input, "align", none_inside);
     // Once, though a retried tiling builds the fields again.
     const std::string warning = none ? none_inside + ": the field follows the boundary alone"
@@ -210,7 +210,8 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options, 
                                            std::to_string(align_lines.size()) + " lines of '" +
                                            path + "' lie wholly outside the domain";
     std::vector<std::string>& warnings = r.front.summary.warnings;
-    if (outside > 0 && std::find(warnings.begin(), warnings.end(), warning) == warnings.end())
+    if ((none || outside > 0) &&
+        std::find(warnings.begin(), warnings.end(), warning) == warnings.end())
       warnings.push_back(warning);
     r.num_aligned_vertices = lines->num_fixed;
     if (none) lines.reset();

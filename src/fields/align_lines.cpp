@@ -42,8 +42,7 @@ LineCrosses line_crosses(const BackgroundMesh& mesh,
             for (int k = 0; k < 3; ++k)
               q.x += at.bary[k] * mesh.points[tri[k]].x, q.y += at.bary[k] * mesh.points[tri[k]].y;
             step = std::max(step, 0.5 * distance(p, q));
-          }
-          if (at.inside) {
+          } else {
             out.line_inside[l] = 1;
             int nearest = tri[0];
             for (int k = 1; k < 3; ++k)

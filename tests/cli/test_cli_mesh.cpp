@@ -1098,7 +1098,8 @@ TEST(CliMesh, WithEachARegionNoAlignLineReachesIsMeshedWithAWarning) {
                               dir);
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("--each region: 2 of 2 meshed"), std::string::npos) << r.err;
-  EXPECT_NE(r.err.find("none of its 1 line(s) lies inside the domain: the field follows the "
+  EXPECT_NE(r.err.find("none of its 1 line(s) lies inside the domain, away from its boundary: the "
+                       "field follows the "
                        "boundary alone"),
             std::string::npos)
       << r.err;
