@@ -121,6 +121,18 @@ TEST(CliFields, BadSizingOptionsFailCleanly) {
   }
 }
 
+// The start of a check of a fields .vtu (argv[1]) meshed in Web Mercator: its points
+// x, y and sizes h, and ct, the transform from lon/lat to Web Mercator.
+constexpr const char* kSizesAndLonLatToWebMercator =
+    "import sys, meshio, numpy as np\n"
+    "from osgeo import osr\n"
+    "m = meshio.read(sys.argv[1])\n"
+    "x, y, h = m.points[:, 0], m.points[:, 1], m.point_data['size']\n"
+    "src = osr.SpatialReference(); src.ImportFromEPSG(4326)\n"
+    "dst = osr.SpatialReference(); dst.ImportFromEPSG(3857)\n"
+    "for s in (src, dst): s.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)\n"
+    "ct = osr.CoordinateTransformation(src, dst)\n";
+
 // --refine: a square of lon/lat on the equator meshed in Web Mercator (so that the
 // features' rectangle stays a rectangle) at 3 km, with a rectangle asking for 600 m and
 // a point asking for 400 m. At every background vertex the size is at most each
@@ -146,27 +158,21 @@ TEST(CliFields, RefineFeaturesSetTheSizesAroundThem) {
   EXPECT_NE(r.err.find("features " + refine + " (2, 400 to 600 m)"), std::string::npos) << r.err;
   python_check(
       dir,
-      "import sys, meshio, numpy as np\n"
-      "from osgeo import osr\n"
-      "m = meshio.read(sys.argv[1])\n"
-      "x, y, h = m.points[:, 0], m.points[:, 1], m.point_data['size']\n"
-      "src = osr.SpatialReference(); src.ImportFromEPSG(4326)\n"
-      "dst = osr.SpatialReference(); dst.ImportFromEPSG(3857)\n"
-      "for s in (src, dst): s.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)\n"
-      "ct = osr.CoordinateTransformation(src, dst)\n"
-      "x0, y0, _ = ct.TransformPoint(0.05, 0.05); x1, y1, _ = ct.TransformPoint(0.15, 0.12)\n"
-      "px, py, _ = ct.TransformPoint(0.4, 0.3)\n"
-      "d_rect = np.hypot(np.maximum.reduce([x0 - x, 0 * x, x - x1]), np.maximum.reduce([y0 - y, 0 "
-      "* y, y - y1]))\n"
-      "d_pt = np.hypot(x - px, y - py)\n"
-      "bound = np.minimum.reduce([3000 + 0 * x, 600 + 0.2 * d_rect, 400 + 0.2 * d_pt])\n"
-      "assert (h <= bound * (1 + 1e-9)).all(), (h - bound).max()\n"
-      "inner = (x > x0 + 2000) & (x < x1 - 2000) & (y > y0 + 2000) & (y < y1 - 2000)\n"
-      "assert inner.sum() > 20 and np.allclose(h[inner], 600), h[inner].max()\n"
-      "far = (d_rect > 15000) & (d_pt > 15000)\n"
-      "assert far.sum() > 20 and np.allclose(h[far], 3000)\n"
-      "near = d_pt < 100\n"
-      "assert near.sum() >= 1 and h[near].max() < 430, h[near]\n",
+      std::string(kSizesAndLonLatToWebMercator) +
+          "x0, y0, _ = ct.TransformPoint(0.05, 0.05); x1, y1, _ = ct.TransformPoint(0.15, 0.12)\n"
+          "px, py, _ = ct.TransformPoint(0.4, 0.3)\n"
+          "d_rect = np.hypot(np.maximum.reduce([x0 - x, 0 * x, x - x1]), np.maximum.reduce([y0 - "
+          "y, 0 "
+          "* y, y - y1]))\n"
+          "d_pt = np.hypot(x - px, y - py)\n"
+          "bound = np.minimum.reduce([3000 + 0 * x, 600 + 0.2 * d_rect, 400 + 0.2 * d_pt])\n"
+          "assert (h <= bound * (1 + 1e-9)).all(), (h - bound).max()\n"
+          "inner = (x > x0 + 2000) & (x < x1 - 2000) & (y > y0 + 2000) & (y < y1 - 2000)\n"
+          "assert inner.sum() > 20 and np.allclose(h[inner], 600), h[inner].max()\n"
+          "far = (d_rect > 15000) & (d_pt > 15000)\n"
+          "assert far.sum() > 20 and np.allclose(h[far], 3000)\n"
+          "near = d_pt < 100\n"
+          "assert near.sum() >= 1 and h[near].max() < 430, h[near]\n",
       {vtu});
   // Bad sizes.
   write_file(dir.file("bad.geojson"),
@@ -203,21 +209,15 @@ TEST(CliFields, ARefineWidthHoldsTheSizeRoundTheFeature) {
   EXPECT_NE(r.err.find("features " + refine + " (1, 400 m, up to 10000 m wide)"), std::string::npos)
       << r.err;
   python_check(dir,
-               "import sys, meshio, numpy as np\n"
-               "from osgeo import osr\n"
-               "m = meshio.read(sys.argv[1])\n"
-               "x, y, h = m.points[:, 0], m.points[:, 1], m.point_data['size']\n"
-               "src = osr.SpatialReference(); src.ImportFromEPSG(4326)\n"
-               "dst = osr.SpatialReference(); dst.ImportFromEPSG(3857)\n"
-               "for s in (src, dst): s.SetAxisMappingStrategy(osr.OAMS_TRADITIONAL_GIS_ORDER)\n"
-               "px, py, _ = osr.CoordinateTransformation(src, dst).TransformPoint(0.25, 0.25)\n"
-               "d = np.hypot(x - px, y - py)\n"
-               "bound = np.minimum(3000, 400 + 0.2 * np.maximum(d - 5000, 0))\n"
-               "assert (h <= bound * (1 + 1e-9)).all(), (h - bound).max()\n"
-               "band = d < 4900\n"
-               "assert band.sum() > 100 and np.allclose(h[band], 400), h[band].max()\n"
-               "ring = (d > 6000) & (d < 9000)\n"
-               "assert ring.sum() > 20 and (h[ring] > 400).all()\n",
+               std::string(kSizesAndLonLatToWebMercator) +
+                   "px, py, _ = ct.TransformPoint(0.25, 0.25)\n"
+                   "d = np.hypot(x - px, y - py)\n"
+                   "bound = np.minimum(3000, 400 + 0.2 * np.maximum(d - 5000, 0))\n"
+                   "assert (h <= bound * (1 + 1e-9)).all(), (h - bound).max()\n"
+                   "band = d < 4900\n"
+                   "assert band.sum() > 100 and np.allclose(h[band], 400), h[band].max()\n"
+                   "ring = (d > 6000) & (d < 9000)\n"
+                   "assert ring.sum() > 20 and (h[ring] > 400).all()\n",
                {vtu});
   r = run_cli(
       {"fields", domain, "--size", "3000", "--refine-width-field", "w", "-o", vtu, "--overwrite"},

@@ -443,16 +443,26 @@ TEST(MeshJob, SizesThatAskForTooManyQuadsStopTheJobBeforeTheMeshing) {
   EXPECT_EQ(message(1.01 * predicted), "no error");
 }
 
+namespace {
+
+// The fields of `o` with the cross field solved on the background mesh, then on a
+// coarse mesh (above 1,000 background vertices): the same background mesh.
+std::pair<FieldsResult, FieldsResult> fields_without_and_with_a_coarse_mesh(FieldsOptions o) {
+  o.coarse_cross_above = 0;  // never
+  FieldsResult fine = build_fields(o);
+  o.coarse_cross_above = 1000;
+  FieldsResult coarse = build_fields(o);
+  EXPECT_EQ(coarse.mesh.points.size(), fine.mesh.points.size());
+  return {std::move(fine), std::move(coarse)};
+}
+
+}  // namespace
+
 // Above FieldsOptions::coarse_cross_above background vertices, the cross field is solved
 // on a mesh with edges up to 2 h and interpolated: the same background mesh, the
 // boundary's crosses exactly, the inside near the field solved on the background mesh.
 TEST(MeshJob, ALargeBackgroundMeshHasItsCrossFieldSolvedOnACoarserMesh) {
-  FieldsOptions o = corsica(8000.0).fields;
-  o.coarse_cross_above = 0;  // never
-  const FieldsResult fine = build_fields(o);
-  o.coarse_cross_above = 1000;
-  const FieldsResult coarse = build_fields(o);
-  ASSERT_EQ(coarse.mesh.points.size(), fine.mesh.points.size());
+  const auto [fine, coarse] = fields_without_and_with_a_coarse_mesh(corsica(8000.0).fields);
   ASSERT_GT(fine.mesh.points.size(), 1000u);
   const FixedCrosses boundary = boundary_crosses(fine.mesh);
   std::vector<double> inside;
@@ -486,11 +496,7 @@ TEST(MeshJob, AlignedLinesKeepTheirCrossesWhenTheFieldIsSolvedOnACoarserMesh) {
              R"("geometry":{"type":"LineString","coordinates":[[8.95,42.05],[9.25,42.45]]}}]})");
   FieldsOptions o = corsica(8000.0).fields;
   o.front.align_path = line;
-  o.coarse_cross_above = 0;  // never
-  const FieldsResult fine = build_fields(o);
-  o.coarse_cross_above = 1000;
-  const FieldsResult coarse = build_fields(o);
-  ASSERT_EQ(coarse.mesh.points.size(), fine.mesh.points.size());
+  const auto [fine, coarse] = fields_without_and_with_a_coarse_mesh(o);
   ASSERT_EQ(fine.front.align_lines.size(), 1u);
   EXPECT_GT(fine.num_aligned_vertices, 10u);
   EXPECT_EQ(coarse.num_aligned_vertices, fine.num_aligned_vertices);
