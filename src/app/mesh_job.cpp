@@ -154,6 +154,8 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
   progress.report("quality", 0.97);
   StageClock clock(r.fields.times);
   r.quality = measure_quality(r.quads, r.fields.mesh, r.fields.size, r.fields.cross, &r.metrics);
+  if (r.fields.num_aligned_vertices > 0)
+    measure_line_following(r.quads, r.fields.front.align_lines, r.quality);
   clock.lap("quality");
   if (r.quality.num_nonconvex > 0)
     throw Error(ErrorClass::internal, "quality",
@@ -222,6 +224,13 @@ std::string format_mesh_summary(const MeshResult& r) {
   std::snprintf(buf, sizeof buf, "orientation:  mean deviation %.2f deg, p90 %.2f deg\n",
                 q.orientation_mean_deg, q.orientation_p90_deg);
   os << buf;
+  if (r.fields.num_aligned_vertices > 0) {
+    std::snprintf(buf, sizeof buf,
+                  "along lines:  %zu quads within half their size of the --align lines, their "
+                  "edges %.2f deg off the lines on average\n",
+                  q.align_num_quads, q.align_deviation_mean_deg);
+    os << buf;
+  }
   const double area_share = q.domain_area_m2 > 0 ? 100 * q.mesh_area_m2 / q.domain_area_m2 : 0.0;
   if (q.boundary_departure_max_h < 0.005)
     std::snprintf(buf, sizeof buf,
@@ -310,8 +319,11 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .array("size_ratio_histogram_005_from_025", q.size_ratio_histogram)
         .value("orientation_mean_deg", q.orientation_mean_deg)
         .value("orientation_p90_deg", q.orientation_p90_deg)
-        .array("orientation_histogram_1deg", q.orientation_histogram)
-        .value("share_regular_interior", q.share_regular_interior)
+        .array("orientation_histogram_1deg", q.orientation_histogram);
+    if (r.fields.num_aligned_vertices > 0)
+      j.value("align_num_quads", q.align_num_quads)
+          .value("align_deviation_mean_deg", q.align_deviation_mean_deg);
+    j.value("share_regular_interior", q.share_regular_interior)
         .value("share_regular_boundary", q.share_regular_boundary)
         .value("share_regular_all", q.share_regular_all)
         .array("interior_degree_histogram", q.interior_degree_histogram)

@@ -236,13 +236,14 @@ PolylineIndex::PolylineIndex(std::vector<std::vector<Point2>> lines, std::vector
   }
 }
 
-bool PolylineIndex::near(const Point2& p, double tolerance) const {
-  if (runs_.empty()) return false;
+template <typename Visit>
+void PolylineIndex::visit_near(const Point2& p, double tolerance, Visit visit) const {
+  if (runs_.empty()) return;
   // The cells that a run within reach of p can meet.
   const double reach = tolerance + max_slack_;
   const double fx0 = (p.x - reach - x0_) / cell_, fx1 = (p.x + reach - x0_) / cell_;
   const double fy0 = (p.y - reach - y0_) / cell_, fy1 = (p.y + reach - y0_) / cell_;
-  if (fx1 < 0 || fy1 < 0 || fx0 >= nx_ || fy0 >= ny_) return false;
+  if (fx1 < 0 || fy1 < 0 || fx0 >= nx_ || fy0 >= ny_) return;
   const int i0 = std::max(0, static_cast<int>(fx0)), i1 = std::min(nx_ - 1, static_cast<int>(fx1));
   const int j0 = std::max(0, static_cast<int>(fy0)), j1 = std::min(ny_ - 1, static_cast<int>(fy1));
   for (int j = j0; j <= j1; ++j)
@@ -253,11 +254,33 @@ bool PolylineIndex::near(const Point2& p, double tolerance) const {
         const double t = tolerance + slack_[r.line];
         if (p.x < r.xmin - t || p.x > r.xmax + t || p.y < r.ymin - t || p.y > r.ymax + t) continue;
         const auto& line = lines_[r.line];
-        for (int s = r.first; s < r.last; ++s)
-          if (distance_to_segment(p, line[s], line[s + 1]) <= t) return true;
+        for (int s = r.first; s < r.last; ++s) {
+          const double d = distance_to_segment(p, line[s], line[s + 1]);
+          if (d <= t && !visit(r.line, s, d)) return;
+        }
       }
     }
-  return false;
+}
+
+bool PolylineIndex::near(const Point2& p, double tolerance) const {
+  bool found = false;
+  visit_near(p, tolerance, [&found](int, int, double) { return !(found = true); });
+  return found;
+}
+
+bool PolylineIndex::nearest_segment(const Point2& p, double tolerance, Point2& a, Point2& b) const {
+  double best = INFINITY;
+  int best_line = -1, best_segment = -1;
+  visit_near(p, tolerance, [&](int line, int segment, double d) {
+    if (d < best ||
+        (d == best && (line < best_line || (line == best_line && segment < best_segment))))
+      best = d, best_line = line, best_segment = segment;
+    return true;
+  });
+  if (best_line < 0) return false;
+  a = lines_[best_line][best_segment];
+  b = lines_[best_line][best_segment + 1];
+  return true;
 }
 
 }  // namespace isoquad

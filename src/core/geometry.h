@@ -91,8 +91,17 @@ class PolylineIndex {
   bool empty() const { return lines_.empty(); }
   // Whether p lies within `tolerance` (plus the line's slack) of a segment.
   bool near(const Point2& p, double tolerance) const;
+  // The segment nearest p within `tolerance` (plus its line's slack), as its two ends
+  // in a and b; false when there is none. Of segments as near, the first line's, then
+  // the first segment's.
+  bool nearest_segment(const Point2& p, double tolerance, Point2& a, Point2& b) const;
 
  private:
+  // Calls visit(line, segment, distance) for each segment within `tolerance` (plus its
+  // line's slack) of p, in the cells' order (a segment may come more than once), until
+  // visit returns false.
+  template <typename Visit>
+  void visit_near(const Point2& p, double tolerance, Visit visit) const;
   struct Run {
     int line = 0, first = 0, last = 0;  // segments first .. last - 1 of the line
     double xmin = 0, ymin = 0, xmax = 0, ymax = 0;

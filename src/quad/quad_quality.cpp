@@ -175,4 +175,28 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
   return s;
 }
 
+void measure_line_following(const QuadMesh& mesh, const std::vector<std::vector<Point2>>& lines,
+                            QualitySummary& summary) {
+  summary.align_num_quads = 0;
+  summary.align_deviation_mean_deg = 0;
+  const PolylineIndex index(lines);
+  double sum = 0;
+  for (int q = 0; q < static_cast<int>(mesh.quads.size()); ++q) {
+    const auto& t = mesh.quads[q];
+    Point2 c{0, 0};
+    for (int i = 0; i < 4; ++i)
+      c.x += 0.25 * mesh.points[t[i]].x, c.y += 0.25 * mesh.points[t[i]].y;
+    Point2 a, b;
+    if (!index.nearest_segment(c, 0.5 * std::sqrt(std::max(0.0, quad_area(mesh, q))), a, b))
+      continue;
+    const double line = std::atan2(b.y - a.y, b.x - a.x);
+    for (int i = 0; i < 4; ++i) {
+      const Point2 &p = mesh.points[t[i]], &r = mesh.points[t[(i + 1) % 4]];
+      sum += std::abs(cross_rotation_rad(line, std::atan2(r.y - p.y, r.x - p.x))) * 45.0 / M_PI;
+    }
+    ++summary.align_num_quads;
+  }
+  if (summary.align_num_quads > 0) summary.align_deviation_mean_deg = sum / summary.align_num_quads;
+}
+
 }  // namespace isoquad

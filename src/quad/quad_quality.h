@@ -54,10 +54,21 @@ struct QualitySummary {
   // 0 unless the mesh's boundary turns back over the coast). Such an edge's departure is
   // that of the stretch it runs back over.
   std::size_t num_boundary_backtracks = 0;
+  // With --align (measure_line_following): the quads along the lines, and the mean
+  // angle of their edges to the lines' crosses, degrees.
+  std::size_t align_num_quads = 0;
+  double align_deviation_mean_deg = 0;
 };
 
 QualitySummary measure_quality(const QuadMesh& mesh, const BackgroundMesh& background,
                                const SizingField& size, const CrossField& cross,
                                QuadMetrics* metrics = nullptr);
+
+// How closely the quads along lines follow them (--align): the quads whose centroid lies
+// within half their own size (the square root of their area) of a line, and the mean
+// over them of their four edges' angle to the nearest segment's cross, in degrees, into
+// summary.align_num_quads and summary.align_deviation_mean_deg.
+void measure_line_following(const QuadMesh& mesh, const std::vector<std::vector<Point2>>& lines,
+                            QualitySummary& summary);
 
 }  // namespace isoquad

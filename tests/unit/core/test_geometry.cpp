@@ -77,6 +77,13 @@ TEST(Geometry, PolylineIndexFindsPointsNearAnySegment) {
       for (std::size_t i = 0; i + 1 < stairs.size(); ++i)
         nearest = std::min(nearest, distance_to_segment({x, y}, stairs[i], stairs[i + 1]));
       EXPECT_EQ(index.near({x, y}, 0.45), nearest <= 0.45) << x << " " << y;
+      // The nearest segment within the tolerance is one at the plain search's distance.
+      Point2 a, b;
+      const bool found = index.nearest_segment({x, y}, 0.45, a, b);
+      EXPECT_EQ(found, nearest <= 0.45) << x << " " << y;
+      if (found) {
+        EXPECT_EQ(distance_to_segment({x, y}, a, b), nearest) << x << " " << y;
+      }
     }
   EXPECT_FALSE(PolylineIndex().near({0, 0}, 1.0));
   EXPECT_DOUBLE_EQ(distance_to_segment({2, 1}, {0, 0}, {4, 0}), 1.0);
