@@ -339,8 +339,8 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
   cmd->add_option("--align", f.align_path,
                   "Vector file (any format, with a CRS) of lines inside the domain that the "
                   "cross field follows as it follows the coast: rows of quads run along a "
-                  "channel's axis, a breakwater or a shipping lane (with --refine on the same "
-                  "file, smaller quads there too)")
+                  "channel's axis, a breakwater or a shipping lane; quads follow a line best in a "
+                  "band of even sizes (--refine on the same file with --refine-width-field)")
       ->group(c);
   cmd->add_option(
          "--align-layer", f.align_layer,
