@@ -82,6 +82,7 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
       PlotMeshParams pp;
       pp.path = set.add(o.plot_path, o.overwrite);
       pp.overwrite = true;
+      if (r.fields.num_aligned_vertices > 0) pp.lines = r.fields.front.align_lines;
       plot_mesh(r.quads, r.metrics, r.quality, pp);
     } else {
       PlotTilingParams pp;

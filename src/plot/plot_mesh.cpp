@@ -46,6 +46,29 @@ void draw_quads(Canvas& c, const QuadMesh& m, const std::vector<Rgb>& fill, bool
   }
 }
 
+// The lines in dark green, clipped to the panel at (x, y) of w x h pixels.
+void draw_lines(Canvas& c, const std::vector<std::vector<Point2>>& lines, double x, double y,
+                double w, double h) {
+  if (lines.empty()) return;
+  cairo_t* cr = c.cr();
+  cairo_save(cr);
+  cairo_rectangle(cr, x, y, w, h);
+  cairo_clip(cr);
+  for (const auto& line : lines) {
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const Point2 p = c.to_pixel(line[i]);
+      if (i == 0)
+        cairo_move_to(cr, p.x, p.y);
+      else
+        cairo_line_to(cr, p.x, p.y);
+    }
+  }
+  cairo_set_source_rgb(cr, 0.0, 0.45, 0.2);
+  cairo_set_line_width(cr, 2.0);
+  cairo_stroke(cr);
+  cairo_restore(cr);
+}
+
 std::array<double, 4> box_of(const QuadMesh& m) {
   std::array<double, 4> b{1e300, 1e300, -1e300, -1e300};
   for (const Point2& p : m.points)
@@ -78,6 +101,7 @@ void plot_mesh(const QuadMesh& m, const QuadMetrics& q, const QualitySummary& s,
     c.text(10 + k * (w + 10), 18, titles[k], 14);
     c.set_view(box, 10 + k * (w + 10), 28, w, map_h);
     draw_quads(c, m, *fills[k], k == 0, q);
+    draw_lines(c, params.lines, 10 + k * (w + 10), 28, w, map_h);
   }
 
   char buf[200];

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "quad/quad_mesh.h"
 #include "quad/quad_quality.h"
@@ -16,6 +17,8 @@ struct PlotMeshParams {
   std::string path;
   int panel_px = 900;  // width of each map panel
   bool overwrite = false;
+  // Lines drawn over the map panels (the --align lines, in the mesh's coordinates).
+  std::vector<std::vector<Point2>> lines;
 };
 
 void plot_mesh(const QuadMesh& mesh, const QuadMetrics& metrics, const QualitySummary& summary,
