@@ -191,24 +191,27 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options, 
   // --align: the lines' crosses, and the lines that lie nowhere in the domain.
   const std::vector<std::vector<Point2>>& align_lines = r.front.align_lines;
   std::optional<LineCrosses> lines;
-  if (!align_lines.empty()) {
+  if (!r.front.summary.align_path.empty()) {
     const std::string& path = r.front.summary.align_path;
+    const std::size_t num_lines = r.front.summary.align_num_lines;
     if (options.cross.source == CrossSource::constant)
       throw Error(ErrorClass::usage, "options",
                   "--align shapes the boundary-aligned cross field: not with --cross-angle");
     lines = line_crosses(r.mesh, align_lines);
-    const auto outside = static_cast<std::size_t>(
-        std::count(lines->line_inside.begin(), lines->line_inside.end(), 0));
-    const bool none = outside == align_lines.size() || lines->num_fixed == 0;
-    const std::string none_inside = "'" + path + "': none of its " +
-                                    std::to_string(align_lines.size()) +
+    // The file's lines of which some piece lies inside.
+    std::vector<char> reached(num_lines, 0);
+    for (std::size_t k = 0; k < align_lines.size(); ++k)
+      if (lines->line_inside[k]) reached[r.front.align_line_of[k]] = 1;
+    const auto outside = static_cast<std::size_t>(std::count(reached.begin(), reached.end(), 0));
+    const bool none = outside == num_lines || lines->num_fixed == 0;
+    const std::string none_inside = "'" + path + "': none of its " + std::to_string(num_lines) +
                                     " line(s) lies inside the domain, away from its boundary";
     if (none && !options.front.align_optional) throw Error(ErrorClass::input, "align", none_inside);
     // Once, though a retried tiling builds the fields again.
     const std::string warning = none ? none_inside + ": the field follows the boundary alone"
                                      : std::to_string(outside) + " of the " +
-                                           std::to_string(align_lines.size()) + " lines of '" +
-                                           path + "' lie wholly outside the domain";
+                                           std::to_string(num_lines) + " lines of '" + path +
+                                           "' lie wholly outside the domain";
     std::vector<std::string>& warnings = r.front.summary.warnings;
     if ((none || outside > 0) &&
         std::find(warnings.begin(), warnings.end(), warning) == warnings.end())

@@ -1,6 +1,7 @@
 #include "app/front_end.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -64,6 +65,34 @@ ProjectedLines project_lines(const std::vector<std::vector<Point2>>& lines, cons
     }
   }
   return out;
+}
+
+// The runs of consecutive segments of `lines` whose boxes come within `margin` of `box`
+// (xmin, ymin, xmax, ymax), as lines of their own, with the index of the line each
+// comes from: a file of lines over a continent walked only where the domain is.
+void keep_near_box(const std::vector<std::vector<Point2>>& lines, const std::array<double, 4>& box,
+                   double margin, std::vector<std::vector<Point2>>& pieces,
+                   std::vector<int>& line_of_piece) {
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    const auto& line = lines[l];
+    bool open = false;
+    for (std::size_t i = 0; i + 1 < line.size(); ++i) {
+      const Point2 &a = line[i], &b = line[i + 1];
+      const bool near =
+          std::max(a.x, b.x) >= box[0] - margin && std::min(a.x, b.x) <= box[2] + margin &&
+          std::max(a.y, b.y) >= box[1] - margin && std::min(a.y, b.y) <= box[3] + margin;
+      if (!near) {
+        open = false;
+        continue;
+      }
+      if (!open) {
+        pieces.push_back({a});
+        line_of_piece.push_back(static_cast<int>(l));
+        open = true;
+      }
+      pieces.back().push_back(b);
+    }
+  }
 }
 
 // The lines of `path` (read_lines; a modelling package's line file in the input's CRS)
@@ -187,7 +216,9 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     const ProjectedLines p = read_projected_lines(options.align_path, options.align_layer, "align",
                                                   source.crs, meshing_crs, false);
     s.align_num_lines = p.num_source_lines;
-    result.align_lines = p.lines;
+    const std::array<double, 4> box = bounding_box(result.domain);
+    keep_near_box(p.lines, box, 0.01 * std::hypot(box[2] - box[0], box[3] - box[1]),
+                  result.align_lines, result.align_line_of);
   }
 
   progress.report("clean", 0.7);

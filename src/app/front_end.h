@@ -114,8 +114,11 @@ struct FrontEndResult {
   // are the mesh's corners); 20% for --open-boundary, whose lines may turn by up to 45
   // degrees (--corner-angle's default) at a vertex that the mesh's edges cut across.
   double open_boundary_chord_share = 0.01;
-  // The lines of --align in the meshing CRS, densified as the open boundary's.
+  // The lines of --align in the meshing CRS, densified as the open boundary's, where
+  // they come near the domain's box: runs of their segments, and for each the index of
+  // its line in the file.
   std::vector<std::vector<Point2>> align_lines;
+  std::vector<int> align_line_of;
 };
 
 FrontEndResult build_planar_domain(const FrontEndOptions& options,

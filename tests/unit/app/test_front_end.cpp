@@ -177,3 +177,41 @@ TEST(FrontEnd, NoNarrowFeatureIsLeftAfterTheLastSimplification) {
   const NarrowResult n = remove_narrow_features(again, np);
   EXPECT_LT(n.area_removed_m2 + n.area_added_m2, 0.1 * np.min_width_m * np.min_width_m);
 }
+
+// --align: of a file of lines, only the runs of segments near the domain's box are kept
+// (a file over a continent is walked only where the domain is), each with its line.
+TEST(FrontEnd, AlignLinesAreKeptWhereTheyComeNearTheDomain) {
+  TempDir dir;
+  const std::string lines = dir.file("lines.geojson");
+  // Corsica lies in lon 8.5..9.6, lat 41.3..43.1. Line 0 crosses it from far west to far
+  // east; line 1 lies in Spain; line 2 starts in Corsica's north, goes away to the east
+  // and comes back to its south.
+  write_file(lines,
+             R"({"type":"FeatureCollection","features":[)"
+             R"({"type":"Feature","properties":{},"geometry":{"type":"LineString","coordinates":)"
+             R"([[0,42],[5,42.1],[9,42.2],[13,42.3],[20,42.4]]}},)"
+             R"({"type":"Feature","properties":{},"geometry":{"type":"LineString","coordinates":)"
+             R"([[-4,40],[-3,40.5]]}},)"
+             R"({"type":"Feature","properties":{},"geometry":{"type":"LineString","coordinates":)"
+             R"([[9.2,42.9],[20,43.5],[20,41],[9.2,41.6]]}}]})");
+  FrontEndOptions o;
+  o.read.path = sample("corsica.shp");
+  o.align_path = lines;
+  const FrontEndResult r = build_planar_domain(o);
+  EXPECT_EQ(r.summary.align_num_lines, 3u);
+  ASSERT_EQ(r.align_lines.size(), r.align_line_of.size());
+  std::vector<int> pieces_of(3, 0);
+  for (int l : r.align_line_of) ++pieces_of.at(l);
+  EXPECT_EQ(pieces_of, (std::vector<int>{1, 0, 2}));
+  // Every segment kept meets the domain's box widened by 1% of its diagonal.
+  const std::array<double, 4> box = bounding_box(r.domain);
+  const double margin = 0.01 * std::hypot(box[2] - box[0], box[3] - box[1]);
+  for (const auto& piece : r.align_lines) {
+    ASSERT_GE(piece.size(), 2u);
+    for (std::size_t i = 0; i + 1 < piece.size(); ++i) {
+      const Point2 &a = piece[i], &b = piece[i + 1];
+      EXPECT_TRUE(std::max(a.x, b.x) >= box[0] - margin && std::min(a.x, b.x) <= box[2] + margin &&
+                  std::max(a.y, b.y) >= box[1] - margin && std::min(a.y, b.y) <= box[3] + margin);
+    }
+  }
+}
