@@ -75,7 +75,10 @@ SourceLines read_lines(const std::string& path, const std::string& layer_name,
   else if (model_file_crs && is_model_lines_file(path))
     out.crs = *model_file_crs;
   else
-    fail(ErrorClass::crs, "layer '" + out.layer_name + "' has no CRS");
+    fail(ErrorClass::crs, "layer '" + out.layer_name +
+                              "' has no CRS; give the file one (e.g. ogr2ogr -a_srs "
+                              "EPSG:4326 with.gpkg " +
+                              path + ")");
   layer->ResetReading();
   for (auto& feature : *layer) {
     const OGRGeometry* g = feature->GetGeometryRef();

@@ -61,7 +61,11 @@ SizeFeatures read_size_features(const std::string& path, const std::string& laye
   SizeFeatures out;
   out.layer_name = layer->GetName();
   const OGRSpatialReference* srs = layer->GetSpatialRef();
-  if (!srs) fail(ErrorClass::crs, "layer '" + out.layer_name + "' has no CRS");
+  if (!srs)
+    fail(ErrorClass::crs, "layer '" + out.layer_name +
+                              "' has no CRS; give the file one (e.g. ogr2ogr -a_srs "
+                              "EPSG:4326 with.gpkg " +
+                              path + ")");
   out.crs = crs_from_srs(*srs);
   OGRFeatureDefn* defn = layer->GetLayerDefn();
   auto attribute = [&](const std::string& name, const char* purpose) {
