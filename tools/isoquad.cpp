@@ -546,6 +546,11 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                 "where it stopped (a run writes all its outputs or none, and removes its "
                 "unfinished ones when stopped by Ctrl-C or SIGTERM)")
       ->group("Output");
+  cmd->add_flag("--embed", m.mesh.embed_lines,
+                "With --align: a path of the mesh's edges along each line, its vertices moved "
+                "onto the line (breaklines, dyke crests, thin dams), every quad kept convex; the "
+                "summary says how much of the lines the edges cover")
+      ->group("Cross field");
   const char* g = "Tiling (paper, sections 2.2 to 2.5)";
   cmd->add_option("--init", m.init,
                   "How tiles start: front (default; seeds one tile apart along the cross field, "
@@ -753,6 +758,8 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
     throw Error(ErrorClass::usage, "options", "--stop-after needs --plot or --report to show the tiling");
   MeshOptions options = m.mesh;
   options.fields = fields_options(a, f);
+  if (options.embed_lines && f.align_path.empty())
+    throw Error(ErrorClass::usage, "options", "--embed needs --align: the lines to embed");
   options.subdivide.corner_angle_deg = options.tiling.graph.corner_angle_deg;
   options.tiling.conform_rule = m.conform_rule == "longest-away" ? ConformShiftRule::longest_away_from_corner
                                  : m.conform_rule == "longest-towards" ? ConformShiftRule::longest_towards_corner

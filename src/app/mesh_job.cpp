@@ -151,8 +151,14 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
     r.retry_reasons.push_back(problem);
     progress.report("retry: " + problem, 0.3);
   }
-  progress.report("quality", 0.97);
   StageClock clock(r.fields.times);
+  if (options.embed_lines && !r.fields.front.align_lines.empty()) {
+    progress.report("embed", 0.96);
+    r.embed = embed_lines(r.fields.mesh, r.quads, r.fields.front.align_lines, options.embed,
+                          options.smooth, &r.fields.cross, &r.fields.size, &r.embedded);
+    clock.lap("embedding");
+  }
+  progress.report("quality", 0.97);
   r.quality = measure_quality(r.quads, r.fields.mesh, r.fields.size, r.fields.cross, &r.metrics);
   if (r.fields.num_aligned_vertices > 0)
     measure_line_following(r.quads, r.fields.front.align_lines, r.quality);
@@ -229,6 +235,22 @@ std::string format_mesh_summary(const MeshResult& r) {
                   "along lines:  %zu quads within half their size of the --align lines, their "
                   "edges %.2f deg off the lines on average\n",
                   q.align_num_quads, q.align_deviation_mean_deg);
+    os << buf;
+  }
+  if (r.embed.num_runs + r.embed.num_skipped > 0) {
+    const EmbedStats& e = r.embed;
+    const std::size_t interior = e.num_vertices - e.num_boundary;
+    std::snprintf(
+        buf, sizeof buf,
+        "embedded:     %zu edges on %zu piece(s) of the lines inside the domain, %zu of "
+        "their %zu interior vertices on the lines (farthest %.3g m off), %.1f%% of the "
+        "lines' %.1f km covered%s\n",
+        e.num_edges, e.num_runs, e.num_on_line, interior, e.max_vertex_off_m,
+        e.line_length_m > 0 ? 100 * e.covered_length_m / e.line_length_m : 0.0,
+        e.line_length_m / 1000,
+        e.num_skipped
+            ? (", " + std::to_string(e.num_skipped) + " too short or with no path").c_str()
+            : "");
     os << buf;
   }
   const double area_share = q.domain_area_m2 > 0 ? 100 * q.mesh_area_m2 / q.domain_area_m2 : 0.0;
@@ -323,6 +345,15 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
     if (r.fields.num_aligned_vertices > 0)
       j.value("align_num_quads", q.align_num_quads)
           .value("align_deviation_mean_deg", q.align_deviation_mean_deg);
+    if (r.embed.num_runs + r.embed.num_skipped > 0)
+      j.value("embed_num_runs", r.embed.num_runs)
+          .value("embed_num_skipped", r.embed.num_skipped)
+          .value("embed_num_edges", r.embed.num_edges)
+          .value("embed_num_interior_vertices", r.embed.num_vertices - r.embed.num_boundary)
+          .value("embed_num_on_line", r.embed.num_on_line)
+          .value("embed_max_vertex_off_m", r.embed.max_vertex_off_m)
+          .value("embed_line_length_m", r.embed.line_length_m)
+          .value("embed_covered_length_m", r.embed.covered_length_m);
     j.value("share_regular_interior", q.share_regular_interior)
         .value("share_regular_boundary", q.share_regular_boundary)
         .value("share_regular_all", q.share_regular_all)

@@ -7,6 +7,7 @@
 
 #include "app/fields_job.h"
 #include "io/mesh_boundary.h"
+#include "quad/embed_lines.h"
 #include "quad/quad_mesh.h"
 #include "quad/quad_quality.h"
 #include "quad/smooth_quads.h"
@@ -32,6 +33,9 @@ struct MeshOptions {
   // (refinements_at), unless it failed at more places than this: then the failure is
   // not a local feature and the next tiling is the next variant.
   std::size_t max_refined_places = 16;
+  // --embed: a path of edges moved onto each of --align's lines (embed_lines.h).
+  bool embed_lines = false;
+  EmbedParams embed;
 };
 
 struct MeshResult {
@@ -42,6 +46,8 @@ struct MeshResult {
   QuadMetrics metrics;
   QualitySummary quality;
   SmoothStats smooth;
+  EmbedStats embed;                        // with MeshOptions::embed_lines
+  std::vector<std::vector<int>> embedded;  // the paths of edges on the lines (vertex ids)
   int attempts = 0;                        // tiling attempts made (see MeshOptions)
   std::vector<int> tiling_variants;        // the tiling variant of each attempt (build_mesh)
   std::vector<std::string> retry_reasons;  // why each earlier attempt was discarded

@@ -168,12 +168,17 @@ void sort_by_area(std::vector<Polygon>& polygons) {
   });
 }
 
-double distance_to_segment(const Point2& p, const Point2& a, const Point2& b) {
+Point2 nearest_on_segment(const Point2& p, const Point2& a, const Point2& b) {
   const double dx = b.x - a.x, dy = b.y - a.y;
   const double len2 = dx * dx + dy * dy;
   double t = len2 > 0 ? ((p.x - a.x) * dx + (p.y - a.y) * dy) / len2 : 0.0;
   t = std::clamp(t, 0.0, 1.0);
-  return std::hypot(p.x - (a.x + t * dx), p.y - (a.y + t * dy));
+  return {a.x + t * dx, a.y + t * dy};
+}
+
+double distance_to_segment(const Point2& p, const Point2& a, const Point2& b) {
+  const Point2 q = nearest_on_segment(p, a, b);
+  return std::hypot(p.x - q.x, p.y - q.y);
 }
 
 PolylineIndex::PolylineIndex(std::vector<std::vector<Point2>> lines, std::vector<double> slack)

@@ -117,7 +117,8 @@ class PolylineIndex {
   std::vector<int> cell_start_, cell_runs_;
 };
 
-// Distance from p to the segment ab.
+// The point of the segment ab nearest p, and the distance from p to it.
+Point2 nearest_on_segment(const Point2& p, const Point2& a, const Point2& b);
 double distance_to_segment(const Point2& p, const Point2& a, const Point2& b);
 
 }  // namespace isoquad

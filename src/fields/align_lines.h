@@ -4,11 +4,13 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "core/geometry.h"
 #include "fields/cross_field.h"
 #include "mesh/background_mesh.h"
+#include "mesh/locate.h"
 
 namespace isoquad {
 
@@ -17,6 +19,13 @@ struct LineCrosses {
   std::size_t num_fixed = 0;      // vertices fixed
   std::vector<char> line_inside;  // per line: whether any of it lies inside the mesh
 };
+
+// Walks a line (metres, the mesh's CRS) in steps of a quarter of the shortest edge of
+// the triangle each point is in (longer outside the mesh), calling visit(point, its
+// location, the segment's direction in radians) at each, segments' ends included.
+void walk_line(const BackgroundMesh& mesh, const TriangleLocator& locator,
+               const std::vector<Point2>& line,
+               const std::function<void(const Point2&, const Location&, double)>& visit);
 
 // Each line (metres, the mesh's CRS) walked in steps of a quarter of the shortest edge
 // of the triangle it is in (longer outside the mesh): at every step inside, the

@@ -8,6 +8,7 @@
 #include "fields/cross_field.h"
 #include "fields/sizing_field.h"
 #include "mesh/background_mesh.h"
+#include "quad/embed_lines.h"
 #include "quad/quad_quality.h"
 #include "quad/smooth_quads.h"
 
@@ -858,4 +859,60 @@ TEST(SmoothQuads, AReflexCornerGetsTheThirdQuadAnInteriorVertexStoodInFor) {
     if (m.chain[v] >= 0) {
       EXPECT_NEAR(l_arc(m.points[v]), m.arc_m[v], 1e-6) << v;
     }
+}
+
+// --embed: a line across the grid, a fifth of a quad above a row of its edges and
+// turning slowly off it, gets that row: its interior vertices moved onto the line, the
+// boundary's left on the boundary, every quad still convex.
+TEST(EmbedLines, MovesARowOfEdgesOntoALineAcrossTheSquare) {
+  const BackgroundMesh bg = square_background();
+  QuadMesh m = grid();
+  const double h = kSide / kN;
+  auto line_y = [](double x) { return 320.0 + 0.03 * x; };
+  const std::vector<std::vector<Point2>> lines = {{{-100, line_y(-100)}, {1100, line_y(1100)}}};
+  std::vector<std::vector<int>> paths;
+  const SmoothParams params;
+  const EmbedStats st = embed_lines(bg, m, lines, EmbedParams(), params, nullptr, nullptr, &paths);
+  ASSERT_EQ(st.num_runs, 1u);
+  EXPECT_EQ(st.num_skipped, 0u);
+  EXPECT_EQ(st.num_edges, static_cast<std::size_t>(kN));
+  EXPECT_EQ(st.num_vertices, static_cast<std::size_t>(kN + 1));
+  EXPECT_EQ(st.num_boundary, 2u);
+  EXPECT_EQ(st.num_on_line, static_cast<std::size_t>(kN - 1));
+  EXPECT_LT(st.max_vertex_off_m, 1e-6);
+  ASSERT_EQ(paths.size(), 1u);
+  ASSERT_EQ(paths[0].size(), static_cast<std::size_t>(kN + 1));
+  for (std::size_t i = 0; i < paths[0].size(); ++i) {
+    const Point2& p = m.points[paths[0][i]];
+    EXPECT_NEAR(p.x, i * h, 0.1 * h) << i;  // along the row, in order
+    if (m.chain[paths[0][i]] < 0) {
+      EXPECT_NEAR(p.y, line_y(p.x), 1e-6) << i;
+    } else {
+      EXPECT_EQ(p.y, 3 * h) << i;  // the boundary's ends stay
+    }
+  }
+  // The line inside the square (1,000.45 m, less the walk's last step at each end: the
+  // background's edges are 50 m), all but its ends' stretches beside the boundary
+  // vertices covered.
+  EXPECT_NEAR(st.line_length_m, 1000.45, 25.0);
+  EXPECT_GT(st.covered_length_m, st.line_length_m - 2.5 * h);
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
+    EXPECT_GT(quad_convexity(m, q), params.min_convexity) << q;
+  for (std::size_t v = 0; v < m.points.size(); ++v) {
+    if (m.chain[v] >= 0) {
+      EXPECT_LT(distance_to_square_boundary(m.points[v]), 1e-9) << v;
+    }
+  }
+}
+
+// A line wholly outside the domain gives no path, and moves nothing.
+TEST(EmbedLines, ALineOutsideTheDomainMovesNothing) {
+  const BackgroundMesh bg = square_background();
+  QuadMesh m = grid();
+  const QuadMesh before = m;
+  const EmbedStats st = embed_lines(bg, m, {{{-500, -500}, {1500, -400}}}, EmbedParams(),
+                                    SmoothParams(), nullptr, nullptr);
+  EXPECT_EQ(st.num_runs, 0u);
+  EXPECT_EQ(st.num_skipped, 0u);
+  EXPECT_EQ(m.points, before.points);
 }

@@ -1,0 +1,306 @@
+#include "quad/embed_lines.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <queue>
+#include <utility>
+
+#include "fields/align_lines.h"
+#include "mesh/locate.h"
+#include "quad/quad_sweeps.h"
+#include "quad/quad_topology.h"
+
+namespace isoquad {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// The runs of each line inside the background mesh (the domain), walked as --align's
+// crosses are (walk_line: points a fraction of the mesh's edges apart), each with two
+// points at least.
+std::vector<std::vector<Point2>> runs_inside(const BackgroundMesh& bg,
+                                             const std::vector<std::vector<Point2>>& lines) {
+  const TriangleLocator locator(bg);
+  std::vector<std::vector<Point2>> runs;
+  for (const auto& line : lines) {
+    std::vector<Point2> run;
+    walk_line(bg, locator, line, [&](const Point2& p, const Location& at, double) {
+      if (at.inside) {
+        if (run.empty() || run.back() != p) run.push_back(p);
+        return;
+      }
+      if (run.size() >= 2) runs.push_back(std::move(run));
+      run.clear();
+    });
+    if (run.size() >= 2) runs.push_back(std::move(run));
+  }
+  return runs;
+}
+
+int nearest_vertex(const QuadMesh& m, const QuadTopology& t, const Point2& p) {
+  int best = -1;
+  double best_d = kInf;
+  for (int v = 0; v < static_cast<int>(m.points.size()); ++v) {
+    if (t.neighbours[v].empty()) continue;
+    const double d = distance(m.points[v], p);
+    if (d < best_d) best_d = d, best = v;
+  }
+  return best;
+}
+
+// The nearest point of the run to p within `tolerance`; false when none is.
+bool nearest_on_run(const PolylineIndex& run, const Point2& p, double tolerance, Point2& q) {
+  Point2 a, b;
+  if (!run.nearest_segment(p, tolerance, a, b)) return false;
+  q = nearest_on_segment(p, a, b);
+  return true;
+}
+
+// The nearest point of a polyline to p (every segment looked at), and its arc length
+// along the polyline.
+Point2 nearest_on_polyline(const std::vector<Point2>& line, const Point2& p,
+                           double* arc = nullptr) {
+  Point2 best = line.front();
+  double best_d = distance(p, best), best_arc = 0, along = 0;
+  for (std::size_t i = 1; i < line.size(); ++i) {
+    const Point2 q = nearest_on_segment(p, line[i - 1], line[i]);
+    const double d = distance(p, q);
+    if (d < best_d) best_d = d, best = q, best_arc = along + distance(line[i - 1], q);
+    along += distance(line[i - 1], line[i]);
+  }
+  if (arc) *arc = best_arc;
+  return best;
+}
+
+// Whether u, v, w are consecutive corners of one quad.
+bool same_quad_corner(const QuadMesh& m, const QuadTopology& t, int u, int v, int w) {
+  for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
+    const auto& q = m.quads[t.quad_items[k]];
+    for (int i = 0; i < 4; ++i)
+      if (q[i] == v) {
+        const int next = q[(i + 1) % 4], prev = q[(i + 3) % 4];
+        if ((next == u && prev == w) || (next == w && prev == u)) return true;
+      }
+  }
+  return false;
+}
+
+// The cheapest path of mesh edges from `from` to `to` near the run: an edge costs its
+// length times 1 + 16 (offset / length)^2 + 2 sin^2(its angle to the run), its offset the
+// mean distance of its ends and middle (twice) from the run; edges offset by max_offset of their
+// length or more are not taken. Turning round two sides of a quad costs three lengths of the second
+// more: moved onto a line, the three vertices would be in a row, so the middle one
+// stays off it. The search runs over directed edges (the turns need the edge before);
+// ties go to the lower edge id. Empty when `to` cannot be reached.
+std::vector<int> path_along(const QuadMesh& m, const QuadTopology& t, const PolylineIndex& run,
+                            int from, int to, double max_offset) {
+  const int nv = static_cast<int>(m.points.size());
+  std::vector<int> first(nv + 1, 0);  // directed edge ids: first[u] + k for u -> neighbours[u][k]
+  for (int v = 0; v < nv; ++v) first[v + 1] = first[v] + static_cast<int>(t.neighbours[v].size());
+  std::vector<int> head(first[nv]), tail(first[nv]);
+  for (int v = 0; v < nv; ++v)
+    for (std::size_t k = 0; k < t.neighbours[v].size(); ++k)
+      tail[first[v] + k] = v, head[first[v] + k] = t.neighbours[v][k];
+  std::vector<double> off(nv, -1.0);  // a vertex's distance from the run (cached)
+  auto offset = [&](const Point2& p, double tolerance) {
+    Point2 q;
+    return nearest_on_run(run, p, tolerance, q) ? distance(p, q) : kInf;
+  };
+  auto edge_cost = [&](int e, double& length) {
+    const int v = tail[e], w = head[e];
+    const Point2 &a = m.points[v], &b = m.points[w];
+    length = distance(a, b);
+    if (length <= 0) return kInf;
+    const double tolerance = max_offset * length;
+    if (off[v] < 0) off[v] = offset(a, 4 * tolerance);
+    if (off[w] < 0) off[w] = offset(b, 4 * tolerance);
+    Point2 s0, s1;
+    const Point2 mid{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
+    if (!run.nearest_segment(mid, 4 * tolerance, s0, s1)) return kInf;
+    const double mean = 0.25 * (off[v] + 2 * distance_to_segment(mid, s0, s1) + off[w]);
+    if (!(mean < tolerance)) return kInf;
+    const double share = mean / length;
+    // How far the edge turns from the line: a step across it gains nothing along it.
+    const double sx = s1.x - s0.x, sy = s1.y - s0.y, sl = std::hypot(sx, sy);
+    const double sine = sl > 0 ? ((b.x - a.x) * sy - (b.y - a.y) * sx) / (length * sl) : 0.0;
+    return length * (1 + 16 * share * share + 2 * sine * sine);
+  };
+  std::vector<double> cost(first[nv], kInf);
+  std::vector<int> previous(first[nv], -1);
+  using Item = std::pair<double, int>;
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+  for (int e = first[from]; e < first[from + 1]; ++e) {
+    double length;
+    const double c = edge_cost(e, length);
+    if (c < cost[e]) cost[e] = c, queue.push({c, e});
+  }
+  int last = -1;
+  while (!queue.empty()) {
+    const auto [c, e] = queue.top();
+    queue.pop();
+    if (c > cost[e]) continue;
+    const int u = tail[e], v = head[e];
+    if (v == to) {
+      last = e;
+      break;
+    }
+    for (int f = first[v]; f < first[v + 1]; ++f) {
+      const int w = head[f];
+      if (w == u) continue;
+      double length;
+      double next = c + edge_cost(f, length);
+      if (next == kInf) continue;
+      if (same_quad_corner(m, t, u, v, w)) next += 3 * length;
+      if (next < cost[f]) {
+        cost[f] = next;
+        previous[f] = e;
+        queue.push({next, f});
+      }
+    }
+  }
+  if (last < 0) return {};
+  std::vector<int> path{to};
+  for (int e = last; e >= 0; e = previous[e]) path.push_back(tail[e]);
+  std::reverse(path.begin(), path.end());
+  return path;
+}
+
+}  // namespace
+
+EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
+                       const std::vector<std::vector<Point2>>& lines, const EmbedParams& embed,
+                       const SmoothParams& params, const CrossField* cross, const SizingField* size,
+                       std::vector<std::vector<int>>* paths) {
+  EmbedStats stats;
+  if (paths) paths->clear();
+  const std::vector<std::vector<Point2>> runs = runs_inside(bg, lines);
+  const QuadTopology t = quad_topology(m);
+  const int nv = static_cast<int>(m.points.size());
+  std::vector<Point2> target(nv);
+  std::vector<char> held(nv, 0);       // on a path: 1 to move onto its line, 2 boundary or taken
+  std::vector<int> order;              // the vertices to move, in path order
+  std::vector<double> reach(nv, 0.0);  // their longest edge along the path
+  std::vector<std::vector<int>> found;
+  std::vector<std::size_t> found_run;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    const std::vector<Point2>& run = runs[r];
+    for (std::size_t i = 1; i < run.size(); ++i)
+      stats.line_length_m += distance(run[i - 1], run[i]);
+    const int from = nearest_vertex(m, t, run.front()), to = nearest_vertex(m, t, run.back());
+    PolylineIndex index({run});
+    std::vector<int> path;
+    if (from >= 0 && to >= 0 && from != to)
+      path = path_along(m, t, index, from, to, embed.max_offset);
+    if (path.empty()) {
+      ++stats.num_skipped;
+      continue;
+    }
+    ++stats.num_runs;
+    stats.num_edges += path.size() - 1;
+    std::vector<int> mine;  // the path's vertices this run moves
+    double last_arc = -kInf;
+    for (std::size_t i = 0; i < path.size(); ++i) {
+      const int v = path[i];
+      if (held[v]) continue;  // where lines cross: the first line's
+      const bool turns_in_quad =
+          i > 0 && i + 1 < path.size() && same_quad_corner(m, t, path[i - 1], v, path[i + 1]);
+      double arc = 0;
+      const Point2 q = nearest_on_polyline(run, m.points[v], &arc);
+      // Where the path steps across the line, its vertex that would not move on along
+      // the line (by a fifth of its edge before) stays off it: moved onto it, the edge
+      // would shrink to nothing.
+      const double step = i > 0 ? distance(m.points[path[i - 1]], m.points[v]) : 0.0;
+      if (m.chain[v] < 0 && !m.fixed[v] && !turns_in_quad && arc >= last_arc + 0.2 * step) {
+        target[v] = q;
+        held[v] = 1;
+        mine.push_back(v);
+        last_arc = arc;
+        reach[v] = std::max(
+            step, i + 1 < path.size() ? distance(m.points[v], m.points[path[i + 1]]) : 0.0);
+      } else {
+        held[v] = 2;
+      }
+    }
+    // The line's corners each to the nearest of them within its edges' reach, so that
+    // the edges follow the bends (a chord across a corner would not).
+    std::vector<char> at_corner(nv, 0);
+    for (std::size_t i = 1; i + 1 < run.size(); ++i) {
+      const Point2 &a = run[i - 1], &b = run[i], &c = run[i + 1];
+      const double turn =
+          std::abs(std::atan2((b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x),
+                              (b.x - a.x) * (c.x - b.x) + (b.y - a.y) * (c.y - b.y)));
+      if (turn < embed.corner_turn_rad) continue;
+      int best = -1;
+      for (int v : mine)
+        if (!at_corner[v] && (best < 0 || distance(m.points[v], b) < distance(m.points[best], b)))
+          best = v;
+      if (best < 0 || distance(m.points[best], b) > reach[best]) continue;
+      target[best] = b;
+      at_corner[best] = 1;
+    }
+    order.insert(order.end(), mine.begin(), mine.end());
+    found.push_back(std::move(path));
+    found_run.push_back(r);
+  }
+
+  // Onto the lines, a round at a time; the vertices next to the paths make room.
+  std::vector<char> room(nv, 0);
+  for (int v : order)
+    for (int w : t.neighbours[v])
+      if (!held[w]) room[w] = 1;
+  std::vector<char> done(nv, 0);
+  for (int round = 0; round < embed.rounds; ++round) {
+    bool all = true;
+    for (int v : order) {
+      if (done[v]) continue;
+      const Point2 p = m.points[v], q = target[v];
+      if (try_move(m, t, v, q, m.arc_m[v], params.min_convexity)) {
+        done[v] = 1;
+        continue;
+      }
+      all = false;
+      try_move(m, t, v, {0.5 * (p.x + q.x), 0.5 * (p.y + q.y)}, m.arc_m[v], params.min_convexity);
+    }
+    if (all) break;
+    angle_sweeps(bg, m, t, params, cross, size, &room, embed.sweep_iterations);
+  }
+  // The vertices next to the paths swept with the paths held, as smoothing left the rest.
+  if (!order.empty()) angle_sweeps(bg, m, t, params, cross, size, &room, embed.sweep_iterations);
+
+  // How closely the paths follow the lines.
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    const std::vector<Point2>& run = runs[found_run[k]];
+    std::vector<Point2> along;
+    for (int v : found[k]) {
+      along.push_back(m.points[v]);
+      ++stats.num_vertices;
+      if (m.chain[v] >= 0 || m.fixed[v]) {
+        ++stats.num_boundary;
+        continue;
+      }
+      const double d = distance(m.points[v], nearest_on_polyline(run, m.points[v]));
+      stats.max_vertex_off_m = std::max(stats.max_vertex_off_m, d);
+      if (d <= embed.on_line_m) ++stats.num_on_line;
+    }
+    // Whether p lies within cover_share of an edge's length of the nearest path edge.
+    auto covered = [&](const Point2& p) {
+      double best = kInf, length = 0;
+      for (std::size_t i = 1; i < along.size(); ++i) {
+        const double d = distance_to_segment(p, along[i - 1], along[i]);
+        if (d < best) best = d, length = distance(along[i - 1], along[i]);
+      }
+      return best <= embed.cover_share * length;
+    };
+    for (std::size_t i = 1; i < run.size(); ++i) {
+      const Point2 &a = run[i - 1], &b = run[i];
+      if (covered(a) && covered({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}) && covered(b))
+        stats.covered_length_m += distance(a, b);
+    }
+  }
+  if (paths) *paths = std::move(found);
+  return stats;
+}
+
+}  // namespace isoquad

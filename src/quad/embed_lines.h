@@ -1,0 +1,64 @@
+// Lines embedded in the quad mesh (--embed, with --align's lines): a path of the mesh's
+// edges along each line, its vertices moved onto the line, so that a breakline, a dyke's
+// crest or a thin dam is a chain of edges of the mesh, as Gmsh's embedded curves are.
+// --align has already laid rows of tiles along the lines; the barycentric subdivision
+// then puts a chain of edges near each (through the tiles' centres and the midpoints of
+// the meta-edges between them), which this moves onto the line.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "core/geometry.h"
+#include "fields/cross_field.h"
+#include "fields/sizing_field.h"
+#include "mesh/background_mesh.h"
+#include "quad/quad_mesh.h"
+#include "quad/smooth_quads.h"
+
+namespace isoquad {
+
+struct EmbedParams {
+  // Rounds of moving the path's vertices onto the line, each followed by angle sweeps of
+  // the vertices next to the path (those on it held) where a move would have made a
+  // quad non-convex; a vertex that cannot move the whole way moves half of it.
+  int rounds = 6;
+  int sweep_iterations = 10;
+  // Of a path's edges, one that runs this share of its length or farther from the line
+  // (the mean over its ends and middle) is not taken: the path stays near the line.
+  double max_offset = 1.0;
+  // A line's vertex where it turns by this much or more (radians; 0.02 ~ 1 degree) is
+  // the target of the path's vertex nearest it, so that the edges follow the bend.
+  double corner_turn_rad = 0.02;
+  // A vertex is on the line when it lies within on_line_m (metres) of it; a stretch of
+  // line is covered by its path's edges where it lies within cover_share of the nearest
+  // edge's length of it (a line drawn in degrees curves a little in metres: France at
+  // 3 km, 0.3 to 1 m between edges' ends on the line).
+  double on_line_m = 1e-6;
+  double cover_share = 0.01;
+};
+
+struct EmbedStats {
+  std::size_t num_runs = 0;       // pieces of the lines inside the mesh given a path
+  std::size_t num_edges = 0;      // mesh edges on those paths
+  std::size_t num_vertices = 0;   // vertices of the paths (interior and boundary)
+  std::size_t num_on_line = 0;    // of them, on their line at the end
+  std::size_t num_boundary = 0;   // of them, on the domain's boundary (not moved)
+  double max_vertex_off_m = 0.0;  // the farthest interior path vertex from its line
+  // The lines' length inside the mesh, and of it the length their paths' edges cover
+  // (EmbedParams::cover_m).
+  double line_length_m = 0.0;
+  double covered_length_m = 0.0;
+  // Runs too short for a path (both ends nearest one vertex) or with no path near them.
+  std::size_t num_skipped = 0;
+};
+
+// Moves, for each line's runs inside the mesh, a path of edges onto the line; every quad
+// stays as convex as smoothing left it (no move goes below params.min_convexity) and the
+// domain's boundary vertices never move. `paths` gets each run's path (vertex ids).
+EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
+                       const std::vector<std::vector<Point2>>& lines, const EmbedParams& embed,
+                       const SmoothParams& params, const CrossField* cross, const SizingField* size,
+                       std::vector<std::vector<int>>* paths = nullptr);
+
+}  // namespace isoquad
