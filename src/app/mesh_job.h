@@ -47,7 +47,7 @@ struct MeshResult {
   QualitySummary quality;
   SmoothStats smooth;
   EmbedStats embed;                        // with MeshOptions::embed_lines
-  std::vector<std::vector<int>> embedded;  // the paths of edges on the lines (vertex ids)
+  std::vector<EmbeddedPath> embedded;      // the paths of edges on the lines
   int attempts = 0;                        // tiling attempts made (see MeshOptions)
   std::vector<int> tiling_variants;        // the tiling variant of each attempt (build_mesh)
   std::vector<std::string> retry_reasons;  // why each earlier attempt was discarded

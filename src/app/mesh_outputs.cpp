@@ -72,6 +72,10 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
       data.depth = std::move(written.depths->depth);
       data.time_step_s = std::move(written.depths->time_steps.per_quad_s);
     }
+    for (const EmbeddedPath& path : r.embedded) {
+      data.embedded.push_back(path.vertices);
+      data.embedded_line.push_back(front.align_line_of[path.line]);  // the file's line
+    }
     data.command_line = o.command_line;
     data.libraries = library_versions_line();
     data.quality = quality_items(r.quality);

@@ -7,11 +7,13 @@ namespace isoquad {
 const std::vector<MeshStyle>& mesh_styles() {
   static const std::vector<MeshStyle> styles = {
       {"quads", "size", "size conformance sqrt(area)/h", kQml_quads_size, true},
-      {"quads", "orientation", "deviation from the cross field (degrees)", kQml_quads_orientation, false},
+      {"quads", "orientation", "deviation from the cross field (degrees)", kQml_quads_orientation,
+       false},
       {"quads", "irregular", "corners at irregular vertices", kQml_quads_irregular, false},
       {"vertices", "degree", "number of quads at each vertex", kQml_vertices_degree, true},
       {"vertices", "depth", "depth in metres, positive down", kQml_vertices_depth, false},
       {"boundary", "kind", "open (sea) and land boundary", kQml_boundary_kind, true},
+      {"embedded", "line", "quad edges on the lines of --embed", kQml_embedded_line, true},
   };
   return styles;
 }

@@ -91,6 +91,20 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
                       FieldValue::integer(segs[s].loop), FieldValue::integer(segs[s].island),
                       FieldValue::integer(static_cast<long long>(segs[s].nodes.size()))});
   }
+  if (!v.data->embedded.empty()) {
+    w.begin_layer("embedded", GeometryKind::line,
+                  {{"id", FieldType::integer},
+                   {"line", FieldType::integer},
+                   {"num_nodes", FieldType::integer}});
+    const auto& paths = v.data->embedded;
+    for (std::size_t k = 0; k < paths.size(); ++k) {
+      std::vector<Point2> line;
+      for (int n : paths[k]) line.push_back(pts[n]);
+      w.add_line(line, {FieldValue::integer(static_cast<long long>(k)),
+                        FieldValue::integer(v.data->embedded_line[k]),
+                        FieldValue::integer(static_cast<long long>(paths[k].size()))});
+    }
+  }
   w.begin_layer("metadata", GeometryKind::none, {{"key", FieldType::text}, {"value", FieldType::text}});
   auto row = [&w](const std::string& k, const std::string& val) {
     w.add_row({FieldValue::text(k), FieldValue::text(val)});
@@ -120,6 +134,7 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
                  {"update_time", FieldType::text}});
   for (const MeshStyle& s : mesh_styles()) {
     if (!depth && std::string(s.layer) == "vertices" && std::string(s.name) == "depth") continue;
+    if (v.data->embedded.empty() && std::string(s.layer) == "embedded") continue;
     w.add_row({FieldValue::text(""), FieldValue::text(""), FieldValue::text(s.layer),
                FieldValue::text("geom"), FieldValue::text(s.name), FieldValue::text(s.qml),
                FieldValue::text(""), FieldValue::integer(s.is_default ? 1 : 0),

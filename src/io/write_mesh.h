@@ -1,7 +1,7 @@
 // Writers of the quad mesh, chosen by extension or by name (--output-format):
 //   gpkg  GeoPackage: layers `quads` (per-quad metrics), `vertices` (degree, depth),
-//         `boundary` (lines with kind open/land), table `metadata`, QGIS styles in
-//         `layer_styles`;
+//         `boundary` (lines with kind open/land), `embedded` (--embed's paths of edges),
+//         table `metadata`, QGIS styles in `layer_styles`;
 //   vtu   VTK XML unstructured grid; vtk: legacy VTK (ASCII);
 //   msh   Gmsh 4.1 ASCII (or 2.2), physical groups land (1), open (2), domain (3);
 //   gr3   SCHISM hgrid.gr3 (quads, depth positive down, open and land boundaries) and its
@@ -49,6 +49,10 @@ struct MeshOutputData {
   std::vector<double> depth;   // #P metres, positive down; empty: unknown (written as 0)
   // #Q the time step at a gravity-wave Courant number of 1 (NaN: dry); empty: unknown.
   std::vector<double> time_step_s;
+  // Paths of edges on lines (--embed; vertex ids), each with the index of its line in
+  // the file: the GeoPackage's layer `embedded`.
+  std::vector<std::vector<int>> embedded;
+  std::vector<int> embedded_line;
   // GeoPackage metadata.
   std::string command_line;
   std::string libraries;  // "CGAL 5.5.1, Eigen 3.4.0, ..." (app/versions.h)

@@ -20,21 +20,26 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The runs of each line inside the background mesh (the domain), walked as --align's
 // crosses are (walk_line: points a fraction of the mesh's edges apart), each with two
 // points at least.
-std::vector<std::vector<Point2>> runs_inside(const BackgroundMesh& bg,
-                                             const std::vector<std::vector<Point2>>& lines) {
+struct Run {
+  int line = 0;
+  std::vector<Point2> points;
+};
+
+std::vector<Run> runs_inside(const BackgroundMesh& bg,
+                             const std::vector<std::vector<Point2>>& lines) {
   const TriangleLocator locator(bg);
-  std::vector<std::vector<Point2>> runs;
-  for (const auto& line : lines) {
-    std::vector<Point2> run;
-    walk_line(bg, locator, line, [&](const Point2& p, const Location& at, double) {
-      if (at.inside) {
-        if (run.empty() || run.back() != p) run.push_back(p);
-        return;
-      }
-      if (run.size() >= 2) runs.push_back(std::move(run));
-      run.clear();
+  std::vector<Run> runs;
+  for (std::size_t l = 0; l < lines.size(); ++l) {
+    Run run{static_cast<int>(l), {}};
+    auto end_run = [&] {
+      if (run.points.size() >= 2) runs.push_back(run);
+      run.points.clear();
+    };
+    walk_line(bg, locator, lines[l], [&](const Point2& p, const Location& at, double) {
+      if (!at.inside) return end_run();
+      if (run.points.empty() || run.points.back() != p) run.points.push_back(p);
     });
-    if (run.size() >= 2) runs.push_back(std::move(run));
+    end_run();
   }
   return runs;
 }
@@ -172,10 +177,10 @@ std::vector<int> path_along(const QuadMesh& m, const QuadTopology& t, const Poly
 EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
                        const std::vector<std::vector<Point2>>& lines, const EmbedParams& embed,
                        const SmoothParams& params, const CrossField* cross, const SizingField* size,
-                       std::vector<std::vector<int>>* paths) {
+                       std::vector<EmbeddedPath>* paths) {
   EmbedStats stats;
   if (paths) paths->clear();
-  const std::vector<std::vector<Point2>> runs = runs_inside(bg, lines);
+  const std::vector<Run> runs = runs_inside(bg, lines);
   const QuadTopology t = quad_topology(m);
   const int nv = static_cast<int>(m.points.size());
   std::vector<Point2> target(nv);
@@ -185,7 +190,7 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   std::vector<std::vector<int>> found;
   std::vector<std::size_t> found_run;
   for (std::size_t r = 0; r < runs.size(); ++r) {
-    const std::vector<Point2>& run = runs[r];
+    const std::vector<Point2>& run = runs[r].points;
     for (std::size_t i = 1; i < run.size(); ++i)
       stats.line_length_m += distance(run[i - 1], run[i]);
     const int from = nearest_vertex(m, t, run.front()), to = nearest_vertex(m, t, run.back());
@@ -245,7 +250,11 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     found_run.push_back(r);
   }
 
-  // Onto the lines, a round at a time; the vertices next to the paths make room.
+  // Onto the lines, a round at a time; the vertices next to the paths make room. No move
+  // makes a quad flatter than the smoothing's lift left it (SmoothParams::lift_convexity)
+  // unless it was already: the convexity bound alone let a quad reach 176 degrees.
+  SmoothParams sweep = params;
+  sweep.min_convexity = std::max(params.min_convexity, params.lift_convexity);
   std::vector<char> room(nv, 0);
   for (int v : order)
     for (int w : t.neighbours[v])
@@ -256,22 +265,22 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     for (int v : order) {
       if (done[v]) continue;
       const Point2 p = m.points[v], q = target[v];
-      if (try_move(m, t, v, q, m.arc_m[v], params.min_convexity)) {
+      if (try_move(m, t, v, q, m.arc_m[v], sweep.min_convexity)) {
         done[v] = 1;
         continue;
       }
       all = false;
-      try_move(m, t, v, {0.5 * (p.x + q.x), 0.5 * (p.y + q.y)}, m.arc_m[v], params.min_convexity);
+      try_move(m, t, v, {0.5 * (p.x + q.x), 0.5 * (p.y + q.y)}, m.arc_m[v], sweep.min_convexity);
     }
     if (all) break;
-    angle_sweeps(bg, m, t, params, cross, size, &room, embed.sweep_iterations);
+    angle_sweeps(bg, m, t, sweep, cross, size, &room, embed.sweep_iterations);
   }
   // The vertices next to the paths swept with the paths held, as smoothing left the rest.
-  if (!order.empty()) angle_sweeps(bg, m, t, params, cross, size, &room, embed.sweep_iterations);
+  if (!order.empty()) angle_sweeps(bg, m, t, sweep, cross, size, &room, embed.sweep_iterations);
 
   // How closely the paths follow the lines.
   for (std::size_t k = 0; k < found.size(); ++k) {
-    const std::vector<Point2>& run = runs[found_run[k]];
+    const std::vector<Point2>& run = runs[found_run[k]].points;
     std::vector<Point2> along;
     for (int v : found[k]) {
       along.push_back(m.points[v]);
@@ -299,7 +308,9 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
         stats.covered_length_m += distance(a, b);
     }
   }
-  if (paths) *paths = std::move(found);
+  if (paths)
+    for (std::size_t k = 0; k < found.size(); ++k)
+      paths->push_back({runs[found_run[k]].line, std::move(found[k])});
   return stats;
 }
 

@@ -53,12 +53,18 @@ struct EmbedStats {
   std::size_t num_skipped = 0;
 };
 
+// A path of edges on a line: its vertex ids, and the index of its line in `lines`.
+struct EmbeddedPath {
+  int line = 0;
+  std::vector<int> vertices;
+};
+
 // Moves, for each line's runs inside the mesh, a path of edges onto the line; every quad
 // stays as convex as smoothing left it (no move goes below params.min_convexity) and the
-// domain's boundary vertices never move. `paths` gets each run's path (vertex ids).
+// domain's boundary vertices never move. `paths` gets each run's path.
 EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
                        const std::vector<std::vector<Point2>>& lines, const EmbedParams& embed,
                        const SmoothParams& params, const CrossField* cross, const SizingField* size,
-                       std::vector<std::vector<int>>* paths = nullptr);
+                       std::vector<EmbeddedPath>* paths = nullptr);
 
 }  // namespace isoquad

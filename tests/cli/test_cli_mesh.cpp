@@ -1097,6 +1097,32 @@ TEST(CliMesh, EmbedPutsQuadEdgesOnTheLine) {
   }
   EXPECT_GT(n, 100);
   EXPECT_EQ(off, 0) << "of " << n << " points of the lane";
+  // The GeoPackage's layer `embedded`: the path, on the file's line 0, its nodes on the
+  // lane but at its ends, and styled.
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(dir.file("m.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  OGRLayer* embedded = ds->GetLayerByName("embedded");
+  ASSERT_NE(embedded, nullptr);
+  EXPECT_EQ(embedded->GetFeatureCount(), 1);
+  for (auto& f : *embedded) {
+    EXPECT_EQ(f->GetFieldAsInteger("line"), 0);
+    const OGRLineString* path = f->GetGeometryRef()->toLineString();
+    EXPECT_EQ(path->getNumPoints(), f->GetFieldAsInteger("num_nodes"));
+    int on = 0;
+    for (int i = 0; i < path->getNumPoints(); ++i) {
+      const double x = path->getX(i) - kLaneFrom[0], y = path->getY(i) - kLaneFrom[1];
+      on += std::abs(x * dy - y * dx) / length < 1e-3;
+    }
+    EXPECT_GE(on, path->getNumPoints() - 2);
+    EXPECT_GT(on, 25);
+  }
+  OGRLayer* styles = ds->GetLayerByName("layer_styles");
+  ASSERT_NE(styles, nullptr);
+  int styled = 0;
+  for (auto& f : *styles) styled += std::string(f->GetFieldAsString("f_table_name")) == "embedded";
+  EXPECT_EQ(styled, 1);
+  GDALClose(ds);
   const CliResult alone = run_cli({"mesh", rect, "--dst-crs", "EPSG:32631", "--size", "4000",
                                    "--embed", "-o", dir.file("n.gpkg")},
                                   dir);

@@ -870,7 +870,7 @@ TEST(EmbedLines, MovesARowOfEdgesOntoALineAcrossTheSquare) {
   const double h = kSide / kN;
   auto line_y = [](double x) { return 320.0 + 0.03 * x; };
   const std::vector<std::vector<Point2>> lines = {{{-100, line_y(-100)}, {1100, line_y(1100)}}};
-  std::vector<std::vector<int>> paths;
+  std::vector<EmbeddedPath> paths;
   const SmoothParams params;
   const EmbedStats st = embed_lines(bg, m, lines, EmbedParams(), params, nullptr, nullptr, &paths);
   ASSERT_EQ(st.num_runs, 1u);
@@ -881,11 +881,13 @@ TEST(EmbedLines, MovesARowOfEdgesOntoALineAcrossTheSquare) {
   EXPECT_EQ(st.num_on_line, static_cast<std::size_t>(kN - 1));
   EXPECT_LT(st.max_vertex_off_m, 1e-6);
   ASSERT_EQ(paths.size(), 1u);
-  ASSERT_EQ(paths[0].size(), static_cast<std::size_t>(kN + 1));
-  for (std::size_t i = 0; i < paths[0].size(); ++i) {
-    const Point2& p = m.points[paths[0][i]];
+  EXPECT_EQ(paths[0].line, 0);
+  const std::vector<int>& path = paths[0].vertices;
+  ASSERT_EQ(path.size(), static_cast<std::size_t>(kN + 1));
+  for (std::size_t i = 0; i < path.size(); ++i) {
+    const Point2& p = m.points[path[i]];
     EXPECT_NEAR(p.x, i * h, 0.1 * h) << i;  // along the row, in order
-    if (m.chain[paths[0][i]] < 0) {
+    if (m.chain[path[i]] < 0) {
       EXPECT_NEAR(p.y, line_y(p.x), 1e-6) << i;
     } else {
       EXPECT_EQ(p.y, 3 * h) << i;  // the boundary's ends stay
