@@ -242,15 +242,19 @@ std::string format_mesh_summary(const MeshResult& r) {
     const std::size_t interior = e.num_vertices - e.num_boundary;
     std::snprintf(
         buf, sizeof buf,
-        "embedded:     %zu edges on %zu piece(s) of the lines inside the domain, %zu of "
-        "their %zu interior vertices on the lines (farthest %.3g m off), %.1f%% of the "
-        "lines' %.1f km covered%s\n",
-        e.num_edges, e.num_runs, e.num_on_line, interior, e.max_vertex_off_m,
-        e.line_length_m > 0 ? 100 * e.covered_length_m / e.line_length_m : 0.0,
-        e.line_length_m / 1000,
+        "embedded:     %zu edges on %zu piece(s) of the lines inside the domain%s; %zu of "
+        "their %zu interior vertices on the lines (farthest %.3g m off)\n",
+        e.num_edges, e.num_runs,
         e.num_skipped
-            ? (", " + std::to_string(e.num_skipped) + " too short or with no path").c_str()
-            : "");
+            ? (" (" + std::to_string(e.num_skipped) + " too short or with no path)").c_str()
+            : "",
+        e.num_on_line, interior, e.max_vertex_off_m);
+    os << buf;
+    std::snprintf(buf, sizeof buf,
+                  "              %.1f%% of the lines' %.1f km spanned by edges whose ends are on "
+                  "them, the lines at most %.3g m off those edges\n",
+                  e.line_length_m > 0 ? 100 * e.covered_length_m / e.line_length_m : 0.0,
+                  e.line_length_m / 1000, e.max_chord_off_m);
     os << buf;
   }
   const double area_share = q.domain_area_m2 > 0 ? 100 * q.mesh_area_m2 / q.domain_area_m2 : 0.0;
@@ -353,7 +357,8 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
           .value("embed_num_on_line", r.embed.num_on_line)
           .value("embed_max_vertex_off_m", r.embed.max_vertex_off_m)
           .value("embed_line_length_m", r.embed.line_length_m)
-          .value("embed_covered_length_m", r.embed.covered_length_m);
+          .value("embed_covered_length_m", r.embed.covered_length_m)
+          .value("embed_max_chord_off_m", r.embed.max_chord_off_m);
     j.value("share_regular_interior", q.share_regular_interior)
         .value("share_regular_boundary", q.share_regular_boundary)
         .value("share_regular_all", q.share_regular_all)

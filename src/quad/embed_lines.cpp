@@ -278,34 +278,41 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   // The vertices next to the paths swept with the paths held, as smoothing left the rest.
   if (!order.empty()) angle_sweeps(bg, m, t, sweep, cross, size, &room, embed.sweep_iterations);
 
-  // How closely the paths follow the lines.
+  // How closely the paths follow the lines: their vertices' distances, and the stretches
+  // of line between two consecutive vertices on it (an edge's ends), with how far the
+  // line bends away from that edge.
   for (std::size_t k = 0; k < found.size(); ++k) {
     const std::vector<Point2>& run = runs[found_run[k]].points;
-    std::vector<Point2> along;
+    std::vector<double> run_arc(run.size(), 0.0);
+    for (std::size_t i = 1; i < run.size(); ++i)
+      run_arc[i] = run_arc[i - 1] + distance(run[i - 1], run[i]);
+    int previous = -1;  // the last vertex on the line
+    double previous_arc = 0;
     for (int v : found[k]) {
-      along.push_back(m.points[v]);
       ++stats.num_vertices;
       if (m.chain[v] >= 0 || m.fixed[v]) {
         ++stats.num_boundary;
+        previous = -1;
         continue;
       }
-      const double d = distance(m.points[v], nearest_on_polyline(run, m.points[v]));
+      double arc = 0;
+      const double d = distance(m.points[v], nearest_on_polyline(run, m.points[v], &arc));
       stats.max_vertex_off_m = std::max(stats.max_vertex_off_m, d);
-      if (d <= embed.on_line_m) ++stats.num_on_line;
-    }
-    // Whether p lies within cover_share of an edge's length of the nearest path edge.
-    auto covered = [&](const Point2& p) {
-      double best = kInf, length = 0;
-      for (std::size_t i = 1; i < along.size(); ++i) {
-        const double d = distance_to_segment(p, along[i - 1], along[i]);
-        if (d < best) best = d, length = distance(along[i - 1], along[i]);
+      if (d > embed.on_line_m) {
+        previous = -1;
+        continue;
       }
-      return best <= embed.cover_share * length;
-    };
-    for (std::size_t i = 1; i < run.size(); ++i) {
-      const Point2 &a = run[i - 1], &b = run[i];
-      if (covered(a) && covered({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}) && covered(b))
-        stats.covered_length_m += distance(a, b);
+      ++stats.num_on_line;
+      if (previous >= 0 && arc > previous_arc) {
+        stats.covered_length_m += arc - previous_arc;
+        for (std::size_t i = 0; i < run.size(); ++i)
+          if (run_arc[i] > previous_arc && run_arc[i] < arc)
+            stats.max_chord_off_m =
+                std::max(stats.max_chord_off_m,
+                         distance_to_segment(run[i], m.points[previous], m.points[v]));
+      }
+      previous = v;
+      previous_arc = arc;
     }
   }
   if (paths)

@@ -30,12 +30,8 @@ struct EmbedParams {
   // A line's vertex where it turns by this much or more (radians; 0.02 ~ 1 degree) is
   // the target of the path's vertex nearest it, so that the edges follow the bend.
   double corner_turn_rad = 0.02;
-  // A vertex is on the line when it lies within on_line_m (metres) of it; a stretch of
-  // line is covered by its path's edges where it lies within cover_share of the nearest
-  // edge's length of it (a line drawn in degrees curves a little in metres: France at
-  // 3 km, 0.3 to 1 m between edges' ends on the line).
+  // A vertex is on the line when it lies within this (metres) of it.
   double on_line_m = 1e-6;
-  double cover_share = 0.01;
 };
 
 struct EmbedStats {
@@ -45,10 +41,12 @@ struct EmbedStats {
   std::size_t num_on_line = 0;    // of them, on their line at the end
   std::size_t num_boundary = 0;   // of them, on the domain's boundary (not moved)
   double max_vertex_off_m = 0.0;  // the farthest interior path vertex from its line
-  // The lines' length inside the mesh, and of it the length their paths' edges cover
-  // (EmbedParams::cover_m).
+  // The lines' length inside the mesh; of it, the length between consecutive path
+  // vertices on the line (the stretches an edge spans); and how far the line departs
+  // from those edges (where it curves, the edges are its chords).
   double line_length_m = 0.0;
   double covered_length_m = 0.0;
+  double max_chord_off_m = 0.0;
   // Runs too short for a path (both ends nearest one vertex) or with no path near them.
   std::size_t num_skipped = 0;
 };
