@@ -251,10 +251,10 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   }
 
   // Onto the lines, a round at a time; the vertices next to the paths make room. No move
-  // makes a quad flatter than the smoothing's lift left it (SmoothParams::lift_convexity)
-  // unless it was already: the convexity bound alone let a quad reach 176 degrees.
+  // (theirs or the sweeps') makes a quad's corner leave [30, 150] degrees, or one already
+  // outside go farther (EmbedParams::min_turn_sine).
   SmoothParams sweep = params;
-  sweep.min_convexity = std::max(params.min_convexity, params.lift_convexity);
+  sweep.min_convexity = std::max(params.min_convexity, embed.min_turn_sine);
   std::vector<char> room(nv, 0);
   for (int v : order)
     for (int w : t.neighbours[v])
