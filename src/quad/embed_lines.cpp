@@ -1,6 +1,7 @@
 #include "quad/embed_lines.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <queue>
@@ -20,9 +21,13 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // The runs of each line inside the background mesh (the domain), walked as --align's
 // crosses are (walk_line: points a fraction of the mesh's edges apart), each with two
 // points at least.
+// A piece of a line inside the domain; `own_ends[0]` / `[1]`: whether its first / last
+// point is a point of the line inside the domain (the line's own end, or where a
+// closed line is cut in two), not where the walk left the domain.
 struct Run {
   int line = 0;
   std::vector<Point2> points;
+  std::array<bool, 2> own_ends{false, false};
 };
 
 std::vector<Run> runs_inside(const BackgroundMesh& bg,
@@ -30,16 +35,30 @@ std::vector<Run> runs_inside(const BackgroundMesh& bg,
   const TriangleLocator locator(bg);
   std::vector<Run> runs;
   for (std::size_t l = 0; l < lines.size(); ++l) {
-    Run run{static_cast<int>(l), {}};
-    auto end_run = [&] {
-      if (run.points.size() >= 2) runs.push_back(run);
+    std::vector<Run> mine;
+    Run run{static_cast<int>(l), {}, {true, false}};
+    auto end_run = [&](bool own) {
+      run.own_ends[1] = own;
+      if (run.points.size() >= 2) mine.push_back(run);
       run.points.clear();
+      run.own_ends = {false, false};
     };
     walk_line(bg, locator, lines[l], [&](const Point2& p, const Location& at, double) {
-      if (!at.inside) return end_run();
+      if (!at.inside) return end_run(false);
       if (run.points.empty() || run.points.back() != p) run.points.push_back(p);
     });
-    end_run();
+    end_run(true);
+    // A closed line wholly inside: two halves, so that a path joins different ends.
+    if (mine.size() == 1 && mine[0].points.size() >= 4 &&
+        mine[0].points.front() == mine[0].points.back()) {
+      Run second = mine[0];
+      const std::size_t half = mine[0].points.size() / 2;
+      mine[0].points.resize(half + 1);
+      second.points.erase(second.points.begin(), second.points.begin() + half);
+      mine[0].own_ends = second.own_ends = {true, true};
+      mine.push_back(std::move(second));
+    }
+    runs.insert(runs.end(), mine.begin(), mine.end());
   }
   return runs;
 }
@@ -204,26 +223,47 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     }
     ++stats.num_runs;
     stats.num_edges += path.size() - 1;
+    // The line's corners: where it turns by corner_turn_rad or more.
+    std::vector<std::pair<Point2, double>> corners;  // point, turn (radians)
+    for (std::size_t i = 1; i + 1 < run.size(); ++i) {
+      const Point2 &a = run[i - 1], &b = run[i], &c = run[i + 1];
+      const double turn =
+          std::abs(std::atan2((b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x),
+                              (b.x - a.x) * (c.x - b.x) + (b.y - a.y) * (c.y - b.y)));
+      if (turn >= embed.corner_turn_rad) corners.push_back({b, turn});
+    }
     std::vector<int> mine;  // the path's vertices this run moves
     double last_arc = -kInf;
     for (std::size_t i = 0; i < path.size(); ++i) {
       const int v = path[i];
       if (held[v]) continue;  // where lines cross: the first line's
-      const bool turns_in_quad =
+      const double step = i > 0 ? distance(m.points[path[i - 1]], m.points[v]) : 0.0;
+      const double next = i + 1 < path.size() ? distance(m.points[v], m.points[path[i + 1]]) : 0.0;
+      // Round two sides of a quad, unless the line turns there too (a corner of 30
+      // degrees or more within the vertex's edges).
+      bool turns_in_quad =
           i > 0 && i + 1 < path.size() && same_quad_corner(m, t, path[i - 1], v, path[i + 1]);
+      for (const auto& [corner, turn] : corners)
+        if (turns_in_quad && turn >= M_PI / 6 &&
+            distance(corner, m.points[v]) < std::min(step, next))
+          turns_in_quad = false;
       double arc = 0;
-      const Point2 q = nearest_on_polyline(run, m.points[v], &arc);
+      Point2 q = nearest_on_polyline(run, m.points[v], &arc);
+      // The path's ends at the line's own ends: those points exactly.
+      const bool first = i == 0, last = i + 1 == path.size();
+      if ((first && runs[r].own_ends[0]) || (last && runs[r].own_ends[1])) {
+        q = first ? run.front() : run.back();
+        arc = first ? 0.0 : kInf;
+      }
       // Where the path steps across the line, its vertex that would not move on along
       // the line (by a fifth of its edge before) stays off it: moved onto it, the edge
       // would shrink to nothing.
-      const double step = i > 0 ? distance(m.points[path[i - 1]], m.points[v]) : 0.0;
       if (m.chain[v] < 0 && !m.fixed[v] && !turns_in_quad && arc >= last_arc + 0.2 * step) {
         target[v] = q;
         held[v] = 1;
         mine.push_back(v);
         last_arc = arc;
-        reach[v] = std::max(
-            step, i + 1 < path.size() ? distance(m.points[v], m.points[path[i + 1]]) : 0.0);
+        reach[v] = std::max(step, next);
       } else {
         held[v] = 2;
       }
@@ -231,12 +271,7 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     // The line's corners each to the nearest of them within its edges' reach, so that
     // the edges follow the bends (a chord across a corner would not).
     std::vector<char> at_corner(nv, 0);
-    for (std::size_t i = 1; i + 1 < run.size(); ++i) {
-      const Point2 &a = run[i - 1], &b = run[i], &c = run[i + 1];
-      const double turn =
-          std::abs(std::atan2((b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x),
-                              (b.x - a.x) * (c.x - b.x) + (b.y - a.y) * (c.y - b.y)));
-      if (turn < embed.corner_turn_rad) continue;
+    for (const auto& [b, turn] : corners) {
       int best = -1;
       for (int v : mine)
         if (!at_corner[v] && (best < 0 || distance(m.points[v], b) < distance(m.points[best], b)))

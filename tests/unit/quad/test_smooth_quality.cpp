@@ -908,6 +908,30 @@ TEST(EmbedLines, MovesARowOfEdgesOntoALineAcrossTheSquare) {
   }
 }
 
+// A closed line (a polygon's ring) is cut in two, each half a path: the ring a tenth of
+// a quad off a square of the grid's edges gets that square, its corners on the ring's.
+TEST(EmbedLines, AClosedLineGetsAClosedPathWithItsCorners) {
+  const BackgroundMesh bg = square_background();
+  QuadMesh m = grid();
+  const std::vector<Point2> ring = {{210, 210}, {810, 210}, {810, 810}, {210, 810}, {210, 210}};
+  std::vector<EmbeddedPath> paths;
+  const SmoothParams params;
+  const EmbedStats st = embed_lines(bg, m, {ring}, EmbedParams(), params, nullptr, nullptr, &paths);
+  ASSERT_EQ(st.num_runs, 2u);
+  EXPECT_EQ(st.num_edges, 24u);
+  EXPECT_EQ(st.num_boundary, 0u);
+  EXPECT_EQ(st.num_on_line, st.num_vertices);
+  EXPECT_NEAR(st.line_length_m, 2400.0, 1e-6);
+  EXPECT_NEAR(st.covered_length_m, 2400.0, 1e-6);
+  for (const Point2& corner : ring) {
+    bool found = false;
+    for (const Point2& p : m.points) found = found || distance(p, corner) < 1e-9;
+    EXPECT_TRUE(found) << corner.x << " " << corner.y;
+  }
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
+    EXPECT_GT(quad_convexity(m, q), params.min_convexity) << q;
+}
+
 // A line wholly outside the domain gives no path, and moves nothing.
 TEST(EmbedLines, ALineOutsideTheDomainMovesNothing) {
   const BackgroundMesh bg = square_background();
