@@ -1,6 +1,7 @@
 // Gmsh MSH 4.1 and 2.2 ASCII: one surface (the domain), one curve per boundary segment,
 // physical groups land (1), open (2) and domain (3); or, open segment by segment,
-// open_1, open_2... (11, 12...) instead of open.
+// open_1, open_2... (11, 12...) instead of open. With --embed, a curve per path of edges
+// on the lines, in the group embedded (4) (not among the surface's bounding curves).
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -15,7 +16,7 @@ namespace isoquad {
 
 namespace {
 
-constexpr int kLand = 1, kOpen = 2, kDomain = 3, kOpenSegments = 10;
+constexpr int kLand = 1, kOpen = 2, kDomain = 3, kEmbedded = 4, kOpenSegments = 10;
 
 // The physical group of each segment, and the groups' names by tag.
 struct Groups {
@@ -38,6 +39,13 @@ Groups physical_groups(const std::vector<BoundarySegment>& segs, bool open_per_s
     g.names[tag] = name;
   }
   return g;
+}
+
+// The edges (node pairs, 0-based) of a path.
+std::vector<std::array<int, 2>> path_edges(const std::vector<int>& path) {
+  std::vector<std::array<int, 2>> e;
+  for (std::size_t i = 0; i + 1 < path.size(); ++i) e.push_back({path[i], path[i + 1]});
+  return e;
 }
 
 // The edges (node pairs, 0-based) of a segment.
@@ -65,7 +73,9 @@ void write_msh_file(const MeshView& v, const std::string& path, const std::strin
   const auto& segs = v.data->boundary.segments;
   std::ofstream f(path);
   f << std::setprecision(17);
-  const Groups groups = physical_groups(segs, open_per_segment);
+  Groups groups = physical_groups(segs, open_per_segment);
+  const auto& paths = v.data->embedded;
+  if (!paths.empty()) groups.names[kEmbedded] = "embedded";
   f << "$MeshFormat\n" << version << " 0 8\n$EndMeshFormat\n";
   f << "$PhysicalNames\n" << groups.names.size() + 1 << "\n";
   for (const auto& [tag, name] : groups.names) f << "1 " << tag << " \"" << name << "\"\n";
@@ -73,6 +83,9 @@ void write_msh_file(const MeshView& v, const std::string& path, const std::strin
   const std::size_t np = m.points.size(), nq = m.quads.size();
   std::size_t nl = 0;
   for (const auto& s : segs) nl += segment_edges(s).size();
+  for (const auto& p : paths) nl += path_edges(p).size();
+  // Curves 1.. the segments', then the paths'.
+  const std::size_t ns = segs.size(), nc = ns + paths.size();
   if (version == "2.2") {
     f << "$Nodes\n" << np << "\n";
     for (std::size_t i = 0; i < np; ++i)
@@ -83,6 +96,10 @@ void write_msh_file(const MeshView& v, const std::string& path, const std::strin
       for (const auto& e : segment_edges(segs[c]))
         f << id++ << " 1 2 " << groups.of_segment[c] << " " << c + 1 << " " << e[0] + 1 << " "
           << e[1] + 1 << "\n";
+    for (std::size_t k = 0; k < paths.size(); ++k)
+      for (const auto& e : path_edges(paths[k]))
+        f << id++ << " 1 2 " << kEmbedded << " " << ns + k + 1 << " " << e[0] + 1 << " " << e[1] + 1
+          << "\n";
     for (const auto& q : m.quads)
       f << id++ << " 3 2 " << kDomain << " 1 " << q[0] + 1 << " " << q[1] + 1 << " " << q[2] + 1
         << " " << q[3] + 1 << "\n";
@@ -90,12 +107,13 @@ void write_msh_file(const MeshView& v, const std::string& path, const std::strin
   } else {
     Box all;
     for (const Point2& p : v.points) all.add(p);
-    f << "$Entities\n0 " << segs.size() << " 1 0\n";
-    for (std::size_t c = 0; c < segs.size(); ++c) {
+    f << "$Entities\n0 " << nc << " 1 0\n";
+    for (std::size_t c = 0; c < nc; ++c) {
+      const std::vector<int>& nodes = c < ns ? segs[c].nodes : paths[c - ns];
       Box b;
-      for (int n : segs[c].nodes) b.add(v.points[n]);
+      for (int n : nodes) b.add(v.points[n]);
       f << c + 1 << " " << b.x0 << " " << b.y0 << " 0 " << b.x1 << " " << b.y1 << " 0 1 "
-        << groups.of_segment[c] << " 0\n";
+        << (c < ns ? groups.of_segment[c] : kEmbedded) << " 0\n";
     }
     f << "1 " << all.x0 << " " << all.y0 << " 0 " << all.x1 << " " << all.y1 << " 0 1 " << kDomain
       << " " << segs.size();
@@ -105,10 +123,10 @@ void write_msh_file(const MeshView& v, const std::string& path, const std::strin
     for (std::size_t i = 0; i < np; ++i) f << i + 1 << "\n";
     for (std::size_t i = 0; i < np; ++i) f << v.points[i].x << " " << v.points[i].y << " 0\n";
     f << "$EndNodes\n";
-    f << "$Elements\n" << segs.size() + 1 << " " << nl + nq << " 1 " << nl + nq << "\n";
+    f << "$Elements\n" << nc + 1 << " " << nl + nq << " 1 " << nl + nq << "\n";
     std::size_t id = 1;
-    for (std::size_t c = 0; c < segs.size(); ++c) {
-      const auto edges = segment_edges(segs[c]);
+    for (std::size_t c = 0; c < nc; ++c) {
+      const auto edges = c < ns ? segment_edges(segs[c]) : path_edges(paths[c - ns]);
       f << "1 " << c + 1 << " 1 " << edges.size() << "\n";
       for (const auto& e : edges) f << id++ << " " << e[0] + 1 << " " << e[1] + 1 << "\n";
     }

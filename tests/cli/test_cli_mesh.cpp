@@ -1063,10 +1063,10 @@ TEST(CliMesh, EmbedPutsQuadEdgesOnTheLine) {
                                      "[400000,5050000],[400000,5000000]]]"},
                                     kUtm));
   write_file(lane, lane_geojson(kLaneFrom, kLaneTo));
-  const CliResult r =
-      run_cli({"mesh", rect, "--dst-crs", "EPSG:32631", "--size", "2000", "--align", lane,
-               "--embed", "--report", dir.file("r.json"), "-o", dir.file("m.gpkg")},
-              dir);
+  const CliResult r = run_cli(
+      {"mesh", rect, "--dst-crs", "EPSG:32631", "--size", "2000", "--align", lane, "--embed",
+       "--report", dir.file("r.json"), "-o", dir.file("m.gpkg"), "-o", dir.file("m.msh")},
+      dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("\nembedded:     "), std::string::npos) << r.err;
   const std::string report = read_file(dir.file("r.json"));
@@ -1123,6 +1123,24 @@ TEST(CliMesh, EmbedPutsQuadEdgesOnTheLine) {
   for (auto& f : *styles) styled += std::string(f->GetFieldAsString("f_table_name")) == "embedded";
   EXPECT_EQ(styled, 1);
   GDALClose(ds);
+  // Gmsh reads the .msh's group `embedded` (4): a line element per edge of the path.
+  const CliResult gm = run_cli_program(
+      "gmsh", {dir.file("m.msh"), "-0", "-format", "msh22", "-o", dir.file("re.msh")}, dir);
+  ASSERT_EQ(gm.exit_code, 0) << gm.out << gm.err;
+  const std::string re = read_file(dir.file("re.msh"));
+  EXPECT_NE(re.find("1 4 \"embedded\""), std::string::npos);
+  std::istringstream in(re.substr(re.find("$Elements")));
+  std::string line;
+  int elements = 0, embedded_edges = 0;
+  std::getline(in, line);
+  in >> elements;
+  for (int i = 0; i < elements; ++i) {
+    int id, type, ntags, phys;
+    in >> id >> type >> ntags >> phys;
+    std::getline(in, line);
+    embedded_edges += type == 1 && phys == 4;
+  }
+  EXPECT_EQ(embedded_edges, report_number(report, "embed_num_edges"));
   const CliResult alone = run_cli({"mesh", rect, "--dst-crs", "EPSG:32631", "--size", "4000",
                                    "--embed", "-o", dir.file("n.gpkg")},
                                   dir);
