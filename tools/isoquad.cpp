@@ -804,6 +804,15 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
           "raster of elevations (positive up, as GEBCO's) is given with --elevation, one of "
           "depths (positive down) with --bathymetry\n",
           written.depths->num_dry, r.quads.points.size());
+  // --embed on lines the rows of quads cannot follow (winding or bending within a few
+  // quads): say so, with what helps.
+  const EmbedStats& e = r.embed;
+  if (e.line_length_m > 0 && e.covered_length_m < 0.5 * e.line_length_m && !a.quiet)
+    print(err,
+          "isoquad: warning: --embed: edges on the lines span only %.0f%% of their %.1f km inside "
+          "the domain: lines that wind or bend within a few quads cannot be followed; simplify "
+          "them, or refine round them (--refine with --refine-width-field)\n",
+          100 * e.covered_length_m / e.line_length_m, e.line_length_m / 1000);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (result) result->quality = r.quality, result->seconds = seconds;
   if (!a.quiet) {

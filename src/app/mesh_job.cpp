@@ -237,7 +237,10 @@ std::string format_mesh_summary(const MeshResult& r) {
                   q.align_num_quads, q.align_deviation_mean_deg);
     os << buf;
   }
-  if (r.embed.num_runs + r.embed.num_skipped > 0) {
+  if (r.embed.requested && r.embed.line_length_m == 0) {
+    os << "embedded:     no line lies farther than half a quad from the boundary (where the "
+          "boundary's row of quads holds it)\n";
+  } else if (r.embed.requested) {
     const EmbedStats& e = r.embed;
     const std::size_t interior = e.num_vertices - e.num_boundary;
     std::snprintf(
@@ -349,7 +352,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
     if (r.fields.num_aligned_vertices > 0)
       j.value("align_num_quads", q.align_num_quads)
           .value("align_deviation_mean_deg", q.align_deviation_mean_deg);
-    if (r.embed.num_runs + r.embed.num_skipped > 0)
+    if (r.embed.requested)
       j.value("embed_num_runs", r.embed.num_runs)
           .value("embed_num_skipped", r.embed.num_skipped)
           .value("embed_num_edges", r.embed.num_edges)

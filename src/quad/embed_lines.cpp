@@ -31,20 +31,38 @@ struct Run {
 };
 
 std::vector<Run> runs_inside(const BackgroundMesh& bg,
-                             const std::vector<std::vector<Point2>>& lines) {
+                             const std::vector<std::vector<Point2>>& lines, const SizingField* size,
+                             double coast_share) {
   const TriangleLocator locator(bg);
+  std::vector<std::vector<Point2>> chains;  // the domain's boundary, closed
+  for (const BoundaryChain& c : bg.chains) {
+    std::vector<Point2> ring;
+    for (int v : c.vertices) ring.push_back(bg.points[v]);
+    if (!ring.empty()) ring.push_back(ring.front());
+    chains.push_back(std::move(ring));
+  }
+  const PolylineIndex coast(std::move(chains));
   std::vector<Run> runs;
   for (std::size_t l = 0; l < lines.size(); ++l) {
     std::vector<Run> mine;
     Run run{static_cast<int>(l), {}, {true, false}};
+    double h = 0;  // the size where the run starts
     auto end_run = [&](bool own) {
       run.own_ends[1] = own;
-      if (run.points.size() >= 2) mine.push_back(run);
+      double length = 0;
+      for (std::size_t i = 1; i < run.points.size(); ++i)
+        length += distance(run.points[i - 1], run.points[i]);
+      // (Not the bits of a line that runs at about coast_share h from the coast.)
+      if (run.points.size() >= 2 && (length >= h || (run.own_ends[0] && own))) mine.push_back(run);
       run.points.clear();
       run.own_ends = {false, false};
     };
     walk_line(bg, locator, lines[l], [&](const Point2& p, const Location& at, double) {
       if (!at.inside) return end_run(false);
+      const double here = size ? size->at(bg, at.triangle, at.bary) : 0.0;
+      // Near the coast, the boundary's row of quads holds the line already.
+      if (size && coast.near(p, coast_share * here)) return end_run(false);
+      if (run.points.empty()) h = here;
       if (run.points.empty() || run.points.back() != p) run.points.push_back(p);
     });
     end_run(true);
@@ -198,8 +216,9 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
                        const SmoothParams& params, const CrossField* cross, const SizingField* size,
                        std::vector<EmbeddedPath>* paths) {
   EmbedStats stats;
+  stats.requested = true;
   if (paths) paths->clear();
-  const std::vector<Run> runs = runs_inside(bg, lines);
+  const std::vector<Run> runs = runs_inside(bg, lines, size, embed.coast_share);
   const QuadTopology t = quad_topology(m);
   const int nv = static_cast<int>(m.points.size());
   std::vector<Point2> target(nv);
@@ -314,8 +333,8 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   if (!order.empty()) angle_sweeps(bg, m, t, sweep, cross, size, &room, embed.sweep_iterations);
 
   // How closely the paths follow the lines: their vertices' distances, and the stretches
-  // of line between two consecutive vertices on it (an edge's ends), with how far the
-  // line bends away from that edge.
+  // of line between two consecutive vertices on it (an edge's ends) that stay within
+  // max_chord_share of the edge's length of it, with how far they bend away.
   for (std::size_t k = 0; k < found.size(); ++k) {
     const std::vector<Point2>& run = runs[found_run[k]].points;
     std::vector<double> run_arc(run.size(), 0.0);
@@ -339,12 +358,16 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
       }
       ++stats.num_on_line;
       if (previous >= 0 && arc > previous_arc) {
-        stats.covered_length_m += arc - previous_arc;
+        double off = 0;
         for (std::size_t i = 0; i < run.size(); ++i)
           if (run_arc[i] > previous_arc && run_arc[i] < arc)
-            stats.max_chord_off_m =
-                std::max(stats.max_chord_off_m,
-                         distance_to_segment(run[i], m.points[previous], m.points[v]));
+            off = std::max(off, distance_to_segment(run[i], m.points[previous], m.points[v]));
+        // Spanned where the line stays near the edge (a curve's chord), not where it
+        // winds away between the edge's ends.
+        if (off <= embed.max_chord_share * distance(m.points[previous], m.points[v])) {
+          stats.covered_length_m += arc - previous_arc;
+          stats.max_chord_off_m = std::max(stats.max_chord_off_m, off);
+        }
       }
       previous = v;
       previous_arc = arc;

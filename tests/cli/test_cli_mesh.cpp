@@ -1141,6 +1141,34 @@ TEST(CliMesh, EmbedPutsQuadEdgesOnTheLine) {
     embedded_edges += type == 1 && phys == 4;
   }
   EXPECT_EQ(embedded_edges, report_number(report, "embed_num_edges"));
+
+  // A line half a quad from the coast: the boundary's row holds it, nothing to embed. A
+  // line zigzagging 3 km across every 500 m: no edge can follow it, and a warning says so.
+  const std::string coastal = dir.file("coastal.geojson"), zigzag = dir.file("zigzag.geojson");
+  write_file(coastal, lane_geojson({405000, 5000500}, {495000, 5000500}));
+  std::string zig = lane_geojson({420000, 5023500}, {420500, 5026500});
+  for (int i = 2; i <= 120; ++i) {
+    std::ostringstream point;
+    point << ",[" << 420000 + 500 * i << "," << (i % 2 ? 5026500 : 5023500) << "]";
+    zig.insert(zig.rfind("]]}") + 1, point.str());
+  }
+  write_file(zigzag, zig);
+  auto embed = [&](const std::string& lines) {
+    return run_cli({"mesh", rect, "--dst-crs", "EPSG:32631", "--size", "2000", "--align", lines,
+                    "--embed", "-o", dir.file("e.gpkg"), "--overwrite"},
+                   dir);
+  };
+  const CliResult near_coast = embed(coastal);
+  EXPECT_EQ(near_coast.exit_code, 0) << near_coast.err;
+  EXPECT_NE(
+      near_coast.err.find("embedded:     no line lies farther than half a quad from the boundary"),
+      std::string::npos)
+      << near_coast.err;
+  const CliResult winding = embed(zigzag);
+  EXPECT_EQ(winding.exit_code, 0) << winding.err;
+  EXPECT_NE(winding.err.find("warning: --embed: edges on the lines span only 0% of their 365.0 km"),
+            std::string::npos)
+      << winding.err;
   const CliResult alone = run_cli({"mesh", rect, "--dst-crs", "EPSG:32631", "--size", "4000",
                                    "--embed", "-o", dir.file("n.gpkg")},
                                   dir);
