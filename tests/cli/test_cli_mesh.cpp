@@ -985,6 +985,15 @@ std::string lane_geojson(const std::array<double, 2>& a, const std::array<double
   return s.str();
 }
 
+// The 100 x 50 km rectangle in UTM 31N (its boundary field 0 degrees everywhere) and
+// the lane across it.
+void write_rectangle_and_lane(const std::string& rect, const std::string& lane) {
+  write_file(rect, geojson_polygons({"[[[400000,5000000],[500000,5000000],[500000,5050000],"
+                                     "[400000,5050000],[400000,5000000]]]"},
+                                    kUtm));
+  write_file(lane, lane_geojson(kLaneFrom, kLaneTo));
+}
+
 // The mean, over the quads whose centroid lies within `within` metres of the lane (and
 // beside it, not beyond its ends), of their edges' angle to the lane's cross, degrees.
 double deviation_from_lane(const QuadLayer& layer, double within) {
@@ -1019,10 +1028,7 @@ double deviation_from_lane(const QuadLayer& layer, double within) {
 TEST(CliMesh, AlignTurnsTheQuadsAlongALine) {
   TempDir dir;
   const std::string rect = dir.file("rect.geojson"), lane = dir.file("lane.geojson");
-  write_file(rect, geojson_polygons({"[[[400000,5000000],[500000,5000000],[500000,5050000],"
-                                     "[400000,5050000],[400000,5000000]]]"},
-                                    kUtm));
-  write_file(lane, lane_geojson(kLaneFrom, kLaneTo));
+  write_rectangle_and_lane(rect, lane);
   const std::vector<std::string> args = {"mesh", rect, "--dst-crs", "EPSG:32631", "--size", "2000"};
   auto mesh = [&](const std::vector<std::string>& more, const std::string& out) {
     std::vector<std::string> a = args;
@@ -1059,10 +1065,7 @@ TEST(CliMesh, AlignTurnsTheQuadsAlongALine) {
 TEST(CliMesh, EmbedPutsQuadEdgesOnTheLine) {
   TempDir dir;
   const std::string rect = dir.file("rect.geojson"), lane = dir.file("lane.geojson");
-  write_file(rect, geojson_polygons({"[[[400000,5000000],[500000,5000000],[500000,5050000],"
-                                     "[400000,5050000],[400000,5000000]]]"},
-                                    kUtm));
-  write_file(lane, lane_geojson(kLaneFrom, kLaneTo));
+  write_rectangle_and_lane(rect, lane);
   const CliResult r = run_cli(
       {"mesh", rect, "--dst-crs", "EPSG:32631", "--size", "2000", "--align", lane, "--embed",
        "--report", dir.file("r.json"), "-o", dir.file("m.gpkg"), "-o", dir.file("m.msh")},
@@ -1180,10 +1183,7 @@ TEST(CliMesh, AlignNeedsLinesInsideTheDomainAndTheBoundaryField) {
   TempDir dir;
   const std::string rect = dir.file("rect.geojson"), lane = dir.file("lane.geojson"),
                     away = dir.file("away.geojson"), both = dir.file("both.geojson");
-  write_file(rect, geojson_polygons({"[[[400000,5000000],[500000,5000000],[500000,5050000],"
-                                     "[400000,5050000],[400000,5000000]]]"},
-                                    kUtm));
-  write_file(lane, lane_geojson(kLaneFrom, kLaneTo));
+  write_rectangle_and_lane(rect, lane);
   write_file(away, lane_geojson({600000, 5000000}, {650000, 5020000}));
   std::string two = lane_geojson(kLaneFrom, kLaneTo);
   const std::string second = read_file(away);
