@@ -3,7 +3,8 @@
 //         `boundary` (lines with kind open/land), `embedded` (--embed's paths of edges),
 //         table `metadata`, QGIS styles in `layer_styles`;
 //   vtu   VTK XML unstructured grid; vtk: legacy VTK (ASCII);
-//   msh   Gmsh 4.1 ASCII (or 2.2), physical groups land (1), open (2), domain (3);
+//   msh   Gmsh 4.1 ASCII (or 2.2), physical groups land (1), open (2), domain (3),
+//         embedded (4, --embed's paths);
 //   gr3   SCHISM hgrid.gr3 (quads, depth positive down, open and land boundaries) and its
 //         lon/lat companion (same name, extension .ll);
 //   nc    UGRID-1.0 netCDF;

@@ -18,9 +18,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-// The runs of each line inside the background mesh (the domain), walked as --align's
-// crosses are (walk_line: points a fraction of the mesh's edges apart), each with two
-// points at least.
 // A piece of a line inside the domain; `own_ends[0]` / `[1]`: whether its first / last
 // point is a point of the line inside the domain (the line's own end, or where a
 // closed line is cut in two), not where the walk left the domain.
@@ -30,6 +27,9 @@ struct Run {
   std::array<bool, 2> own_ends{false, false};
 };
 
+// The runs of each line inside the background mesh (the domain), walked as --align's
+// crosses are (walk_line: points a fraction of the mesh's edges apart), each with two
+// points at least; with `size`, not within coast_share h of the domain's boundary.
 std::vector<Run> runs_inside(const BackgroundMesh& bg,
                              const std::vector<std::vector<Point2>>& lines, const SizingField* size,
                              double coast_share) {
@@ -130,12 +130,13 @@ bool same_quad_corner(const QuadMesh& m, const QuadTopology& t, int u, int v, in
 }
 
 // The cheapest path of mesh edges from `from` to `to` near the run: an edge costs its
-// length times 1 + 16 (offset / length)^2 + 2 sin^2(its angle to the run), its offset the
-// mean distance of its ends and middle (twice) from the run; edges offset by max_offset of their
-// length or more are not taken. Turning round two sides of a quad costs three lengths of the second
-// more: moved onto a line, the three vertices would be in a row, so the middle one
-// stays off it. The search runs over directed edges (the turns need the edge before);
-// ties go to the lower edge id. Empty when `to` cannot be reached.
+// length times 1 + 16 (offset / length)^2 + 2 sin^2(its angle to the run), its offset
+// the mean distance of its ends and middle (twice) from the run; edges offset by
+// max_offset of their length or more are not taken. Turning round two sides of a quad
+// costs three lengths of the second edge more: moved onto a line, the three vertices
+// would be in a row, so the middle one stays off it. The search runs over directed
+// edges (the turns need the edge before); ties go to the lower edge id. Empty when `to`
+// cannot be reached.
 std::vector<int> path_along(const QuadMesh& m, const QuadTopology& t, const PolylineIndex& run,
                             int from, int to, double max_offset) {
   const int nv = static_cast<int>(m.points.size());
