@@ -246,12 +246,16 @@ std::string format_mesh_summary(const MeshResult& r) {
     std::snprintf(
         buf, sizeof buf,
         "embedded:     %zu edges on %zu piece(s) of the lines inside the domain%s; %zu of "
-        "their %zu interior vertices on the lines (farthest %.3g m off)\n",
+        "their %zu interior vertices on the lines (farthest %.3g m off)%s\n",
         e.num_edges, e.num_runs,
         e.num_skipped
             ? (" (" + std::to_string(e.num_skipped) + " too short or with no path)").c_str()
             : "",
-        e.num_on_line, interior, e.max_vertex_off_m);
+        e.num_on_line, interior, e.max_vertex_off_m,
+        e.num_coast_ends ? (", " + std::to_string(e.num_coast_ends) +
+                            " end(s) slid along the coast to where the lines meet it")
+                               .c_str()
+                         : "");
     os << buf;
     std::snprintf(buf, sizeof buf,
                   "              %.1f%% of the lines' %.1f km spanned by edges whose ends are on "
@@ -358,6 +362,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
           .value("embed_num_edges", r.embed.num_edges)
           .value("embed_num_interior_vertices", r.embed.num_vertices - r.embed.num_boundary)
           .value("embed_num_on_line", r.embed.num_on_line)
+          .value("embed_num_coast_ends", r.embed.num_coast_ends)
           .value("embed_max_vertex_off_m", r.embed.max_vertex_off_m)
           .value("embed_line_length_m", r.embed.line_length_m)
           .value("embed_covered_length_m", r.embed.covered_length_m)

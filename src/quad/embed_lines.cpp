@@ -116,6 +116,34 @@ Point2 nearest_on_polyline(const std::vector<Point2>& line, const Point2& p,
   return best;
 }
 
+// Where the ray from `from` along `dir` (unit) first meets the domain's boundary within
+// `reach`: the chain, the point and its arc length along the chain; false when it does not.
+bool ray_meets_boundary(const BackgroundMesh& bg, const Point2& from, const Point2& dir,
+                        double reach, int& chain, Point2& at, double& arc) {
+  double best = reach;
+  bool found = false;
+  for (std::size_t c = 0; c < bg.chains.size(); ++c) {
+    const BoundaryChain& ch = bg.chains[c];
+    const std::size_t n = ch.vertices.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point2 &a = bg.points[ch.vertices[i]], &b = bg.points[ch.vertices[(i + 1) % n]];
+      const double ex = b.x - a.x, ey = b.y - a.y;
+      const double den = dir.x * ey - dir.y * ex;
+      if (den == 0) continue;
+      const double wx = a.x - from.x, wy = a.y - from.y;
+      const double s = (wx * ey - wy * ex) / den;        // along the ray
+      const double u = (wx * dir.y - wy * dir.x) / den;  // along the segment
+      if (s < 0 || s >= best || u < 0 || u > 1) continue;
+      best = s;
+      found = true;
+      chain = static_cast<int>(c);
+      at = {a.x + u * ex, a.y + u * ey};
+      arc = ch.arc_length_m[i] + u * std::hypot(ex, ey);
+    }
+  }
+  return found;
+}
+
 // Whether u, v, w are consecutive corners of one quad.
 bool same_quad_corner(const QuadMesh& m, const QuadTopology& t, int u, int v, int w) {
   for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
@@ -219,7 +247,7 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   EmbedStats stats;
   stats.requested = true;
   if (paths) paths->clear();
-  const std::vector<Run> runs = runs_inside(bg, lines, size, embed.coast_share);
+  std::vector<Run> runs = runs_inside(bg, lines, size, embed.coast_share);
   const QuadTopology t = quad_topology(m);
   const int nv = static_cast<int>(m.points.size());
   std::vector<Point2> target(nv);
@@ -228,19 +256,58 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   std::vector<double> reach(nv, 0.0);  // their longest edge along the path
   std::vector<std::vector<int>> found;
   std::vector<std::size_t> found_run;
+  std::vector<double> target_arc(nv, 0.0);  // for boundary vertices: along their chain
   for (std::size_t r = 0; r < runs.size(); ++r) {
-    const std::vector<Point2>& run = runs[r].points;
-    for (std::size_t i = 1; i < run.size(); ++i)
-      stats.line_length_m += distance(run[i - 1], run[i]);
+    std::vector<Point2>& run = runs[r].points;
     const int from = nearest_vertex(m, t, run.front()), to = nearest_vertex(m, t, run.back());
-    PolylineIndex index({run});
     std::vector<int> path;
     if (from >= 0 && to >= 0 && from != to)
-      path = path_along(m, t, index, from, to, embed.max_offset);
+      path = path_along(m, t, PolylineIndex({run}), from, to, embed.max_offset);
     if (path.empty()) {
+      for (std::size_t i = 1; i < run.size(); ++i)
+        stats.line_length_m += distance(run[i - 1], run[i]);
       ++stats.num_skipped;
       continue;
     }
+    // A run cut near the coast (the line goes on to meet it): the path goes on to the
+    // boundary vertex next to its end that is nearest where the line meets the coast,
+    // and that vertex slides there along the coast, when it stays between its boundary
+    // neighbours; the run gets that point.
+    for (int end = 0; end < 2; ++end) {
+      if (runs[r].own_ends[end] || run.size() < 2) continue;
+      const Point2 e = end ? run.back() : run.front(), e2 = end ? run[run.size() - 2] : run[1];
+      const double len = distance(e, e2);
+      const int v = end ? path.back() : path.front();
+      double reach_m = 0;
+      for (int w : t.neighbours[v]) reach_m = std::max(reach_m, distance(m.points[v], m.points[w]));
+      int chain = -1;
+      Point2 x;
+      double arc = 0;
+      if (len <= 0 || !ray_meets_boundary(bg, e, {(e.x - e2.x) / len, (e.y - e2.y) / len},
+                                          2 * reach_m, chain, x, arc))
+        continue;
+      int b = m.chain[v] == chain && !m.fixed[v] ? v : -1;
+      if (b < 0)
+        for (int w : t.neighbours[v])
+          if (m.chain[w] == chain && !m.fixed[w] && !held[w] &&
+              (b < 0 || distance(m.points[w], x) < distance(m.points[b], x)))
+            b = w;
+      if (b < 0 || held[b]) continue;
+      const auto& bn = t.boundary_neighbours[b];
+      const double length = bg.chains[chain].length_m;
+      if (bn[0] < 0 || bn[1] < 0 || m.chain[bn[0]] != chain || m.chain[bn[1]] != chain ||
+          arc_delta(arc, m.arc_m[bn[0]], length) * arc_delta(arc, m.arc_m[bn[1]], length) >= 0)
+        continue;  // not between its neighbours
+      if (b != v) end ? path.push_back(b) : (void)path.insert(path.begin(), b);
+      end ? run.push_back(x) : (void)run.insert(run.begin(), x);
+      target[b] = x;
+      target_arc[b] = arc;
+      held[b] = 1;
+      order.push_back(b);
+      ++stats.num_coast_ends;
+    }
+    for (std::size_t i = 1; i < run.size(); ++i)
+      stats.line_length_m += distance(run[i - 1], run[i]);
     ++stats.num_runs;
     stats.num_edges += path.size() - 1;
     // The line's corners: where it turns by corner_turn_rad or more.
@@ -320,12 +387,14 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     for (int v : order) {
       if (done[v]) continue;
       const Point2 p = m.points[v], q = target[v];
-      if (try_move(m, t, v, q, m.arc_m[v], sweep.min_convexity)) {
+      const bool boundary = m.chain[v] >= 0;
+      if (try_move(m, t, v, q, boundary ? target_arc[v] : m.arc_m[v], sweep.min_convexity)) {
         done[v] = 1;
         continue;
       }
       all = false;
-      try_move(m, t, v, {0.5 * (p.x + q.x), 0.5 * (p.y + q.y)}, m.arc_m[v], sweep.min_convexity);
+      if (!boundary)  // (along the coast only the whole way)
+        try_move(m, t, v, {0.5 * (p.x + q.x), 0.5 * (p.y + q.y)}, m.arc_m[v], sweep.min_convexity);
     }
     if (all) break;
     angle_sweeps(bg, m, t, sweep, cross, size, &room, embed.sweep_iterations);
@@ -345,19 +414,16 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     double previous_arc = 0;
     for (int v : found[k]) {
       ++stats.num_vertices;
-      if (m.chain[v] >= 0 || m.fixed[v]) {
-        ++stats.num_boundary;
-        previous = -1;
-        continue;
-      }
       double arc = 0;
       const double d = distance(m.points[v], nearest_on_polyline(run, m.points[v], &arc));
-      stats.max_vertex_off_m = std::max(stats.max_vertex_off_m, d);
+      const bool boundary = m.chain[v] >= 0 || m.fixed[v];
+      if (boundary) ++stats.num_boundary;
+      if (!boundary) stats.max_vertex_off_m = std::max(stats.max_vertex_off_m, d);
       if (d > embed.on_line_m) {
         previous = -1;
         continue;
       }
-      ++stats.num_on_line;
+      if (!boundary) ++stats.num_on_line;
       if (previous >= 0 && arc > previous_arc) {
         double off = 0;
         for (std::size_t i = 0; i < run.size(); ++i)

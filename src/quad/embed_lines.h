@@ -59,7 +59,9 @@ struct EmbedStats {
   std::size_t num_edges = 0;      // mesh edges on those paths
   std::size_t num_vertices = 0;   // vertices of the paths (interior and boundary)
   std::size_t num_on_line = 0;    // of them, on their line at the end
-  std::size_t num_boundary = 0;   // of them, on the domain's boundary (not moved)
+  std::size_t num_boundary = 0;   // of them, on the domain's boundary
+  // Boundary vertices slid along the coast to where a line meets it (a path's end).
+  std::size_t num_coast_ends = 0;
   double max_vertex_off_m = 0.0;  // the farthest interior path vertex from its line
   // The lines' length inside the mesh; of it, the length between consecutive path
   // vertices on the line that their edge spans (EmbedParams::max_chord_share); and how
@@ -78,8 +80,9 @@ struct EmbeddedPath {
 };
 
 // Moves, for each line's runs inside the mesh, a path of edges onto the line; every quad
-// stays as convex as smoothing left it (no move goes below params.min_convexity) and the
-// domain's boundary vertices never move. `paths` gets each run's path.
+// stays convex (EmbedParams::min_turn_sine), and a boundary vertex moves only where a
+// path ends next to the coast that its line meets: along the coast, to that point,
+// between its boundary neighbours. `paths` gets each run's path.
 EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
                        const std::vector<std::vector<Point2>>& lines, const EmbedParams& embed,
                        const SmoothParams& params, const CrossField* cross, const SizingField* size,

@@ -1167,6 +1167,20 @@ TEST(CliMesh, EmbedPutsQuadEdgesOnTheLine) {
       near_coast.err.find("embedded:     no line lies farther than half a quad from the boundary"),
       std::string::npos)
       << near_coast.err;
+  // A breakwater from the shore: the path's end on the coast slides to where it meets
+  // the line, (434000, 5000000).
+  const std::string breakwater = dir.file("breakwater.geojson");
+  write_file(breakwater, lane_geojson({430000, 4995000}, {450000, 5020000}));
+  const CliResult shore =
+      run_cli({"mesh", rect, "--dst-crs", "EPSG:32631", "--size", "2000", "--align", breakwater,
+               "--embed", "-o", dir.file("b.gpkg"), "--report", dir.file("b.json")},
+              dir);
+  ASSERT_EQ(shore.exit_code, 0) << shore.err;
+  EXPECT_EQ(report_number(read_file(dir.file("b.json")), "embed_num_coast_ends"), 1);
+  int landfall = 0;
+  for (const auto& q : read_quads(dir.file("b.gpkg")).quads)
+    for (const auto& p : q) landfall += std::hypot(p[0] - 434000, p[1] - 5000000) < 1e-6;
+  EXPECT_EQ(landfall, 2);  // a corner of the two quads either side of the line
   const CliResult winding = embed(zigzag);
   EXPECT_EQ(winding.exit_code, 0) << winding.err;
   EXPECT_NE(winding.err.find("warning: --embed: edges on the lines span only 0% of their 365.0 km"),

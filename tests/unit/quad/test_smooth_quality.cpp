@@ -862,8 +862,9 @@ TEST(SmoothQuads, AReflexCornerGetsTheThirdQuadAnInteriorVertexStoodInFor) {
 }
 
 // --embed: a line across the grid, a fifth of a quad above a row of its edges and
-// turning slowly off it, gets that row: its interior vertices moved onto the line, the
-// boundary's left on the boundary, every quad still convex.
+// turning slowly off it, gets that row: its interior vertices moved onto the line, its
+// two boundary vertices slid along the boundary to where the line meets it, every quad
+// still convex.
 TEST(EmbedLines, MovesARowOfEdgesOntoALineAcrossTheSquare) {
   const BackgroundMesh bg = square_background();
   QuadMesh m = grid();
@@ -878,6 +879,7 @@ TEST(EmbedLines, MovesARowOfEdgesOntoALineAcrossTheSquare) {
   EXPECT_EQ(st.num_edges, static_cast<std::size_t>(kN));
   EXPECT_EQ(st.num_vertices, static_cast<std::size_t>(kN + 1));
   EXPECT_EQ(st.num_boundary, 2u);
+  EXPECT_EQ(st.num_coast_ends, 2u);
   EXPECT_EQ(st.num_on_line, static_cast<std::size_t>(kN - 1));
   EXPECT_LT(st.max_vertex_off_m, 1e-6);
   ASSERT_EQ(paths.size(), 1u);
@@ -887,17 +889,15 @@ TEST(EmbedLines, MovesARowOfEdgesOntoALineAcrossTheSquare) {
   for (std::size_t i = 0; i < path.size(); ++i) {
     const Point2& p = m.points[path[i]];
     EXPECT_NEAR(p.x, i * h, 0.1 * h) << i;  // along the row, in order
-    if (m.chain[path[i]] < 0) {
-      EXPECT_NEAR(p.y, line_y(p.x), 1e-6) << i;
-    } else {
-      EXPECT_EQ(p.y, 3 * h) << i;  // the boundary's ends stay
-    }
+    EXPECT_NEAR(p.y, line_y(p.x), 1e-6) << i;
   }
-  // The line inside the square (1,000.45 m, less the walk's last step at each end: the
-  // background's edges are 50 m); the edges between its interior vertices span it from
-  // about x = 100 to 900, and the line, straight, lies on them.
-  EXPECT_NEAR(st.line_length_m, 1000.45, 25.0);
-  EXPECT_NEAR(st.covered_length_m, 800.36, 0.1 * h);  // their x moves a little
+  EXPECT_EQ(m.points[path.front()].x, 0.0);  // on the boundary, at its arc
+  EXPECT_NEAR(m.arc_m[path.front()], square_arc({0.0, line_y(0)}), 1e-6);
+  EXPECT_EQ(m.points[path.back()].x, kSide);
+  EXPECT_NEAR(m.arc_m[path.back()], square_arc({kSide, line_y(kSide)}), 1e-6);
+  // The line inside the square, spanned by the edges, on which it lies.
+  EXPECT_NEAR(st.line_length_m, std::hypot(kSide, 30.0), 1e-6);
+  EXPECT_NEAR(st.covered_length_m, std::hypot(kSide, 30.0), 1e-6);
   EXPECT_LT(st.max_chord_off_m, 1e-6);
   for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
     EXPECT_GT(quad_convexity(m, q), params.min_convexity) << q;
