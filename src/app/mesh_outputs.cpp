@@ -87,6 +87,10 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
       pp.path = set.add(o.plot_path, o.overwrite);
       pp.overwrite = true;
       if (r.fields.num_aligned_vertices > 0) pp.lines = r.fields.front.align_lines;
+      for (const EmbeddedPath& path : r.embedded) {
+        pp.embedded.emplace_back();
+        for (int v : path.vertices) pp.embedded.back().push_back(r.quads.points[v]);
+      }
       plot_mesh(r.quads, r.metrics, r.quality, pp);
     } else {
       PlotTilingParams pp;

@@ -3,6 +3,7 @@
 #include <cairo.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 
@@ -46,9 +47,9 @@ void draw_quads(Canvas& c, const QuadMesh& m, const std::vector<Rgb>& fill, bool
   }
 }
 
-// The lines in dark green, clipped to the panel at (x, y) of w x h pixels.
+// The lines in a colour, clipped to the panel at (x, y) of w x h pixels.
 void draw_lines(Canvas& c, const std::vector<std::vector<Point2>>& lines, double x, double y,
-                double w, double h) {
+                double w, double h, const std::array<double, 3>& rgb, double width) {
   if (lines.empty()) return;
   cairo_t* cr = c.cr();
   cairo_save(cr);
@@ -63,8 +64,8 @@ void draw_lines(Canvas& c, const std::vector<std::vector<Point2>>& lines, double
         cairo_line_to(cr, p.x, p.y);
     }
   }
-  cairo_set_source_rgb(cr, 0.0, 0.45, 0.2);
-  cairo_set_line_width(cr, 2.0);
+  cairo_set_source_rgb(cr, rgb[0], rgb[1], rgb[2]);
+  cairo_set_line_width(cr, width);
   cairo_stroke(cr);
   cairo_restore(cr);
 }
@@ -101,7 +102,8 @@ void plot_mesh(const QuadMesh& m, const QuadMetrics& q, const QualitySummary& s,
     c.text(10 + k * (w + 10), 18, titles[k], 14);
     c.set_view(box, 10 + k * (w + 10), 28, w, map_h);
     draw_quads(c, m, *fills[k], k == 0, q);
-    draw_lines(c, params.lines, 10 + k * (w + 10), 28, w, map_h);
+    draw_lines(c, params.lines, 10 + k * (w + 10), 28, w, map_h, {0.0, 0.45, 0.2}, 2.0);
+    draw_lines(c, params.embedded, 10 + k * (w + 10), 28, w, map_h, {0.8, 0.0, 0.6}, 1.0);
   }
 
   char buf[200];

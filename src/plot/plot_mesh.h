@@ -17,8 +17,10 @@ struct PlotMeshParams {
   std::string path;
   int panel_px = 900;  // width of each map panel
   bool overwrite = false;
-  // Lines drawn over the map panels (the --align lines, in the mesh's coordinates).
+  // Lines drawn over the map panels, in the mesh's coordinates: the --align lines in
+  // dark green, and over them --embed's paths of edges in magenta.
   std::vector<std::vector<Point2>> lines;
+  std::vector<std::vector<Point2>> embedded;
 };
 
 void plot_mesh(const QuadMesh& mesh, const QuadMetrics& metrics, const QualitySummary& summary,
