@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <queue>
+#include <tuple>
 #include <utility>
 
 #include "fields/align_lines.h"
@@ -357,15 +358,21 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     }
     // The line's corners each to the nearest of them within its edges' reach, so that
     // the edges follow the bends (a chord across a corner would not).
-    std::vector<char> at_corner(nv, 0);
-    for (const auto& [b, turn] : corners) {
-      int best = -1;
-      for (int v : mine)
-        if (!at_corner[v] && (best < 0 || distance(m.points[v], b) < distance(m.points[best], b)))
-          best = v;
-      if (best < 0 || distance(m.points[best], b) > reach[best]) continue;
-      target[best] = b;
-      at_corner[best] = 1;
+    // Nearest pairs first: taken corner by corner, a vertex could go to an earlier
+    // corner than its nearest, each after it one corner back (a sine of 5 km amplitude
+    // drawn every 500 m, meshed at 2 km: 37 of 48 vertices on it against 44).
+    std::vector<std::tuple<double, std::size_t, int>> pairs;  // (distance, corner, vertex)
+    for (std::size_t c = 0; c < corners.size(); ++c)
+      for (int v : mine) {
+        const double d = distance(m.points[v], corners[c].first);
+        if (d <= reach[v]) pairs.emplace_back(d, c, v);
+      }
+    std::sort(pairs.begin(), pairs.end());
+    std::vector<char> at_corner(nv, 0), corner_taken(corners.size(), 0);
+    for (const auto& [d, c, v] : pairs) {
+      if (at_corner[v] || corner_taken[c]) continue;
+      target[v] = corners[c].first;
+      at_corner[v] = corner_taken[c] = 1;
     }
     order.insert(order.end(), mine.begin(), mine.end());
     found.push_back(std::move(path));

@@ -908,6 +908,33 @@ TEST(EmbedLines, MovesARowOfEdgesOntoALineAcrossTheSquare) {
   }
 }
 
+// A curve drawn densely (a vertex every quarter of a quad, turning by up to 1.7 degrees:
+// corners, each pulling the path's vertex nearest it) gets the row of edges beside it,
+// each vertex moved to the corner nearest it, not along the line to another.
+TEST(EmbedLines, ADenselyDrawnCurveKeepsEachVertexAtItsNearestCorner) {
+  const BackgroundMesh bg = square_background();
+  QuadMesh m = grid();
+  const double h = kSide / kN;
+  auto line_y = [](double x) { return 320.0 + 30.0 * std::sin(2 * M_PI * x / kSide); };
+  std::vector<Point2> line;
+  for (double x = -50; x <= kSide + 50; x += 0.25 * h) line.push_back({x, line_y(x)});
+  std::vector<EmbeddedPath> paths;
+  const SmoothParams params;
+  const EmbedStats st = embed_lines(bg, m, {line}, EmbedParams(), params, nullptr, nullptr, &paths);
+  ASSERT_EQ(paths.size(), 1u);
+  const std::vector<int>& path = paths[0].vertices;
+  ASSERT_EQ(path.size(), static_cast<std::size_t>(kN + 1));
+  EXPECT_EQ(st.num_on_line, static_cast<std::size_t>(kN - 1));
+  EXPECT_NEAR(st.covered_length_m, st.line_length_m, 1e-6 * st.line_length_m);
+  EXPECT_LT(st.max_vertex_off_m, 1e-6);
+  // Near the curve's inflections, where it turns by less than corner_turn_rad, the
+  // nearest corner is up to a quarter of a quad along.
+  for (std::size_t i = 1; i + 1 < path.size(); ++i)
+    EXPECT_NEAR(m.points[path[i]].x, i * h, 0.3 * h) << i;
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
+    EXPECT_GT(quad_convexity(m, q), params.min_convexity) << q;
+}
+
 // A closed line (a polygon's ring) is cut in two, each half a path: the ring a tenth of
 // a quad off a square of the grid's edges gets that square, its corners on the ring's.
 TEST(EmbedLines, AClosedLineGetsAClosedPathWithItsCorners) {
