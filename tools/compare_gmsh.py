@@ -162,6 +162,60 @@ def coast_departure(points, quads, domain_vertices):
     return float(d.max())
 
 
+def dflowfm_orthogonality(p, quads):
+    """D-Flow FM's orthogonality of each link between two quads (the |cosine| of the angle
+    between the edge and the segment joining the quads' centres), with the quads' centres
+    as D-Flow FM takes them (as isoquad's report does: quad_quality.h, dflowfm_centre)."""
+    q = p[quads]
+    signed = 0.5 * ((q[:, 2, 0] - q[:, 0, 0]) * (q[:, 3, 1] - q[:, 1, 1]) -
+                    (q[:, 3, 0] - q[:, 1, 0]) * (q[:, 2, 1] - q[:, 0, 1]))
+    quads = np.where(signed[:, None] < 0, quads[:, ::-1], quads)  # counter-clockwise
+    q = p[quads]
+    key = np.sort(np.stack([quads, np.roll(quads, -1, axis=1)], -1), axis=-1).reshape(-1, 2)
+    _, inv, counts = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    inv = inv.ravel()
+    shared = (counts[inv] == 2).reshape(-1, 4)
+    a, b = q, np.roll(q, -1, axis=1)
+    mid, d = 0.5 * (a + b), b - a
+    length = np.linalg.norm(d, axis=-1, keepdims=True)
+    u = d / np.where(length > 0, length, 1)
+    mean = q.mean(axis=1)
+    c = mean.copy()
+    done = shared.sum(axis=1) < 2  # the corners' mean
+    for sweep in range(100):
+        before = c.copy()
+        for i in range(4):
+            move = shared[:, i] & ~done
+            along = ((c - mid[:, i]) * u[:, i]).sum(-1)
+            c[move] -= 0.1 * along[move, None] * u[move, i]
+        if sweep > 0:
+            done |= (np.abs(c - before) < 1e-3).all(axis=-1)
+        if done.all():
+            break
+    # A centre outside its quad: back to where the segment from the mean leaves it.
+    side = d[..., 0] * (c[:, None, 1] - a[..., 1]) - d[..., 1] * (c[:, None, 0] - a[..., 0])
+    for k in np.nonzero((side < 0).any(axis=1))[0]:
+        w = c[k] - mean[k]
+        best = mean[k]
+        for i in range(4):
+            m = np.array([[w[0], -d[k, i, 0]], [w[1], -d[k, i, 1]]])
+            if abs(np.linalg.det(m)) == 0:
+                continue
+            s_, t_ = np.linalg.solve(m, a[k, i] - mean[k])
+            if 0 <= s_ <= 1 and 0 <= t_ <= 1:
+                best = mean[k] + s_ * w
+                break
+        c[k] = best
+    order = np.argsort(inv, kind="stable")
+    sorted_inv = inv[order]
+    pair = np.nonzero(sorted_inv[1:] == sorted_inv[:-1])[0]
+    first, second = order[pair], order[pair + 1]  # (quad * 4 + side) of each link's two sides
+    e = d.reshape(-1, 2)[first]
+    f = c[second // 4] - c[first // 4]
+    norms = np.linalg.norm(e, axis=-1) * np.linalg.norm(f, axis=-1)
+    return np.where(norms > 0, np.abs((e * f).sum(-1)) / np.where(norms > 0, norms, 1), 1.0)
+
+
 def metrics(points, quads, triangles, size, cross, domain=None):
     p = points[:, :2]
     q = p[quads]  # (n, 4, 2)
@@ -192,6 +246,7 @@ def metrics(points, quads, triangles, size, cross, domain=None):
     degree = np.bincount(quads.ravel(), minlength=len(points))
     used = degree > 0
     interior = used & ~boundary
+    ortho = dflowfm_orthogonality(p, quads) if len(quads) else np.zeros(0)
     coast = {}
     if domain is not None:
         vertices, domain_area = domain
@@ -211,6 +266,8 @@ def metrics(points, quads, triangles, size, cross, domain=None):
         "regular interior vertices": f"{100 * np.mean(degree[interior] == 4):.1f}%",
         "SCHISM: angle ratio < 0.5": under_angle_ratio,
         "SCHISM: aspect ratio > 5": over_aspect,
+        **({"D-Flow FM: orthogonality max / mean": f"{ortho.max():.3f} / {ortho.mean():.3f}",
+            "D-Flow FM: links over 0.5": int(np.sum(ortho > 0.5))} if len(ortho) else {}),
         **coast,
     }
 

@@ -813,6 +813,18 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
           "the domain: lines that wind or bend within a few quads cannot be followed; simplify "
           "them, or refine round them (--refine with --refine-width-field)\n",
           100 * e.covered_length_m / e.line_length_m, e.line_length_m / 1000);
+  // A D-Flow FM network that D-Flow FM would refuse as it is.
+  const QualitySummary& q = r.quality;
+  if (q.dflowfm_orthogonality_violations > 0 && !a.quiet)
+    for (const MeshOutput& o : outputs)
+      if (mesh_output_format(o) == MeshFormat::nc) {
+        print(err,
+              "isoquad: warning: %s: %zu links between quads have an orthogonality over 0.5 "
+              "(up to %.3f): D-Flow FM stops on it (\"network is not orthogonal\") unless "
+              "CosPhiuTrsh in the .mdu's [geometry] is raised above that\n",
+              o.path.c_str(), q.dflowfm_orthogonality_violations, q.dflowfm_orthogonality_max);
+        break;
+      }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (result) result->quality = r.quality, result->seconds = seconds;
   if (!a.quiet) {

@@ -291,6 +291,13 @@ std::string format_mesh_summary(const MeshResult& r) {
   std::snprintf(buf, sizeof buf, "SCHISM:       %zu quads with min/max angle < 0.5, %zu with aspect ratio > 5\n",
                 q.schism_angle_ratio_violations, q.schism_aspect_violations);
   os << buf;
+  std::snprintf(buf, sizeof buf,
+                "D-Flow FM:    orthogonality max %.3f, mean %.3f, %zu links over 0.5, %.1f%% at "
+                "0.02 or less; smoothness max %.2f, %.1f%% of links at 1.2 or less\n",
+                q.dflowfm_orthogonality_max, q.dflowfm_orthogonality_mean,
+                q.dflowfm_orthogonality_violations, 100 * q.dflowfm_share_orthogonality_002,
+                q.dflowfm_smoothness_max, 100 * q.dflowfm_share_smoothness_12);
+  os << buf;
   return os.str();
 }
 
@@ -375,6 +382,12 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("eta_min", q.eta_min)
         .value("schism_angle_ratio_violations", q.schism_angle_ratio_violations)
         .value("schism_aspect_ratio_violations", q.schism_aspect_violations)
+        .value("dflowfm_orthogonality_max", q.dflowfm_orthogonality_max)
+        .value("dflowfm_orthogonality_mean", q.dflowfm_orthogonality_mean)
+        .value("dflowfm_orthogonality_violations", q.dflowfm_orthogonality_violations)
+        .value("dflowfm_share_orthogonality_002", q.dflowfm_share_orthogonality_002)
+        .value("dflowfm_smoothness_max", q.dflowfm_smoothness_max)
+        .value("dflowfm_share_smoothness_12", q.dflowfm_share_smoothness_12)
         .value("mesh_area_m2", q.mesh_area_m2)
         .value("domain_area_m2", q.domain_area_m2)
         .value("boundary_departure_max_m", q.boundary_departure_max_m)

@@ -38,6 +38,8 @@ std::vector<std::pair<std::string, std::string>> quality_items(const QualitySumm
           {"eta_min", format_number(q.eta_min)},
           {"schism_angle_ratio_violations", std::to_string(q.schism_angle_ratio_violations)},
           {"schism_aspect_violations", std::to_string(q.schism_aspect_violations)},
+          {"dflowfm_orthogonality_max", format_number(q.dflowfm_orthogonality_max)},
+          {"dflowfm_orthogonality_violations", std::to_string(q.dflowfm_orthogonality_violations)},
           {"mesh_area_m2", format_number(q.mesh_area_m2)},
           {"domain_area_m2", format_number(q.domain_area_m2)},
           {"boundary_departure_max_m", format_number(q.boundary_departure_max_m)},

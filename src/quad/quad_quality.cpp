@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <tuple>
 
 #include "mesh/locate.h"
 
@@ -46,7 +48,89 @@ std::vector<double> boundary_departures(const QuadMesh& m, const BackgroundMesh&
   return in_h;
 }
 
+// Whether p lies inside or on the counter-clockwise quad q.
+bool inside_quad(const QuadMesh& m, int q, const Point2& p) {
+  const auto& t = m.quads[q];
+  for (int i = 0; i < 4; ++i) {
+    const Point2 &a = m.points[t[i]], &b = m.points[t[(i + 1) % 4]];
+    if ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x) < 0) return false;
+  }
+  return true;
+}
+
 }  // namespace
+
+Point2 dflowfm_centre(const QuadMesh& m, int q, const std::array<bool, 4>& shared) {
+  const auto& t = m.quads[q];
+  Point2 mean{0, 0};
+  for (int v : t) mean.x += 0.25 * m.points[v].x, mean.y += 0.25 * m.points[v].y;
+  if (std::count(shared.begin(), shared.end(), true) < 2) return mean;
+  Point2 c = mean;
+  for (int sweep = 0; sweep < 100; ++sweep) {
+    const Point2 before = c;
+    for (int i = 0; i < 4; ++i) {
+      if (!shared[i]) continue;
+      const Point2 &a = m.points[t[i]], &b = m.points[t[(i + 1) % 4]];
+      const double len = distance(a, b);
+      if (len <= 0) continue;
+      const double ux = (b.x - a.x) / len, uy = (b.y - a.y) / len;  // along the edge
+      const double along = (c.x - 0.5 * (a.x + b.x)) * ux + (c.y - 0.5 * (a.y + b.y)) * uy;
+      c.x -= 0.1 * along * ux;
+      c.y -= 0.1 * along * uy;
+    }
+    if (sweep > 0 && std::abs(c.x - before.x) < 1e-3 && std::abs(c.y - before.y) < 1e-3) break;
+  }
+  if (inside_quad(m, q, c)) return c;
+  // Back to where the segment from the mean leaves the quad.
+  for (int i = 0; i < 4; ++i) {
+    const Point2 &a = m.points[t[i]], &b = m.points[t[(i + 1) % 4]];
+    const double dx = c.x - mean.x, dy = c.y - mean.y, ex = b.x - a.x, ey = b.y - a.y;
+    const double den = dx * ey - dy * ex;
+    if (den == 0) continue;
+    const double s = ((a.x - mean.x) * ey - (a.y - mean.y) * ex) / den;  // along mean -> c
+    const double u = ((a.x - mean.x) * dy - (a.y - mean.y) * dx) / den;  // along a -> b
+    if (s >= 0 && s <= 1 && u >= 0 && u <= 1) return {mean.x + s * dx, mean.y + s * dy};
+  }
+  return mean;
+}
+
+DflowfmLinks dflowfm_links(const QuadMesh& m) {
+  const int nq = static_cast<int>(m.quads.size());
+  // (edge, quad, side) sorted by edge: the edges shared by two quads are the links.
+  std::vector<std::tuple<std::array<int, 2>, int, int>> sides;
+  for (int q = 0; q < nq; ++q)
+    for (int i = 0; i < 4; ++i) {
+      const int v = m.quads[q][i], w = m.quads[q][(i + 1) % 4];
+      sides.push_back({{std::min(v, w), std::max(v, w)}, q, i});
+    }
+  std::sort(sides.begin(), sides.end());
+  std::vector<std::array<bool, 4>> shared(nq, {false, false, false, false});
+  std::vector<std::array<int, 3>> links;  // the edge's first side in `sides`, quads a, b
+  for (std::size_t k = 0; k + 1 < sides.size(); ++k)
+    if (std::get<0>(sides[k]) == std::get<0>(sides[k + 1])) {
+      shared[std::get<1>(sides[k])][std::get<2>(sides[k])] = true;
+      shared[std::get<1>(sides[k + 1])][std::get<2>(sides[k + 1])] = true;
+      links.push_back({static_cast<int>(k), std::get<1>(sides[k]), std::get<1>(sides[k + 1])});
+    }
+  std::vector<Point2> centre(nq);
+  std::vector<double> area(nq);
+  for (int q = 0; q < nq; ++q)
+    centre[q] = dflowfm_centre(m, q, shared[q]), area[q] = quad_area(m, q);
+  DflowfmLinks out;
+  for (const auto& [k, a, b] : links) {
+    const std::array<int, 2>& e = std::get<0>(sides[k]);
+    const Point2 &p = m.points[e[0]], &r = m.points[e[1]];
+    const double ex = r.x - p.x, ey = r.y - p.y, fx = centre[b].x - centre[a].x,
+                 fy = centre[b].y - centre[a].y;
+    const double norms = std::hypot(ex, ey) * std::hypot(fx, fy);
+    out.edge.push_back(e);
+    // Centres that coincide: no flow link, as bad as it gets.
+    out.orthogonality.push_back(norms > 0 ? std::abs(ex * fx + ey * fy) / norms : 1.0);
+    const double lo = std::min(area[a], area[b]), hi = std::max(area[a], area[b]);
+    out.smoothness.push_back(lo > 0 ? hi / lo : std::numeric_limits<double>::infinity());
+  }
+  return out;
+}
 
 QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, const SizingField& size,
                                const CrossField& cross, QuadMetrics* out) {
@@ -164,6 +248,25 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
   s.share_regular_boundary = boundary ? static_cast<double>(boundary_regular) / boundary : 0;
   s.share_regular_all =
       interior + boundary ? static_cast<double>(interior_regular + boundary_regular) / (interior + boundary) : 0;
+
+  const DflowfmLinks links = dflowfm_links(m);
+  std::size_t ortho_ok = 0, smooth_ok = 0;
+  double ortho_sum = 0;
+  for (std::size_t k = 0; k < links.edge.size(); ++k) {
+    const double o = links.orthogonality[k], r = links.smoothness[k];
+    s.dflowfm_orthogonality_max = std::max(s.dflowfm_orthogonality_max, o);
+    ortho_sum += o;
+    s.dflowfm_orthogonality_violations += o > 0.5;
+    ortho_ok += o <= 0.02;
+    s.dflowfm_smoothness_max = std::max(s.dflowfm_smoothness_max, r);
+    smooth_ok += r <= 1.2;
+  }
+  if (!links.edge.empty()) {
+    const double n = static_cast<double>(links.edge.size());
+    s.dflowfm_orthogonality_mean = ortho_sum / n;
+    s.dflowfm_share_orthogonality_002 = ortho_ok / n;
+    s.dflowfm_share_smoothness_12 = smooth_ok / n;
+  }
 
   for (int q = 0; q < nq; ++q) s.mesh_area_m2 += quad_area(m, q);
   s.domain_area_m2 = area(bg);

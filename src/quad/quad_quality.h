@@ -1,6 +1,7 @@
 // Quality of a quad mesh against the paper's criteria and what ocean modellers check:
 // angles, size conformance sqrt(area)/h, orientation deviation from the cross field,
-// vertex regularity, Gmsh's eta, SCHISM's angle-ratio and aspect-ratio checks.
+// vertex regularity, Gmsh's eta, SCHISM's angle-ratio and aspect-ratio checks, D-Flow
+// FM's orthogonality and smoothness.
 #pragma once
 
 #include <array>
@@ -41,6 +42,14 @@ struct QualitySummary {
   double eta_mean = 0, eta_min = 0;
   std::size_t schism_angle_ratio_violations = 0;  // min/max angle < 0.5
   std::size_t schism_aspect_violations = 0;       // longest / shortest edge > 5
+  // D-Flow FM's checks of its network (the UGRID .nc), over the links between two quads
+  // (dflowfm_links): the orthogonality, which D-Flow FM refuses over 0.5 (its
+  // CosPhiuTrsh: "network is not orthogonal"; Deltares advise 0.02 or less), and the
+  // smoothness, the larger area over the smaller (advised 1.1 to 1.2).
+  double dflowfm_orthogonality_max = 0, dflowfm_orthogonality_mean = 0;
+  std::size_t dflowfm_orthogonality_violations = 0;                    // links over 0.5
+  double dflowfm_share_orthogonality_002 = 0;                          // links at 0.02 or less
+  double dflowfm_smoothness_max = 0, dflowfm_share_smoothness_12 = 0;  // at 1.2 or less
   // How closely the mesh follows the domain: its area against the domain's (the
   // background mesh's), and how far the domain's boundary lies from the mesh's. Each
   // boundary edge is a chord of the boundary chain between its two ends; its departure
@@ -59,6 +68,25 @@ struct QualitySummary {
   std::size_t align_num_quads = 0;
   double align_deviation_mean_deg = 0;
 };
+
+// A quad's centre as D-Flow FM takes it for a cell of more than three corners (its cell
+// "circumcentre", after Zhang, Schmidt and Perot 2002): from the corners' mean, sweeps
+// over the edges shared with another quad (`shared[i]`: the edge from corner i), each
+// moving the point a tenth of its distance to the edge's perpendicular bisector, until a
+// sweep moves it under a millimetre (100 at most); the corners' mean with fewer than two
+// shared edges. A centre outside the quad goes back along the line from the mean to
+// where that line leaves it.
+Point2 dflowfm_centre(const QuadMesh& mesh, int q, const std::array<bool, 4>& shared);
+
+// D-Flow FM's links: each edge shared by two quads (its net link) with its orthogonality,
+// the |cosine| of the angle between the edge and the segment joining the two quads'
+// centres (the flow link; 0 when they are perpendicular), and its smoothness, the larger
+// of the two quads' areas over the smaller.
+struct DflowfmLinks {
+  std::vector<std::array<int, 2>> edge;  // vertex ids
+  std::vector<double> orthogonality, smoothness;
+};
+DflowfmLinks dflowfm_links(const QuadMesh& mesh);
 
 QualitySummary measure_quality(const QuadMesh& mesh, const BackgroundMesh& background,
                                const SizingField& size, const CrossField& cross,

@@ -102,6 +102,51 @@ TEST(QuadQuality, PerfectGridIsPerfect) {
   EXPECT_NEAR(s.domain_area_m2, kSide * kSide, 1e-6);
   EXPECT_NEAR(s.boundary_departure_max_m, 0.0, 1e-9);
   EXPECT_NEAR(s.boundary_departure_p95_h, 0.0, 1e-9);
+  // D-Flow FM: the squares' centres are their middles, every flow link perpendicular.
+  EXPECT_LT(s.dflowfm_orthogonality_max, 1e-9);
+  EXPECT_EQ(s.dflowfm_orthogonality_violations, 0u);
+  EXPECT_DOUBLE_EQ(s.dflowfm_share_orthogonality_002, 1.0);
+  EXPECT_NEAR(s.dflowfm_smoothness_max, 1.0, 1e-9);
+  EXPECT_EQ(dflowfm_links(m).edge.size(), static_cast<std::size_t>(2 * kN * (kN - 1)));
+}
+
+// D-Flow FM's orthogonality on a sheared grid: (i, j) at (i + s j, j) h, parallelograms
+// whose centres (each quad symmetric about its middle) are their middles. Between two
+// of them, the flow link runs along one side direction and the edge along the other:
+// |cos| = s / sqrt(1 + s^2) at every link, over D-Flow FM's 0.5 for s = 0.6. Along the
+// boundary a quad has fewer shared edges and its centre moves (towards its shared
+// corner: the perpendicular bisectors of two adjacent sides meet off the middle).
+TEST(QuadQuality, DflowfmOrthogonalityOfAShearedGrid) {
+  QuadMesh m = grid();
+  const double h = kSide / kN, shear = 0.6;
+  for (Point2& p : m.points) p.x += shear * p.y;
+  const DflowfmLinks links = dflowfm_links(m);
+  ASSERT_EQ(links.edge.size(), static_cast<std::size_t>(2 * kN * (kN - 1)));
+  const double expected = shear / std::sqrt(1 + shear * shear);
+  std::size_t inner = 0;
+  for (std::size_t k = 0; k < links.edge.size(); ++k) {
+    EXPECT_NEAR(links.smoothness[k], 1.0, 1e-9);
+    // Links whose two quads lie off the boundary (their ends at least h from it).
+    bool off = true;
+    for (int v : links.edge[k]) {
+      const double y = m.points[v].y, x = m.points[v].x - shear * y;
+      off = off && x > 1.5 * h && x < kSide - 1.5 * h && y > 1.5 * h && y < kSide - 1.5 * h;
+    }
+    if (!off) continue;
+    ++inner;
+    EXPECT_NEAR(links.orthogonality[k], expected, 1e-3) << k;
+  }
+  EXPECT_GE(inner, 80u);
+  // The corner quad (0, 0), (h, 0), (h + s h, h), (s h, h) shares its right and top
+  // sides: its centre is where their perpendicular bisectors meet, x = (1/2 + s) h (the
+  // top's) and y = (1/2 + s (1 - s) / 2) h on the right side's, inside the quad.
+  const Point2 c = dflowfm_centre(m, 0, {false, true, true, false});
+  EXPECT_NEAR(c.x, (0.5 + shear) * h, 0.05);
+  EXPECT_NEAR(c.y, (0.5 + 0.5 * shear * (1 - shear)) * h, 0.05);
+  // With one shared side, the corners' mean.
+  const Point2 mean = dflowfm_centre(m, 0, {false, true, false, false});
+  EXPECT_NEAR(mean.x, (0.5 + 0.5 * shear) * h, 1e-9);
+  EXPECT_NEAR(mean.y, 0.5 * h, 1e-9);
 }
 
 namespace {
