@@ -637,6 +637,13 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "fewer such quads at the cost of angles in [75,105] and orientation")
       ->check(kNonNegative)
       ->group("Quads");
+  cmd->add_option("--max-orthogonality", m.mesh.smooth.max_orthogonality,
+                  "D-Flow FM: last, the interior corners of quads whose links have an "
+                  "orthogonality over this move until they do not, where they can (D-Flow FM "
+                  "refuses a network with one over 0.5, its CosPhiuTrsh: 0.45 leaves a margin; "
+                  "default 0: none). Costs a little of the angles in [75,105]")
+      ->check(CLI::Range(0.0, 1.0))
+      ->group("Quads");
   cmd->add_option("--coast-weight", m.mesh.smooth.coast_weight,
                   "Weight, in the angle sweeps, of how far the coast between a boundary edge's "
                   "ends lies off it (squared, over the edge's length; default 0: none). More "
@@ -821,8 +828,12 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
         print(err,
               "isoquad: warning: %s: %zu links between quads have an orthogonality over 0.5 "
               "(up to %.3f): D-Flow FM stops on it (\"network is not orthogonal\") unless "
-              "CosPhiuTrsh in the .mdu's [geometry] is raised above that\n",
-              o.path.c_str(), q.dflowfm_orthogonality_violations, q.dflowfm_orthogonality_max);
+              "CosPhiuTrsh in the .mdu's [geometry] is raised above that%s\n",
+              o.path.c_str(), q.dflowfm_orthogonality_violations, q.dflowfm_orthogonality_max,
+              options.smooth.max_orthogonality > 0
+                  ? " (these are where moving the quads' interior corners did not lower it: "
+                    "quads that meet at a reflex corner of the coast)"
+                  : "; --max-orthogonality 0.45 moves vertices to lower them");
         break;
       }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -1,13 +1,16 @@
 #include "quad/quad_sweeps.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
 #include <thread>
+#include <tuple>
 
 #include "core/paired_math.h"
 #include "mesh/locate.h"
+#include "quad/quad_quality.h"
 
 namespace isoquad {
 
@@ -578,6 +581,104 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
     }
     progress.report("smooth", (it + 1.0) / iterations);
   }
+}
+
+int orthogonality_sweeps(QuadMesh& m, const QuadTopology& t, const SmoothParams& params,
+                         int* before) {
+  const int nq = static_cast<int>(m.quads.size());
+  // Each quad's sides shared with another quad, and that quad (-1: the boundary).
+  std::vector<std::array<int, 4>> across(nq, {-1, -1, -1, -1});
+  {
+    std::vector<std::tuple<std::array<int, 2>, int, int>> sides;
+    for (int q = 0; q < nq; ++q)
+      for (int i = 0; i < 4; ++i) {
+        const int v = m.quads[q][i], w = m.quads[q][(i + 1) % 4];
+        sides.push_back({{std::min(v, w), std::max(v, w)}, q, i});
+      }
+    std::sort(sides.begin(), sides.end());
+    for (std::size_t k = 0; k + 1 < sides.size(); ++k)
+      if (std::get<0>(sides[k]) == std::get<0>(sides[k + 1])) {
+        across[std::get<1>(sides[k])][std::get<2>(sides[k])] = std::get<1>(sides[k + 1]);
+        across[std::get<1>(sides[k + 1])][std::get<2>(sides[k + 1])] = std::get<1>(sides[k]);
+      }
+  }
+  auto shared = [&](int q) {
+    return std::array<bool, 4>{across[q][0] >= 0, across[q][1] >= 0, across[q][2] >= 0,
+                               across[q][3] >= 0};
+  };
+  std::vector<Point2> centre(nq);
+  for (int q = 0; q < nq; ++q) centre[q] = dflowfm_centre(m, q, shared(q));
+  auto link = [&](int q, int i) {  // orthogonality of quad q's side i (shared)
+    const int o = across[q][i];
+    const Point2 &a = m.points[m.quads[q][i]], &b = m.points[m.quads[q][(i + 1) % 4]];
+    const double ex = b.x - a.x, ey = b.y - a.y, fx = centre[o].x - centre[q].x,
+                 fy = centre[o].y - centre[q].y;
+    const double norms = std::hypot(ex, ey) * std::hypot(fx, fy);
+    return norms > 0 ? std::abs(ex * fx + ey * fy) / norms : 1.0;
+  };
+  // How far the links of the quads round vertex v are over the bound, summed.
+  auto worst_round = [&](int v) {
+    double excess = 0;
+    for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
+      const int q = t.quad_items[k];
+      for (int i = 0; i < 4; ++i)
+        if (across[q][i] >= 0) excess += std::max(0.0, link(q, i) - params.max_orthogonality);
+    }
+    return excess;
+  };
+  auto count_over = [&]() {
+    int n = 0;
+    for (int q = 0; q < nq; ++q)
+      for (int i = 0; i < 4; ++i) n += across[q][i] > q && link(q, i) > params.max_orthogonality;
+    return n;
+  };
+  if (before) *before = count_over();
+  const double bound = std::max(params.min_convexity, params.lift_convexity);
+  for (int round = 0; round < params.orthogonality_rounds; ++round) {
+    // The interior corners of the quads of the links over the bound, in id order.
+    std::vector<int> movable;
+    for (int q = 0; q < nq; ++q)
+      for (int i = 0; i < 4; ++i)
+        if (across[q][i] > q && link(q, i) > params.max_orthogonality)
+          for (int r : {q, across[q][i]})
+            for (int v : m.quads[r])
+              if (m.chain[v] < 0 && !m.fixed[v]) movable.push_back(v);
+    if (movable.empty()) break;
+    std::sort(movable.begin(), movable.end());
+    movable.erase(std::unique(movable.begin(), movable.end()), movable.end());
+    bool moved = false;
+    for (int v : movable) {
+      double shortest = std::numeric_limits<double>::infinity();
+      for (int w : t.neighbours[v])
+        shortest = std::min(shortest, distance(m.points[v], m.points[w]));
+      if (!std::isfinite(shortest)) continue;
+      const Point2 start = m.points[v];
+      auto recentre = [&]() {
+        for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
+          const int q = t.quad_items[k];
+          centre[q] = dflowfm_centre(m, q, shared(q));
+        }
+      };
+      double best = worst_round(v);
+      Point2 best_at = start;
+      if (best == 0) continue;
+      for (double share : {0.2, 0.07, 0.02})
+        for (int d = 0; d < 8; ++d) {
+          const Point2 p{start.x + share * shortest * std::cos(d * M_PI / 4),
+                         start.y + share * shortest * std::sin(d * M_PI / 4)};
+          m.points[v] = start;
+          if (!try_move(m, t, v, p, m.arc_m[v], bound)) continue;
+          recentre();
+          const double w = worst_round(v);
+          if (w < best - 1e-9) best = w, best_at = p;
+        }
+      m.points[v] = best_at;
+      recentre();
+      moved = moved || !(best_at == start);
+    }
+    if (!moved) break;
+  }
+  return count_over();
 }
 
 }  // namespace isoquad

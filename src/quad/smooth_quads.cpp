@@ -135,6 +135,12 @@ SmoothStats smooth_quads(const BackgroundMesh& bg, QuadMesh& m, const SmoothPara
       resweep_moved(now, {});
     }
   }
+  // D-Flow FM's orthogonality, last: nothing after it moves the centres again.
+  if (params.max_orthogonality > 0 && count_nonconvex() == 0) {
+    const QuadTopology t3 = quad_topology(m);
+    stats.num_orthogonality_after =
+        orthogonality_sweeps(m, t3, params, &stats.num_orthogonality_before);
+  }
   stats.num_nonconvex_after = count_nonconvex();
   return stats;
 }

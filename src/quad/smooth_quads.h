@@ -189,6 +189,15 @@ struct SmoothParams {
   // France automatic: angles in [75,105] 86.9 -> 87.1%, smallest angle 16.4 -> 20.1
   // deg (after the untangling's side floor), quads under SCHISM's angle ratio 316 -> 305.
   int resweep_iterations = 10;
+  // Last, the links between two quads whose D-Flow FM orthogonality (dflowfm_links) is
+  // over this: the interior corners of their quads move, in rounds, where that lowers the
+  // largest orthogonality of the links of the quads round them, the quads kept as convex
+  // as the lift leaves them (--max-orthogonality; 0: none). D-Flow FM refuses a network
+  // with a link over 0.5. France automatic at 0.45: 33 links over 0.5 -> 2 (both between
+  // quads whose every corner is on the coast), angles in [75,105] 87.4 -> 86.9%, quads
+  // under SCHISM's angle ratio 318 -> 333.
+  double max_orthogonality = 0;
+  int orthogonality_rounds = 10;
   // Threads for the sweeps (0: the machine's, at most 4). The angle sweeps move the
   // vertices colour by colour, no two vertices of a quad of the same colour, so that a
   // colour's moves are independent: the mesh is the same with any number of threads.
@@ -211,6 +220,8 @@ struct SmoothStats {
   int num_corner_splits = 0;
   // Thin quads (SmoothParams::thin_aspect) mended by a collapse, a flip or a row merged.
   int num_thin_repairs = 0;
+  // Links over max_orthogonality before and after its rounds.
+  int num_orthogonality_before = 0, num_orthogonality_after = 0;
 };
 
 // Smooths in place. Does not throw (but for a cancelled `progress`); the caller decides

@@ -774,6 +774,38 @@ TEST(CliMesh, SchismWeightTradesAnglesForFewerSkewedQuads) {
   EXPECT_GT(summary_number(standard, "angles:", "angles:"), summary_number(more, "angles:", "angles:"));
 }
 
+// The summary's count of links D-Flow FM would refuse ("D-Flow FM: ... N links over 0.5").
+static double links_over_half(const std::string& summary) {
+  const std::size_t line = summary.find("\nD-Flow FM:");
+  EXPECT_NE(line, std::string::npos) << summary;
+  if (line == std::string::npos) return std::nan("");
+  const std::size_t at = summary.find(" links over 0.5", line);
+  const std::size_t from = summary.rfind(", ", at) + 2;
+  return std::stod(summary.substr(from, at - from));
+}
+
+TEST(CliMesh, MaxOrthogonalityLowersTheLinksDflowfmWouldRefuse) {
+  // Corsica at hmax 4 km: 12 links over 0.5 without, none at 0.45 (measured), for 0.4
+  // point of angles in [75,105]. A .nc output with such links gets a warning naming
+  // their count.
+  TempDir dir;
+  const auto [without, with] = corsica_trade(dir, "--max-orthogonality", "0", "0.45", 85.0);
+  const double before = links_over_half(without), after = links_over_half(with);
+  EXPECT_GT(before, 5);
+  EXPECT_LE(after, 0.25 * before);
+  const std::string corsica = std::string(ISOQUAD_SOURCE_DIR) + "/shapefiles/corsica.shp";
+  const CliResult r = run_cli({"mesh", corsica, "--hmax", "4000", "-o", dir.file("m_net.nc")}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::size_t warned = r.err.find("warning: " + dir.file("m_net.nc") + ": " +
+                                        std::to_string(static_cast<int>(before)) +
+                                        " links between quads have an orthogonality over 0.5");
+  EXPECT_NE(warned, std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--max-orthogonality 0.45", warned), std::string::npos) << r.err;
+  const CliResult bad =
+      run_cli({"mesh", corsica, "--max-orthogonality", "1.5", "-o", dir.file("b.vtu")}, dir);
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+}
+
 TEST(CliMesh, CoastWeightSlidesTheBoundaryOntoTheCoast) {
   // Weighted 64, the coast's departure from the boundary edges counts in the sweeps: 95%
   // of the edges within 0.14 h of the coast instead of 0.18 (measured), for 0.2 point of

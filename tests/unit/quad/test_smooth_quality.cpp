@@ -10,6 +10,8 @@
 #include "mesh/background_mesh.h"
 #include "quad/embed_lines.h"
 #include "quad/quad_quality.h"
+#include "quad/quad_sweeps.h"
+#include "quad/quad_topology.h"
 #include "quad/smooth_quads.h"
 
 using namespace isoquad;
@@ -147,6 +149,41 @@ TEST(QuadQuality, DflowfmOrthogonalityOfAShearedGrid) {
   const Point2 mean = dflowfm_centre(m, 0, {false, true, false, false});
   EXPECT_NEAR(mean.x, (0.5 + 0.5 * shear) * h, 1e-9);
   EXPECT_NEAR(mean.y, 0.5 * h, 1e-9);
+}
+
+// --max-orthogonality: a grid with one interior vertex pushed half a quad along its
+// diagonal has links over 0.45 (0.63 at most); the sweeps bring every link under it, every quad
+// convex, and move only corners of the quads those links join.
+TEST(QuadQuality, OrthogonalitySweepsLowerTheLinksOverTheBound) {
+  QuadMesh m = grid();
+  const double h = kSide / kN;
+  const int pushed = 5 * (kN + 1) + 5;
+  m.points[pushed].x += 0.5 * h;
+  m.points[pushed].y += 0.5 * h;
+  SmoothParams params;
+  params.max_orthogonality = 0.45;
+  auto over = [&](const QuadMesh& mesh, double bound) {
+    const DflowfmLinks links = dflowfm_links(mesh);
+    std::size_t n = 0;
+    for (double o : links.orthogonality) n += o > bound;
+    return n;
+  };
+  ASSERT_GT(over(m, 0.45), 0u);
+  const QuadMesh before = m;
+  int count_before = -1;
+  const int left = orthogonality_sweeps(m, quad_topology(m), params, &count_before);
+  EXPECT_EQ(static_cast<std::size_t>(count_before), over(before, 0.45));
+  EXPECT_EQ(left, 0);
+  EXPECT_EQ(over(m, 0.45), 0u);
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
+    EXPECT_GT(quad_convexity(m, q), params.lift_convexity) << q;
+  // Only vertices within two quads of the pushed one moved.
+  for (std::size_t v = 0; v < m.points.size(); ++v) {
+    const int i = static_cast<int>(v) % (kN + 1), j = static_cast<int>(v) / (kN + 1);
+    if (std::abs(i - 5) > 2 || std::abs(j - 5) > 2) {
+      EXPECT_EQ(m.points[v], before.points[v]) << v;
+    }
+  }
 }
 
 namespace {
