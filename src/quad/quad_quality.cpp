@@ -94,9 +94,9 @@ Point2 dflowfm_centre(const QuadMesh& m, int q, const std::array<bool, 4>& share
   return mean;
 }
 
-DflowfmLinks dflowfm_links(const QuadMesh& m) {
+std::vector<std::array<int, 4>> quads_across(const QuadMesh& m) {
   const int nq = static_cast<int>(m.quads.size());
-  // (edge, quad, side) sorted by edge: the edges shared by two quads are the links.
+  // (edge, quad, side) sorted by edge: an edge of two quads comes twice in a row.
   std::vector<std::tuple<std::array<int, 2>, int, int>> sides;
   for (int q = 0; q < nq; ++q)
     for (int i = 0; i < 4; ++i) {
@@ -104,31 +104,41 @@ DflowfmLinks dflowfm_links(const QuadMesh& m) {
       sides.push_back({{std::min(v, w), std::max(v, w)}, q, i});
     }
   std::sort(sides.begin(), sides.end());
-  std::vector<std::array<bool, 4>> shared(nq, {false, false, false, false});
-  std::vector<std::array<int, 3>> links;  // the edge's first side in `sides`, quads a, b
+  std::vector<std::array<int, 4>> across(nq, {-1, -1, -1, -1});
   for (std::size_t k = 0; k + 1 < sides.size(); ++k)
     if (std::get<0>(sides[k]) == std::get<0>(sides[k + 1])) {
-      shared[std::get<1>(sides[k])][std::get<2>(sides[k])] = true;
-      shared[std::get<1>(sides[k + 1])][std::get<2>(sides[k + 1])] = true;
-      links.push_back({static_cast<int>(k), std::get<1>(sides[k]), std::get<1>(sides[k + 1])});
+      across[std::get<1>(sides[k])][std::get<2>(sides[k])] = std::get<1>(sides[k + 1]);
+      across[std::get<1>(sides[k + 1])][std::get<2>(sides[k + 1])] = std::get<1>(sides[k]);
     }
+  return across;
+}
+
+DflowfmLinks dflowfm_links(const QuadMesh& m) {
+  const int nq = static_cast<int>(m.quads.size());
+  const std::vector<std::array<int, 4>> across = quads_across(m);
   std::vector<Point2> centre(nq);
   std::vector<double> area(nq);
-  for (int q = 0; q < nq; ++q)
-    centre[q] = dflowfm_centre(m, q, shared[q]), area[q] = quad_area(m, q);
-  DflowfmLinks out;
-  for (const auto& [k, a, b] : links) {
-    const std::array<int, 2>& e = std::get<0>(sides[k]);
-    const Point2 &p = m.points[e[0]], &r = m.points[e[1]];
-    const double ex = r.x - p.x, ey = r.y - p.y, fx = centre[b].x - centre[a].x,
-                 fy = centre[b].y - centre[a].y;
-    const double norms = std::hypot(ex, ey) * std::hypot(fx, fy);
-    out.edge.push_back(e);
-    // Centres that coincide: no flow link, as bad as it gets.
-    out.orthogonality.push_back(norms > 0 ? std::abs(ex * fx + ey * fy) / norms : 1.0);
-    const double lo = std::min(area[a], area[b]), hi = std::max(area[a], area[b]);
-    out.smoothness.push_back(lo > 0 ? hi / lo : std::numeric_limits<double>::infinity());
+  for (int q = 0; q < nq; ++q) {
+    const auto& a = across[q];
+    centre[q] = dflowfm_centre(m, q, {a[0] >= 0, a[1] >= 0, a[2] >= 0, a[3] >= 0});
+    area[q] = quad_area(m, q);
   }
+  DflowfmLinks out;
+  for (int a = 0; a < nq; ++a)
+    for (int i = 0; i < 4; ++i) {
+      const int b = across[a][i];
+      if (b < a) continue;  // each link once, from its lower quad
+      const int v = m.quads[a][i], w = m.quads[a][(i + 1) % 4];
+      const Point2 &p = m.points[v], &r = m.points[w];
+      const double ex = r.x - p.x, ey = r.y - p.y, fx = centre[b].x - centre[a].x,
+                   fy = centre[b].y - centre[a].y;
+      const double norms = std::hypot(ex, ey) * std::hypot(fx, fy);
+      out.edge.push_back({std::min(v, w), std::max(v, w)});
+      // Centres that coincide: no flow link, as bad as it gets.
+      out.orthogonality.push_back(norms > 0 ? std::abs(ex * fx + ey * fy) / norms : 1.0);
+      const double lo = std::min(area[a], area[b]), hi = std::max(area[a], area[b]);
+      out.smoothness.push_back(lo > 0 ? hi / lo : std::numeric_limits<double>::infinity());
+    }
   return out;
 }
 

@@ -78,6 +78,9 @@ struct QualitySummary {
 // where that line leaves it.
 Point2 dflowfm_centre(const QuadMesh& mesh, int q, const std::array<bool, 4>& shared);
 
+// For each quad, the quad across each side (side i from corner i; -1 on the boundary).
+std::vector<std::array<int, 4>> quads_across(const QuadMesh& mesh);
+
 // D-Flow FM's links: each edge shared by two quads (its net link) with its orthogonality,
 // the |cosine| of the angle between the edge and the segment joining the two quads'
 // centres (the flow link; 0 when they are perpendicular), and its smoothness, the larger

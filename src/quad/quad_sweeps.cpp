@@ -6,7 +6,6 @@
 #include <limits>
 #include <memory>
 #include <thread>
-#include <tuple>
 
 #include "core/paired_math.h"
 #include "mesh/locate.h"
@@ -586,22 +585,7 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
 int orthogonality_sweeps(QuadMesh& m, const QuadTopology& t, const SmoothParams& params,
                          int* before) {
   const int nq = static_cast<int>(m.quads.size());
-  // Each quad's sides shared with another quad, and that quad (-1: the boundary).
-  std::vector<std::array<int, 4>> across(nq, {-1, -1, -1, -1});
-  {
-    std::vector<std::tuple<std::array<int, 2>, int, int>> sides;
-    for (int q = 0; q < nq; ++q)
-      for (int i = 0; i < 4; ++i) {
-        const int v = m.quads[q][i], w = m.quads[q][(i + 1) % 4];
-        sides.push_back({{std::min(v, w), std::max(v, w)}, q, i});
-      }
-    std::sort(sides.begin(), sides.end());
-    for (std::size_t k = 0; k + 1 < sides.size(); ++k)
-      if (std::get<0>(sides[k]) == std::get<0>(sides[k + 1])) {
-        across[std::get<1>(sides[k])][std::get<2>(sides[k])] = std::get<1>(sides[k + 1]);
-        across[std::get<1>(sides[k + 1])][std::get<2>(sides[k + 1])] = std::get<1>(sides[k]);
-      }
-  }
+  const std::vector<std::array<int, 4>> across = quads_across(m);  // -1: the boundary
   auto shared = [&](int q) {
     return std::array<bool, 4>{across[q][0] >= 0, across[q][1] >= 0, across[q][2] >= 0,
                                across[q][3] >= 0};
