@@ -94,6 +94,12 @@ Point2 dflowfm_centre(const QuadMesh& m, int q, const std::array<bool, 4>& share
   return mean;
 }
 
+double link_orthogonality(const Point2& a, const Point2& b, const Point2& ca, const Point2& cb) {
+  const double ex = b.x - a.x, ey = b.y - a.y, fx = cb.x - ca.x, fy = cb.y - ca.y;
+  const double norms = std::hypot(ex, ey) * std::hypot(fx, fy);
+  return norms > 0 ? std::abs(ex * fx + ey * fy) / norms : 1.0;
+}
+
 std::vector<std::array<int, 4>> quads_across(const QuadMesh& m) {
   const int nq = static_cast<int>(m.quads.size());
   // (edge, quad, side) sorted by edge: an edge of two quads comes twice in a row.
@@ -129,13 +135,9 @@ DflowfmLinks dflowfm_links(const QuadMesh& m) {
       const int b = across[a][i];
       if (b < a) continue;  // each link once, from its lower quad
       const int v = m.quads[a][i], w = m.quads[a][(i + 1) % 4];
-      const Point2 &p = m.points[v], &r = m.points[w];
-      const double ex = r.x - p.x, ey = r.y - p.y, fx = centre[b].x - centre[a].x,
-                   fy = centre[b].y - centre[a].y;
-      const double norms = std::hypot(ex, ey) * std::hypot(fx, fy);
       out.edge.push_back({std::min(v, w), std::max(v, w)});
-      // Centres that coincide: no flow link, as bad as it gets.
-      out.orthogonality.push_back(norms > 0 ? std::abs(ex * fx + ey * fy) / norms : 1.0);
+      out.orthogonality.push_back(
+          link_orthogonality(m.points[v], m.points[w], centre[a], centre[b]));
       const double lo = std::min(area[a], area[b]), hi = std::max(area[a], area[b]);
       out.smoothness.push_back(lo > 0 ? hi / lo : std::numeric_limits<double>::infinity());
     }

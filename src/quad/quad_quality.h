@@ -78,6 +78,11 @@ struct QualitySummary {
 // where that line leaves it.
 Point2 dflowfm_centre(const QuadMesh& mesh, int q, const std::array<bool, 4>& shared);
 
+// D-Flow FM's orthogonality of a link: the |cosine| of the angle between its edge a-b and
+// the segment joining the two cells' centres; 1 when the centres coincide.
+double link_orthogonality(const Point2& a, const Point2& b, const Point2& centre_a,
+                          const Point2& centre_b);
+
 // For each quad, the quad across each side (side i from corner i; -1 on the boundary).
 std::vector<std::array<int, 4>> quads_across(const QuadMesh& mesh);
 

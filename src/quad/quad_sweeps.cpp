@@ -593,15 +593,11 @@ int orthogonality_sweeps(QuadMesh& m, const QuadTopology& t, const SmoothParams&
   std::vector<Point2> centre(nq);
   for (int q = 0; q < nq; ++q) centre[q] = dflowfm_centre(m, q, shared(q));
   auto link = [&](int q, int i) {  // orthogonality of quad q's side i (shared)
-    const int o = across[q][i];
-    const Point2 &a = m.points[m.quads[q][i]], &b = m.points[m.quads[q][(i + 1) % 4]];
-    const double ex = b.x - a.x, ey = b.y - a.y, fx = centre[o].x - centre[q].x,
-                 fy = centre[o].y - centre[q].y;
-    const double norms = std::hypot(ex, ey) * std::hypot(fx, fy);
-    return norms > 0 ? std::abs(ex * fx + ey * fy) / norms : 1.0;
+    return link_orthogonality(m.points[m.quads[q][i]], m.points[m.quads[q][(i + 1) % 4]], centre[q],
+                              centre[across[q][i]]);
   };
   // How far the links of the quads round vertex v are over the bound, summed.
-  auto worst_round = [&](int v) {
+  auto excess_round = [&](int v) {
     double excess = 0;
     for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
       const int q = t.quad_items[k];
@@ -643,17 +639,19 @@ int orthogonality_sweeps(QuadMesh& m, const QuadTopology& t, const SmoothParams&
           centre[q] = dflowfm_centre(m, q, shared(q));
         }
       };
-      double best = worst_round(v);
+      double best = excess_round(v);
       Point2 best_at = start;
       if (best == 0) continue;
+      constexpr double kD = 0.70710678118654752;  // the 8 directions, 45 degrees apart
+      constexpr double kDirections[8][2] = {{1, 0},  {kD, kD},   {0, 1},  {-kD, kD},
+                                            {-1, 0}, {-kD, -kD}, {0, -1}, {kD, -kD}};
       for (double share : {0.2, 0.07, 0.02})
-        for (int d = 0; d < 8; ++d) {
-          const Point2 p{start.x + share * shortest * std::cos(d * M_PI / 4),
-                         start.y + share * shortest * std::sin(d * M_PI / 4)};
+        for (const auto& dir : kDirections) {
+          const Point2 p{start.x + share * shortest * dir[0], start.y + share * shortest * dir[1]};
           m.points[v] = start;
           if (!try_move(m, t, v, p, m.arc_m[v], bound)) continue;
           recentre();
-          const double w = worst_round(v);
+          const double w = excess_round(v);
           if (w < best - 1e-9) best = w, best_at = p;
         }
       m.points[v] = best_at;

@@ -38,8 +38,9 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
 // Lowers the D-Flow FM orthogonality of the links over params.max_orthogonality: in up
 // to params.orthogonality_rounds rounds, each interior corner of their quads takes the
 // move (of 8 directions and 3 lengths, a share of its shortest edge) that most lowers
-// the largest orthogonality among the links of the quads round it, when every quad
-// round it stays more convex than params.lift_convexity. Returns the links still over.
+// how far the links of the quads round it are over the bound (summed), when every quad
+// round it stays more convex than params.lift_convexity. Returns the links still over
+// (`before`: those over at the start).
 int orthogonality_sweeps(QuadMesh& m, const QuadTopology& t, const SmoothParams& params,
                          int* before = nullptr);
 
