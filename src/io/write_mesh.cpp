@@ -42,7 +42,8 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
                                    {"min_angle_deg", FieldType::real},
                                    {"max_angle_deg", FieldType::real},
                                    {"eta", FieldType::real},
-                                   {"irregular_corners", FieldType::integer}};
+                                   {"irregular_corners", FieldType::integer},
+                                   {"orthogonality", FieldType::real}};
   const bool time_steps = !v.data->time_step_s.empty();
   if (time_steps) qfields.push_back({"time_step_s", FieldType::real});  // NaN: NULL (dry)
   w.begin_layer("quads", GeometryKind::polygon, qfields);
@@ -56,7 +57,8 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
                                       FieldValue::real(q.min_angle_deg[i]),
                                       FieldValue::real(q.max_angle_deg[i]),
                                       FieldValue::real(q.eta[i]),
-                                      FieldValue::integer(irregular)};
+                                      FieldValue::integer(irregular),
+                                      FieldValue::real(q.orthogonality[i])};
     if (time_steps) values.push_back(FieldValue::real(v.data->time_step_s[i]));
     w.add_polygon(std::vector<Point2>{pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]]}, values);
   }
@@ -184,7 +186,8 @@ void write_vtu_mesh(const MeshView& mv, const std::string& path) {
                  {"orientation_deg", q.orientation_deg},
                  {"min_angle_deg", q.min_angle_deg},
                  {"max_angle_deg", q.max_angle_deg},
-                 {"eta", q.eta}};
+                 {"eta", q.eta},
+                 {"orthogonality", q.orthogonality}};
   if (!mv.data->time_step_s.empty()) v.cell_data.push_back({"time_step_s", mv.data->time_step_s});
   write_vtu(v, path, true);
 }

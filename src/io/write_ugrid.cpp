@@ -214,7 +214,8 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
                                     {"orientation_deg", &q.orientation_deg, "degree"},
                                     {"min_angle_deg", &q.min_angle_deg, "degree"},
                                     {"max_angle_deg", &q.max_angle_deg, "degree"},
-                                    {"eta", &q.eta, "1"}};
+                                    {"eta", &q.eta, "1"},
+                                    {"orthogonality", &q.orthogonality, "1"}};
   // The time step at a gravity-wave Courant number of 1 (NaN where dry).
   if (!v.data->time_step_s.empty()) face_vars.push_back({"time_step_s", &v.data->time_step_s, "s"});
   for (FaceVar& fv : face_vars) {

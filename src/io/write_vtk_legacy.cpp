@@ -26,7 +26,8 @@ void write_vtk_legacy_file(const MeshView& v, const std::string& path, const std
       {"orientation_deg", &q.orientation_deg},
       {"min_angle_deg", &q.min_angle_deg},
       {"max_angle_deg", &q.max_angle_deg},
-      {"eta", &q.eta}};
+      {"eta", &q.eta},
+      {"orthogonality", &q.orthogonality}};
   if (!v.data->time_step_s.empty()) cell.push_back({"time_step_s", &v.data->time_step_s});
   for (const auto& [name, values] : cell) {
     f << "SCALARS " << name << " double 1\nLOOKUP_TABLE default\n";

@@ -136,6 +136,7 @@ DflowfmLinks dflowfm_links(const QuadMesh& m) {
       if (b < a) continue;  // each link once, from its lower quad
       const int v = m.quads[a][i], w = m.quads[a][(i + 1) % 4];
       out.edge.push_back({std::min(v, w), std::max(v, w)});
+      out.quads.push_back({a, b});
       out.orthogonality.push_back(
           link_orthogonality(m.points[v], m.points[w], centre[a], centre[b]));
       const double lo = std::min(area[a], area[b]), hi = std::max(area[a], area[b]);
@@ -264,8 +265,10 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
   const DflowfmLinks links = dflowfm_links(m);
   std::size_t ortho_ok = 0, smooth_ok = 0;
   double ortho_sum = 0;
+  qm.orthogonality.assign(nq, 0.0);
   for (std::size_t k = 0; k < links.edge.size(); ++k) {
     const double o = links.orthogonality[k], r = links.smoothness[k];
+    for (int q : links.quads[k]) qm.orthogonality[q] = std::max(qm.orthogonality[q], o);
     s.dflowfm_orthogonality_max = std::max(s.dflowfm_orthogonality_max, o);
     ortho_sum += o;
     s.dflowfm_orthogonality_violations += o > 0.5;

@@ -22,6 +22,7 @@ struct QuadMetrics {
   std::vector<double> size_ratio;       // #Q sqrt(area) / h(centroid)
   std::vector<double> orientation_deg;  // #Q mean deviation of the 4 edges from the cross, [0, 45]
   std::vector<double> eta;              // #Q Gmsh's eta = 1 - max|90 - a| / 90
+  std::vector<double> orthogonality;    // #Q the largest D-Flow FM orthogonality of its links
   std::vector<int> degree;              // #P number of quads at each vertex
   std::vector<char> boundary;           // #P 1 on the domain boundary
   std::vector<int> ideal_degree;        // #P 4 inside; on the boundary round(angle / 90)
@@ -91,7 +92,8 @@ std::vector<std::array<int, 4>> quads_across(const QuadMesh& mesh);
 // centres (the flow link; 0 when they are perpendicular), and its smoothness, the larger
 // of the two quads' areas over the smaller.
 struct DflowfmLinks {
-  std::vector<std::array<int, 2>> edge;  // vertex ids
+  std::vector<std::array<int, 2>> edge;   // vertex ids
+  std::vector<std::array<int, 2>> quads;  // the two quads
   std::vector<double> orthogonality, smoothness;
 };
 DflowfmLinks dflowfm_links(const QuadMesh& mesh);

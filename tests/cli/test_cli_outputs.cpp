@@ -276,6 +276,13 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
   const double mesh_area = std::stod(meta["quality.mesh_area_m2"]);
   EXPECT_NEAR(mesh_area, std::stod(meta["quality.domain_area_m2"]), 0.01 * mesh_area);
   EXPECT_GE(std::stod(meta["quality.boundary_departure_max_m"]), 0.0);
+  // Each quad's largest D-Flow FM orthogonality: over the quads, the report's largest.
+  double orthogonality = -1;
+  for (auto& f : *quads)
+    orthogonality = std::max(orthogonality, f->GetFieldAsDouble("orthogonality"));
+  EXPECT_NEAR(orthogonality, std::stod(meta["quality.dflowfm_orthogonality_max"]),
+              1e-5);  // 6 digits
+  EXPECT_GT(orthogonality, 0.0);
   std::set<std::string> styled;
   for (auto& f : *styles) {
     const std::string qml = f->GetFieldAsString("styleQML");

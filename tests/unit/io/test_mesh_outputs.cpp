@@ -56,6 +56,7 @@ struct Fixture {
       metrics.min_angle_deg.push_back(90);
       metrics.max_angle_deg.push_back(90);
       metrics.eta.push_back(1);
+      metrics.orthogonality.push_back(0.02 * q);
     }
     metrics.degree.assign(mesh.points.size(), 0);
     for (const auto& q : mesh.quads)
