@@ -8,7 +8,8 @@ metrics for both meshes here, independently of isoquad's own report:
 
   angles in [75,105], min and max angle, non-convex quads, triangles left,
   sqrt(area)/H median and share in [0.8,1.25], orientation deviation from isoquad's
-  boundary-aligned cross field (mean, p90), regular interior vertices, SCHISM's two
+  boundary-aligned cross field (mean, p90; and over the quads with a vertex on the
+  boundary alone), regular interior vertices, SCHISM's two
   checks (quads whose smallest over largest angle is under 0.5, and whose longest over
   shortest side is over 5, as isoquad's report counts them), the mesh's area against the
   domain's and how far the domain's boundary vertices lie from the mesh's boundary (Gmsh
@@ -246,6 +247,7 @@ def metrics(points, quads, triangles, size, cross, domain=None):
     degree = np.bincount(quads.ravel(), minlength=len(points))
     used = degree > 0
     interior = used & ~boundary
+    at_coast = boundary[quads].any(axis=1)
     ortho = dflowfm_orthogonality(p, quads) if len(quads) else np.zeros(0)
     coast = {}
     if domain is not None:
@@ -263,6 +265,8 @@ def metrics(points, quads, triangles, size, cross, domain=None):
         "sqrt(area)/h median": f"{np.median(ratio):.3f}",
         "sqrt(area)/h in [0.8,1.25]": f"{100 * np.mean((ratio >= 0.8) & (ratio <= 1.25)):.1f}%",
         "orientation dev. mean / p90": f"{dev.mean():.1f} / {np.percentile(dev, 90):.1f} deg",
+        **({"orientation at the boundary mean / p90": f"{dev[at_coast].mean():.1f} / "
+            f"{np.percentile(dev[at_coast], 90):.1f} deg"} if at_coast.any() else {}),
         "regular interior vertices": f"{100 * np.mean(degree[interior] == 4):.1f}%",
         "SCHISM: angle ratio < 0.5": under_angle_ratio,
         "SCHISM: aspect ratio > 5": over_aspect,
