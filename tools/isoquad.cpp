@@ -507,6 +507,7 @@ struct MeshArgs {
   std::string msh_version = "4.1";
   std::string msh_groups = "kind";
   std::string output_crs;
+  bool schism_split = false;
   std::string stop_after;  // empty: the whole job
   std::string conform_rule = "lattice";
   std::string init = "front";
@@ -673,6 +674,12 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "Write coordinates in this CRS (e.g. EPSG:4326); SCHISM .gr3 stays in the "
                   "meshing CRS (its .ll is in lon/lat)")
       ->group("Output");
+  cmd->add_flag("--schism-split", m.schism_split,
+                "In SCHISM's .gr3 and .ll, each quad that fails SCHISM's checks (smallest over "
+                "largest angle under 0.5, or longest over shortest side over 5) as two "
+                "triangles across its shorter diagonal, as SCHISM's manual asks (its "
+                "fix_bad_quads); the other outputs keep every quad")
+      ->group("Output");
 }
 
 std::vector<MeshOutput> mesh_outputs(const CommonArgs& a, const MeshArgs& m) {
@@ -742,6 +749,7 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
   write_options.msh_version = m.msh_version;
   write_options.msh_groups = m.msh_groups;
   write_options.output_crs = m.output_crs;
+  write_options.schism_split = m.schism_split;
   if (!tiling_only) check_mesh_outputs(outputs, write_options);
   else check_output_path(a.output, a.overwrite);
   const bool has_open_boundary =
@@ -836,6 +844,19 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
                   : "; --max-orthogonality 0.45 moves vertices to lower them");
         break;
       }
+  // A SCHISM grid with quads its manual asks to be split.
+  if (q.schism_failures > 0 && !m.schism_split && !a.quiet)
+    for (const MeshOutput& o : outputs)
+      if (mesh_output_format(o) == MeshFormat::gr3) {
+        print(err,
+              "isoquad: warning: %s: %zu quads fail SCHISM's checks (%zu with the smallest angle "
+              "under half the largest, %zu with the longest side over 5 times the shortest), "
+              "which SCHISM's manual asks to be split into triangles (its fix_bad_quads): "
+              "--schism-split writes them so\n",
+              o.path.c_str(), q.schism_failures, q.schism_angle_ratio_violations,
+              q.schism_aspect_violations);
+        break;
+      }
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (result) result->quality = r.quality, result->seconds = seconds;
   if (!a.quiet) {
@@ -846,6 +867,13 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
       for (const std::string& file : written.files) out << " " << file;
       out << "\nboundary:     " << written.num_open_edges << " open edges, "
           << written.num_land_edges << " land edges\n";
+      if (m.schism_split)
+        for (const MeshOutput& o : outputs)
+          if (mesh_output_format(o) == MeshFormat::gr3)
+            print(
+                out,
+                "SCHISM split: %zu quads failing its checks written as two triangles each in %s\n",
+                q.schism_failures, o.path.c_str());
     }
     if (written.depths) {
       print(out, "depths:       %.6g .. %.6g m", written.depths->min_m, written.depths->max_m);

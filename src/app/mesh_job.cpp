@@ -382,6 +382,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("eta_min", q.eta_min)
         .value("schism_angle_ratio_violations", q.schism_angle_ratio_violations)
         .value("schism_aspect_ratio_violations", q.schism_aspect_violations)
+        .value("schism_failures", q.schism_failures)
         .value("dflowfm_orthogonality_max", q.dflowfm_orthogonality_max)
         .value("dflowfm_orthogonality_mean", q.dflowfm_orthogonality_mean)
         .value("dflowfm_orthogonality_violations", q.dflowfm_orthogonality_violations)

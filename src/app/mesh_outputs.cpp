@@ -38,6 +38,7 @@ std::vector<std::pair<std::string, std::string>> quality_items(const QualitySumm
           {"eta_min", format_number(q.eta_min)},
           {"schism_angle_ratio_violations", std::to_string(q.schism_angle_ratio_violations)},
           {"schism_aspect_violations", std::to_string(q.schism_aspect_violations)},
+          {"schism_failures", std::to_string(q.schism_failures)},
           {"dflowfm_orthogonality_max", format_number(q.dflowfm_orthogonality_max)},
           {"dflowfm_orthogonality_violations", std::to_string(q.dflowfm_orthogonality_violations)},
           {"mesh_area_m2", format_number(q.mesh_area_m2)},

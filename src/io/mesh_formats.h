@@ -22,9 +22,10 @@ struct MeshView {
 // `open_per_segment`: each open segment its own physical group (MeshWriteOptions).
 void write_msh_file(const MeshView& v, const std::string& path, const std::string& what,
                     const std::string& version, bool open_per_segment);
-// `ll` is `points` in lon/lat (EPSG:4326).
-void write_gr3_file(const MeshView& v, const std::vector<Point2>& points,
-                    const std::string& path, const std::string& what);
+// `points`: the mesh's or their lon/lat (EPSG:4326, hgrid.ll). `schism_split`: the quads
+// that fail SCHISM's checks as two triangles each (MeshWriteOptions).
+void write_gr3_file(const MeshView& v, const std::vector<Point2>& points, const std::string& path,
+                    const std::string& what, bool schism_split);
 void write_vtk_legacy_file(const MeshView& v, const std::string& path, const std::string& what);
 void write_ugrid_file(const MeshView& v, const std::string& path, const std::string& what);
 void write_2dm_file(const MeshView& v, const std::string& path, const std::string& what);
@@ -33,8 +34,11 @@ void write_telemac_files(const MeshView& v, const std::string& path, const std::
                          const std::string& cli_path, const std::string& cli_what);
 // ADCIRC: the grid (the quads cut into triangles) and its boundaries.
 void write_fort14_file(const MeshView& v, const std::string& path, const std::string& what);
-// Each quad a, b, c, d as two counter-clockwise triangles across its shorter diagonal (in
-// the meshing CRS, as meshed), for the formats of triangle-only models.
+// Quad q as two counter-clockwise triangles across its diagonal from corner `from` (0:
+// corners 0-2, 1: corners 1-3).
+std::array<std::array<int, 3>, 2> quad_as_triangles(const QuadMesh& mesh, int q, int from);
+// Every quad so across its shorter diagonal (in the meshing CRS, as meshed), in order, for
+// the formats of triangle-only models.
 std::vector<std::array<int, 3>> quads_as_triangles(const QuadMesh& mesh);
 // One open boundary segment as a D-Flow FM polyline, named after the stem of `what`.
 void write_pli_file(const MeshView& v, const BoundarySegment& segment, const std::string& path,

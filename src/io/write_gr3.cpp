@@ -1,27 +1,70 @@
 // SCHISM horizontal grid (hgrid.gr3 / hgrid.ll): nodes with depth (metres, positive
-// down), elements (type 4 for quads), then the open boundary segments and the land
-// boundary segments (flag 0 on the exterior boundary, 1 on an island) in SCHISM's layout.
+// down), elements (type 4 for quads, 3 for the triangles of a split quad), then the open
+// boundary segments and the land boundary segments (flag 0 on the exterior boundary, 1
+// on an island) in SCHISM's layout.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <vector>
 
 #include "io/mesh_formats.h"
 #include "io/output_file.h"
 
 namespace isoquad {
 
+namespace {
+
+// A triangle's skewness as SCHISM measures it: its longest side over the radius of the
+// circle of the same area.
+double skewness(const QuadMesh& m, const std::array<int, 3>& t) {
+  const Point2 &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]];
+  const double longest = std::max({distance(a, b), distance(b, c), distance(c, a)});
+  const double area = 0.5 * std::abs((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
+  return longest / std::sqrt(area / M_PI);
+}
+
+// Quad q as two triangles across the diagonal whose triangles' skewnesses add up to less,
+// the choice of SCHISM's fix_bad_quads.
+std::array<std::array<int, 3>, 2> schism_triangles(const QuadMesh& m, int q) {
+  const auto a = quad_as_triangles(m, q, 0), b = quad_as_triangles(m, q, 1);
+  return skewness(m, a[0]) + skewness(m, a[1]) <= skewness(m, b[0]) + skewness(m, b[1]) ? a : b;
+}
+
+}  // namespace
+
 void write_gr3_file(const MeshView& v, const std::vector<Point2>& points, const std::string& path,
-                    const std::string& what) {
+                    const std::string& what, bool schism_split) {
   const QuadMesh& m = *v.data->mesh;
   const auto& depth = v.data->depth;
+  const int nq = static_cast<int>(m.quads.size());
+  // Decided on the mesh as meshed (metres), so that hgrid.gr3 and hgrid.ll have the same
+  // elements.
+  std::vector<char> split(nq, 0);
+  std::size_t num_split = 0;
+  if (schism_split)
+    for (int q = 0; q < nq; ++q) num_split += split[q] = fails_schism_checks(m, q);
   OutputFile f(path, what);
   std::FILE* raw = f.get();
   const char* xy = v.geographic ? "%zu %.10f %.10f %.6f\n" : "%zu %.6f %.6f %.6f\n";
-  std::fprintf(raw, "isoquad mesh (depth in metres, positive down)\n");
-  std::fprintf(raw, "%zu %zu\n", m.quads.size(), points.size());
+  if (num_split)
+    std::fprintf(raw,
+                 "isoquad mesh (depth in metres, positive down; %zu quads failing SCHISM's "
+                 "checks as triangle pairs)\n",
+                 num_split);
+  else
+    std::fprintf(raw, "isoquad mesh (depth in metres, positive down)\n");
+  std::fprintf(raw, "%zu %zu\n", m.quads.size() + num_split, points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
     std::fprintf(raw, xy, i + 1, points[i].x, points[i].y, depth.empty() ? 0.0 : depth[i]);
-  for (std::size_t e = 0; e < m.quads.size(); ++e) {
-    const auto& q = m.quads[e];
-    std::fprintf(raw, "%zu 4 %d %d %d %d\n", e + 1, q[0] + 1, q[1] + 1, q[2] + 1, q[3] + 1);
+  std::size_t e = 0;
+  for (int q = 0; q < nq; ++q) {
+    if (split[q]) {
+      for (const auto& t : schism_triangles(m, q))
+        std::fprintf(raw, "%zu 3 %d %d %d\n", ++e, t[0] + 1, t[1] + 1, t[2] + 1);
+    } else {
+      const auto& c = m.quads[q];
+      std::fprintf(raw, "%zu 4 %d %d %d %d\n", ++e, c[0] + 1, c[1] + 1, c[2] + 1, c[3] + 1);
+    }
   }
   std::vector<const BoundarySegment*> open, land;
   for (const auto& s : v.data->boundary.segments)

@@ -339,10 +339,10 @@ std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
         write_2dm_file(*view, tmp, o.path);
         break;
       case MeshFormat::gr3: {
-        write_gr3_file(native, native.points, tmp, o.path);
+        write_gr3_file(native, native.points, tmp, o.path, options.schism_split);
         const MeshView ll = lonlat_view("hgrid.ll");
         const std::string ll_path = companion(o.path, ".ll");
-        write_gr3_file(ll, ll.points, set.add(ll_path, o.overwrite), ll_path);
+        write_gr3_file(ll, ll.points, set.add(ll_path, o.overwrite), ll_path, options.schism_split);
         files.push_back(ll_path);
         break;
       }

@@ -5,8 +5,9 @@
 //   vtu   VTK XML unstructured grid; vtk: legacy VTK (ASCII);
 //   msh   Gmsh 4.1 ASCII (or 2.2), physical groups land (1), open (2), domain (3),
 //         embedded (4, --embed's paths);
-//   gr3   SCHISM hgrid.gr3 (quads, depth positive down, open and land boundaries) and its
-//         lon/lat companion (same name, extension .ll);
+//   gr3   SCHISM hgrid.gr3 (quads, or with schism_split the quads that fail SCHISM's
+//         checks as triangle pairs; depth positive down, open and land boundaries) and
+//         its lon/lat companion (same name, extension .ll);
 //   nc    UGRID-1.0 netCDF;
 //   2dm   SMS generic 2D mesh (elevation z, boundary segments as nodestrings);
 //   pli   D-Flow FM polylines of the open boundary: one file per open segment, the path
@@ -69,6 +70,10 @@ struct MeshWriteOptions {
   // Writes coordinates in this CRS (anything parse_crs accepts); empty: the mesh's CRS.
   // Applies to every format but gr3, which is in the mesh's CRS (its .ll in lon/lat).
   std::string output_crs;
+  // gr3 (and its .ll): each quad that fails SCHISM's checks (fails_schism_checks) written
+  // as two triangles across its shorter diagonal, in its place, as SCHISM's manual asks
+  // of a grid (its fix_bad_quads); false: every quad a quad.
+  bool schism_split = false;
   std::string styles_dir;  // folder of the QGIS .qml styles embedded in GeoPackages
 };
 

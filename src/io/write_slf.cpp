@@ -122,15 +122,20 @@ class RecordWriter {
 
 }  // namespace
 
+std::array<std::array<int, 3>, 2> quad_as_triangles(const QuadMesh& m, int q, int from) {
+  const auto& c = m.quads[q];
+  return {{{c[from], c[from + 1], c[from + 2]}, {c[from], c[from + 2], c[(from + 3) % 4]}}};
+}
+
 std::vector<std::array<int, 3>> quads_as_triangles(const QuadMesh& m) {
   std::vector<std::array<int, 3>> out;
   out.reserve(2 * m.quads.size());
-  for (const auto& q : m.quads) {
-    const int s =
-        distance(m.points[q[0]], m.points[q[2]]) <= distance(m.points[q[1]], m.points[q[3]]) ? 0
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
+    const auto& c = m.quads[q];
+    const int from =
+        distance(m.points[c[0]], m.points[c[2]]) <= distance(m.points[c[1]], m.points[c[3]]) ? 0
                                                                                              : 1;
-    out.push_back({q[s], q[(s + 1) % 4], q[(s + 2) % 4]});
-    out.push_back({q[s], q[(s + 2) % 4], q[(s + 3) % 4]});
+    for (const auto& t : quad_as_triangles(m, q, from)) out.push_back(t);
   }
   return out;
 }

@@ -282,6 +282,20 @@ std::array<double, 4> quad_angles_deg(const QuadMesh& m, int q) {
   return out;
 }
 
+bool fails_schism_angle_ratio(const std::array<double, 4>& a) {
+  const double amin = std::min({a[0], a[1], a[2], a[3]}), amax = std::max({a[0], a[1], a[2], a[3]});
+  return amax > 0 && amin < kSchismAngleRatio * amax;
+}
+
+bool fails_schism_aspect_ratio(double aspect) {
+  return std::isfinite(aspect) && aspect > kSchismAspectRatio;
+}
+
+bool fails_schism_checks(const QuadMesh& m, int q) {
+  return fails_schism_angle_ratio(quad_angles_deg(m, q)) ||
+         fails_schism_aspect_ratio(quad_aspect(m, q));
+}
+
 double quad_area(const QuadMesh& m, int q) {
   const auto& t = m.quads[q];
   const Point2 &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]], &d = m.points[t[3]];

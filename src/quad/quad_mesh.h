@@ -69,4 +69,13 @@ double quad_area(const QuadMesh& mesh, int q);
 // The longest side over the shortest (SCHISM's aspect ratio; infinite with a side of 0).
 double quad_aspect(const QuadMesh& mesh, int q);
 
+// SCHISM's checks of a quad, as its manual gives them (and its fix_bad_quads splits the
+// quads that fail them into two triangles): the smallest interior angle under half the
+// largest, and the longest side over five times the shortest.
+constexpr double kSchismAngleRatio = 0.5;
+constexpr double kSchismAspectRatio = 5.0;
+bool fails_schism_angle_ratio(const std::array<double, 4>& angles_deg);
+bool fails_schism_aspect_ratio(double aspect);
+bool fails_schism_checks(const QuadMesh& mesh, int q);
+
 }  // namespace isoquad

@@ -188,13 +188,16 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
     s.max_angle_deg = std::max(s.max_angle_deg, amax);
     eta_sum += qm.eta[q];
     s.eta_min = std::min(s.eta_min, qm.eta[q]);
-    if (amax > 0 && amin / amax < 0.5) ++s.schism_angle_ratio_violations;
+    const bool bad_ratio = fails_schism_angle_ratio(a);
+    if (bad_ratio) ++s.schism_angle_ratio_violations;
 
     const auto& t = m.quads[q];
     Point2 c{0, 0};
     for (int i = 0; i < 4; ++i) c.x += 0.25 * m.points[t[i]].x, c.y += 0.25 * m.points[t[i]].y;
     const double aspect = quad_aspect(m, q);
-    if (aspect > 5 && std::isfinite(aspect)) ++s.schism_aspect_violations;
+    const bool bad_aspect = fails_schism_aspect_ratio(aspect);
+    if (bad_aspect) ++s.schism_aspect_violations;
+    if (bad_ratio || bad_aspect) ++s.schism_failures;
     const Location loc = locator.locate(c);
     const double h = loc.triangle >= 0 ? size.at(bg, loc.triangle, loc.bary) : 0.0;
     qm.size_ratio[q] = h > 0 ? std::sqrt(std::max(0.0, quad_area(m, q))) / h : 0.0;

@@ -43,6 +43,7 @@ struct QualitySummary {
   double eta_mean = 0, eta_min = 0;
   std::size_t schism_angle_ratio_violations = 0;  // min/max angle < 0.5
   std::size_t schism_aspect_violations = 0;       // longest / shortest edge > 5
+  std::size_t schism_failures = 0;  // quads failing either: what SCHISM's fix_bad_quads splits
   // D-Flow FM's checks of its network (the UGRID .nc), over the links between two quads
   // (dflowfm_links): the orthogonality, which D-Flow FM refuses over 0.5 (its
   // CosPhiuTrsh: "network is not orthogonal"; Deltares advise 0.02 or less), and the

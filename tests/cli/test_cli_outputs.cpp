@@ -122,6 +122,22 @@ bool on_bbox(double lon, double lat, double tol) {
          std::abs(lat - kBox[1]) < tol || std::abs(lat - kBox[3]) < tol;
 }
 
+// stderr without the warning that a .gr3 has quads SCHISM's manual asks split (most
+// meshes have some), for the tests that expect no other warning.
+std::string without_schism_warning(const std::string& err) {
+  std::istringstream in(err);
+  std::string out, line;
+  while (std::getline(in, line))
+    if (line.find(" quads fail SCHISM's checks ") == std::string::npos) out += line + "\n";
+  return out;
+}
+
+// A JSON report's unsigned integer `"key": N` (-1 when absent).
+long report_count(const std::string& report, const std::string& key) {
+  const std::size_t at = report.find("\"" + key + "\": ");
+  return at == std::string::npos ? -1 : std::stol(report.substr(at + key.size() + 4));
+}
+
 // `isoquad mesh` on the water box (kBox) with the `extra` arguments.
 CliResult mesh_box(const TempDir& dir, const std::vector<std::string>& extra) {
   std::vector<std::string> args = {"mesh",  water_input(dir), "--domain",
@@ -190,7 +206,8 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
        dir.file("m.vtu"), "--output-crs", "EPSG:4326"},
       dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;  // every vertex has a depth
+  // Every vertex has a depth; the one warning is of SCHISM's quads (checked below).
+  EXPECT_EQ(without_schism_warning(r.err).find("warning"), std::string::npos) << r.err;
 
   // SCHISM: the projected grid and its lon/lat companion.
   const Gr3 g = parse_gr3(dir.file("hgrid.gr3"));
@@ -272,6 +289,12 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
   EXPECT_NE(meta["command_line"].find("--output-crs EPSG:4326"), std::string::npos);
   EXPECT_NE(meta["crs_wkt"].find("WGS 84"), std::string::npos);
   EXPECT_EQ(meta["quality.num_quads"], std::to_string(ne));
+  const std::string schism_failures = meta["quality.schism_failures"];
+  ASSERT_FALSE(schism_failures.empty());
+  EXPECT_EQ(r.err.find("warning: " + dir.file("hgrid.gr3") + ": " + schism_failures +
+                       " quads fail SCHISM's checks") != std::string::npos,
+            schism_failures != "0")
+      << r.err;
   // The mesh's area against the domain's (a water domain of a bbox with islands).
   const double mesh_area = std::stod(meta["quality.mesh_area_m2"]);
   EXPECT_NEAR(mesh_area, std::stod(meta["quality.domain_area_m2"]), 0.01 * mesh_area);
@@ -451,6 +474,87 @@ TEST(CliOutputs, AnOpenBoundaryDenserThanTheDomainsEdgeTakesTheWholeEdge) {
   const int open = std::stoi(report.substr(at + 18));
   EXPECT_GE(open, 48);
   EXPECT_LE(open, 52);
+}
+
+// --schism-split: hgrid.gr3 has each quad that fails SCHISM's checks (as the report
+// counts them) as two counter-clockwise triangles in its place, and no quad left that
+// fails them (measured here); without it the run warns with the same count.
+TEST(CliOutputs, SchismSplitWritesTheFailingQuadsAsTrianglePairs) {
+  TempDir dir;
+  const CliResult plain =
+      mesh_box_800(dir, {"-o", dir.file("quads.gr3"), "--report", dir.file("q.json")});
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  const std::string report = read_file(dir.file("q.json"));
+  const long quads = report_count(report, "num_quads"),
+             failures = report_count(report, "schism_failures");
+  ASSERT_GT(failures, 0) << report;
+  EXPECT_GE(failures, std::max(report_count(report, "schism_angle_ratio_violations"),
+                               report_count(report, "schism_aspect_ratio_violations")));
+  EXPECT_NE(plain.err.find(dir.file("quads.gr3") + ": " + std::to_string(failures) +
+                           " quads fail SCHISM's checks"),
+            std::string::npos)
+      << plain.err;
+
+  const CliResult split = mesh_box_800(dir, {"-o", dir.file("split.gr3"), "--schism-split"});
+  ASSERT_EQ(split.exit_code, 0) << split.err;
+  EXPECT_EQ(split.err.find("warning"), std::string::npos) << split.err;
+  EXPECT_NE(split.err.find("SCHISM split: " + std::to_string(failures) + " quads failing"),
+            std::string::npos)
+      << split.err;
+  const Gr3 q = parse_gr3(dir.file("quads.gr3"));
+  const Gr3 g = parse_gr3(dir.file("split.gr3"));
+  ASSERT_EQ(static_cast<long>(q.num_elements), quads);
+  ASSERT_EQ(static_cast<long>(g.num_elements), quads + failures);
+  EXPECT_EQ(g.nodes, q.nodes);
+  EXPECT_EQ(g.open, q.open);
+  EXPECT_EQ(g.land, q.land);
+  EXPECT_EQ(parse_gr3(dir.file("split.ll")).elements, g.elements);
+  auto xy = [&g](int n) { return std::array<double, 2>{g.nodes[n - 1][0], g.nodes[n - 1][1]}; };
+  auto twice_area = [&](const std::vector<int>& e) {
+    double a = 0;
+    for (std::size_t k = 0; k < e.size(); ++k) {
+      const auto p = xy(e[k]), r = xy(e[(k + 1) % e.size()]);
+      a += p[0] * r[1] - r[0] * p[1];
+    }
+    return a;
+  };
+  // Walk both files together: a quad of the first is the same quad, or two triangles
+  // with its four corners and its area, in the second.
+  std::size_t e = 0;
+  long triangles = 0;
+  for (const auto& quad : q.elements) {
+    ASSERT_LT(e, g.elements.size());
+    if (g.elements[e].size() == 4) {
+      EXPECT_EQ(g.elements[e], quad);
+      std::array<double, 4> angle{}, side{};
+      for (int k = 0; k < 4; ++k) {
+        const auto p = xy(quad[(k + 3) % 4]), c = xy(quad[k]), n = xy(quad[(k + 1) % 4]);
+        const double ax = p[0] - c[0], ay = p[1] - c[1], bx = n[0] - c[0], by = n[1] - c[1];
+        angle[k] = std::acos((ax * bx + ay * by) / std::hypot(ax, ay) / std::hypot(bx, by));
+        side[k] = std::hypot(bx, by);
+      }
+      EXPECT_GE(*std::min_element(angle.begin(), angle.end()),
+                0.5 * *std::max_element(angle.begin(), angle.end()));
+      EXPECT_LE(*std::max_element(side.begin(), side.end()),
+                5 * *std::min_element(side.begin(), side.end()));
+      ++e;
+      continue;
+    }
+    ASSERT_LT(e + 1, g.elements.size());
+    const auto &t0 = g.elements[e], &t1 = g.elements[e + 1];
+    ASSERT_EQ(t0.size(), 3u);
+    ASSERT_EQ(t1.size(), 3u);
+    EXPECT_GT(twice_area(t0), 0);
+    EXPECT_GT(twice_area(t1), 0);
+    EXPECT_NEAR(twice_area(t0) + twice_area(t1), twice_area(quad), 1e-6 * twice_area(quad));
+    std::set<int> corners(t0.begin(), t0.end());
+    corners.insert(t1.begin(), t1.end());
+    EXPECT_EQ(corners, std::set<int>(quad.begin(), quad.end()));
+    triangles += 2;
+    e += 2;
+  }
+  EXPECT_EQ(e, g.elements.size());
+  EXPECT_EQ(triangles, 2 * failures);
 }
 
 TEST(CliOutputs, UnwritableSecondOutputLeavesNothing) {
@@ -1122,7 +1226,7 @@ TEST(CliOutputs, BathymetryRastersInPriorityOrderAndMinimumDepth) {
   auto run = [&](const std::vector<std::string>& extra) { return mesh_box_800(dir, extra); };
   CliResult r = run({"--bathymetry", west, "--bathymetry", deep, "-o", dir.file("a.gr3")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  EXPECT_EQ(without_schism_warning(r.err).find("warning"), std::string::npos) << r.err;
   Gr3 ll = parse_gr3(dir.file("a.ll"));
   for (const auto& n : ll.nodes) {
     if (n[0] < -4.51) {
@@ -1198,7 +1302,7 @@ TEST(CliOutputs, ElevationRastersGiveTheSameDepths) {
   // Elevations only, and depths then elevations: the same depths.
   CliResult r = run({"--elevation", west_z, "--elevation", deep_z, "-o", dir.file("z.gr3")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_EQ(r.err.find("warning"), std::string::npos) << r.err;
+  EXPECT_EQ(without_schism_warning(r.err).find("warning"), std::string::npos) << r.err;
   const Gr3 z = parse_gr3(dir.file("z.ll"));
   r = run({"--bathymetry", west, "--elevation", deep_z, "-o", dir.file("d.gr3")});
   ASSERT_EQ(r.exit_code, 0) << r.err;

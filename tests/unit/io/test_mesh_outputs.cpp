@@ -285,6 +285,45 @@ TEST(MeshOutputs, Gr3MatchesGoldenAndParses) {
   EXPECT_EQ(ll.open, g.open);
 }
 
+// --schism-split: the quad that fails SCHISM's checks (its south-west corner slid east:
+// angles 51 and 129 degrees, sides 200 to 1280 m) is two counter-clockwise triangles in
+// its place, across the diagonal of the smaller skewness sum (from the slid corner), in
+// hgrid.gr3 and hgrid.ll alike; the others stay quads, the boundary as before.
+TEST(MeshOutputs, Gr3SplitsTheQuadsThatFailSchismsChecks) {
+  Fixture f;
+  f.mesh.points[0].x += 800;
+  ASSERT_TRUE(fails_schism_checks(f.mesh, 0));
+  for (int q = 1; q < 8; ++q) ASSERT_FALSE(fails_schism_checks(f.mesh, q)) << q;
+  TempDir dir;
+  MeshWriteOptions split;
+  split.schism_split = true;
+  write_mesh_outputs(f.data(), {{dir.file("quads.gr3"), "", false}});
+  write_mesh_outputs(f.data(), {{dir.file("split.gr3"), "", false}}, split);
+  const Gr3 quads = parse_gr3(read_file(dir.file("quads.gr3")));
+  const Gr3 g = parse_gr3(read_file(dir.file("split.gr3")));
+  ASSERT_EQ(quads.elements.size(), 8u);
+  ASSERT_EQ(g.elements.size(), 9u);
+  const std::vector<int> t0{1, 2, 6}, t1{1, 6, 5};  // quad 0 is 1, 2, 6, 5
+  EXPECT_EQ(g.elements[0], t0);
+  EXPECT_EQ(g.elements[1], t1);
+  double area = 0;
+  for (int e = 0; e < 2; ++e) {
+    const auto& t = g.elements[e];
+    const auto& a = g.nodes[t[0] - 1];
+    const auto& b = g.nodes[t[1] - 1];
+    const auto& c = g.nodes[t[2] - 1];
+    const double twice = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+    EXPECT_GT(twice, 0) << e;  // counter-clockwise
+    area += 0.5 * twice;
+  }
+  EXPECT_NEAR(area, quad_area(f.mesh, 0), 1e-6);
+  for (int q = 1; q < 8; ++q) EXPECT_EQ(g.elements[q + 1], quads.elements[q]) << q;
+  EXPECT_EQ(g.nodes, quads.nodes);
+  EXPECT_EQ(g.open, quads.open);
+  EXPECT_EQ(g.land, quads.land);
+  EXPECT_EQ(parse_gr3(read_file(dir.file("split.ll"))).elements, g.elements);
+}
+
 // A mesh file read by gmsh and written again as MSH 2.2 (gmsh numbers nodes its own way):
 // the physical names by tag, the node count, and each element's type, physical tag and
 // nodes.
