@@ -677,7 +677,7 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
   cmd->add_flag("--schism-split", m.schism_split,
                 "In SCHISM's .gr3 and .ll, each quad that fails SCHISM's checks (smallest over "
                 "largest angle under 0.5, or longest over shortest side over 5) as two "
-                "triangles across its shorter diagonal, as SCHISM's manual asks (its "
+                "triangles, as SCHISM's manual asks (its "
                 "fix_bad_quads); the other outputs keep every quad")
       ->group("Output");
 }

@@ -34,11 +34,12 @@ void write_telemac_files(const MeshView& v, const std::string& path, const std::
                          const std::string& cli_path, const std::string& cli_what);
 // ADCIRC: the grid (the quads cut into triangles) and its boundaries.
 void write_fort14_file(const MeshView& v, const std::string& path, const std::string& what);
-// Quad q as two counter-clockwise triangles across its diagonal from corner `from` (0:
-// corners 0-2, 1: corners 1-3).
-std::array<std::array<int, 3>, 2> quad_as_triangles(const QuadMesh& mesh, int q, int from);
-// Every quad so across its shorter diagonal (in the meshing CRS, as meshed), in order, for
-// the formats of triangle-only models.
+// Quad q as two counter-clockwise triangles across the diagonal whose triangles'
+// skewnesses (SCHISM's: the longest side over the radius of the circle of the same area)
+// add up to less, as SCHISM's fix_bad_quads chooses (in the meshing CRS, as meshed; the
+// diagonal from corner 0 when both are as good). Every quad so, in order, for the formats
+// of triangle-only models.
+std::array<std::array<int, 3>, 2> quad_as_triangles(const QuadMesh& mesh, int q);
 std::vector<std::array<int, 3>> quads_as_triangles(const QuadMesh& mesh);
 // One open boundary segment as a D-Flow FM polyline, named after the stem of `what`.
 void write_pli_file(const MeshView& v, const BoundarySegment& segment, const std::string& path,

@@ -1,5 +1,5 @@
 // ADCIRC grid and boundary file (fort.14). ADCIRC computes on linear triangles only, so
-// each quad is cut along its shorter diagonal into two. Nodes with depth (metres,
+// each quad is cut into two (quad_as_triangles). Nodes with depth (metres,
 // positive down), elements (3 nodes each), the open boundary segments (NOPE, NETA) and
 // the flux boundaries (NBOU, NVEL): the outer loops' land segments first, in order
 // round the domain, then the islands', as ADCIRC's manual asks; mainland segments are

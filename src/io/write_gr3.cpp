@@ -2,8 +2,6 @@
 // down), elements (type 4 for quads, 3 for the triangles of a split quad), then the open
 // boundary segments and the land boundary segments (flag 0 on the exterior boundary, 1
 // on an island) in SCHISM's layout.
-#include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <vector>
 
@@ -11,26 +9,6 @@
 #include "io/output_file.h"
 
 namespace isoquad {
-
-namespace {
-
-// A triangle's skewness as SCHISM measures it: its longest side over the radius of the
-// circle of the same area.
-double skewness(const QuadMesh& m, const std::array<int, 3>& t) {
-  const Point2 &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]];
-  const double longest = std::max({distance(a, b), distance(b, c), distance(c, a)});
-  const double area = 0.5 * std::abs((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
-  return longest / std::sqrt(area / M_PI);
-}
-
-// Quad q as two triangles across the diagonal whose triangles' skewnesses add up to less,
-// the choice of SCHISM's fix_bad_quads.
-std::array<std::array<int, 3>, 2> schism_triangles(const QuadMesh& m, int q) {
-  const auto a = quad_as_triangles(m, q, 0), b = quad_as_triangles(m, q, 1);
-  return skewness(m, a[0]) + skewness(m, a[1]) <= skewness(m, b[0]) + skewness(m, b[1]) ? a : b;
-}
-
-}  // namespace
 
 void write_gr3_file(const MeshView& v, const std::vector<Point2>& points, const std::string& path,
                     const std::string& what, bool schism_split) {
@@ -59,7 +37,7 @@ void write_gr3_file(const MeshView& v, const std::vector<Point2>& points, const 
   std::size_t e = 0;
   for (int q = 0; q < nq; ++q) {
     if (split[q]) {
-      for (const auto& t : schism_triangles(m, q))
+      for (const auto& t : quad_as_triangles(m, q))
         std::fprintf(raw, "%zu 3 %d %d %d\n", ++e, t[0] + 1, t[1] + 1, t[2] + 1);
     } else {
       const auto& c = m.quads[q];

@@ -71,7 +71,7 @@ struct MeshWriteOptions {
   // Applies to every format but gr3, which is in the mesh's CRS (its .ll in lon/lat).
   std::string output_crs;
   // gr3 (and its .ll): each quad that fails SCHISM's checks (fails_schism_checks) written
-  // as two triangles across its shorter diagonal, in its place, as SCHISM's manual asks
+  // as two triangles (quad_as_triangles), in its place, as SCHISM's manual asks
   // of a grid (its fix_bad_quads); false: every quad a quad.
   bool schism_split = false;
   std::string styles_dir;  // folder of the QGIS .qml styles embedded in GeoPackages

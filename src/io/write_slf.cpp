@@ -1,6 +1,6 @@
 // TELEMAC-2D geometry (Selafin, double precision: "SERAFIND") and boundary conditions
-// (.cli). TELEMAC-2D computes on linear triangles only, so each quad is cut along its
-// shorter diagonal into two counter-clockwise triangles. The geometry holds one
+// (.cli). TELEMAC-2D computes on linear triangles only, so each quad is cut into two
+// counter-clockwise triangles (quad_as_triangles). The geometry holds one
 // variable, BOTTOM (the bed level: minus the depth, 0 when unknown), at time 0, and
 // IPOBO, each boundary node's line in the .cli (0 inside). Records are Fortran
 // sequential (a 4-byte length before and after), big-endian, TELEMAC's default.
@@ -12,6 +12,7 @@
 // manual asks: each outer contour counter-clockwise, then each island clockwise, each
 // from its south-west node (the smallest x + y, then y), contours in that node's order.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstring>
@@ -120,23 +121,29 @@ class RecordWriter {
   std::uint32_t bytes_ = 0;
 };
 
+// SCHISM's skewness of a triangle: its longest side over the radius of the circle of the
+// same area.
+double skewness(const QuadMesh& m, const std::array<int, 3>& t) {
+  const Point2 &a = m.points[t[0]], &b = m.points[t[1]], &c = m.points[t[2]];
+  const double longest = std::max({distance(a, b), distance(b, c), distance(c, a)});
+  const double area = 0.5 * std::abs((b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y));
+  return longest / std::sqrt(area / M_PI);
+}
+
 }  // namespace
 
-std::array<std::array<int, 3>, 2> quad_as_triangles(const QuadMesh& m, int q, int from) {
+std::array<std::array<int, 3>, 2> quad_as_triangles(const QuadMesh& m, int q) {
   const auto& c = m.quads[q];
-  return {{{c[from], c[from + 1], c[from + 2]}, {c[from], c[from + 2], c[(from + 3) % 4]}}};
+  const std::array<std::array<int, 3>, 2> a{{{c[0], c[1], c[2]}, {c[0], c[2], c[3]}}};
+  const std::array<std::array<int, 3>, 2> b{{{c[1], c[2], c[3]}, {c[1], c[3], c[0]}}};
+  return skewness(m, a[0]) + skewness(m, a[1]) <= skewness(m, b[0]) + skewness(m, b[1]) ? a : b;
 }
 
 std::vector<std::array<int, 3>> quads_as_triangles(const QuadMesh& m) {
   std::vector<std::array<int, 3>> out;
   out.reserve(2 * m.quads.size());
-  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q) {
-    const auto& c = m.quads[q];
-    const int from =
-        distance(m.points[c[0]], m.points[c[2]]) <= distance(m.points[c[1]], m.points[c[3]]) ? 0
-                                                                                             : 1;
-    for (const auto& t : quad_as_triangles(m, q, from)) out.push_back(t);
-  }
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
+    for (const auto& t : quad_as_triangles(m, q)) out.push_back(t);
   return out;
 }
 
