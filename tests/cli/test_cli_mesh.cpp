@@ -1007,8 +1007,7 @@ TEST(CliMesh, SkipExistingResumesABatch) {
 namespace {
 
 // A 100 x 50 km rectangle in UTM 31N and a line 60 km long across it at 30 degrees.
-const char* const kUtm =
-    R"("crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32631"}},)";
+const char* const kUtm = kUtm31nCrsMember;
 const std::array<double, 2> kLaneFrom{420000, 5010000}, kLaneTo{471961.5, 5040000};
 
 std::string lane_geojson(const std::array<double, 2>& a, const std::array<double, 2>& b) {

@@ -56,6 +56,10 @@ inline std::string read_file(const std::string& path) {
   return ss.str();
 }
 
+// The GeoJSON member naming UTM zone 31N as the coordinates' CRS, for geojson_polygons.
+inline const char* const kUtm31nCrsMember =
+    R"("crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32631"}},)";
+
 // A GeoJSON FeatureCollection with one Polygon feature per ring list given as raw JSON
 // coordinate text, e.g. "[[[0,0],[1,0],[1,1],[0,0]]]".
 inline std::string geojson_polygons(const std::vector<std::string>& coordinates,

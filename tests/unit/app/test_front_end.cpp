@@ -178,6 +178,41 @@ TEST(FrontEnd, NoNarrowFeatureIsLeftAfterTheLastSimplification) {
   EXPECT_LT(n.area_removed_m2 + n.area_added_m2, 0.1 * np.min_width_m * np.min_width_m);
 }
 
+// Five strips of a spiky polygon (cut from a random star) at a size of 50 m: a spit cut
+// at its base left a triangle of about 1 m2 as a component of its own, after the
+// islands under --min-island-area (2,500 m2 here) had been dropped; the tiling could
+// not cover it (a tile with two meta-vertices, six tilings in a row). No component or
+// hole the front end returns is under that area.
+TEST(FrontEnd, NoPieceUnderTheLeastAreaIsLeftAfterTheCuts) {
+  TempDir dir;
+  const std::vector<std::string> rings = {
+      "[499290.98,4997875.0],[499280.57,4997875.0],[499375.0,4998161.11],[499375.0,4998117.13],"
+      "[499290.98,4997875.0]",
+      "[499253.1,4997875.0],[499251.08,4997875.0],[499270.82,4997942.58],[499245.44,4997875.0],"
+      "[499239.14,4997875.0],[499370.55,4998250.0],[499375.0,4998250.0],[499375.0,4998215.01],"
+      "[499253.1,4997875.0]",
+      "[499228.96,4997875.0],[499224.68,4997875.0],[499226.38,4997885.1],[499222.42,4997875.0],"
+      "[499214.79,4997875.0],[499350.28,4998250.0],[499368.87,4998250.0],[499228.96,4997875.0]",
+      "[499243.5,4998151.47],[499124.36,4997875.0],[499116.46,4997875.0],[499270.1,4998250.0],"
+      "[499284.7,4998250.0],[499243.5,4998151.47]",
+      "[499000.0,4998012.16],[499000.0,4998033.5],[499026.99,4998091.85],[499000.0,4998049.07],"
+      "[499000.0,4998088.79],[499083.06,4998250.0],[499120.71,4998250.0],[499000.0,4998012.16]"};
+  std::vector<std::string> polygons;
+  for (const std::string& r : rings) polygons.push_back("[[" + r + "]]");
+  const std::string path = dir.file("strips.geojson");
+  write_file(path, geojson_polygons(polygons, kUtm31nCrsMember));
+  FrontEndOptions o;
+  o.read.path = path;
+  o.target_size_m = 50.0;
+  const FrontEndResult r = build_planar_domain(o);
+  EXPECT_GT(r.summary.spikes.num_cut_at_base, 0u);  // the cut that left the piece
+  ASSERT_FALSE(r.domain.polygons.empty());
+  for (const Polygon& p : r.domain.polygons) {
+    EXPECT_GE(std::abs(signed_area(p.outer)), r.summary.min_island_area_m2);
+    for (const Ring& h : p.holes) EXPECT_GE(std::abs(signed_area(h)), r.summary.min_island_area_m2);
+  }
+}
+
 // --align: of a file of lines, only the runs of segments near the domain's box are kept
 // (a file over a continent is walked only where the domain is), each with its line.
 TEST(FrontEnd, AlignLinesAreKeptWhereTheyComeNearTheDomain) {
