@@ -84,6 +84,7 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
     r.attempts = attempt + 1;
     r.tiling_variants.push_back(variant);
     std::string problem;
+    bool tiling_failed = false;
     std::vector<Point2> failed_at;
     try {
       r.tiling = build_tiling(r.fields.mesh, r.fields.size, r.fields.cross, o.tiling,
@@ -91,9 +92,9 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
     } catch (const TilingError& e) {
       // A tile the repairs cannot mend (a sliver of water between a coast and the bbox
       // edge): retried like a fold, with smaller sizes there.
-      if (!e.where() || attempt + 1 >= options.max_attempts || o.tiling.stop_after != TilingStep::none)
-        throw;
+      if (!e.where() || options.max_attempts <= 1 || o.tiling.stop_after != TilingStep::none) throw;
       problem = e.message();
+      tiling_failed = true;
       failed_at.push_back(*e.where());
     }
     clock.lap("tiling");
@@ -127,6 +128,14 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
       std::string earlier;
       for (std::size_t i = 0; i < r.retry_reasons.size(); ++i)
         earlier += "; attempt " + std::to_string(i + 1) + ": " + r.retry_reasons[i];
+      if (tiling_failed)
+        throw Error(ErrorClass::meshing, "tiling",
+                    problem + " after " + std::to_string(r.attempts) +
+                        " tiling attempt(s); no mesh is written (a piece of the domain narrower "
+                        "than the quads, or a tile pinched between two coasts: a larger "
+                        "--min-width fills or removes such pieces, a smaller --size or --hmin "
+                        "resolves them)" +
+                        earlier);
       throw Error(ErrorClass::internal, "smooth",
                   problem + " after " + std::to_string(r.attempts) +
                       " tiling attempt(s); no mesh is written" +
