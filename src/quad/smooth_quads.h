@@ -86,7 +86,7 @@ struct SmoothParams {
   // other measures unchanged, smoothing 0.39 -> 0.49 s; the 241 countries at 1:50m: 587
   // -> 537 and 25,285 -> 25,266, no country's smallest angle changed (Russia 80 -> 75,
   // its smoothing's time unchanged within the noise, with thin_patch_first).
-  double thin_aspect = 5.0;
+  double thin_aspect = kSchismAspectRatio;
   int thin_tries = 20;
   // Each collapse and flip of the thin pass tried first on a patch of the mesh round the
   // quad, and on the whole mesh only when the patch says it would be kept (false: on the
@@ -156,7 +156,7 @@ struct SmoothParams {
   double size_range_log_area = 0.40;
   double size_range_softness = 0.03;
   double angle_ratio_weight = 0.5;
-  double min_angle_ratio = 0.5;
+  double min_angle_ratio = kSchismAngleRatio;
   double angle_ratio_softness = 0.02;
   // Per boundary vertex, coast_weight * (departure / length)^2 over its two boundary
   // edges (chord_departure: how far the coast between an edge's ends lies off it), so
