@@ -15,13 +15,11 @@
 #include <filesystem>
 #include <iostream>
 #include <limits>
-#include <map>
-#include <mutex>
 #include <optional>
 #include <sstream>
 #include <string>
-#include <thread>
 
+#include "app/each_job.h"
 #include "app/fields_job.h"
 #include "app/front_end.h"
 #include "app/mesh_job.h"
@@ -29,6 +27,7 @@
 #include "app/summary.h"
 #include "app/versions.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "gis/atomic_output.h"
 #include "gis/raster_field.h"
 #include "gis/read_polygons.h"
@@ -699,6 +698,15 @@ std::vector<MeshOutput> mesh_outputs(const CommonArgs& a, const MeshArgs& m) {
   return outs;
 }
 
+MeshWriteOptions mesh_write_options(const MeshArgs& m) {
+  MeshWriteOptions w;
+  w.msh_version = m.msh_version;
+  w.msh_groups = m.msh_groups;
+  w.output_crs = m.output_crs;
+  w.schism_split = m.schism_split;
+  return w;
+}
+
 // --skip-existing: every file the run would write exists.
 bool every_output_exists(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m) {
   std::error_code ec;
@@ -715,41 +723,13 @@ std::string joined_command_line(int argc, char** argv) {
   return s;
 }
 
-// What --each tabulates of one region's run.
-struct RegionResult {
-  QualitySummary quality;
-  double seconds = 0.0;
-};
-
-// Where a mesh job prints: its summary, its warnings, and whether it shows progress
-// (regions meshed at once print into buffers, without progress). Both are stderr (the
-// summary beside the warnings and errors); stdout stays empty.
-struct Console {
-  std::ostream& out = std::cerr;
-  std::ostream& err = std::cerr;
-  bool progress = true;
-};
-
-// printf into a stream.
-template <typename... Args>
-void print(std::ostream& os, const char* format, Args... args) {
-  char buf[512];
-  std::snprintf(buf, sizeof buf, format, args...);
-  os << buf;
-}
-
-int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& command_line,
-             RegionResult* result = nullptr, const Console& console = Console()) {
-  std::ostream& out = console.out;
-  std::ostream& err = console.err;
+// The mesh job; with --each, one region's (printing into `console`).
+RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& command_line,
+                       const Console& console = Console()) {
   finish_front_end_args(a);
   const bool tiling_only = !m.stop_after.empty();
   const std::vector<MeshOutput> outputs = mesh_outputs(a, m);
-  MeshWriteOptions write_options;
-  write_options.msh_version = m.msh_version;
-  write_options.msh_groups = m.msh_groups;
-  write_options.output_crs = m.output_crs;
-  write_options.schism_split = m.schism_split;
+  const MeshWriteOptions write_options = mesh_write_options(m);
   if (!tiling_only) check_mesh_outputs(outputs, write_options);
   else check_output_path(a.output, a.overwrite);
   const bool has_open_boundary =
@@ -806,99 +786,22 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
   const MeshJobWritten written = write_mesh_job_outputs(r, job);
   progress.report("written", 1.0);
   if (a.report_path == kStdoutPath) std::cout << written.report << std::flush;
-  if (written.depths && written.depths->num_filled && !a.quiet)
-    print(err,
-          "isoquad: warning: %zu vertices lie outside the bathymetry (or next to nodata): each "
-          "took the depth of the nearest vertex with one, up to %.0f m away\n",
-          written.depths->num_filled, written.depths->max_fill_distance_m);
-  // Most of the mesh above the water: likely elevations given as depths, or the reverse.
-  if (written.depths && !a.quiet &&
-      written.depths->num_dry > 0.9 * static_cast<double>(r.quads.points.size()))
-    print(err,
-          "isoquad: warning: %zu of the mesh's %zu vertices are dry (depth 0 or less): a "
-          "raster of elevations (positive up, as GEBCO's) is given with --elevation, one of "
-          "depths (positive down) with --bathymetry\n",
-          written.depths->num_dry, r.quads.points.size());
-  // --embed on lines the rows of quads cannot follow (winding or bending within a few
-  // quads): say so, with what helps.
-  const EmbedStats& e = r.embed;
-  if (e.line_length_m > 0 && e.covered_length_m < 0.5 * e.line_length_m && !a.quiet)
-    print(err,
-          "isoquad: warning: --embed: edges on the lines span only %.0f%% of their %.1f km inside "
-          "the domain: lines that wind or bend within a few quads cannot be followed; simplify "
-          "them, or refine round them (--refine with --refine-width-field)\n",
-          100 * e.covered_length_m / e.line_length_m, e.line_length_m / 1000);
-  // A D-Flow FM network that D-Flow FM would refuse as it is.
-  const QualitySummary& q = r.quality;
-  if (q.dflowfm_orthogonality_violations > 0 && !a.quiet)
-    for (const MeshOutput& o : outputs)
-      if (mesh_output_format(o) == MeshFormat::nc) {
-        print(err,
-              "isoquad: warning: %s: %zu links between quads have an orthogonality over 0.5 "
-              "(up to %.3f): D-Flow FM stops on it (\"network is not orthogonal\") unless "
-              "CosPhiuTrsh in the .mdu's [geometry] is raised above that%s\n",
-              o.path.c_str(), q.dflowfm_orthogonality_violations, q.dflowfm_orthogonality_max,
-              options.smooth.max_orthogonality > 0
-                  ? " (these are where moving the quads' interior corners did not lower it: "
-                    "quads that meet at a reflex corner of the coast)"
-                  : "; --max-orthogonality 0.45 moves vertices to lower them");
-        break;
-      }
-  // A SCHISM grid with quads its manual asks to be split.
-  if (q.schism_failures > 0 && !m.schism_split && !a.quiet)
-    for (const MeshOutput& o : outputs)
-      if (mesh_output_format(o) == MeshFormat::gr3) {
-        print(err,
-              "isoquad: warning: %s: %zu quads fail SCHISM's checks (%zu with the smallest angle "
-              "under half the largest, %zu with the longest side over 5 times the shortest), "
-              "which SCHISM's manual asks to be split into triangles (its fix_bad_quads): "
-              "--schism-split writes them so\n",
-              o.path.c_str(), q.schism_failures, q.schism_angle_ratio_violations,
-              q.schism_aspect_violations);
-        break;
-      }
-  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  if (result) result->quality = r.quality, result->seconds = seconds;
+  RegionOutcome outcome;
+  outcome.quality = r.quality;
+  outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
-    out << format_domain_summary(r.fields.front.summary) << format_fields_summary(r.fields)
-        << format_mesh_summary(r);
-    if (r.has_quads) {
-      out << "output:      ";
-      for (const std::string& file : written.files) out << " " << file;
-      out << "\nboundary:     " << written.num_open_edges << " open edges, "
-          << written.num_land_edges << " land edges\n";
-      if (m.schism_split)
-        for (const MeshOutput& o : outputs)
-          if (mesh_output_format(o) == MeshFormat::gr3)
-            print(
-                out,
-                "SCHISM split: %zu quads failing its checks written as two triangles each in %s\n",
-                q.schism_failures, o.path.c_str());
-    }
-    if (written.depths) {
-      print(out, "depths:       %.6g .. %.6g m", written.depths->min_m, written.depths->max_m);
-      if (written.depths->num_raised)
-        print(out, ", %zu vertices raised to --min-depth", written.depths->num_raised);
-      out << "\n";
-      const TimeSteps& t = written.depths->time_steps;
-      if (t.limiting_quad >= 0) {
-        const Point2 c = quad_centroid(r.quads, t.limiting_quad);
-        print(out,
-              "time step:    %.3g s at a gravity-wave Courant number of %.3g, set by a quad %.0f "
-              "m wide in %.0f m of water at (%.1f, %.1f); median quad %.3g s",
-              t.min_s, t.courant, t.width_m, t.depth_m, c.x, c.y, t.median_s);
-        if (f.sizing.time_step_s > 0)
-          print(out, "; %zu of %zu wet quads under --time-step %.6g s", t.num_under_target,
-                t.num_wet, f.sizing.time_step_s);
-        out << "\n";
-      }
-    }
-    if (!f.plot_path.empty()) out << "plot:         " << f.plot_path << "\n";
-    print(out, "time:         %.3f s, peak memory %.0f MB\n", seconds, process_peak_mb());
+    for (const std::string& w :
+         mesh_job_warnings(r, job, written, options.smooth.max_orthogonality))
+      console.err << "isoquad: warning: " << w << "\n";
+    console.out << format_domain_summary(r.fields.front.summary) << format_fields_summary(r.fields)
+                << format_mesh_summary(r) << format_written_summary(r, job, written);
+    if (!f.plot_path.empty()) console.out << "plot:         " << f.plot_path << "\n";
+    console.out << printf_string("time:         %.3f s, peak memory %.0f MB\n", outcome.seconds,
+                                 process_peak_mb());
     for (const std::string& w : r.fields.front.summary.warnings)
-      err << "isoquad: warning: " << w << "\n";
+      console.err << "isoquad: warning: " << w << "\n";
   }
-  return 0;
+  return outcome;
 }
 
 // --each FIELD: run_mesh once per value of the attribute, with the value's features
@@ -907,184 +810,83 @@ int run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& comman
 // first failure's.
 int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
                   const std::string& command_line) {
-  const std::string mark = "{}";
-  auto has = [&](const std::string& path) { return path.find(mark) != std::string::npos; };
   for (const std::string& o : a.outputs)
-    if (!has(o))
+    if (!has_each_mark(o))
       throw Error(ErrorClass::usage, "options",
                   "with --each, every -o needs {} for the value (e.g. -o out/{}.gpkg): '" + o +
                       "' has none");
-  if ((!a.report_path.empty() && !has(a.report_path)) ||
-      (!f.plot_path.empty() && !has(f.plot_path)))
+  if ((!a.report_path.empty() && !has_each_mark(a.report_path)) ||
+      (!f.plot_path.empty() && !has_each_mark(f.plot_path)))
     throw Error(ErrorClass::usage, "options",
                 "with --each, --report and --plot need {} for the value");
   if (!m.stop_after.empty())
     throw Error(ErrorClass::usage, "options", "--each meshes: no --stop-after");
   CommonArgs base = a;
   finish_front_end_args(base);
-  const std::vector<SelectionValue> values = selection_values(base.fe.read, m.each);
-  if (values.empty())
+  const std::vector<SelectionValue> selected = selection_values(base.fe.read, m.each);
+  if (selected.empty())
     throw Error(ErrorClass::input, "read",
                 "'" + a.input + "': no selected feature has a value of '" + m.each + "'");
-  // One region's arguments: its features, its paths (the value with ASCII other than
-  // letters, digits, '.', '-' and '_' as '_'; UTF-8 kept).
+  std::vector<std::string> values;
+  for (const SelectionValue& v : selected) values.push_back(v.text);
+  const std::vector<std::string> names = each_file_names(m.each, values);
+  // One region's arguments: its features and its paths, every one checked before any
+  // meshing.
   struct Region {
     CommonArgs a;
     FieldArgs f;
     bool skip = false;  // --skip-existing, and every output exists
   };
-  std::map<std::string, std::string> names;  // file name -> value
   std::vector<Region> regions;
-  for (const SelectionValue& v : values) {
-    std::string name = v.text.empty() ? "_" : v.text;
-    for (char& c : name)
-      if (static_cast<unsigned char>(c) < 0x80 && !std::isalnum(static_cast<unsigned char>(c)) &&
-          c != '.' && c != '-' && c != '_')
-        c = '_';
-    if (!names.emplace(name, v.text).second)
-      throw Error(ErrorClass::usage, "options",
-                  "--each " + m.each + ": the values '" + names[name] + "' and '" + v.text +
-                      "' give the same file name '" + name + "'");
-    auto fill = [&](std::string path) {
-      for (std::size_t at; (at = path.find(mark)) != std::string::npos;)
-        path.replace(at, mark.size(), name);
-      return path;
-    };
+  for (std::size_t k = 0; k < selected.size(); ++k) {
     Region r{a, f};
     r.a.fe.align_optional = true;  // one file of --align lines for all the regions
-    for (std::string& o : r.a.outputs) o = fill(o);
-    r.a.report_path = fill(r.a.report_path);
-    r.f.plot_path = fill(r.f.plot_path);
+    for (std::string& o : r.a.outputs) o = fill_each_mark(o, names[k]);
+    r.a.report_path = fill_each_mark(r.a.report_path, names[k]);
+    r.f.plot_path = fill_each_mark(r.f.plot_path, names[k]);
+    const std::string& filter = selected[k].filter;
     r.a.fe.read.where =
-        a.fe.read.where.empty() ? v.filter : "(" + a.fe.read.where + ") AND " + v.filter;
-    // Every output path checked before any meshing.
+        a.fe.read.where.empty() ? filter : "(" + a.fe.read.where + ") AND " + filter;
     r.skip = m.skip_existing && every_output_exists(r.a, r.f, m);
     if (!r.skip) {
       if (!r.a.report_path.empty()) check_output_path(r.a.report_path, a.overwrite);
       if (!r.f.plot_path.empty()) check_output_path(r.f.plot_path, a.overwrite);
-      MeshWriteOptions w;
-      w.msh_version = m.msh_version;
-      w.msh_groups = m.msh_groups;
-      w.output_crs = m.output_crs;
-      check_mesh_outputs(mesh_outputs(r.a, m), w);
+      check_mesh_outputs(mesh_outputs(r.a, m), mesh_write_options(m));
     }
     regions.push_back(std::move(r));
   }
-  // Region k's run, printing into `console`; a failure (Error) is reported there and
-  // the others go on.
-  struct Outcome {
-    std::optional<RegionResult> result;
-    bool skipped = false;
-    int exit = 0;
-    std::exception_ptr crash;  // anything else, rethrown once every region has run
-  };
-  std::vector<Outcome> outcomes(regions.size());
-  auto header = [&](std::size_t k) {
-    return "== " + m.each + " = " + values[k].text + " (" + std::to_string(k + 1) + " of " +
+  auto header = [&](std::size_t k) -> std::string {
+    if (a.quiet) return "";
+    return "== " + m.each + " = " + values[k] + " (" + std::to_string(k + 1) + " of " +
            std::to_string(values.size()) + ")\n";
   };
+  // Region k's run; a failure (Error) is reported in its console and the others go on.
   auto mesh_region = [&](std::size_t k, const Console& console) {
+    RegionOutcome outcome;
     if (regions[k].skip) {
       if (!a.quiet) console.out << "skipped: every output exists (--skip-existing)\n";
-      outcomes[k].skipped = true;
-      return;
+      outcome.skipped = true;
+      return outcome;
     }
     MeshArgs mm = m;
     try {
-      RegionResult result;
-      run_mesh(regions[k].a, regions[k].f, mm, command_line + " [--each: " + values[k].filter + "]",
-               &result, console);
-      outcomes[k].result = result;
+      return run_mesh(regions[k].a, regions[k].f, mm,
+                      command_line + " [--each: " + selected[k].filter + "]", console);
     } catch (const Error& e) {
       if (console.progress) end_progress_line();
-      console.err << "isoquad: " << m.each << " = " << values[k].text << ": " << e.what() << "\n";
-      outcomes[k].exit = exit_code(e.error_class());
+      console.err << "isoquad: " << m.each << " = " << values[k] << ": " << e.what() << "\n";
+      outcome.exit = exit_code(e.error_class());
+      return outcome;
     }
   };
-  const std::size_t jobs = std::min<std::size_t>(static_cast<std::size_t>(m.jobs), regions.size());
-  if (jobs <= 1) {
-    for (std::size_t k = 0; k < regions.size(); ++k) {
-      if (!a.quiet) std::cerr << header(k) << std::flush;
-      mesh_region(k, Console());
-    }
-  } else {
-    // Each region prints into its buffers; they go out in the regions' order, each as
-    // soon as it and those before it are done.
-    struct Buffers {
-      std::ostringstream out, err;
-      bool done = false;
-    };
-    std::vector<Buffers> buffers(regions.size());
-    std::mutex mutex;
-    std::size_t printed = 0;
-    std::atomic<std::size_t> next{0};
-    auto worker = [&] {
-      for (std::size_t k = next++; k < regions.size(); k = next++) {
-        try {
-          mesh_region(k, Console{buffers[k].out, buffers[k].err, false});
-        } catch (...) {
-          outcomes[k].crash = std::current_exception();
-        }
-        const std::lock_guard<std::mutex> lock(mutex);
-        buffers[k].done = true;
-        for (; printed < regions.size() && buffers[printed].done; ++printed) {
-          if (!a.quiet) std::cerr << header(printed) << buffers[printed].out.str() << std::flush;
-          std::cerr << buffers[printed].err.str() << std::flush;
-        }
-      }
-    };
-    std::vector<std::thread> pool;
-    for (std::size_t j = 1; j < jobs; ++j) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
-    for (const Outcome& o : outcomes)
-      if (o.crash) std::rethrow_exception(o.crash);
-  }
-  int first_failure = 0;
-  std::vector<std::string> failed;
-  std::size_t skipped = 0;
-  for (std::size_t k = 0; k < regions.size(); ++k)
-    if (outcomes[k].skipped) {
-      ++skipped;
-    } else if (!outcomes[k].result) {
-      if (!first_failure) first_failure = outcomes[k].exit;
-      failed.push_back(values[k].text);
-    }
-  if (!a.quiet) {
-    // A line per region: its quads' quality, or that it failed.
-    // Padded by characters (UTF-8: the bytes that start one).
-    auto chars = [](const std::string& t) {
-      return static_cast<std::size_t>(std::count_if(t.begin(), t.end(), [](char c) {
-        return (static_cast<unsigned char>(c) & 0xC0) != 0x80;
-      }));
-    };
-    std::size_t width = chars(m.each);
-    for (const SelectionValue& v : values) width = std::max(width, chars(v.text));
-    auto padded = [&](const std::string& t) { return t + std::string(width - chars(t), ' '); };
-    std::fprintf(stderr, "\n%s %8s %8s %8s %8s %8s %8s\n", padded(m.each).c_str(), "quads",
-                 "angles", "regular", "sizes", "orient.", "seconds");
-    for (std::size_t k = 0; k < values.size(); ++k) {
-      std::fprintf(stderr, "%s", padded(values[k].text).c_str());
-      if (!outcomes[k].result) {
-        std::fprintf(stderr, " %8s\n", outcomes[k].skipped ? "skipped" : "failed");
-        continue;
-      }
-      const QualitySummary& q = outcomes[k].result->quality;
-      std::fprintf(stderr, " %8zu %7.1f%% %7.1f%% %7.1f%% %8.1f %8.2f\n", q.num_quads,
-                   100 * q.share_angles_75_105, 100 * q.share_regular_interior,
-                   100 * q.share_size_08_125, q.orientation_mean_deg, outcomes[k].result->seconds);
-    }
-    std::fflush(stderr);
-  }
-  if (!a.quiet || !failed.empty()) {
-    std::cerr << (failed.empty() ? "" : "isoquad: ") << "--each " << m.each << ": "
-              << values.size() - failed.size() - skipped << " of " << values.size() << " meshed";
-    if (skipped) std::cerr << ", " << skipped << " skipped (every output exists)";
-    for (std::size_t i = 0; i < failed.size(); ++i)
-      std::cerr << (i ? ", " : "; failed: ") << failed[i];
-    std::cerr << "\n";
-  }
-  return first_failure;
+  const std::vector<RegionOutcome> outcomes =
+      run_regions(regions.size(), static_cast<std::size_t>(m.jobs), header, mesh_region);
+  const int exit = each_exit_code(outcomes);
+  if (!a.quiet) std::cerr << format_each_table(m.each, values, outcomes);
+  if (!a.quiet || exit)
+    std::cerr << (exit ? "isoquad: " : "") << format_each_total(m.each, values, outcomes);
+  std::cerr << std::flush;
+  return exit;
 }
 
 }  // namespace
@@ -1168,8 +970,10 @@ int main(int argc, char** argv) {
       if (!mesh_args.quiet) std::cerr << "skipped: every output exists (--skip-existing)\n";
       return 0;
     }
-    if (mesh_cmd->parsed())
-      return run_mesh(mesh_args, mesh_field_args, mesh_extra, joined_command_line(argc, argv));
+    if (mesh_cmd->parsed()) {
+      run_mesh(mesh_args, mesh_field_args, mesh_extra, joined_command_line(argc, argv));
+      return 0;
+    }
   } catch (const Error& e) {
     end_progress_line();
     std::cerr << "isoquad: " << e.what() << "\n";

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "app/versions.h"
+#include "core/text.h"
 #include "gis/atomic_output.h"
 #include "gis/raster_field.h"
 #include "io/mesh_boundary.h"
@@ -112,6 +113,102 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
   }
   set.commit_all();
   return written;
+}
+
+namespace {
+
+// The first output in `format`, or null.
+const MeshOutput* first_output(const MeshJobOutputs& outputs, MeshFormat format) {
+  for (const MeshOutput& o : outputs.meshes)
+    if (mesh_output_format(o) == format) return &o;
+  return nullptr;
+}
+
+}  // namespace
+
+std::vector<std::string> mesh_job_warnings(const MeshResult& r, const MeshJobOutputs& outputs,
+                                           const MeshJobWritten& written,
+                                           double max_orthogonality) {
+  std::vector<std::string> warnings;
+  const std::optional<VertexDepths>& depths = written.depths;
+  if (depths && depths->num_filled)
+    warnings.push_back(printf_string(
+        "%zu vertices lie outside the bathymetry (or next to nodata): each took the depth of "
+        "the nearest vertex with one, up to %.0f m away",
+        depths->num_filled, depths->max_fill_distance_m));
+  // Most of the mesh above the water: likely elevations given as depths, or the reverse.
+  if (depths && depths->num_dry > 0.9 * static_cast<double>(r.quads.points.size()))
+    warnings.push_back(printf_string(
+        "%zu of the mesh's %zu vertices are dry (depth 0 or less): a raster of elevations "
+        "(positive up, as GEBCO's) is given with --elevation, one of depths (positive down) "
+        "with --bathymetry",
+        depths->num_dry, r.quads.points.size()));
+  // --embed on lines the rows of quads cannot follow (winding or bending within a few
+  // quads): say so, with what helps.
+  const EmbedStats& e = r.embed;
+  if (e.line_length_m > 0 && e.covered_length_m < 0.5 * e.line_length_m)
+    warnings.push_back(printf_string(
+        "--embed: edges on the lines span only %.0f%% of their %.1f km inside the domain: "
+        "lines that wind or bend within a few quads cannot be followed; simplify them, or "
+        "refine round them (--refine with --refine-width-field)",
+        100 * e.covered_length_m / e.line_length_m, e.line_length_m / 1000));
+  const QualitySummary& q = r.quality;
+  // A D-Flow FM network that D-Flow FM would refuse as it is.
+  if (const MeshOutput* nc = first_output(outputs, MeshFormat::nc);
+      nc && q.dflowfm_orthogonality_violations > 0)
+    warnings.push_back(printf_string(
+        "%s: %zu links between quads have an orthogonality over 0.5 (up to %.3f): D-Flow FM "
+        "stops on it (\"network is not orthogonal\") unless CosPhiuTrsh in the .mdu's "
+        "[geometry] is raised above that%s",
+        nc->path.c_str(), q.dflowfm_orthogonality_violations, q.dflowfm_orthogonality_max,
+        max_orthogonality > 0 ? " (these are where moving the quads' interior corners did not "
+                                "lower it: quads that meet at a reflex corner of the coast)"
+                              : "; --max-orthogonality 0.45 moves vertices to lower them"));
+  // A SCHISM grid with quads its manual asks to be split.
+  if (const MeshOutput* gr3 = first_output(outputs, MeshFormat::gr3);
+      gr3 && q.schism_failures > 0 && !outputs.write.schism_split)
+    warnings.push_back(printf_string(
+        "%s: %zu quads fail SCHISM's checks (%zu with the smallest angle under half the "
+        "largest, %zu with the longest side over 5 times the shortest), which SCHISM's manual "
+        "asks to be split into triangles (its fix_bad_quads): --schism-split writes them so",
+        gr3->path.c_str(), q.schism_failures, q.schism_angle_ratio_violations,
+        q.schism_aspect_violations));
+  return warnings;
+}
+
+std::string format_written_summary(const MeshResult& r, const MeshJobOutputs& outputs,
+                                   const MeshJobWritten& written) {
+  std::string text;
+  if (r.has_quads) {
+    text += "output:      ";
+    for (const std::string& file : written.files) text += " " + file;
+    text += "\nboundary:     " + std::to_string(written.num_open_edges) + " open edges, " +
+            std::to_string(written.num_land_edges) + " land edges\n";
+    for (const MeshOutput& o : outputs.meshes)
+      if (outputs.write.schism_split && mesh_output_format(o) == MeshFormat::gr3)
+        text += printf_string(
+            "SCHISM split: %zu quads failing its checks written as two triangles each in %s\n",
+            r.quality.schism_failures, o.path.c_str());
+  }
+  if (const std::optional<VertexDepths>& depths = written.depths) {
+    text += printf_string("depths:       %.6g .. %.6g m", depths->min_m, depths->max_m);
+    if (depths->num_raised)
+      text += printf_string(", %zu vertices raised to --min-depth", depths->num_raised);
+    text += "\n";
+    const TimeSteps& t = depths->time_steps;
+    if (t.limiting_quad >= 0) {
+      const Point2 c = quad_centroid(r.quads, t.limiting_quad);
+      text += printf_string(
+          "time step:    %.3g s at a gravity-wave Courant number of %.3g, set by a quad %.0f m "
+          "wide in %.0f m of water at (%.1f, %.1f); median quad %.3g s",
+          t.min_s, t.courant, t.width_m, t.depth_m, c.x, c.y, t.median_s);
+      if (outputs.time_step_s > 0)
+        text += printf_string("; %zu of %zu wet quads under --time-step %.6g s", t.num_under_target,
+                              t.num_wet, outputs.time_step_s);
+      text += "\n";
+    }
+  }
+  return text;
 }
 
 }  // namespace isoquad

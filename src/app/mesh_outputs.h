@@ -42,6 +42,20 @@ struct MeshJobWritten {
 // Writes them all or none (Error(output) when one cannot be written).
 MeshJobWritten write_mesh_job_outputs(const MeshResult& result, const MeshJobOutputs& outputs);
 
+// What a run warns of once its outputs are written, each a sentence without the
+// "isoquad: warning: " before it: vertices outside the bathymetry; a mesh mostly dry
+// (elevations given as depths, or the reverse); --embed's lines mostly not followed;
+// a D-Flow FM net file or a SCHISM grid with what their checks refuse.
+// `max_orthogonality`: SmoothParams::max_orthogonality of the run (0: off).
+std::vector<std::string> mesh_job_warnings(const MeshResult& result, const MeshJobOutputs& outputs,
+                                           const MeshJobWritten& written, double max_orthogonality);
+
+// The summary's lines that follow the mesh's (format_mesh_summary()): the files written
+// and the boundary's edges (when the run made quads), the quads --schism-split cut, the
+// depths and the time steps.
+std::string format_written_summary(const MeshResult& result, const MeshJobOutputs& outputs,
+                                   const MeshJobWritten& written);
+
 // The quality summary as (name, value) pairs, as the GeoPackage's metadata keeps them.
 std::vector<std::pair<std::string, std::string>> quality_items(const QualitySummary& q);
 

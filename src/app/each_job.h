@@ -1,0 +1,67 @@
+// `isoquad mesh --each FIELD`: a mesh per value of an attribute. The regions' file names,
+// their runs on one or more threads with what each prints kept in the regions' order,
+// and the table that ends the batch. What a region's run is, the caller says.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <iostream>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "quad/quad_quality.h"
+
+namespace isoquad {
+
+// What stands for the region's value in the output paths (-o out/{}.gpkg).
+inline constexpr const char* kEachMark = "{}";
+
+bool has_each_mark(const std::string& path);
+// `path` with every {} replaced by `name`.
+std::string fill_each_mark(std::string path, const std::string& name);
+
+// The regions' values as file names: ASCII other than letters, digits, '.', '-' and '_'
+// as '_' (UTF-8 kept), "_" for an empty value. Error(usage) naming both values when two
+// give the same name.
+std::vector<std::string> each_file_names(const std::string& field,
+                                         const std::vector<std::string>& values);
+
+// Where a job prints its summary and its warnings, and whether it shows progress
+// (regions meshed at once print into buffers, without progress).
+struct Console {
+  std::ostream& out = std::cerr;
+  std::ostream& err = std::cerr;
+  bool progress = true;
+};
+
+// How a region's run ended.
+struct RegionOutcome {
+  std::optional<QualitySummary> quality;  // meshed
+  double seconds = 0.0;
+  bool skipped = false;  // nothing to do (--skip-existing)
+  int exit = 0;          // failed: its exit code
+};
+
+// Runs `run(k, console)` for the regions k = 0 .. n-1 on `jobs` threads. Each region's
+// `header(k)` and what it prints reach `stream` in the regions' order: with one thread as
+// it goes, with more from buffers, each region's as soon as it and those before it are
+// done (its out, then its err). Anything `run` throws is rethrown once every region has
+// run.
+std::vector<RegionOutcome> run_regions(
+    std::size_t n, std::size_t jobs, const std::function<std::string(std::size_t)>& header,
+    const std::function<RegionOutcome(std::size_t, const Console&)>& run,
+    std::ostream& stream = std::cerr);
+
+// A line per region (its quads' quality and seconds, or skipped, or failed), under a
+// header, the values padded to one width in characters (UTF-8).
+std::string format_each_table(const std::string& field, const std::vector<std::string>& values,
+                              const std::vector<RegionOutcome>& outcomes);
+// "--each FIELD: M of N meshed[, S skipped (every output exists)][; failed: a, b]".
+std::string format_each_total(const std::string& field, const std::vector<std::string>& values,
+                              const std::vector<RegionOutcome>& outcomes);
+// The first failed region's exit code, 0 when none failed.
+int each_exit_code(const std::vector<RegionOutcome>& outcomes);
+
+}  // namespace isoquad

@@ -1,0 +1,114 @@
+// --each's regions (app/each_job.h): file names, the runs' order on several threads, the
+// table.
+#include "app/each_job.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <sstream>
+#include <stdexcept>
+#include <thread>
+
+#include "core/error.h"
+
+using namespace isoquad;
+
+TEST(EachJob, ValuesBecomeFileNamesAndTwoThatMeetAreRefused) {
+  EXPECT_EQ(each_file_names("name", {"Côte d'Ivoire", "a/b c", "", "x.y-z_1"}),
+            (std::vector<std::string>{"Côte_d_Ivoire", "a_b_c", "_", "x.y-z_1"}));
+  try {
+    each_file_names("name", {"a b", "a/b"});
+    FAIL() << "two values with one file name";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::usage);
+    EXPECT_NE(std::string(e.what()).find("'a b' and 'a/b' give the same file name 'a_b'"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(has_each_mark("out/{}.gpkg"));
+  EXPECT_FALSE(has_each_mark("out/x.gpkg"));
+  EXPECT_EQ(fill_each_mark("out/{}/m_{}.gpkg", "fr"), "out/fr/m_fr.gpkg");
+}
+
+// With two threads the regions end out of order (the first sleeps); what they print
+// comes out in their order all the same, header, out, err, and each outcome is its own.
+TEST(EachJob, RegionsRunAtOncePrintInTheirOrder) {
+  for (const std::size_t jobs : {1, 2, 3}) {
+    std::ostringstream stream;
+    const auto outcomes = run_regions(
+        4, jobs, [](std::size_t k) { return "== " + std::to_string(k) + "\n"; },
+        [](std::size_t k, const Console& c) {
+          if (k == 0) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+          c.out << "out " << k << "\n";
+          c.err << "err " << k << "\n";
+          RegionOutcome o;
+          if (k == 2) {
+            o.exit = 5;
+          } else {
+            o.quality = QualitySummary{};
+            o.quality->num_quads = 10 * k;
+          }
+          return o;
+        },
+        stream);
+    EXPECT_EQ(stream.str(),
+              "== 0\nout 0\nerr 0\n== 1\nout 1\nerr 1\n== 2\nout 2\nerr 2\n== 3\nout 3\nerr 3\n")
+        << jobs << " jobs";
+    ASSERT_EQ(outcomes.size(), 4u);
+    EXPECT_EQ(outcomes[1].quality->num_quads, 10u);
+    EXPECT_EQ(outcomes[3].quality->num_quads, 30u);
+    EXPECT_FALSE(outcomes[2].quality);
+    EXPECT_EQ(each_exit_code(outcomes), 5);
+  }
+}
+
+// Something other than a region's failure (a bug) reaches the caller, once every region
+// has run.
+TEST(EachJob, AnExceptionFromARegionIsRethrownAfterTheOthers) {
+  for (const std::size_t jobs : {1, 2}) {
+    std::ostringstream stream;
+    std::vector<int> ran(3, 0);
+    EXPECT_THROW(run_regions(
+                     3, jobs, [](std::size_t) { return std::string(); },
+                     [&](std::size_t k, const Console&) {
+                       ran[k] = 1;
+                       if (k == 0 && jobs > 1) throw std::runtime_error("bug");
+                       if (k == 2 && jobs == 1) throw std::runtime_error("bug");
+                       return RegionOutcome{};
+                     },
+                     stream),
+                 std::runtime_error);
+    EXPECT_EQ(ran, (std::vector<int>{1, 1, 1})) << jobs << " jobs";
+  }
+}
+
+TEST(EachJob, TheTableHasALinePerRegionPaddedInCharacters) {
+  std::vector<RegionOutcome> outcomes(3);
+  outcomes[0].quality = QualitySummary{};
+  outcomes[0].quality->num_quads = 1234;
+  outcomes[0].quality->share_angles_75_105 = 0.9;
+  outcomes[0].quality->orientation_mean_deg = 7.3;
+  outcomes[0].seconds = 1.5;
+  outcomes[1].skipped = true;
+  outcomes[2].exit = 3;
+  const std::vector<std::string> values = {"Réunion", "b", "cc"};
+  const std::string table = format_each_table("name", values, outcomes);
+  std::istringstream lines(table);
+  std::string line;
+  std::vector<std::string> rows;
+  while (std::getline(lines, line))
+    if (!line.empty()) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 4u) << table;
+  // "Réunion" is 7 characters (8 bytes): every value padded to 7.
+  EXPECT_EQ(rows[0].substr(0, 8), "name    ");
+  EXPECT_EQ(rows[1].substr(0, 9), "Réunion ");
+  EXPECT_NE(rows[1].find("1234"), std::string::npos);
+  EXPECT_NE(rows[1].find("90.0%"), std::string::npos);
+  EXPECT_NE(rows[1].find("7.3"), std::string::npos);
+  EXPECT_NE(rows[1].find("1.50"), std::string::npos);
+  EXPECT_EQ(rows[2], "b        skipped");
+  EXPECT_EQ(rows[3], "cc        failed");
+  EXPECT_EQ(format_each_total("name", values, outcomes),
+            "--each name: 1 of 3 meshed, 1 skipped (every output exists); failed: cc\n");
+  EXPECT_EQ(each_exit_code(outcomes), 3);
+}
