@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Acceptance of the mesh outputs (issue 6): a sea area with islands (Brittany) meshed
 # and written to every format in one run, each file loaded by its reader (GDAL, gmsh,
-# meshio, python3-netcdf4, our gr3 and fort.14 checks, QGIS's mesh reader for .2dm) and the GeoPackage
+# meshio, python3-netcdf4, our gr3, fort.14 and MIKE .mesh checks, QGIS's mesh reader for .2dm) and the GeoPackage
 # rendered by QGIS with its embedded styles. Writes into out/acceptance/ (or $1); needs build/isoquad.
 set -euo pipefail
 ROOT=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
@@ -13,7 +13,8 @@ time build/isoquad mesh shapefiles/brittany_land.shp --domain water \
   --bbox -5.3,46.8,-1.95,49.35 --hmax 8000 --overwrite \
   -o "$OUT/brittany.gpkg" -o "$OUT/brittany.msh" -o "$OUT/hgrid.gr3" \
   -o "$OUT/brittany.vtk" -o "$OUT/brittany.vtu" -o "$OUT/brittany.nc" \
-  -o "$OUT/brittany.2dm" -o "$OUT/brittany.slf" -o "$OUT/fort.14" --report "$OUT/brittany.json"
+  -o "$OUT/brittany.2dm" -o "$OUT/brittany.slf" -o "$OUT/fort.14" -o "$OUT/brittany.mesh" \
+  --report "$OUT/brittany.json"
 
 echo "== GDAL"
 ogrinfo -q "$OUT/brittany.gpkg" -sql "SELECT kind, COUNT(*) AS segments, SUM(num_nodes) AS nodes FROM boundary GROUP BY kind"
@@ -22,7 +23,7 @@ echo "== gmsh (read, write back as MSH 2.2: elements by type and physical group)
 gmsh "$OUT/brittany.msh" -0 -format msh22 -o "$OUT/brittany_gmsh22.msh" > /dev/null
 awk '/\$Elements/{f=1;getline;next}/\$EndElements/{f=0}f{c["type " $2 " physical " $4]++}END{for(k in c)print k": "c[k]}' \
   "$OUT/brittany_gmsh22.msh" | sort
-echo "== meshio, netCDF4, gr3"
+echo "== meshio, netCDF4, gr3, fort.14, MIKE .mesh"
 "$PY" - "$OUT" <<'PYEOF'
 import sys, meshio, netCDF4
 out = sys.argv[1]
@@ -41,6 +42,11 @@ ne, np_ = map(int, lines[1].split())
 ibtypes = [l.split()[1] for l in lines if "Number of nodes for land boundary" in l]
 print("fort.14", ne, "triangles,", np_, "nodes; IBTYPE", {t: ibtypes.count(t) for t in sorted(set(ibtypes))},
       *(l for l in lines if "Number of open boundaries" in l or "Number of land boundaries" in l))
+lines = open(f"{out}/brittany.mesh").read().split("\n")
+item, unit, np_, projection = lines[0].split(maxsplit=3)
+codes = [int(l.split()[4]) for l in lines[1:1 + int(np_)]]
+print("brittany.mesh", np_, "nodes,", lines[1 + int(np_)], "(elements, nodes each, 25: quads);",
+      "node codes", {c: codes.count(c) for c in sorted(set(codes))}, "projection", projection[:40] + "...")
 PYEOF
 echo "== QGIS: the .2dm, .nc and .slf as mesh layers (MDAL)"
 "$PY" - "$OUT"/brittany.{2dm,nc,slf} 2> >(grep -v "QStandardPaths\|HDF5\|^ *#\|major:\|minor:" >&2) <<'PYEOF'

@@ -93,8 +93,8 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
                   "FM .ldb, .pol, .pli and Blue Kenue .i2s, with --src-crs)")
       ->required();
   cmd->add_option("-o,--output", a.outputs,
-                  a.many_outputs ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .pli, "
-                                   ".slf, .14); repeat for several"
+                  a.many_outputs ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, "
+                                   ".pli, .slf, .14); repeat for several"
                                  : "Output file (.gpkg)")
       ->required()
       ->expected(1)
@@ -653,12 +653,13 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
       ->group("Quads");
   cmd->add_option(
          "--output-format", m.output_formats,
-         "gpkg, vtu, vtk, msh, gr3, nc, 2dm, pli, slf or 14: once for every -o, or once per "
+         "gpkg, vtu, vtk, msh, gr3, nc, 2dm, mesh, pli, slf or 14: once for every -o, or once per "
          "-o in order "
          "(default: by extension)")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-      ->check(CLI::IsMember({"gpkg", "vtu", "vtk", "msh", "gr3", "nc", "2dm", "pli", "slf", "14"}))
+      ->check(CLI::IsMember(
+          {"gpkg", "vtu", "vtk", "msh", "gr3", "nc", "2dm", "mesh", "pli", "slf", "14"}))
       ->group("Output");
   cmd->add_option("--msh-version", m.msh_version, "Gmsh file version: 4.1 (default) or 2.2")
       ->check(CLI::IsMember({"4.1", "2.2"}))
@@ -931,7 +932,7 @@ int main(int argc, char** argv) {
       "mesh",
       "The main job: an isotropic all-quadrangle mesh of the domain that follows the sizing "
       "and cross fields, with a quality summary; outputs for GIS and ocean models (.gpkg, "
-      ".vtu, .vtk, .msh, .gr3, .nc, .2dm, .pli, .slf, .14), several in one run. Every quad "
+      ".vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, .pli, .slf, .14), several in one run. Every quad "
       "written is strictly convex and none overlap: a tiling that leaves one otherwise is "
       "retried (up to 6 tilings, each with the sizes halved where the one before failed), "
       "and the run stops without writing when all fail.");

@@ -77,6 +77,28 @@ std::string crs_proj_string(const CrsInfo& crs) {
   return out;
 }
 
+std::string crs_esri_wkt(const CrsInfo& crs) {
+  const auto srs = make_srs(crs);
+  char* wkt = nullptr;
+  const char* options[] = {"FORMAT=WKT1_ESRI", nullptr};
+  const OGRErr err = srs->exportToWkt(&wkt, options);
+  std::string out = wkt ? wkt : "";
+  CPLFree(wkt);
+  if (err != OGRERR_NONE || out.empty())
+    throw Error(ErrorClass::crs, "crs", "'" + crs.name + "' has no ESRI WKT form");
+  return out;
+}
+
+bool crs_is_wgs84_lonlat(const CrsInfo& crs) {
+  if (!crs.geographic) return false;
+  const auto srs = make_srs(crs);
+  OGRSpatialReference wgs84;
+  wgs84.importFromEPSG(4326);
+  const char* options[] = {"CRITERION=EQUIVALENT_EXCEPT_AXIS_ORDER_GEOGCRS",
+                           "IGNORE_DATA_AXIS_TO_SRS_AXIS_MAPPING=YES", nullptr};
+  return srs->IsSame(&wgs84, options);
+}
+
 LocalProjection choose_local_projection(const CrsInfo& geographic,
                                         const std::vector<Point2>& lonlat) {
   if (lonlat.empty()) throw Error(ErrorClass::internal, "crs", "no points to centre a projection");

@@ -31,6 +31,11 @@ CrsInfo crs_from_srs(const OGRSpatialReference& srs);
 CrsInfo geographic_base(const CrsInfo& crs);
 // A proj4-style one-line description, for summaries.
 std::string crs_proj_string(const CrsInfo& crs);
+// The CRS as ESRI's WKT 1 (one line, as .prj files and DHI's MIKE files hold it).
+// Error(crs) when it has none.
+std::string crs_esri_wkt(const CrsInfo& crs);
+// Longitudes and latitudes on WGS 84 (EPSG:4326, either axis order).
+bool crs_is_wgs84_lonlat(const CrsInfo& crs);
 
 // The automatic meshing CRS: an oblique stereographic projection (conformal, so
 // squares stay squares) centred on the domain, with its scale factor chosen so that

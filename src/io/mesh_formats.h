@@ -29,6 +29,9 @@ void write_gr3_file(const MeshView& v, const std::vector<Point2>& points, const 
 void write_vtk_legacy_file(const MeshView& v, const std::string& path, const std::string& what);
 void write_ugrid_file(const MeshView& v, const std::string& path, const std::string& what);
 void write_2dm_file(const MeshView& v, const std::string& path, const std::string& what);
+// DHI MIKE 21/3 FM: the quads, the bed level and the boundary codes (land 1, each open
+// segment its own from 2).
+void write_mike_mesh_file(const MeshView& v, const std::string& path, const std::string& what);
 // TELEMAC-2D: the geometry (the quads cut into triangles) and its boundary conditions.
 void write_telemac_files(const MeshView& v, const std::string& path, const std::string& what,
                          const std::string& cli_path, const std::string& cli_what);

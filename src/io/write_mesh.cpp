@@ -19,10 +19,10 @@ namespace {
 
 const std::map<std::string, MeshFormat>& format_names() {
   static const std::map<std::string, MeshFormat> names = {
-      {"gpkg", MeshFormat::gpkg},  {"vtu", MeshFormat::vtu}, {"vtk", MeshFormat::vtk},
-      {"msh", MeshFormat::msh},    {"gr3", MeshFormat::gr3}, {"nc", MeshFormat::nc},
-      {"2dm", MeshFormat::sms2dm}, {"pli", MeshFormat::pli}, {"slf", MeshFormat::slf},
-      {"14", MeshFormat::fort14}};
+      {"gpkg", MeshFormat::gpkg},  {"vtu", MeshFormat::vtu},   {"vtk", MeshFormat::vtk},
+      {"msh", MeshFormat::msh},    {"gr3", MeshFormat::gr3},   {"nc", MeshFormat::nc},
+      {"2dm", MeshFormat::sms2dm}, {"mesh", MeshFormat::mike}, {"pli", MeshFormat::pli},
+      {"slf", MeshFormat::slf},    {"14", MeshFormat::fort14}};
   return names;
 }
 
@@ -221,10 +221,10 @@ MeshFormat mesh_output_format(const MeshOutput& out) {
     throw Error(ErrorClass::usage, "options",
                 out.format.empty()
                     ? "'" + out.path + "': unknown mesh format '" + ext +
-                          "'; use .gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .pli, "
+                          "'; use .gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, .pli, "
                           ".slf or .14 (or --output-format)"
                     : "unknown --output-format '" + out.format +
-                          "'; use gpkg, vtu, vtk, msh, gr3, nc, 2dm, pli, slf or 14");
+                          "'; use gpkg, vtu, vtk, msh, gr3, nc, 2dm, mesh, pli, slf or 14");
   return it->second;
 }
 
@@ -337,6 +337,9 @@ std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
       case MeshFormat::nc: write_ugrid_file(*view, tmp, o.path); break;
       case MeshFormat::sms2dm:
         write_2dm_file(*view, tmp, o.path);
+        break;
+      case MeshFormat::mike:
+        write_mike_mesh_file(*view, tmp, o.path);
         break;
       case MeshFormat::gr3: {
         write_gr3_file(native, native.points, tmp, o.path, options.schism_split);

@@ -10,6 +10,7 @@
 //         its lon/lat companion (same name, extension .ll);
 //   nc    UGRID-1.0 netCDF;
 //   2dm   SMS generic 2D mesh (elevation z, boundary segments as nodestrings);
+//   mesh  DHI MIKE 21/3 FM mesh (bed level z, boundary codes: land 1, open 2, 3...);
 //   pli   D-Flow FM polylines of the open boundary: one file per open segment, the path
 //         itself for one, else STEM_1.pli, STEM_2.pli... (Error(meshing) without any);
 //   slf   TELEMAC-2D geometry (Selafin, the quads cut into triangles) and its boundary
@@ -33,12 +34,12 @@ namespace isoquad {
 // them.
 bool unwrap_antimeridian(const QuadMesh& mesh, std::vector<Point2>& lonlat);
 
-enum class MeshFormat { gpkg, vtu, vtk, msh, gr3, nc, sms2dm, pli, slf, fort14 };
+enum class MeshFormat { gpkg, vtu, vtk, msh, gr3, nc, sms2dm, mike, pli, slf, fort14 };
 
 struct MeshOutput {
   std::string path;
-  std::string
-      format;  // gpkg, vtu, vtk, msh, gr3, nc, 2dm, pli, slf, 14; empty: by the path's extension
+  std::string format;  // gpkg, vtu, vtk, msh, gr3, nc, 2dm, mesh, pli, slf, 14; empty: by the
+                       // path's extension
   bool overwrite = false;
 };
 

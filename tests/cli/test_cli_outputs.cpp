@@ -824,6 +824,54 @@ TEST(CliOutputs, Sms2dmHoldsTheGr3sMeshWithElevationsAndNodestrings) {
   EXPECT_NEAR(lat, ll.nodes[0][1], 1e-7) << out;
 }
 
+// MIKE 21/3 FM .mesh: hgrid.gr3's nodes (z the bed level, minus the depth) and quads
+// of the same run; the open segment's nodes, its ends included, code 2, the land
+// segments' other nodes 1, the rest 0: every boundary node coded, none inside.
+TEST(CliOutputs, MikeMeshHoldsTheGr3sMeshWithBoundaryCodes) {
+  TempDir dir;
+  const CliResult r = mesh_water_box(dir, {"-o", dir.file("m.mesh"), "-o", dir.file("hgrid.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 g = parse_gr3(dir.file("hgrid.gr3"));
+  std::istringstream in(read_file(dir.file("m.mesh")));
+  std::string header;
+  ASSERT_TRUE(std::getline(in, header));
+  std::istringstream head(header);
+  std::string item, unit, projection;
+  std::size_t np = 0;
+  head >> item >> unit >> np >> projection;
+  EXPECT_EQ(item + " " + unit, "100079 1000") << header;
+  ASSERT_EQ(np, g.nodes.size());
+  EXPECT_EQ(projection.rfind("PROJCS[", 0), 0u) << header;  // the automatic projection
+  std::vector<int> code(np);
+  for (std::size_t i = 0; i < np; ++i) {
+    std::size_t id = 0;
+    std::array<double, 3> p{};
+    in >> id >> p[0] >> p[1] >> p[2] >> code[i];
+    EXPECT_EQ(id, i + 1);
+    EXPECT_NEAR(p[0], g.nodes[i][0], 1e-6);
+    EXPECT_NEAR(p[1], g.nodes[i][1], 1e-6);
+    EXPECT_NEAR(p[2], -g.nodes[i][2], 1e-6);
+  }
+  std::size_t ne = 0, max_nodes = 0, kind = 0;
+  in >> ne >> max_nodes >> kind;
+  EXPECT_EQ(ne, g.num_elements);
+  EXPECT_EQ(max_nodes, 4u);
+  EXPECT_EQ(kind, 25u);
+  for (std::size_t e = 0; e < ne; ++e) {
+    std::vector<int> el(5);
+    for (int& v : el) in >> v;
+    EXPECT_EQ(el[0], static_cast<int>(e + 1));
+    EXPECT_EQ(std::vector<int>(el.begin() + 1, el.end()), g.elements[e]) << e;
+  }
+  EXPECT_FALSE(in.fail());
+  ASSERT_EQ(g.open.size(), 1u);
+  std::vector<int> expected(np, 0);
+  for (const auto& s : g.land)
+    for (int n : s) expected[n - 1] = 1;
+  for (int n : g.open[0]) expected[n - 1] = 2;
+  EXPECT_EQ(code, expected);
+}
+
 // D-Flow FM .pli: a polyline file per open segment, named after its file (the prefix of
 // its support points in .bc forcing files), holding the segment's nodes as hgrid.gr3 of
 // the same run has them; one segment writes the path given, two write STEM_1 and

@@ -593,11 +593,81 @@ TEST(MeshOutputs, TelemacBoundaryRunsFromTheSouthWestNode) {
   for (std::size_t k = 0; k < codes.size(); ++k) EXPECT_EQ(codes[k], k < 4 ? "544" : "222") << k;
 }
 
+// MIKE 21/3 FM .mesh: every node with its bed level and code, the quads counter-clockwise;
+// boundary faces coded as DHI's mesh library codes them (land where either node is land,
+// else the end node's code) give the open segment's edges code 2 and the rest 1.
+TEST(MeshOutputs, MikeMeshCodesMakeTheOpenSegmentsFacesOpen) {
+  const Fixture f;
+  TempDir dir;
+  const MeshOutputData d = f.data();
+  write_mesh_outputs(d, {{dir.file("bay.mesh"), "", false}});
+  std::istringstream in(read_file(dir.file("bay.mesh")));
+  std::string item, unit, projection;
+  std::size_t np = 0;
+  in >> item >> unit >> np >> std::ws;
+  std::getline(in, projection);
+  EXPECT_EQ(item, "100079");  // bathymetry
+  EXPECT_EQ(unit, "1000");    // metres
+  ASSERT_EQ(np, f.mesh.points.size());
+  EXPECT_EQ(projection.rfind("PROJCS[\"WGS_1984_UTM_Zone_31N\"", 0), 0u) << projection;
+  std::vector<Point2> xy(np);
+  std::vector<int> code(np);
+  for (std::size_t i = 0; i < np; ++i) {
+    std::size_t id = 0;
+    double z = 0;
+    in >> id >> xy[i].x >> xy[i].y >> z >> code[i];
+    EXPECT_EQ(id, i + 1);
+    EXPECT_NEAR(xy[i].x, f.mesh.points[i].x, 1e-6);
+    EXPECT_NEAR(xy[i].y, f.mesh.points[i].y, 1e-6);
+    EXPECT_DOUBLE_EQ(z, -(10.0 + 0.5 * i));  // the bed level
+    EXPECT_GT(code[i], 0) << "boundary node " << i + 1 << " without a code";
+  }
+  std::size_t ne = 0, max_nodes = 0, kind = 0;
+  in >> ne >> max_nodes >> kind;
+  EXPECT_EQ(max_nodes, 4u);
+  EXPECT_EQ(kind, 25u);  // quadrilaterals present
+  ASSERT_EQ(ne, f.mesh.quads.size());
+  std::map<std::pair<int, int>, int> faces;  // directed, counter-clockwise round each quad
+  for (std::size_t e = 0; e < ne; ++e) {
+    std::size_t id = 0;
+    std::array<int, 4> n{};
+    in >> id >> n[0] >> n[1] >> n[2] >> n[3];
+    EXPECT_EQ(id, e + 1);
+    double area2 = 0;
+    for (int k = 0; k < 4; ++k) {
+      const Point2 a = xy[n[k] - 1], b = xy[n[(k + 1) % 4] - 1];
+      area2 += a.x * b.y - b.x * a.y;
+      ++faces[{n[k], n[(k + 1) % 4]}];
+    }
+    EXPECT_GT(area2, 0) << "element " << id << " not counter-clockwise";
+  }
+  EXPECT_FALSE(in.fail());
+  int open_faces = 0;
+  for (const auto& [face, count] : faces) {
+    if (faces.count({face.second, face.first})) continue;  // shared: inside
+    const int from = code[face.first - 1], to = code[face.second - 1];
+    const int face_code = from == 1 || to == 1 ? 1 : to;
+    const bool south = xy[face.first - 1].y == kY0 && xy[face.second - 1].y == kY0;
+    EXPECT_EQ(face_code, south ? 2 : 1) << face.first << "-" << face.second;
+    open_faces += face_code == 2;
+  }
+  EXPECT_EQ(open_faces, 3);
+  // Longitudes and latitudes on WGS 84 are MIKE's LONG/LAT.
+  MeshWriteOptions o;
+  o.output_crs = "EPSG:4326";
+  write_mesh_outputs(d, {{dir.file("ll.mesh"), "", false}}, o);
+  std::istringstream ll(read_file(dir.file("ll.mesh")));
+  std::getline(ll, projection);
+  EXPECT_EQ(projection, "100079 1000 16 LONG/LAT");
+}
+
 TEST(MeshOutputs, FormatByExtensionOrName) {
   EXPECT_EQ(mesh_output_format({"a.GPKG", "", false}), MeshFormat::gpkg);
   EXPECT_EQ(mesh_output_format({"a.msh", "", false}), MeshFormat::msh);
   EXPECT_EQ(mesh_output_format({"a.dat", "gr3", false}), MeshFormat::gr3);
   EXPECT_EQ(mesh_output_format({"a.2DM", "", false}), MeshFormat::sms2dm);
+  EXPECT_EQ(mesh_output_format({"bay.mesh", "", false}), MeshFormat::mike);
+  EXPECT_EQ(mesh_output_format({"bay.txt", "mesh", false}), MeshFormat::mike);
   EXPECT_EQ(mesh_output_files({"d/geo.slf", "", false}),
             (std::vector<std::string>{"d/geo.slf", "d/geo.cli"}));
   EXPECT_EQ(mesh_output_files({"d/hgrid.gr3", "", false}),
