@@ -1,0 +1,532 @@
+#include "cli_args.h"
+
+#include <array>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <sstream>
+
+#include "app/mesh_outputs.h"
+#include "core/error.h"
+#include "gis/raster_field.h"
+
+namespace isoquad::cli {
+
+namespace {
+
+// Number checks with plain messages (CLI11's own name the whole double range).
+CLI::Validator number_check(const char* name, bool zero_allowed) {
+  return CLI::Validator(
+      [zero_allowed](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (end == text.c_str() || *end != '\0' || !std::isfinite(v))
+          return "'" + text + "' is not a number";
+        if (zero_allowed ? v < 0 : !(v > 0))
+          return "must be " + std::string(zero_allowed ? "0 or more" : "more than 0") + ", not " +
+                 text;
+        return {};
+      },
+      name);
+}
+
+const CLI::Validator kPositive = number_check("POSITIVE", false);
+const CLI::Validator kNonNegative = number_check("NONNEGATIVE", true);
+
+std::array<double, 4> parse_bbox(const std::string& text) {
+  std::array<double, 4> b{};
+  std::stringstream ss(text);
+  std::string item;
+  int n = 0;
+  while (std::getline(ss, item, ',')) {
+    if (n == 4) break;
+    char* end = nullptr;
+    b[n] = std::strtod(item.c_str(), &end);
+    if (item.empty() || end == item.c_str() || *end != '\0')
+      throw Error(ErrorClass::usage, "options", "--bbox: '" + item + "' is not a number");
+    ++n;
+  }
+  if (n != 4 || std::getline(ss, item, ','))
+    throw Error(ErrorClass::usage, "options", "--bbox needs four numbers: XMIN,YMIN,XMAX,YMAX");
+  return b;
+}
+
+}  // namespace
+
+void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
+  cmd->add_option("INPUT", a.input,
+                  "Input vector file (shapefile, GeoJSON, TopoJSON, GeoPackage...) of polygons, or "
+                  "of lines whose rings make them (a coastline drawn as lines; also Delft3D/D-Flow "
+                  "FM .ldb, .pol, .pli and Blue Kenue .i2s, with --src-crs)")
+      ->required();
+  cmd->add_option("-o,--output", a.outputs,
+                  a.many_outputs ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, "
+                                   ".pli, .slf, .14); repeat for several"
+                                 : "Output file (.gpkg)")
+      ->required()
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  cmd->add_option("--layer", a.fe.read.layer,
+                  "Layer to read (default: the only layer, or the first with polygons)")
+      ->group("Selection");
+  cmd->add_option("--where", a.fe.read.where, "OGR SQL attribute filter, e.g. \"name = 'France'\"")
+      ->group("Selection");
+  cmd->add_option("--bbox", a.bbox, "XMIN,YMIN,XMAX,YMAX in the source CRS (or --bbox-crs)")
+      ->group("Selection");
+  cmd->add_option("--bbox-crs", a.fe.read.bbox_crs, "CRS of --bbox (default: the source CRS)")
+      ->group("Selection");
+  cmd->add_option("--domain", a.domain_kind,
+                  "land: inside the polygons (clipped to --bbox); water: --bbox minus the polygons")
+      ->check(CLI::IsMember({"land", "water"}))
+      ->group("Selection");
+  cmd->add_flag("--largest", a.fe.largest, "Keep only the largest component")->group("Selection");
+  cmd->add_option("--src-crs", a.fe.read.src_crs,
+                  "CRS of the input coordinates (required when the input has none; overrides it)")
+      ->group("Projection");
+  cmd->add_option("--dst-crs", a.fe.project.dst_crs,
+                  "Meshing CRS, projected in metres (default: a local oblique stereographic "
+                  "projection centred on the domain)")
+      ->group("Projection");
+  cmd->add_flag("--repair", a.fe.read.repair,
+                "Repair invalid geometry (self-intersections, unclosed or degenerate rings) "
+                "instead of failing")
+      ->group("Cleaning");
+  cmd->add_option("--size", a.fe.target_size_m,
+                  "Element size in metres: a constant size for meshing; sets the defaults of "
+                  "--simplify (size/4), --min-island-area (size^2) and --min-width (size/4)")
+      ->check(kPositive)
+      ->group("Cleaning");
+  cmd->add_option("--simplify", a.simplify_m,
+                  "Topology-preserving simplification tolerance in metres (default: a quarter of "
+                  "--size or, in fields and mesh, of the automatic hmin; otherwise off)")
+      ->check(kNonNegative)
+      ->group("Cleaning");
+  cmd->add_option("--min-island-area", a.min_island_area_m2,
+                  "Drop islands and holes smaller than this, in m2 (default: the square of --size "
+                  "or, in fields and mesh, of the automatic hmin; otherwise 0)")
+      ->check(kNonNegative)
+      ->group("Cleaning");
+  cmd->add_option(
+         "--min-width", a.min_width_m,
+         "Fill notches and gaps, and remove spikes and isthmuses, narrower than this, in m "
+         "(default: a quarter of --size or, in fields and mesh, of the automatic hmin; otherwise "
+         "off)")
+      ->check(kNonNegative)
+      ->group("Cleaning");
+  cmd->add_option("--report", a.report_path,
+                  "Write the summary as JSON to this file (-: to stdout, once every output is "
+                  "written)")
+      ->group("Output");
+  cmd->add_flag("--overwrite", a.overwrite, "Replace existing output files")->group("Output");
+  cmd->add_flag("-q,--quiet", a.quiet, "Print nothing but errors")->group("Output");
+}
+
+void add_field_options(CLI::App* cmd, FieldArgs& f) {
+  const char* g = "Sizing (metres; sources combine by minimum)";
+  cmd->add_flag("--size-auto", f.size_auto,
+                "Automatic size from the boundary's local feature size (the default when no "
+                "other source is given; with another source, both combine)")
+      ->group(g);
+  cmd->add_option("--size-expr", f.sizing.expression,
+                  "Size as an expression in x and y (metres, meshing CRS), e.g. "
+                  "\"0.01*(2+sin(6*x*pi-pi/2))\"")
+      ->group(g);
+  cmd->add_option("--size-raster", f.sizing.raster_path, "GDAL raster of sizes in metres, any CRS")
+      ->group(g);
+  cmd->add_option("--refine", f.sizing.refine_path,
+                  "Vector file (any format, with a CRS) of polygons, lines or points whose "
+                  "attribute --refine-field gives a size in metres: at most that inside the "
+                  "polygons and on the lines and points, growing by --gradation away from "
+                  "them (not limited by --hmin)")
+      ->group(g);
+  cmd->add_option("--refine-field", f.sizing.refine_field,
+                  "Attribute of --refine holding the sizes (default: size)")
+      ->group(g);
+  cmd->add_option("--refine-width-field", f.sizing.refine_width_field,
+                  "Attribute of --refine holding widths in metres: the size holds within half "
+                  "the width of each feature's lines, points and polygons, and grows by "
+                  "--gradation beyond (default: none, the size on the features only)")
+      ->group(g);
+  cmd->add_option("--refine-layer", f.sizing.refine_layer,
+                  "Layer of --refine to read (default: its first)")
+      ->group(g);
+  // --bathymetry and --elevation make one list, in the order given (trigger_on_parse:
+  // each occurrence is added as it is read).
+  for (const bool elevation : {false, true})
+    cmd->add_option_function<std::string>(
+           elevation ? "--elevation" : "--bathymetry",
+           [&f, elevation](const std::string& path) {
+             f.sizing.bathymetry.push_back({path, elevation});
+           },
+           elevation ? "GDAL raster of elevations in metres, positive up, as GEBCO, EMODnet and "
+                       "SRTM15+ give them (-200 is 200 m deep); otherwise as --bathymetry, in the "
+                       "same priority list"
+                     : "GDAL raster of depths in metres, positive down: vertex depths of the mesh "
+                       "outputs; with --wavelength-period, --slope-factor or --time-step also the "
+                       "sizing. Repeat it (or --elevation) for several, in priority order (a "
+                       "survey, then a regional grid, then GEBCO): at each point the first with a "
+                       "depth gives it")
+        ->trigger_on_parse()
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
+        ->group(g);
+  cmd->add_option("--min-depth", f.min_depth_m,
+                  "Depths shallower than this (metres, positive down) are written as it; the "
+                  "wavelength, slope and time step rules count depths under max(1, this) as that")
+      ->group(g);
+  cmd->add_option("--wavelength-period", f.sizing.wavelength_period_s,
+                  "Wave period T in seconds: h <= T sqrt(g d) / N")
+      ->check(kPositive)
+      ->group(g);
+  cmd->add_option("--cells-per-wavelength", f.sizing.cells_per_wavelength,
+                  "N of the wavelength rule")
+      ->check(kPositive)
+      ->group(g);
+  cmd->add_option("--slope-factor", f.sizing.slope_factor,
+                  "R: h <= 2 pi d / (R |grad d|), resolving bathymetric slopes")
+      ->check(kPositive)
+      ->group(g);
+  char margin[16];
+  std::snprintf(margin, sizeof margin, "%g", kTimeStepMargin);
+  cmd->add_option("--time-step", f.sizing.time_step_s,
+                  "DT in seconds, with depths: sizes at least " + std::string(margin) +
+                      " DT sqrt(g d) / C, so that an explicit model can run at DT (a quad's time "
+                      "step is its width over sqrt(g d) times C); over every other source, "
+                      "--hmin and --hmax, under --refine")
+      ->check(kPositive)
+      ->group(g);
+  cmd->add_option("--courant", f.sizing.courant,
+                  "C, the model's gravity-wave Courant limit, for --time-step and the time "
+                  "steps reported (default 1; D-Flow FM's CFLMax is 0.7)")
+      ->check(kPositive)
+      ->group(g);
+  cmd->add_option("--cells-across", f.sizing.cells_across,
+                  "Elements across a narrow channel (automatic sizing; default 2)")
+      ->check(kPositive)
+      ->group(g);
+  cmd->add_option("--hmin", f.sizing.hmin_m,
+                  "Smallest size (automatic default: hmax / 10); automatic sizing puts one "
+                  "element across channels, inlets and spits narrower than --cells-across x "
+                  "hmin, down to hmin/2 (see --no-narrow-sizes)")
+      ->check(kPositive)
+      ->group(g);
+  cmd->add_flag_callback(
+         "--no-narrow-sizes", [&f] { f.sizing.narrow_sizes = false; },
+         "Leave channels narrower than --cells-across x hmin at the sizes around them (hmin "
+         "or more): fewer quads, which may fold across them")
+      ->group(g);
+  cmd->add_option("--hmax", f.sizing.hmax_m,
+                  "Largest size (automatic default: sqrt(domain area / 2000))")
+      ->check(kPositive)
+      ->group(g);
+  cmd->add_option("--gradation", f.sizing.gradation,
+                  "K: sizes change by at most K metres per metre (default 0.2: a tile 2h wide then "
+                  "spans a 40% change of h; larger grades faster with worse quads)")
+      ->check(kPositive)
+      ->group(g);
+  const char* c = "Cross field";
+  cmd->add_option("--cross", f.cross,
+                  "boundary (default): cross field tangent to the boundary, smoothest inside up to "
+                  "the rotation --cross-conformal asks for")
+      ->check(CLI::IsMember({"boundary"}))
+      ->group(c);
+  cmd->add_option("--cross-angle", f.cross_angle_deg, "Constant cross angle in degrees")->group(c);
+  cmd->add_option("--cross-raster", f.cross_raster,
+                  "GDAL raster of cross angles in degrees (counter-clockwise from the x axis)")
+      ->group(c);
+  cmd->add_option("--cross-conformal", f.cross_conformal,
+                  "F: the boundary field turns, inside, by F times the rotation a conformal grid "
+                  "with the sizes has (its singularities go where sizes grade); 0: the smoothest "
+                  "field, as the paper (default 0.5)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->group(c);
+  cmd->add_option("--align", f.align_path,
+                  "Vector file (any format, with a CRS) of lines inside the domain that the "
+                  "cross field follows as it follows the coast: rows of quads run along a "
+                  "channel's axis, a breakwater or a shipping lane; quads follow a line best in a "
+                  "band of even sizes (--refine on the same file with --refine-width-field)")
+      ->group(c);
+  cmd->add_option(
+         "--align-layer", f.align_layer,
+         "Layer of --align to read (default: its first layer of lines, or its first layer)")
+      ->group(c);
+  cmd->add_option(
+         "--background-factor", f.background_factor,
+         "Background triangles are at most this fraction of the tile size 2h (default 0.25)")
+      ->check(CLI::Range(0.001, 1.0))
+      ->group("Background mesh");
+  cmd->add_option("--max-quads", f.max_quads,
+                  "Stop before meshing when the sizes ask for more quads than this (about 3 to 5 "
+                  "KB of memory each; default 1000000; 0: no limit)")
+      ->check(kNonNegative)
+      ->group("Background mesh");
+  cmd->add_option("--plot", f.plot_path, "Also draw a PNG")->group("Output");
+}
+
+// For `domain` (its summary says how much of the boundary the lines follow) and `mesh`.
+void add_open_boundary_options(CLI::App* cmd, FrontEndOptions& fe) {
+  cmd->add_option("--open-boundary", fe.open_boundary_path,
+                  "Vector file (any format, with a CRS) of lines drawn along the domain's edge "
+                  "(or polygons, by their rings): the boundary they follow is open (sea), the "
+                  "rest land, in every output; replaces a water domain's bbox sides")
+      ->group("Output");
+  cmd->add_option("--open-boundary-layer", fe.open_boundary_layer,
+                  "Layer of --open-boundary to read (default: its first layer of lines, or its "
+                  "first layer)")
+      ->group("Output");
+}
+
+void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
+  cmd->add_option("--each", m.each,
+                  "A mesh per value of this attribute over the selected features (each value's "
+                  "features together): {} in -o, --report and --plot stands for the value; a "
+                  "region that fails does not stop the others")
+      ->group("Selection");
+  cmd->add_option("--jobs", m.jobs,
+                  "With --each: regions meshed at once, each on its own thread (default 1). Every "
+                  "region's files are the same; their summaries print in order as they finish, "
+                  "without progress; the peak memory is that of the regions running together")
+      ->check(kPositive)
+      ->group("Selection");
+  cmd->add_flag("--skip-existing", m.skip_existing,
+                "Mesh nothing where every output (with --report and --plot) exists already: with "
+                "--each, those regions are skipped, so that a batch stopped part-way resumes "
+                "where it stopped (a run writes all its outputs or none, and removes its "
+                "unfinished ones when stopped by Ctrl-C or SIGTERM)")
+      ->group("Output");
+  cmd->add_flag("--embed", m.mesh.embed_lines,
+                "With --align: a path of the mesh's edges along each line, its vertices moved "
+                "onto the line (breaklines, dyke crests, thin dams), every quad kept convex; the "
+                "summary says how much of the lines the edges cover")
+      ->group("Cross field");
+  const char* g = "Tiling (paper, sections 2.2 to 2.5)";
+  cmd->add_option("--init", m.init,
+                  "How tiles start: front (default; seeds one tile apart along the cross field, "
+                  "row by row from the boundary inwards) or merge (the paper: triangles merged by "
+                  "compactness)")
+      ->check(CLI::IsMember({"front", "merge"}))
+      ->group(g);
+  cmd->add_option("--relax-iters", m.mesh.tiling.relax_iters,
+                  "Cap on L-infinity relaxation iterations (default 50)")
+      ->check(kNonNegative)
+      ->group(g);
+  cmd->add_option("--conform-iters", m.mesh.tiling.conform_iters,
+                  "Conforming relaxation iterations (default 20)")
+      ->check(kNonNegative)
+      ->group(g);
+  cmd->add_option("--conform-shift", m.mesh.tiling.conform_shift,
+                  "Generator shift: a fraction of the offset between neighbouring tiles (lattice) "
+                  "or of the projected meta-edge length (the other rules) (default 0.2, the "
+                  "paper's)")
+      ->check(CLI::Range(0.0, 1.0))
+      ->group(g);
+  cmd->add_option("--butterfly-max", m.mesh.tiling.butterfly_max,
+                  "Remove butterflies whose inner meta-edge is shorter than this times h (default "
+                  "3; the paper's 0.5 of the tile size 2h is 1)")
+      ->check(kNonNegative)
+      ->group(g);
+  cmd->add_option(
+         "--resplit-rounds", m.mesh.tiling.resplit_rounds,
+         "After the butterflies, rounds of re-splitting two adjacent tiles into a quadrangle "
+         "and the rest (two quadrangles when their union has six meta-vertices), when that leaves "
+         "fewer irregular "
+         "vertices (default 10; 0: none, as the paper)")
+      ->check(kNonNegative)
+      ->group(g);
+  cmd->add_option("--corner-barrier", m.mesh.tiling.barriers.length_h,
+                  "Length, in h, of the edge paths from reflex boundary corners that no tile "
+                  "floods across, so that tiles meet at the corner (default 1; 0: none)")
+      ->check(kNonNegative)
+      ->group(g);
+  cmd->add_option(
+         "--conform-rule", m.conform_rule,
+         "How conforming relaxation shifts a tile: lattice (default; towards the rows and "
+         "columns of its neighbours along the cross field), longest-away (the paper: along "
+         "the longest meta-edge with one corner end, away from the corner), "
+         "longest-towards, or close-shortest (closing the shortest such meta-edge)")
+      ->check(CLI::IsMember({"close-shortest", "longest-away", "longest-towards", "lattice"}))
+      ->group(g);
+  cmd->add_option("--max-attempts", m.mesh.max_attempts,
+                  "Tilings tried before giving up where quads fold or stay non-convex, each "
+                  "with the sizes halved where the one before failed (default 6)")
+      ->check(CLI::Range(1, 100))
+      ->group(g);
+  cmd->add_option(
+         "--corner-angle", m.mesh.tiling.graph.corner_angle_deg,
+         "Boundary vertices turning by more than this many degrees are corners (default 45)")
+      ->check(CLI::Range(0.0, 180.0))
+      ->group(g);
+  cmd->add_option(
+         "--stop-after", m.stop_after,
+         "Stop after a tiling step and plot the tiles: init, relax, conform, butterfly or resplit")
+      ->check(CLI::IsMember({"init", "relax", "conform", "butterfly", "resplit"}))
+      ->group(g);
+  cmd->add_option("--smooth-iters", m.mesh.smooth.iterations,
+                  "Laplacian smoothing sweeps (default 10)")
+      ->check(kNonNegative)
+      ->group("Quads");
+  cmd->add_option("--aligned-iters", m.mesh.smooth.aligned_iterations,
+                  "Field-aligned smoothing sweeps after the Laplacian ones: edges pulled to "
+                  "length h along the cross field (default 20; 0: none)")
+      ->check(kNonNegative)
+      ->group("Quads");
+  cmd->add_option("--angle-iters", m.mesh.smooth.angle_iterations,
+                  "Angle sweeps last: vertices take small moves that bring corners nearer 90 "
+                  "degrees and edges nearer the cross field, keeping sizes (default 20; 0: none)")
+      ->check(kNonNegative)
+      ->group("Quads");
+  cmd->add_option("--orientation-weight", m.mesh.smooth.angle_orientation_weight,
+                  "Weight of the edges' rotation from the cross field in the angle sweeps, "
+                  "against square corners and sizes (default 1.5; 0: none). More turns edges "
+                  "nearer the field at the cost of angles and sizes; less gives better angles "
+                  "(fewer quads under SCHISM's angle ratio)")
+      ->check(kNonNegative)
+      ->group("Quads");
+  cmd->add_option("--schism-weight", m.mesh.smooth.angle_ratio_weight,
+                  "Weight, in the angle sweeps, of each quad whose smallest angle is under half "
+                  "its largest (SCHISM's angle ratio check; default 0.5; 0: none). More gives "
+                  "fewer such quads at the cost of angles in [75,105] and orientation")
+      ->check(kNonNegative)
+      ->group("Quads");
+  cmd->add_option("--max-orthogonality", m.mesh.smooth.max_orthogonality,
+                  "D-Flow FM: last, the interior corners of quads whose links have an "
+                  "orthogonality over this move until they do not, where they can (D-Flow FM "
+                  "refuses a network with one over 0.5, its CosPhiuTrsh: 0.45 leaves a margin; "
+                  "default 0: none). Costs a little of the angles in [75,105]")
+      ->check(CLI::Range(0.0, 1.0))
+      ->group("Quads");
+  cmd->add_option("--coast-weight", m.mesh.smooth.coast_weight,
+                  "Weight, in the angle sweeps, of how far the coast between a boundary edge's "
+                  "ends lies off it (squared, over the edge's length; default 0: none). More "
+                  "slides boundary vertices onto headlands and the heads of inlets, at the cost "
+                  "of angles")
+      ->check(kNonNegative)
+      ->group("Quads");
+  cmd->add_option(
+         "--output-format", m.output_formats,
+         "gpkg, vtu, vtk, msh, gr3, nc, 2dm, mesh, pli, slf or 14: once for every -o, or once per "
+         "-o in order "
+         "(default: by extension)")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->check(CLI::IsMember(
+          {"gpkg", "vtu", "vtk", "msh", "gr3", "nc", "2dm", "mesh", "pli", "slf", "14"}))
+      ->group("Output");
+  cmd->add_option("--msh-version", m.msh_version, "Gmsh file version: 4.1 (default) or 2.2")
+      ->check(CLI::IsMember({"4.1", "2.2"}))
+      ->group("Output");
+  cmd->add_option("--msh-groups", m.msh_groups,
+                  "Gmsh physical groups of the boundary: kind (default: land 1, open 2) or "
+                  "segment (land 1, each open segment its own: open_1, open_2... tagged 11, "
+                  "12..., in hgrid.gr3's order, for a boundary condition per open boundary)")
+      ->check(CLI::IsMember({"kind", "segment"}))
+      ->group("Output");
+  cmd->add_option("--output-crs", m.output_crs,
+                  "Write coordinates in this CRS (e.g. EPSG:4326); SCHISM .gr3 stays in the "
+                  "meshing CRS (its .ll is in lon/lat)")
+      ->group("Output");
+  cmd->add_flag("--schism-split", m.schism_split,
+                "In SCHISM's .gr3 and .ll, each quad that fails SCHISM's checks (smallest over "
+                "largest angle under 0.5, or longest over shortest side over 5) as two "
+                "triangles, as SCHISM's manual asks (its "
+                "fix_bad_quads); the other outputs keep every quad")
+      ->group("Output");
+}
+
+void finish_front_end_args(CommonArgs& a) {
+  if (a.outputs.empty()) throw Error(ErrorClass::usage, "options", "give the output with -o FILE");
+  if (a.outputs.size() > 1 && !a.many_outputs)
+    throw Error(ErrorClass::usage, "options", "this subcommand writes one output: give -o once");
+  a.output = a.outputs.front();
+  a.fe.read.path = a.input;
+  if (!a.fe.open_boundary_layer.empty() && a.fe.open_boundary_path.empty())
+    throw Error(ErrorClass::usage, "options", "--open-boundary-layer needs --open-boundary");
+  if (!a.bbox.empty()) a.fe.read.bbox = parse_bbox(a.bbox);
+  a.fe.kind = a.domain_kind == "water" ? DomainKind::water : DomainKind::land;
+  if (a.simplify_m >= 0) a.fe.simplify_m = a.simplify_m;
+  if (a.min_island_area_m2 >= 0) a.fe.min_island_area_m2 = a.min_island_area_m2;
+  if (a.min_width_m >= 0) a.fe.min_width_m = a.min_width_m;
+}
+
+FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {
+  FieldsOptions o;
+  o.front = a.fe;
+  o.sizing = f.sizing;
+  if (a.fe.target_size_m > 0) o.sizing.constant_m = a.fe.target_size_m;
+  if (f.min_depth_m) o.sizing.min_depth_m = std::max(o.sizing.min_depth_m, *f.min_depth_m);
+  o.sizing.automatic = f.size_auto || !has_explicit_source(o.sizing);
+  if (!std::isnan(f.cross_angle_deg) && !f.cross_raster.empty())
+    throw Error(ErrorClass::usage, "options", "give --cross-angle or --cross-raster, not both");
+  if (!std::isnan(f.cross_angle_deg)) {
+    o.cross.source = CrossSource::constant;
+    o.cross.angle_deg = f.cross_angle_deg;
+  } else if (!f.cross_raster.empty()) {
+    o.cross.source = CrossSource::raster;
+    o.cross.raster_path = f.cross_raster;
+  }
+  o.cross.conformal = f.cross_conformal;
+  if (!f.sizing.refine_width_field.empty() && f.sizing.refine_path.empty())
+    throw Error(ErrorClass::usage, "options", "--refine-width-field needs --refine");
+  if (!f.align_layer.empty() && f.align_path.empty())
+    throw Error(ErrorClass::usage, "options", "--align-layer needs --align");
+  if (!f.align_path.empty() && o.cross.source == CrossSource::constant)
+    throw Error(ErrorClass::usage, "options",
+                "--align shapes the boundary-aligned cross field: not with --cross-angle");
+  o.front.align_path = f.align_path;
+  o.front.align_layer = f.align_layer;
+  o.background_factor = f.background_factor;
+  o.max_quads = f.max_quads;
+  return o;
+}
+
+// The depth rasters can be read, and the options that need depths have them.
+void check_depth_options(const FieldArgs& f) {
+  for (const DepthRaster& r : f.sizing.bathymetry) check_raster(r.path, r.option());
+  if (!f.sizing.bathymetry.empty()) return;
+  auto needs = [](const char* option) {
+    throw Error(ErrorClass::usage, "options",
+                std::string(option) + " needs depths: --bathymetry or --elevation");
+  };
+  if (f.min_depth_m) needs("--min-depth");
+  if (f.sizing.time_step_s > 0) needs("--time-step");
+  if (f.sizing.courant != SizingParams().courant) needs("--courant");
+}
+
+std::vector<MeshOutput> mesh_outputs(const CommonArgs& a, const MeshArgs& m) {
+  const auto& formats = m.output_formats;
+  if (formats.size() > 1 && formats.size() != a.outputs.size())
+    throw Error(ErrorClass::usage, "options",
+                "give --output-format once, or once per -o (" + std::to_string(a.outputs.size()) +
+                    " outputs, " + std::to_string(formats.size()) + " formats)");
+  std::vector<MeshOutput> outs;
+  for (std::size_t i = 0; i < a.outputs.size(); ++i) {
+    MeshOutput o;
+    o.path = a.outputs[i];
+    o.format = formats.empty() ? "" : formats.size() == 1 ? formats[0] : formats[i];
+    o.overwrite = a.overwrite;
+    outs.push_back(o);
+  }
+  return outs;
+}
+
+MeshWriteOptions mesh_write_options(const MeshArgs& m) {
+  MeshWriteOptions w;
+  w.msh_version = m.msh_version;
+  w.msh_groups = m.msh_groups;
+  w.output_crs = m.output_crs;
+  w.schism_split = m.schism_split;
+  return w;
+}
+
+// --skip-existing: every file the run would write exists.
+bool every_output_exists(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m) {
+  std::error_code ec;
+  for (const MeshOutput& o : mesh_outputs(a, m))
+    if (!mesh_output_exists(o)) return false;
+  for (const std::string& p : {a.report_path, f.plot_path})
+    if (!p.empty() && p != kStdoutPath && !std::filesystem::exists(p, ec)) return false;
+  return true;
+}
+
+}  // namespace isoquad::cli

@@ -1,0 +1,91 @@
+// The isoquad command line's arguments: the option structs of the subcommands, their
+// options registered with CLI11 (with the help texts), and their checks and conversions
+// into the library's options.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <limits>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/fields_job.h"
+#include "app/front_end.h"
+#include "app/mesh_job.h"
+#include "io/write_mesh.h"
+
+namespace isoquad::cli {
+
+// Arguments of every subcommand: the input, its selection, projection and cleaning, and
+// the outputs.
+struct CommonArgs {
+  std::string input;
+  std::vector<std::string> outputs;  // -o, repeatable for `mesh`
+  std::string output;                // the first
+  bool many_outputs = false;         // the subcommand accepts several -o
+  std::string bbox;
+  std::string domain_kind = "land";
+  double simplify_m = -1.0;
+  double min_island_area_m2 = -1.0;
+  double min_width_m = -1.0;
+  std::string report_path;
+  bool overwrite = false;
+  bool quiet = false;
+  FrontEndOptions fe;
+};
+
+// Options of the background mesh and the fields (`fields` and `mesh`).
+struct FieldArgs {
+  SizingParams sizing;
+  bool size_auto = false;
+  std::string cross = "boundary";
+  double cross_angle_deg = std::numeric_limits<double>::quiet_NaN();
+  std::string cross_raster;
+  double cross_conformal = CrossParams{}.conformal;
+  std::string align_path, align_layer;
+  double background_factor = 0.25;
+  double max_quads = FieldsOptions{}.max_quads;
+  std::optional<double> min_depth_m;  // --min-depth
+  std::string plot_path;
+};
+
+// The mesh subcommand's own arguments.
+struct MeshArgs {
+  MeshOptions mesh;
+  std::vector<std::string> output_formats;
+  std::string msh_version = "4.1";
+  std::string msh_groups = "kind";
+  std::string output_crs;
+  bool schism_split = false;
+  std::string stop_after;  // empty: the whole job
+  std::string conform_rule = "lattice";
+  std::string init = "front";
+  std::string each;            // --each FIELD: a mesh per value of the attribute
+  int jobs = 1;                // --jobs: regions of --each meshed at once
+  bool skip_existing = false;  // --skip-existing: nothing to do where every output exists
+};
+
+// Input, selection, projection, cleaning and the outputs every subcommand has.
+void add_front_end_options(CLI::App* cmd, CommonArgs& a);
+// Sizing, the cross field and the background mesh (`fields` and `mesh`).
+void add_field_options(CLI::App* cmd, FieldArgs& f);
+// For `domain` (its summary says how much of the boundary the lines follow) and `mesh`.
+void add_open_boundary_options(CLI::App* cmd, FrontEndOptions& fe);
+// The tiling, the quads and the mesh outputs (`mesh`).
+void add_mesh_options(CLI::App* cmd, MeshArgs& m);
+// The front end's options from the arguments (the first output, the bbox, the domain's
+// kind, the cleaning); Error(usage) for arguments that do not fit together.
+void finish_front_end_args(CommonArgs& a);
+// The fields' options from the arguments; Error(usage) for arguments that do not fit
+// together.
+FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f);
+// The depth rasters can be read, and the options that need depths have them.
+void check_depth_options(const FieldArgs& f);
+// The mesh outputs with their formats (--output-format, once or once per -o).
+std::vector<MeshOutput> mesh_outputs(const CommonArgs& a, const MeshArgs& m);
+// The writers' options (--msh-version, --msh-groups, --output-crs, --schism-split).
+MeshWriteOptions mesh_write_options(const MeshArgs& m);
+// --skip-existing: every file the run would write exists.
+bool every_output_exists(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m);
+
+}  // namespace isoquad::cli
