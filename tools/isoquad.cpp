@@ -1,5 +1,6 @@
-// isoquad command-line interface: parses arguments into option structs and calls the
-// library. Every failure maps to one exit code (see kExitCodes below and README.md).
+// isoquad command-line interface: parses arguments into option structs (cli_args.h) and
+// runs the subcommands on the library. Every failure maps to one exit code (see kExitCodes
+// below and README.md).
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
