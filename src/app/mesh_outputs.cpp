@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "app/versions.h"
 #include "core/text.h"
@@ -16,11 +15,7 @@ namespace isoquad {
 
 namespace {
 
-std::string format_number(double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.6g", v);
-  return buf;
-}
+std::string format_number(double v) { return printf_string("%.6g", v); }
 
 }  // namespace
 
