@@ -85,7 +85,7 @@ std::string crs_esri_wkt(const CrsInfo& crs) {
   std::string out = wkt ? wkt : "";
   CPLFree(wkt);
   if (err != OGRERR_NONE || out.empty())
-    throw Error(ErrorClass::crs, "crs", "'" + crs.name + "' has no ESRI WKT form");
+    throw Error(ErrorClass::crs, "crs", crs.name + " has no ESRI WKT form");
   return out;
 }
 

@@ -19,7 +19,7 @@ namespace isoquad {
 void write_mike_mesh_file(const MeshView& v, const std::string& path, const std::string& what) {
   const QuadMesh& m = *v.data->mesh;
   const auto& depth = v.data->depth;
-  const CrsInfo crs{v.crs_wkt, "the output CRS", v.geographic};
+  const CrsInfo crs{v.crs_wkt, "'" + what + "': the CRS", v.geographic};
   const std::string projection = crs_is_wgs84_lonlat(crs) ? "LONG/LAT" : crs_esri_wkt(crs);
   std::vector<int> code(v.points.size(), 0);
   for (const BoundarySegment& s : v.data->boundary.segments)
