@@ -510,6 +510,27 @@ std::vector<MeshOutput> mesh_outputs(const CommonArgs& a, const MeshArgs& m) {
   return outs;
 }
 
+MeshOptions mesh_options(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m) {
+  MeshOptions options = m.mesh;
+  options.fields = fields_options(a, f);
+  if (options.embed_lines && f.align_path.empty())
+    throw Error(ErrorClass::usage, "options", "--embed needs --align: the lines to embed");
+  options.subdivide.corner_angle_deg = options.tiling.graph.corner_angle_deg;
+  options.tiling.conform_rule =
+      m.conform_rule == "longest-away"      ? ConformShiftRule::longest_away_from_corner
+      : m.conform_rule == "longest-towards" ? ConformShiftRule::longest_towards_corner
+      : m.conform_rule == "lattice"         ? ConformShiftRule::lattice
+                                            : ConformShiftRule::close_shortest;
+  options.tiling.init = m.init == "merge" ? TilingInit::merge : TilingInit::front;
+  options.tiling.stop_after = m.stop_after == "init"        ? TilingStep::init
+                              : m.stop_after == "relax"     ? TilingStep::relax
+                              : m.stop_after == "conform"   ? TilingStep::conform
+                              : m.stop_after == "butterfly" ? TilingStep::butterfly
+                              : m.stop_after == "resplit"   ? TilingStep::resplit
+                                                            : TilingStep::none;
+  return options;
+}
+
 MeshWriteOptions mesh_write_options(const MeshArgs& m) {
   MeshWriteOptions w;
   w.msh_version = m.msh_version;

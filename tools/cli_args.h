@@ -83,6 +83,9 @@ FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f);
 void check_depth_options(const FieldArgs& f);
 // The mesh outputs with their formats (--output-format, once or once per -o).
 std::vector<MeshOutput> mesh_outputs(const CommonArgs& a, const MeshArgs& m);
+// The mesh job's options from the arguments (the fields', the tiling's choices named on
+// the command line); Error(usage) for --embed without --align.
+MeshOptions mesh_options(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m);
 // The writers' options (--msh-version, --msh-groups, --output-crs, --schism-split).
 MeshWriteOptions mesh_write_options(const MeshArgs& m);
 // --skip-existing: every file the run would write exists.

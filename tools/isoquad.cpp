@@ -198,22 +198,7 @@ RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::stri
   check_report_path(a);
   if (tiling_only && f.plot_path.empty() && a.report_path.empty())
     throw Error(ErrorClass::usage, "options", "--stop-after needs --plot or --report to show the tiling");
-  MeshOptions options = m.mesh;
-  options.fields = fields_options(a, f);
-  if (options.embed_lines && f.align_path.empty())
-    throw Error(ErrorClass::usage, "options", "--embed needs --align: the lines to embed");
-  options.subdivide.corner_angle_deg = options.tiling.graph.corner_angle_deg;
-  options.tiling.conform_rule = m.conform_rule == "longest-away" ? ConformShiftRule::longest_away_from_corner
-                                 : m.conform_rule == "longest-towards" ? ConformShiftRule::longest_towards_corner
-                                 : m.conform_rule == "lattice" ? ConformShiftRule::lattice
-                                                                     : ConformShiftRule::close_shortest;
-  options.tiling.init = m.init == "merge" ? TilingInit::merge : TilingInit::front;
-  options.tiling.stop_after = m.stop_after == "init"      ? TilingStep::init
-                              : m.stop_after == "relax"   ? TilingStep::relax
-                              : m.stop_after == "conform" ? TilingStep::conform
-                              : m.stop_after == "butterfly" ? TilingStep::butterfly
-                              : m.stop_after == "resplit" ? TilingStep::resplit
-                                                          : TilingStep::none;
+  const MeshOptions options = mesh_options(a, f, m);
   const auto t0 = std::chrono::steady_clock::now();
   // The outputs (depths, files, plot) take the last 5%: seconds on large meshes.
   const Progress progress(make_progress(a.quiet || !console.progress));
