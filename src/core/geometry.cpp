@@ -273,18 +273,23 @@ bool PolylineIndex::near(const Point2& p, double tolerance) const {
   return found;
 }
 
-bool PolylineIndex::nearest_segment(const Point2& p, double tolerance, Point2& a, Point2& b) const {
-  double best = INFINITY;
-  int best_line = -1, best_segment = -1;
+PolylineIndex::Nearest PolylineIndex::nearest(const Point2& p, double tolerance) const {
+  Nearest best;
+  best.distance = INFINITY;
   visit_near(p, tolerance, [&](int line, int segment, double d) {
-    if (d < best ||
-        (d == best && (line < best_line || (line == best_line && segment < best_segment))))
-      best = d, best_line = line, best_segment = segment;
+    if (d < best.distance ||
+        (d == best.distance && (line < best.line || (line == best.line && segment < best.segment))))
+      best = {line, segment, d};
     return true;
   });
-  if (best_line < 0) return false;
-  a = lines_[best_line][best_segment];
-  b = lines_[best_line][best_segment + 1];
+  return best;
+}
+
+bool PolylineIndex::nearest_segment(const Point2& p, double tolerance, Point2& a, Point2& b) const {
+  const Nearest n = nearest(p, tolerance);
+  if (n.line < 0) return false;
+  a = lines_[n.line][n.segment];
+  b = lines_[n.line][n.segment + 1];
   return true;
 }
 

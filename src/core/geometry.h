@@ -95,6 +95,13 @@ class PolylineIndex {
   // in a and b; false when there is none. Of segments as near, the first line's, then
   // the first segment's.
   bool nearest_segment(const Point2& p, double tolerance, Point2& a, Point2& b) const;
+  // The same segment as its line and index (segment k joins points k and k + 1 of the
+  // line) with its distance to p; line -1 when there is none.
+  struct Nearest {
+    int line = -1, segment = -1;
+    double distance = 0.0;
+  };
+  Nearest nearest(const Point2& p, double tolerance) const;
 
  private:
   // Calls visit(line, segment, distance) for each segment within `tolerance` (plus its

@@ -16,6 +16,7 @@
 #include "gis/atomic_output.h"
 #include "gis/crs.h"
 #include "io/mesh_boundary.h"
+#include "io/read_mesh.h"
 #include "io/write_mesh.h"
 #include "support/test_support.h"
 
@@ -731,4 +732,51 @@ TEST(MeshOutputs, FailureMidWriteLeavesNothing) {
   std::filesystem::remove_all(blocker);
   write_mesh_outputs(f.data(), {{dir.file("a.gpkg"), "", false}, {dir.file("b.vtk"), "", false}});
   EXPECT_EQ(dir.entries().size(), 2u);
+}
+
+// read_mesh reads back what the writers write: the same nodes (to the files' precision)
+// and the same quads in every format that holds quads; ADCIRC's .14 two triangles per
+// quad over the same area; the MIKE file's projection as its CRS.
+TEST(MeshOutputs, ReadMeshReadsBackEveryFormat) {
+  const Fixture f;
+  TempDir dir;
+  double area = 0;
+  for (int q = 0; q < static_cast<int>(f.mesh.quads.size()); ++q) area += quad_area(f.mesh, q);
+  for (const std::string version : {"4.1", "2.2"}) {
+    MeshWriteOptions options;
+    options.msh_version = version;
+    const std::string stem = "m" + std::string(version == "2.2" ? "22" : "41");
+    std::vector<MeshOutput> outputs;
+    for (const char* ext : {".gr3", ".2dm", ".msh", ".mesh"})
+      outputs.push_back({dir.file(stem + ext), "", false});
+    write_mesh_outputs(f.data(), outputs, options);
+    for (const MeshOutput& o : outputs) {
+      SCOPED_TRACE(o.path);
+      const ReadMesh m = read_mesh(o.path);
+      ASSERT_EQ(m.points.size(), f.mesh.points.size());
+      for (std::size_t i = 0; i < m.points.size(); ++i)
+        EXPECT_LT(distance(m.points[i], f.mesh.points[i]), 1e-5);
+      EXPECT_EQ(m.quads, f.mesh.quads);
+      EXPECT_TRUE(m.triangles.empty());
+      // The .msh's boundary lines (its physical groups) are skipped.
+      const bool msh = o.path.find(".msh") != std::string::npos;
+      EXPECT_EQ(m.num_skipped_elements > 0, msh);
+      if (o.path.find(".mesh") != std::string::npos) {
+        ASSERT_FALSE(m.crs.empty());
+        EXPECT_EQ(parse_crs(m.crs, "the .mesh").name, parse_crs(f.crs_wkt, "EPSG:32631").name);
+      }
+    }
+  }
+  // ADCIRC's grid in the mesh's CRS (ICS 1).
+  MeshWriteOptions utm;
+  utm.output_crs = "EPSG:32631";
+  write_mesh_outputs(f.data(), {{dir.file("fort.14"), "", false}}, utm);
+  const ReadMesh adcirc = read_mesh(dir.file("fort.14"));
+  EXPECT_EQ(adcirc.format, "14");
+  EXPECT_TRUE(adcirc.quads.empty());
+  ASSERT_EQ(adcirc.triangles.size(), 2 * f.mesh.quads.size());
+  double triangles = 0;
+  for (const auto& t : adcirc.triangles)
+    triangles += signed_area(adcirc.points[t[0]], adcirc.points[t[1]], adcirc.points[t[2]]);
+  EXPECT_NEAR(triangles, area, 1e-3);
 }

@@ -1,0 +1,36 @@
+// Reading meshes that other tools wrote (and isoquad's own outputs), to measure them:
+// SCHISM's .gr3/.ll, ADCIRC's .14, SMS's .2dm, Gmsh's .msh (ASCII 2.2 and 4.1) and
+// MIKE 21/3 FM's .mesh. Only the nodes and the 2D elements are read: triangles and
+// quadrangles.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+
+namespace isoquad {
+
+struct ReadMesh {
+  std::string format;                     // "gr3", "14", "2dm", "msh", "mesh"
+  std::vector<Point2> points;             // as in the file
+  std::vector<std::array<int, 4>> quads;  // 0-based indices into points, as in the file
+  std::vector<std::array<int, 3>> triangles;
+  // The file's CRS, when the format holds one (MIKE's projection: "EPSG:4326" for its
+  // LONG/LAT, else its WKT); empty otherwise.
+  std::string crs;
+  std::size_t num_skipped_elements = 0;  // lines and points of a .msh
+};
+
+// The format from the file's extension (.gr3, .ll, .14 (also fort.14 and .grd), .2dm,
+// .msh, .mesh); Error(usage) for any other.
+std::string mesh_file_format(const std::string& path);
+
+// Reads the mesh. Error(input) naming the file and the line for what it cannot read:
+// a missing or malformed line, an element with a node that is not in the file, an
+// element of another kind than a triangle or a quadrangle (second-order elements), a
+// binary .msh.
+ReadMesh read_mesh(const std::string& path);
+
+}  // namespace isoquad

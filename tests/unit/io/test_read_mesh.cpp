@@ -1,0 +1,140 @@
+// read_mesh on files written by hand as other tools write them (node ids out of order,
+// mixed triangles and quadrangles, nodes after elements, Fortran exponents, CRLF), and
+// its errors: each names the file and the line.
+#include <gtest/gtest.h>
+
+#include "core/error.h"
+#include "io/read_mesh.h"
+#include "support/test_support.h"
+
+using namespace isoquad;
+using namespace isoquad::test;
+
+namespace {
+
+// The error read_mesh gives for `text` in a file of that name, or "" when it reads it.
+std::string read_error(const TempDir& dir, const std::string& name, const std::string& text) {
+  write_file(dir.file(name), text);
+  try {
+    read_mesh(dir.file(name));
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::input) << e.what();
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(ReadMesh, Gr3WithMixedElementsAndIdsOutOfOrder) {
+  TempDir dir;
+  // Nodes numbered 10, 30, 20, 40, 50: the elements refer to the ids, not the order.
+  write_file(dir.file("hgrid.gr3"),
+             "grid\r\n3 5\r\n10 0 0 -1\r\n30 1.0D+01 0 2\r\n20 10 10 3\r\n40 0 10 4\r\n"
+             "50 2e1 5 1\r\n1 4 10 30 20 40\r\n2 3 30 50 20\r\n3 3 10 30 40\r\n"
+             "1 = Number of open boundaries\r\n");
+  const ReadMesh m = read_mesh(dir.file("hgrid.gr3"));
+  EXPECT_EQ(m.format, "gr3");
+  ASSERT_EQ(m.points.size(), 5u);
+  EXPECT_EQ(m.points[1].x, 10.0);  // the Fortran exponent
+  EXPECT_EQ(m.points[4].x, 20.0);
+  ASSERT_EQ(m.quads.size(), 1u);
+  EXPECT_EQ(m.quads[0], (std::array<int, 4>{0, 1, 2, 3}));
+  ASSERT_EQ(m.triangles.size(), 2u);
+  EXPECT_EQ(m.triangles[0], (std::array<int, 3>{1, 4, 2}));
+  EXPECT_TRUE(m.crs.empty());
+}
+
+TEST(ReadMesh, TwoDmWithNodesAfterElements) {
+  TempDir dir;
+  write_file(dir.file("m.2dm"),
+             "MESH2D\nMESHNAME \"test\"\nE4Q 1 1 2 3 4 1\nE3T 2 2 5 3 1\nND 1 0 0 0\n"
+             "ND 2 10 0 0\nND 3 10 10 0\nND 4 0 10 0\nND 5 20 5 0\nNS 1 2 -5\n");
+  const ReadMesh m = read_mesh(dir.file("m.2dm"));
+  EXPECT_EQ(m.quads.size(), 1u);
+  EXPECT_EQ(m.triangles.size(), 1u);
+  EXPECT_EQ(m.points.size(), 5u);
+}
+
+TEST(ReadMesh, MikeMeshWithTrianglesAndLonLat) {
+  TempDir dir;
+  write_file(dir.file("m.mesh"),
+             "100079 1000 5 LONG/LAT\n1 0 0 -1 1\n2 1 0 -1 1\n3 1 1 -1 1\n4 0 1 -1 1\n"
+             "5 2 0.5 -1 1\n2 4 25\n1 1 2 3 4\n2 2 5 3 0\n");
+  const ReadMesh m = read_mesh(dir.file("m.mesh"));
+  EXPECT_EQ(m.crs, "EPSG:4326");
+  EXPECT_EQ(m.quads.size(), 1u);
+  ASSERT_EQ(m.triangles.size(), 1u);
+  EXPECT_EQ(m.triangles[0], (std::array<int, 3>{1, 4, 2}));
+}
+
+TEST(ReadMesh, Msh41WithBlocksOfSeveralTypes) {
+  TempDir dir;
+  write_file(dir.file("m.msh"),
+             "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n2 5 1 7\n"
+             "2 1 0 4\n1\n2\n3\n4\n0 0 0\n10 0 0\n10 10 0\n0 10 0\n"
+             "2 2 0 1\n7\n20 5 0\n$EndNodes\n$Elements\n3 3 1 3\n"
+             "1 1 1 1\n1 1 2\n2 1 3 1\n2 1 2 3 4\n2 2 2 1\n3 2 7 3\n$EndElements\n");
+  const ReadMesh m = read_mesh(dir.file("m.msh"));
+  EXPECT_EQ(m.points.size(), 5u);
+  ASSERT_EQ(m.quads.size(), 1u);
+  ASSERT_EQ(m.triangles.size(), 1u);
+  EXPECT_EQ(m.triangles[0], (std::array<int, 3>{1, 4, 2}));
+  EXPECT_EQ(m.num_skipped_elements, 1u);
+}
+
+TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
+  TempDir dir;
+  EXPECT_NE(read_error(dir, "a.gr3", "grid\n1 3\n1 0 0 0\n2 1 0 0\n3 1 1 0\n1 3 1 2 9\n")
+                .find("a.gr3' line 6: element 1 has node 9, which is not among the file's nodes"),
+            std::string::npos);
+  EXPECT_NE(read_error(dir, "b.gr3", "grid\n1 3\n1 0 0 0\n2 1 0 0\n")
+                .find("b.gr3': the file ends at line 4"),
+            std::string::npos);
+  EXPECT_NE(read_error(dir, "c.gr3", "grid\n1 3\n1 0 0 0\n2 1 x 0\n3 1 1 0\n1 3 1 2 3\n")
+                .find("line 4: expected y, a number, found 'x'"),
+            std::string::npos);
+  EXPECT_NE(
+      read_error(dir, "d.gr3", "grid\n1 4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n1 5 1 2 3 4 1\n")
+          .find("line 7: element 1 has 5 nodes"),
+      std::string::npos);
+  EXPECT_NE(read_error(dir, "e.gr3", "grid\n1 3\n1 0 0 0\n2 1 0 0\n3 1 1 0\n1 3 1 2 2\n")
+                .find("element 1 has the same node twice"),
+            std::string::npos);
+  EXPECT_NE(read_error(dir, "f.2dm", "MESH2D\nND 1 0 0 0\nE6T 1 1 1 1 1 1 1 1\n")
+                .find("line 3: element card E6T"),
+            std::string::npos);
+  EXPECT_NE(read_error(dir, "g.2dm", "MESH2D\nE3T 1 1 2 3 1\nND 1 0 0 0\nND 2 1 0 0\n")
+                .find("g.2dm' line 2: element 1 has node 3, which is not among the ND cards"),
+            std::string::npos);
+  EXPECT_NE(
+      read_error(dir, "h.msh", "$MeshFormat\n4.1 1 8\n$EndMeshFormat\n").find("a binary .msh"),
+      std::string::npos);
+  EXPECT_NE(read_error(dir, "i.msh",
+                       "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n"
+                       "2 1 0 0\n3 1 1 0\n$EndNodes\n$Elements\n1\n1 9 2 0 1 1 2 3 1 2 3\n"
+                       "$EndElements\n")
+                .find("line 12: Gmsh element type 9"),
+            std::string::npos);
+  EXPECT_NE(read_error(dir, "j.msh", "hello\n").find("no $MeshFormat section"), std::string::npos);
+  EXPECT_NE(
+      read_error(dir, "k.mesh", "100079 1000 3 LONG/LAT\n1 0 0 0 1\n2 1 0 0 1\n3 1 1 0 1\n1 5 25\n")
+          .find("elements of 5 nodes"),
+      std::string::npos);
+  EXPECT_NE(read_error(dir, "l.2dm", "MESH2D\nND 1 0 0 0\n")
+                .find("the mesh has no triangle or quadrangle"),
+            std::string::npos);
+  // Not a mesh format, or no such file.
+  try {
+    read_mesh(dir.file("m.shp"));
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::usage);
+  }
+  try {
+    read_mesh(dir.file("missing.gr3"));
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("missing.gr3': no such mesh file"), std::string::npos);
+  }
+}
