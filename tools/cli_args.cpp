@@ -60,13 +60,16 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
                   "of lines whose rings make them (a coastline drawn as lines; also Delft3D/D-Flow "
                   "FM .ldb, .pol, .pli and Blue Kenue .i2s, with --src-crs)")
       ->required();
-  cmd->add_option("-o,--output", a.outputs,
-                  a.many_outputs ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, "
-                                   ".pli, .slf, .14); repeat for several"
-                                 : "Output file (.gpkg)")
-      ->required()
-      ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  CLI::Option* output =
+      cmd->add_option(
+             "-o,--output", a.outputs,
+             a.output_optional ? "Also write the measured quads with their metrics (.gpkg or .vtu)"
+             : a.many_outputs  ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, "
+                                 ".pli, .slf, .14); repeat for several"
+                               : "Output file (.gpkg)")
+          ->expected(1)
+          ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  if (!a.output_optional) output->required();
   cmd->add_option("--layer", a.fe.read.layer,
                   "Layer to read (default: the only layer, or the first with polygons)")
       ->group("Selection");
@@ -120,6 +123,19 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
       ->group("Output");
   cmd->add_flag("--overwrite", a.overwrite, "Replace existing output files")->group("Output");
   cmd->add_flag("-q,--quiet", a.quiet, "Print nothing but errors")->group("Output");
+}
+
+void add_quality_options(CLI::App* cmd, QualityArgs& q) {
+  cmd->add_option("--mesh", q.mesh_path,
+                  "The mesh to measure: SCHISM .gr3 or .ll, ADCIRC .14, SMS .2dm, Gmsh .msh "
+                  "(ASCII 2.2 or 4.1) or MIKE .mesh; triangles and quadrangles")
+      ->required()
+      ->group("Mesh");
+  cmd->add_option("--mesh-crs", q.mesh_crs,
+                  "CRS of the mesh's coordinates (EPSG:4326 for a .ll or a .14 in longitudes "
+                  "and latitudes; default: the .mesh's own, else the meshing CRS, as "
+                  "--dst-crs or the automatic projection gives it)")
+      ->group("Mesh");
 }
 
 void add_field_options(CLI::App* cmd, FieldArgs& f) {
@@ -435,10 +451,11 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
 }
 
 void finish_front_end_args(CommonArgs& a) {
-  if (a.outputs.empty()) throw Error(ErrorClass::usage, "options", "give the output with -o FILE");
+  if (a.outputs.empty() && !a.output_optional)
+    throw Error(ErrorClass::usage, "options", "give the output with -o FILE");
   if (a.outputs.size() > 1 && !a.many_outputs)
     throw Error(ErrorClass::usage, "options", "this subcommand writes one output: give -o once");
-  a.output = a.outputs.front();
+  a.output = a.outputs.empty() ? "" : a.outputs.front();
   a.fe.read.path = a.input;
   if (!a.fe.open_boundary_layer.empty() && a.fe.open_boundary_path.empty())
     throw Error(ErrorClass::usage, "options", "--open-boundary-layer needs --open-boundary");

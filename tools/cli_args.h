@@ -23,6 +23,7 @@ struct CommonArgs {
   std::vector<std::string> outputs;  // -o, repeatable for `mesh`
   std::string output;                // the first
   bool many_outputs = false;         // the subcommand accepts several -o
+  bool output_optional = false;      // -o may be left out (`quality`)
   std::string bbox;
   std::string domain_kind = "land";
   double simplify_m = -1.0;
@@ -65,8 +66,16 @@ struct MeshArgs {
   bool skip_existing = false;  // --skip-existing: nothing to do where every output exists
 };
 
+// The quality subcommand's own arguments.
+struct QualityArgs {
+  std::string mesh_path;  // --mesh
+  std::string mesh_crs;   // --mesh-crs
+};
+
 // Input, selection, projection, cleaning and the outputs every subcommand has.
 void add_front_end_options(CLI::App* cmd, CommonArgs& a);
+// The mesh to measure (`quality`).
+void add_quality_options(CLI::App* cmd, QualityArgs& q);
 // Sizing, the cross field and the background mesh (`fields` and `mesh`).
 void add_field_options(CLI::App* cmd, FieldArgs& f);
 // For `domain` (its summary says how much of the boundary the lines follow) and `mesh`.

@@ -18,6 +18,7 @@
 #include "app/front_end.h"
 #include "app/mesh_job.h"
 #include "app/mesh_outputs.h"
+#include "app/quality_job.h"
 #include "app/summary.h"
 #include "app/versions.h"
 #include "cli_args.h"
@@ -26,9 +27,11 @@
 #include "gis/atomic_output.h"
 #include "gis/read_polygons.h"
 #include "gis/write_domain.h"
+#include "io/mesh_boundary.h"
 #include "io/write_fields.h"
 #include "io/write_mesh.h"
 #include "plot/plot_fields.h"
+#include "plot/plot_mesh.h"
 
 namespace {
 
@@ -236,6 +239,79 @@ RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::stri
   return outcome;
 }
 
+// A mesh from a file measured against the domain's fields; -o and --plot as the mesh
+// job's, for a mesh of quads alone.
+int run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
+                const std::string& command_line) {
+  finish_front_end_args(a);
+  std::vector<MeshOutput> outputs;
+  for (const std::string& o : a.outputs) {
+    const std::string ext = std::filesystem::path(o).extension().string();
+    if (ext != ".gpkg" && ext != ".vtu")
+      throw Error(ErrorClass::usage, "options",
+                  "'" + o + "': the measured quads are written as .gpkg or .vtu");
+    outputs.push_back({o, "", a.overwrite});
+  }
+  if (!outputs.empty()) check_mesh_outputs(outputs, MeshWriteOptions());
+  if (!f.plot_path.empty()) check_output_path(f.plot_path, a.overwrite);
+  check_report_path(a);
+  mesh_file_format(q.mesh_path);  // a format it reads, before any work
+  check_depth_options(f);
+  QualityJobOptions options;
+  options.fields = fields_options(a, f);
+  options.mesh_path = q.mesh_path;
+  options.mesh_crs = q.mesh_crs;
+  const auto t0 = std::chrono::steady_clock::now();
+  const Progress progress(make_progress(a.quiet));
+  const QualityJobResult r = measure_mesh_file(options, progress);
+  const bool quads_only = r.num_triangles == 0 && !r.quads.quads.empty();
+  if ((!outputs.empty() || !f.plot_path.empty()) && !quads_only)
+    throw Error(ErrorClass::usage, "options",
+                "'" + q.mesh_path + "' has " + std::to_string(r.num_triangles) +
+                    " triangles: -o and --plot show meshes of quadrangles alone");
+  OutputSet set;
+  if (!outputs.empty()) {
+    MeshOutputData data;
+    data.mesh = &r.quads;
+    data.metrics = &r.metrics;
+    data.crs_wkt = r.fields.front.domain.crs_wkt;
+    try {
+      data.boundary = extract_boundary(r.quads, PolylineIndex(), r.on_boundary_tolerance_m);
+    } catch (const Error& e) {
+      throw Error(ErrorClass::input, "quality",
+                  "'" + q.mesh_path + "': its boundary is not a set of simple loops (" +
+                      e.message() + "): -o cannot write it");
+    }
+    data.command_line = command_line;
+    data.libraries = library_versions_line();
+    data.quality = quality_items(r.quality);
+    write_mesh_outputs(data, outputs, MeshWriteOptions(), set);
+  }
+  if (!f.plot_path.empty()) {
+    PlotMeshParams pp;
+    pp.path = set.add(f.plot_path, a.overwrite);
+    pp.overwrite = true;
+    plot_mesh(r.quads, r.metrics, r.quality, pp);
+  }
+  const std::string report = quality_job_report_json(r, command_line);
+  write_report(a, set, report);
+  set.commit_all();
+  if (a.report_path == kStdoutPath) std::cout << report << std::flush;
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (!a.quiet) {
+    std::cerr << format_domain_summary(r.fields.front.summary) << format_fields_summary(r.fields)
+              << format_quality_job_summary(r);
+    for (const std::string& o : a.outputs) std::cerr << "output:       " << o << "\n";
+    if (!f.plot_path.empty()) std::cerr << "plot:         " << f.plot_path << "\n";
+    std::fprintf(stderr, "time:         %.3f s, peak memory %.0f MB\n", seconds, process_peak_mb());
+    for (const std::string& w : r.fields.front.summary.warnings)
+      std::cerr << "isoquad: warning: " << w << "\n";
+    for (const std::string& w : r.warnings) std::cerr << "isoquad: warning: " << w << "\n";
+  }
+  return 0;
+}
+
 // --each FIELD: run_mesh once per value of the attribute, with the value's features
 // (and --where's) selected and {} in the output paths replaced by the value (made safe
 // for a file name). Failures are reported and the others go on; the exit code is the
@@ -373,6 +449,21 @@ int main(int argc, char** argv) {
   add_open_boundary_options(mesh_cmd, mesh_args.fe);
   mesh_cmd->footer(kExitCodes);
 
+  CommonArgs quality_args;
+  quality_args.output_optional = true;
+  FieldArgs quality_field_args;
+  QualityArgs quality_extra;
+  CLI::App* quality_cmd = app.add_subcommand(
+      "quality",
+      "Measure a mesh made by another tool (Gmsh, SMS, OceanMesh2D...) or an earlier run "
+      "(--mesh: .gr3, .ll, .14, .2dm, .msh, .mesh) as `mesh` measures its own: angles, "
+      "regularity, SCHISM's and D-Flow FM's checks, and its sizes and orientation against "
+      "the fields that INPUT and the same options give; the same summary and --report.");
+  add_front_end_options(quality_cmd, quality_args);
+  add_field_options(quality_cmd, quality_field_args);
+  add_quality_options(quality_cmd, quality_extra);
+  quality_cmd->footer(kExitCodes);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -402,6 +493,9 @@ int main(int argc, char** argv) {
       if (!mesh_args.quiet) std::cerr << "skipped: every output exists (--skip-existing)\n";
       return 0;
     }
+    if (quality_cmd->parsed())
+      return run_quality(quality_args, quality_field_args, quality_extra,
+                         joined_command_line(argc, argv));
     if (mesh_cmd->parsed()) {
       run_mesh(mesh_args, mesh_field_args, mesh_extra, joined_command_line(argc, argv));
       return 0;

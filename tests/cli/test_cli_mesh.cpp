@@ -114,13 +114,6 @@ void collect_parts(OGRLayer* layer, Multi& out) {
   }
 }
 
-// The number after "key": in a JSON report.
-double report_number(const std::string& report, const std::string& key) {
-  const std::size_t at = report.find("\"" + key + "\": ");
-  EXPECT_NE(at, std::string::npos) << key;
-  return at == std::string::npos ? std::nan("") : std::stod(report.substr(at + key.size() + 4));
-}
-
 // Issue 5's properties of a mesh of a real domain, against the domain `isoquad domain`
 // writes with the same front-end options: only quads, all strictly convex and
 // counter-clockwise, none overlapping another; every boundary vertex within 1e-6 h of

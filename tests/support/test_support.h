@@ -1,6 +1,7 @@
 // Helpers shared by the tests: temporary directories, fixture files, running the CLI.
 #pragma once
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -123,6 +124,14 @@ inline std::string python_check(const TempDir& dir, const std::string& script,
   const CliResult r = run_python(dir, script, args);
   EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
   return r.out;
+}
+
+// The first number under `key` in a JSON report ("key": value); NaN (and a failure)
+// when it has none.
+inline double report_number(const std::string& report, const std::string& key) {
+  const std::size_t at = report.find("\"" + key + "\": ");
+  EXPECT_NE(at, std::string::npos) << key;
+  return at == std::string::npos ? std::nan("") : std::stod(report.substr(at + key.size() + 4));
 }
 
 // Runs the built isoquad binary.

@@ -1,0 +1,298 @@
+#include "app/quality_job.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "app/quality_report.h"
+#include "app/summary.h"
+#include "core/error.h"
+#include "core/json_writer.h"
+#include "core/stage_clock.h"
+#include "core/text.h"
+#include "gis/crs.h"
+#include "mesh/locate.h"
+
+namespace isoquad {
+
+namespace {
+
+double triangle_signed_area(const std::vector<Point2>& p, const std::array<int, 3>& t) {
+  return signed_area(p[t[0]], p[t[1]], p[t[2]]);
+}
+
+double quad_signed_area(const std::vector<Point2>& p, const std::array<int, 4>& q) {
+  double a = 0;
+  for (int i = 0; i < 4; ++i) {
+    const Point2 &u = p[q[i]], &v = p[q[(i + 1) % 4]];
+    a += u.x * v.y - v.x * u.y;
+  }
+  return 0.5 * a;
+}
+
+// The mesh's points into the meshing CRS; records what they were read in.
+void to_meshing_crs(const QualityJobOptions& options, const ReadMesh& file,
+                    const std::string& meshing_wkt, std::vector<Point2>& points,
+                    QualityJobResult& r) {
+  const std::string given = !options.mesh_crs.empty() ? options.mesh_crs : file.crs;
+  const CrsInfo meshing = parse_crs(meshing_wkt, "the meshing CRS");
+  if (given.empty()) {
+    r.mesh_crs = "the meshing CRS (as the domain is projected)";
+    return;
+  }
+  const CrsInfo from =
+      parse_crs(given, options.mesh_crs.empty() ? "'" + options.mesh_path + "' (its projection)"
+                                                : "--mesh-crs");
+  r.mesh_crs = from.name.empty() ? given : from.name;
+  const CrsTransform transform(from, meshing);
+  const long failed = transform.transform(points);
+  if (failed >= 0)
+    throw Error(ErrorClass::crs, "crs",
+                "'" + options.mesh_path + "': node " + std::to_string(failed + 1) + " at " +
+                    format_point(points[failed]) + " cannot be transformed from " + r.mesh_crs +
+                    " into the meshing CRS");
+  r.transformed = true;
+}
+
+// The background mesh's boundary chains as closed polylines, with each vertex's arc
+// length along its chain.
+struct ChainLines {
+  std::vector<std::vector<Point2>> lines;
+  std::vector<std::vector<double>> arc;
+};
+
+ChainLines chain_lines(const BackgroundMesh& bg) {
+  ChainLines c;
+  for (const BoundaryChain& chain : bg.chains) {
+    std::vector<Point2> line;
+    std::vector<double> arc = chain.arc_length_m;
+    for (int v : chain.vertices) line.push_back(bg.points[v]);
+    if (!line.empty()) line.push_back(line.front());
+    arc.push_back(chain.length_m);
+    c.lines.push_back(std::move(line));
+    c.arc.push_back(std::move(arc));
+  }
+  return c;
+}
+
+// Puts the quads' boundary vertices that lie on the domain's boundary onto its chains
+// (QuadMesh::chain and arc_m), so that the coast's departure from the mesh is measured as
+// for isoquad's own meshes; counts the others and how far off they lie.
+void place_on_chains(const BackgroundMesh& bg, QuadMesh& m, QualityJobResult& r) {
+  const int np = static_cast<int>(m.points.size());
+  m.chain.assign(np, -1);
+  m.arc_m.assign(np, 0.0);
+  m.fixed.assign(np, 0);
+  double xmin = INFINITY, ymin = INFINITY, xmax = -INFINITY, ymax = -INFINITY;
+  for (const Point2& p : bg.points) {
+    xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
+    ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
+  }
+  // The mesh's nodes written with six decimals, or Gmsh's on the domain's segments.
+  r.on_boundary_tolerance_m = std::max(1e-3, 1e-7 * std::hypot(xmax - xmin, ymax - ymin));
+  std::vector<double> lengths;
+  for (const auto& q : m.quads)
+    for (int i = 0; i < 4; ++i)
+      lengths.push_back(distance(m.points[q[i]], m.points[q[(i + 1) % 4]]));
+  std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+  r.off_boundary_search_m = 10 * lengths[lengths.size() / 2];
+
+  const ChainLines chains = chain_lines(bg);
+  const PolylineIndex index(chains.lines);
+  std::vector<char> boundary(np, 0);
+  for (const auto& e : boundary_edges(m)) boundary[e[0]] = boundary[e[1]] = 1;
+  for (int v = 0; v < np; ++v) {
+    if (!boundary[v]) continue;
+    const Point2& p = m.points[v];
+    PolylineIndex::Nearest n = index.nearest(p, r.on_boundary_tolerance_m);
+    if (n.line >= 0) {
+      const Point2 &a = chains.lines[n.line][n.segment], &b = chains.lines[n.line][n.segment + 1];
+      const double length = distance(a, b);
+      const double t = length > 0
+                           ? std::clamp(((p.x - a.x) * (b.x - a.x) + (p.y - a.y) * (b.y - a.y)) /
+                                            (length * length),
+                                        0.0, 1.0)
+                           : 0.0;
+      m.chain[v] = n.line;
+      m.arc_m[v] = chains.arc[n.line][n.segment] + t * length;
+      ++r.num_boundary_on;
+      continue;
+    }
+    ++r.num_boundary_off;
+    n = index.nearest(p, r.off_boundary_search_m);
+    if (n.line < 0)
+      ++r.num_boundary_far;
+    else
+      r.boundary_off_max_m = std::max(r.boundary_off_max_m, n.distance);
+  }
+}
+
+}  // namespace
+
+QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progress& progress) {
+  QualityJobResult r;
+  progress.report("read mesh", 0.0);
+  StageClock clock(r.fields.times);
+  ReadMesh file = read_mesh(options.mesh_path);
+  clock.lap("mesh read");
+  r.format = file.format;
+  r.num_skipped_elements = file.num_skipped_elements;
+  std::vector<StageTime> read_times = r.fields.times;
+  r.fields = build_fields(options.fields, progress.slice(0.05, 0.85));
+  r.fields.times.insert(r.fields.times.begin(), read_times.begin(), read_times.end());
+  StageClock measure_clock(r.fields.times);
+  progress.report("measure", 0.85);
+
+  std::vector<Point2> points = file.points;
+  to_meshing_crs(options, file, r.fields.front.domain.crs_wkt, points, r);
+
+  // The mesh must lie on the domain and cover about as much: another CRS puts it
+  // elsewhere, or makes it far larger or smaller (degrees read as metres).
+  const TriangleLocator locator(r.fields.mesh);
+  std::size_t inside = 0;
+  for (const Point2& p : points) inside += locator.locate(p).triangle >= 0;
+  double mesh_area = 0;
+  for (const auto& q : file.quads) mesh_area += std::abs(quad_signed_area(points, q));
+  for (const auto& t : file.triangles) mesh_area += std::abs(triangle_signed_area(points, t));
+  const double domain_area = area(r.fields.mesh);
+  if (2 * inside < points.size() || mesh_area < 0.1 * domain_area || mesh_area > 10 * domain_area) {
+    double xmin = INFINITY, ymin = INFINITY, xmax = -INFINITY, ymax = -INFINITY;
+    for (const Point2& p : points) {
+      xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
+      ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
+    }
+    throw Error(ErrorClass::input, "quality",
+                printf_string("'%s': %zu of its %zu nodes lie in the domain, and it covers %.4g "
+                              "km2 where the domain covers %.4g km2 (its nodes span %s to %s in "
+                              "the meshing CRS, read in %s): is the mesh in another CRS (give "
+                              "it with --mesh-crs), or of another domain?",
+                              options.mesh_path.c_str(), inside, points.size(), mesh_area / 1e6,
+                              domain_area / 1e6, format_point({xmin, ymin}).c_str(),
+                              format_point({xmax, ymax}).c_str(), r.mesh_crs.c_str()));
+  }
+
+  // Counter-clockwise elements; a file whose elements are mostly clockwise is read
+  // reversed (a mesh of mixed orientation keeps it: its clockwise elements count as
+  // non-convex, as they fold).
+  std::size_t clockwise = 0;
+  for (const auto& q : file.quads) clockwise += quad_signed_area(points, q) < 0;
+  for (const auto& t : file.triangles) clockwise += triangle_signed_area(points, t) < 0;
+  if (2 * clockwise > file.quads.size() + file.triangles.size()) {
+    r.reversed = true;
+    for (auto& q : file.quads) std::reverse(q.begin(), q.end());
+    for (auto& t : file.triangles) std::reverse(t.begin(), t.end());
+  }
+
+  r.num_triangles = file.triangles.size();
+  r.triangle_min_angle_deg = 180, r.triangle_max_angle_deg = 0;
+  for (const auto& t : file.triangles)
+    for (int i = 0; i < 3; ++i) {
+      const Point2 &a = points[t[(i + 2) % 3]], &b = points[t[i]], &c = points[t[(i + 1) % 3]];
+      const double angle = std::atan2(std::abs(signed_area(a, b, c)) * 2,
+                                      (a.x - b.x) * (c.x - b.x) + (a.y - b.y) * (c.y - b.y));
+      r.triangle_min_angle_deg = std::min(r.triangle_min_angle_deg, angle * 180 / M_PI);
+      r.triangle_max_angle_deg = std::max(r.triangle_max_angle_deg, angle * 180 / M_PI);
+    }
+
+  r.quads.points = std::move(points);
+  r.quads.quads = std::move(file.quads);
+  if (r.quads.quads.empty()) {
+    r.quads.chain.assign(r.quads.points.size(), -1);
+    r.quads.arc_m.assign(r.quads.points.size(), 0.0);
+    r.quads.fixed.assign(r.quads.points.size(), 0);
+    r.warnings.push_back("'" + options.mesh_path + "' has " + std::to_string(r.num_triangles) +
+                         " triangles and no quadrangle: only the triangles' angles are measured");
+  } else {
+    place_on_chains(r.fields.mesh, r.quads, r);
+    r.quality = measure_quality(r.quads, r.fields.mesh, r.fields.size, r.fields.cross, &r.metrics);
+    for (int q = 0; q < static_cast<int>(r.quads.quads.size()); ++q)
+      r.num_quads_outside += locator.locate(quad_centroid(r.quads, q)).triangle < 0;
+  }
+  if (r.num_quads_outside > 0)
+    r.warnings.push_back(std::to_string(r.num_quads_outside) +
+                         " quad(s) have their centroid outside the domain: their size ratio and "
+                         "orientation count as 0 (is it the same domain, with the same "
+                         "--min-width and --simplify?)");
+  if (r.num_boundary_off > 0)
+    r.warnings.push_back(printf_string(
+        "%zu of the mesh's %zu boundary vertices lie off the domain's boundary (farther than "
+        "%.3g m; %s): the coast's departure is measured along the others",
+        r.num_boundary_off, r.num_boundary_off + r.num_boundary_on, r.on_boundary_tolerance_m,
+        r.num_boundary_far > 0
+            ? printf_string("%zu farther than %.0f m", r.num_boundary_far, r.off_boundary_search_m)
+                  .c_str()
+            : printf_string("up to %.1f m", r.boundary_off_max_m).c_str()));
+  measure_clock.lap("quality");
+  progress.report("quality", 1.0);
+  return r;
+}
+
+std::string format_quality_job_summary(const QualityJobResult& r) {
+  std::string out = printf_string(
+      "mesh:         %s file: %zu quads, %zu triangles, %zu vertices%s%s\n", r.format.c_str(),
+      r.quads.quads.size(), r.num_triangles, r.quads.points.size(),
+      r.num_skipped_elements
+          ? printf_string(" (%zu lines and points skipped)", r.num_skipped_elements).c_str()
+          : "",
+      r.reversed ? "; its elements clockwise, measured reversed" : "");
+  out += "mesh CRS:     " + r.mesh_crs +
+         (r.transformed ? ", transformed into the meshing CRS" : "") + "\n";
+  if (!r.quads.quads.empty()) {
+    const QualitySummary& q = r.quality;
+    out += printf_string("quads:        %zu non-convex (or clockwise)\n", q.num_nonconvex);
+    out += format_quad_shape_lines(q);
+    QualityParts parts;
+    parts.connectivity = r.num_triangles == 0;
+    out += format_quad_connectivity_lines(q, parts);
+    if (!parts.connectivity)
+      out +=
+          "              (regularity, coast and D-Flow FM not measured: the mesh has "
+          "triangles)\n";
+  }
+  if (r.num_triangles > 0)
+    out += printf_string("triangles:    %zu, angles from %.1f to %.1f deg\n", r.num_triangles,
+                         r.triangle_min_angle_deg, r.triangle_max_angle_deg);
+  return out;
+}
+
+std::string quality_job_report_json(const QualityJobResult& r, const std::string& command_line) {
+  JsonWriter j;
+  j.begin_object();
+  add_report_header(j, command_line);
+  j.begin_object("mesh")
+      .value("format", r.format)
+      .value("crs", r.mesh_crs)
+      .value("transformed", r.transformed)
+      .value("reversed", r.reversed)
+      .value("num_skipped_elements", r.num_skipped_elements)
+      .value("num_boundary_vertices_on_domain", r.num_boundary_on)
+      .value("num_boundary_vertices_off_domain", r.num_boundary_off)
+      .value("boundary_vertices_off_max_m", r.boundary_off_max_m)
+      .value("num_quads_outside_domain", r.num_quads_outside)
+      .end_object();
+  j.begin_object("domain");
+  add_domain_summary(j, r.fields.front.summary);
+  j.end_object();
+  j.begin_object("sizing");
+  add_sizing_report(j, r.fields);
+  j.end_object();
+  j.begin_object("quality")
+      .value("num_quads", r.quads.quads.size())
+      .value("num_vertices", r.quads.points.size())
+      .value("num_triangles", r.num_triangles);
+  if (r.num_triangles > 0)
+    j.value("triangle_min_angle_deg", r.triangle_min_angle_deg)
+        .value("triangle_max_angle_deg", r.triangle_max_angle_deg);
+  if (!r.quads.quads.empty()) {
+    QualityParts parts;
+    parts.connectivity = r.num_triangles == 0;
+    add_quality_values(j, r.quality, parts);
+  }
+  j.end_object();
+  add_stage_times(j, r.fields.times);
+  j.value("peak_memory_mb", process_peak_mb());
+  j.end_object();
+  return j.str();
+}
+
+}  // namespace isoquad

@@ -1,0 +1,58 @@
+// `isoquad quality`: a mesh that another tool made (Gmsh, SMS, OceanMesh2D...) or an
+// earlier run, measured as `isoquad mesh` measures its own: against the sizing and cross
+// fields that the same domain and options give, with the same report.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "app/fields_job.h"
+#include "io/read_mesh.h"
+#include "quad/quad_mesh.h"
+#include "quad/quad_quality.h"
+
+namespace isoquad {
+
+struct QualityJobOptions {
+  FieldsOptions fields;   // the domain, its sizes and its cross field
+  std::string mesh_path;  // the mesh to measure (read_mesh's formats)
+  // The mesh's CRS (anything parse_crs reads); empty: the file's own when its format
+  // has one (a MIKE .mesh), else the meshing CRS (the mesh and the domain projected alike).
+  std::string mesh_crs;
+};
+
+struct QualityJobResult {
+  FieldsResult fields;
+  std::string format;        // the file's (read_mesh)
+  std::string mesh_crs;      // what the mesh's coordinates were read in, for the summary
+  bool transformed = false;  // the points were transformed into the meshing CRS
+  bool reversed = false;     // the file's elements were clockwise: measured reversed
+  QuadMesh quads;            // in the meshing CRS, with the boundary vertices on the chains
+  QualitySummary quality;    // of the quads
+  QuadMetrics metrics;
+  std::size_t num_triangles = 0;
+  double triangle_min_angle_deg = 0, triangle_max_angle_deg = 0;
+  std::size_t num_skipped_elements = 0;  // lines and points of a .msh
+  // Boundary vertices of the quads (edges of one quad) on the domain's boundary (within
+  // `on_boundary_tolerance_m`), and how far the others lie from it (searched up to
+  // `off_boundary_search_m`; those farther counted in num_boundary_far).
+  std::size_t num_boundary_on = 0, num_boundary_off = 0, num_boundary_far = 0;
+  double on_boundary_tolerance_m = 0, off_boundary_search_m = 0, boundary_off_max_m = 0;
+  // Quads whose centroid lies outside the domain (no size or cross there: their size
+  // ratio and orientation count as 0).
+  std::size_t num_quads_outside = 0;
+  std::vector<std::string> warnings;
+};
+
+// Reads the mesh, builds the domain and its fields, and measures the mesh. Error(input)
+// for a mesh that cannot be read or that lies wholly off the domain (another CRS: give
+// mesh_crs); Error(crs) for a CRS that cannot be read or used.
+QualityJobResult measure_mesh_file(const QualityJobOptions& options,
+                                   const Progress& progress = Progress());
+
+std::string format_quality_job_summary(const QualityJobResult& r);
+// `isoquad quality --report`: the version and command line, "mesh" (the file, its
+// format and counts), "domain", "sizing", "quality" (as the mesh report's) and "stages".
+std::string quality_job_report_json(const QualityJobResult& r, const std::string& command_line);
+
+}  // namespace isoquad

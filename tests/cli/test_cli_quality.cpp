@@ -1,0 +1,225 @@
+// `isoquad quality`: a mesh read from a file measured as `isoquad mesh` measures its own.
+// isoquad's own outputs measured again give the mesh report's figures; a mesh that the
+// gmsh binary makes (ASCII .msh 4.1 and 2.2) is read whole, on the domain's boundary,
+// with the element counts meshio reads; a mesh in degrees without --mesh-crs, or with
+// triangles and -o, stops with a clear message.
+#include <gtest/gtest.h>
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include "gis/gdal_env.h"
+#include "support/test_support.h"
+
+using namespace isoquad::test;
+
+namespace {
+
+// The quality values both reports have, compared within `tolerance` (relative, or
+// absolute under 1).
+void expect_same_quality(const std::string& mesh_report, const std::string& quality_report,
+                         double tolerance, const std::string& what) {
+  for (const char* key : {"share_angles_75_105",
+                          "min_angle_deg",
+                          "max_angle_deg",
+                          "eta_mean",
+                          "size_ratio_median",
+                          "share_size_ratio_08_125",
+                          "orientation_mean_deg",
+                          "orientation_p90_deg",
+                          "share_regular_interior",
+                          "share_regular_boundary",
+                          "schism_angle_ratio_violations",
+                          "schism_aspect_ratio_violations",
+                          "dflowfm_orthogonality_mean",
+                          "dflowfm_orthogonality_violations",
+                          "mesh_area_m2",
+                          "domain_area_m2",
+                          "boundary_departure_max_m",
+                          "boundary_departure_p95_h",
+                          "num_boundary_vertices",
+                          "num_nonconvex"}) {
+    const double a = report_number(mesh_report, key), b = report_number(quality_report, key);
+    EXPECT_NEAR(a, b, tolerance * std::max(1.0, std::abs(a))) << what << ": " << key;
+  }
+}
+
+const std::vector<std::string> kCorsica = {"--hmax", "8000"};
+
+std::vector<std::string> quality_args(const std::string& mesh, std::vector<std::string> more = {}) {
+  std::vector<std::string> args = {"quality", sample("corsica.geojson"), "--mesh", mesh};
+  args.insert(args.end(), kCorsica.begin(), kCorsica.end());
+  args.insert(args.end(), more.begin(), more.end());
+  return args;
+}
+
+}  // namespace
+
+TEST(CliQuality, IsoquadsOwnOutputsMeasureAsTheMeshReportSays) {
+  TempDir dir;
+  std::vector<std::string> args = {"mesh", sample("corsica.geojson"), "--report",
+                                   dir.file("r.json")};
+  args.insert(args.end(), kCorsica.begin(), kCorsica.end());
+  for (const char* ext : {".gr3", ".msh", ".2dm", ".mesh"}) {
+    args.push_back("-o");
+    args.push_back(dir.file(std::string("m") + ext));
+  }
+  const CliResult made = run_cli(args, dir);
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string mesh_report = read_file(dir.file("r.json"));
+  for (const char* ext : {".gr3", ".msh", ".2dm", ".mesh"}) {
+    const std::string report = dir.file(std::string("q") + ext + ".json");
+    const CliResult r =
+        run_cli(quality_args(dir.file(std::string("m") + ext), {"--report", report}), dir);
+    ASSERT_EQ(r.exit_code, 0) << ext << r.err;
+    const std::string q = read_file(report);
+    expect_same_quality(mesh_report, q, 1e-6, ext);
+    EXPECT_EQ(report_number(q, "num_quads"), report_number(mesh_report, "num_quads")) << ext;
+    EXPECT_EQ(report_number(q, "num_boundary_vertices_off_domain"), 0) << ext;
+    EXPECT_NE(r.err.find("regularity:"), std::string::npos);
+  }
+  // hgrid.ll in longitudes and latitudes, transformed back (to 1e-10 degrees).
+  const CliResult ll = run_cli(
+      quality_args(dir.file("m.ll"), {"--mesh-crs", "EPSG:4326", "--report", dir.file("ll.json")}),
+      dir);
+  ASSERT_EQ(ll.exit_code, 0) << ll.err;
+  expect_same_quality(mesh_report, read_file(dir.file("ll.json")), 1e-3, ".ll");
+  EXPECT_NE(ll.err.find("WGS 84, transformed into the meshing CRS"), std::string::npos) << ll.err;
+  // Without --mesh-crs the degrees are read as metres: a clear stop.
+  const CliResult degrees = run_cli(quality_args(dir.file("m.ll")), dir);
+  EXPECT_EQ(degrees.exit_code, 3);
+  EXPECT_NE(degrees.err.find("is the mesh in another CRS (give it with --mesh-crs)"),
+            std::string::npos)
+      << degrees.err;
+
+  // Clockwise quads (a .2dm with every E4Q's nodes reversed) are measured reversed.
+  std::istringstream in(read_file(dir.file("m.2dm")));
+  std::string line, reversed;
+  while (std::getline(in, line)) {
+    std::istringstream f(line);
+    std::string card;
+    long id, a, b, c, d, material;
+    if (f >> card >> id >> a >> b >> c >> d >> material && card == "E4Q")
+      line = "E4Q " + std::to_string(id) + " " + std::to_string(d) + " " + std::to_string(c) + " " +
+             std::to_string(b) + " " + std::to_string(a) + " " + std::to_string(material);
+    reversed += line + "\n";
+  }
+  write_file(dir.file("cw.2dm"), reversed);
+  const CliResult cw =
+      run_cli(quality_args(dir.file("cw.2dm"), {"--report", dir.file("cw.json")}), dir);
+  ASSERT_EQ(cw.exit_code, 0) << cw.err;
+  EXPECT_NE(cw.err.find("its elements clockwise, measured reversed"), std::string::npos) << cw.err;
+  expect_same_quality(mesh_report, read_file(dir.file("cw.json")), 1e-6, "clockwise .2dm");
+
+  // -o and --plot: the measured quads with their metrics, as the mesh job writes them.
+  const CliResult out = run_cli(
+      quality_args(dir.file("m.gr3"), {"-o", dir.file("q.gpkg"), "--plot", dir.file("q.png")}),
+      dir);
+  ASSERT_EQ(out.exit_code, 0) << out.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("q.png")));
+  isoquad::ensure_gdal_registered();
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(dir.file("q.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  OGRLayer* quads = ds->GetLayerByName("quads");
+  ASSERT_NE(quads, nullptr);
+  EXPECT_EQ(static_cast<double>(quads->GetFeatureCount()), report_number(mesh_report, "num_quads"));
+  EXPECT_GE(quads->GetLayerDefn()->GetFieldIndex("size_ratio"), 0);
+  GDALClose(ds);
+}
+
+// A mesh the gmsh binary makes of a 10 x 6 km rectangle (Frontal-Delaunay for quads,
+// Blossom full-quad recombination), saved as ASCII 4.1 and 2.2: both read the same, with
+// meshio's counts of quads and nodes, every boundary node on the domain's boundary, the
+// rectangle's area; with triangles (no recombination) only their angles are measured,
+// and -o stops.
+TEST(CliQuality, GmshMeshesOfARectangle) {
+  TempDir dir;
+  const double x0 = 500000, y0 = 5000000, w = 10000, h = 6000;
+  write_file(dir.file("rect.geojson"),
+             geojson_polygons({"[[[" + std::to_string(x0) + "," + std::to_string(y0) + "],[" +
+                               std::to_string(x0 + w) + "," + std::to_string(y0) + "],[" +
+                               std::to_string(x0 + w) + "," + std::to_string(y0 + h) + "],[" +
+                               std::to_string(x0) + "," + std::to_string(y0 + h) + "],[" +
+                               std::to_string(x0) + "," + std::to_string(y0) + "]]]"},
+                              kUtm31nCrsMember));
+  auto geo = [&](bool recombine) {
+    std::string s = "lc = 500;\n";
+    s += "Point(1) = {" + std::to_string(x0) + ", " + std::to_string(y0) + ", 0, lc};\n";
+    s += "Point(2) = {" + std::to_string(x0 + w) + ", " + std::to_string(y0) + ", 0, lc};\n";
+    s += "Point(3) = {" + std::to_string(x0 + w) + ", " + std::to_string(y0 + h) + ", 0, lc};\n";
+    s += "Point(4) = {" + std::to_string(x0) + ", " + std::to_string(y0 + h) + ", 0, lc};\n";
+    s += "Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};\n";
+    s += "Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};\n";
+    s += "Physical Surface(1) = {1};\n";
+    if (recombine)
+      s += "Mesh.Algorithm = 8; Mesh.CrossFieldClosestPoint = 0; Mesh.RecombinationAlgorithm = 3; "
+           "Mesh.RecombineAll = 1;\n";
+    return s;
+  };
+  write_file(dir.file("quads.geo"), geo(true));
+  write_file(dir.file("tris.geo"), geo(false));
+  for (const auto& [geo_file, msh, format] :
+       std::vector<std::array<std::string, 3>>{{"quads.geo", "q41.msh", "msh41"},
+                                               {"quads.geo", "q22.msh", "msh22"},
+                                               {"tris.geo", "t41.msh", "msh41"}}) {
+    const CliResult g = run_cli_program(
+        "gmsh", {dir.file(geo_file), "-2", "-format", format, "-o", dir.file(msh)}, dir);
+    ASSERT_EQ(g.exit_code, 0) << g.out << g.err;
+  }
+  const std::string counts = python_check(dir, R"(
+import sys, meshio
+m = meshio.read(sys.argv[1])
+print(sum(len(c.data) for c in m.cells if c.type == "quad"), len(m.points))
+)",
+                                          {dir.file("q41.msh")});
+  std::istringstream cin(counts);
+  double meshio_quads = 0, meshio_points = 0;
+  cin >> meshio_quads >> meshio_points;
+  ASSERT_GT(meshio_quads, 100);
+
+  const std::vector<std::string> common = {
+      "quality",   dir.file("rect.geojson"), "--size", "500", "--cross-angle", "0", "--dst-crs",
+      "EPSG:32631"};
+  std::string first;
+  for (const char* msh : {"q41.msh", "q22.msh"}) {
+    std::vector<std::string> args = common;
+    args.insert(args.end(),
+                {"--mesh", dir.file(msh), "--report", dir.file(std::string(msh) + ".json")});
+    const CliResult r = run_cli(args, dir);
+    ASSERT_EQ(r.exit_code, 0) << msh << r.err;
+    const std::string q = read_file(dir.file(std::string(msh) + ".json"));
+    EXPECT_EQ(report_number(q, "num_quads"), meshio_quads) << msh;
+    EXPECT_EQ(report_number(q, "num_vertices"), meshio_points) << msh;
+    EXPECT_EQ(report_number(q, "num_triangles"), 0) << msh;
+    EXPECT_EQ(report_number(q, "num_nonconvex"), 0) << msh;
+    EXPECT_EQ(report_number(q, "num_boundary_vertices_off_domain"), 0) << msh;
+    EXPECT_NEAR(report_number(q, "mesh_area_m2"), w * h, 1e-3) << msh;
+    EXPECT_LT(report_number(q, "boundary_departure_max_m"), 1e-6) << msh;
+    const double regular = report_number(q, "share_regular_interior");
+    EXPECT_GT(regular, 0.5) << msh;
+    EXPECT_LE(regular, 1.0) << msh;
+    if (first.empty())
+      first = q;
+    else
+      expect_same_quality(first, q, 1e-12, "msh 2.2 against 4.1");
+  }
+  std::vector<std::string> args = common;
+  args.insert(args.end(), {"--mesh", dir.file("t41.msh"), "--report", dir.file("t.json")});
+  const CliResult tris = run_cli(args, dir);
+  ASSERT_EQ(tris.exit_code, 0) << tris.err;
+  const std::string t = read_file(dir.file("t.json"));
+  EXPECT_GT(report_number(t, "num_triangles"), 100);
+  EXPECT_EQ(report_number(t, "num_quads"), 0);
+  EXPECT_GT(report_number(t, "triangle_min_angle_deg"), 20);
+  EXPECT_LT(report_number(t, "triangle_max_angle_deg"), 120);
+  EXPECT_NE(tris.err.find("only the triangles' angles are measured"), std::string::npos)
+      << tris.err;
+  args.insert(args.end(), {"-o", dir.file("t.gpkg"), "--overwrite"});
+  const CliResult with_output = run_cli(args, dir);
+  EXPECT_EQ(with_output.exit_code, 2);
+  EXPECT_NE(with_output.err.find("-o and --plot show meshes of quadrangles alone"),
+            std::string::npos)
+      << with_output.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("t.gpkg")));
+}
