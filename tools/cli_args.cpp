@@ -128,13 +128,14 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
 void add_quality_options(CLI::App* cmd, QualityArgs& q) {
   cmd->add_option("--mesh", q.mesh_path,
                   "The mesh to measure: SCHISM .gr3 or .ll, ADCIRC .14, SMS .2dm, Gmsh .msh "
-                  "(ASCII 2.2 or 4.1) or MIKE .mesh; triangles and quadrangles")
+                  "(ASCII 2.2 or 4.1), MIKE .mesh or UGRID .nc (also D-Flow FM's net files); "
+                  "triangles and quadrangles")
       ->required()
       ->group("Mesh");
   cmd->add_option("--mesh-crs", q.mesh_crs,
                   "CRS of the mesh's coordinates (EPSG:4326 for a .ll or a .14 in longitudes "
-                  "and latitudes; default: the .mesh's own, else the meshing CRS, as "
-                  "--dst-crs or the automatic projection gives it)")
+                  "and latitudes; default: the .mesh's or the .nc's own, else the meshing CRS, "
+                  "as --dst-crs or the automatic projection gives it)")
       ->group("Mesh");
 }
 

@@ -17,7 +17,8 @@ struct QualityJobOptions {
   FieldsOptions fields;   // the domain, its sizes and its cross field
   std::string mesh_path;  // the mesh to measure (read_mesh's formats)
   // The mesh's CRS (anything parse_crs reads); empty: the file's own when its format
-  // has one (a MIKE .mesh), else the meshing CRS (the mesh and the domain projected alike).
+  // has one (a MIKE .mesh, a UGRID .nc), else the meshing CRS (the mesh and the domain
+  // projected alike).
   std::string mesh_crs;
 };
 

@@ -3,9 +3,13 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <unordered_map>
+
+#include <netcdf.h>
 
 #include "core/error.h"
 
@@ -373,6 +377,203 @@ void read_mike(LineReader& r, ReadMesh& mesh) {
   }
 }
 
+// A netCDF file open for reading; Error(input) naming the file for each failure.
+class NcReader {
+ public:
+  explicit NcReader(const std::string& path) : path_(path) {
+    const int status = nc_open(path.c_str(), NC_NOWRITE, &id_);
+    if (status != NC_NOERR)
+      throw Error(ErrorClass::input, "read",
+                  "'" + path + "': not a netCDF file (" + nc_strerror(status) + ")");
+  }
+  ~NcReader() { nc_close(id_); }
+  NcReader(const NcReader&) = delete;
+  NcReader& operator=(const NcReader&) = delete;
+
+  [[noreturn]] void fail(const std::string& what) const {
+    throw Error(ErrorClass::input, "read", "'" + path_ + "': " + what);
+  }
+  // The variable's id; -1 when there is none.
+  int find(const std::string& name) const {
+    int var = -1;
+    return nc_inq_varid(id_, name.c_str(), &var) == NC_NOERR ? var : -1;
+  }
+  int need(const std::string& name, const std::string& why) const {
+    const int var = find(name);
+    if (var < 0) fail("no variable '" + name + "' (" + why + ")");
+    return var;
+  }
+  // A text attribute; empty when there is none.
+  std::string text(int var, const char* name) const {
+    nc_type type;
+    std::size_t length = 0;
+    if (nc_inq_att(id_, var, name, &type, &length) != NC_NOERR || type != NC_CHAR) return "";
+    std::string value(length, '\0');
+    if (nc_get_att_text(id_, var, name, value.data()) != NC_NOERR) return "";
+    while (!value.empty() && value.back() == '\0') value.pop_back();
+    return value;
+  }
+  // An integer attribute; `otherwise` when there is none.
+  long long integer(int var, const char* name, long long otherwise) const {
+    long long value = 0;
+    nc_type type;
+    std::size_t length = 0;
+    if (nc_inq_att(id_, var, name, &type, &length) != NC_NOERR || length != 1 || type == NC_CHAR)
+      return otherwise;
+    return nc_get_att_longlong(id_, var, name, &value) == NC_NOERR ? value : otherwise;
+  }
+  std::vector<std::size_t> shape(int var) const {
+    int ndims = 0;
+    nc_inq_varndims(id_, var, &ndims);
+    std::vector<int> dims(ndims);
+    nc_inq_vardimid(id_, var, dims.data());
+    std::vector<std::size_t> out;
+    for (int d : dims) {
+      std::size_t n = 0;
+      nc_inq_dimlen(id_, d, &n);
+      out.push_back(n);
+    }
+    return out;
+  }
+  std::string dim_name(int var, int k) const {
+    int ndims = 0;
+    nc_inq_varndims(id_, var, &ndims);
+    std::vector<int> dims(ndims);
+    nc_inq_vardimid(id_, var, dims.data());
+    char name[NC_MAX_NAME + 1] = {};
+    if (k < ndims) nc_inq_dimname(id_, dims[k], name);
+    return name;
+  }
+  std::vector<double> doubles(int var) const {
+    std::size_t n = 1;
+    for (std::size_t d : shape(var)) n *= d;
+    std::vector<double> values(n);
+    if (n && nc_get_var_double(id_, var, values.data()) != NC_NOERR) fail("cannot read a variable");
+    return values;
+  }
+  std::vector<long long> integers(int var) const {
+    std::size_t n = 1;
+    for (std::size_t d : shape(var)) n *= d;
+    std::vector<long long> values(n);
+    if (n && nc_get_var_longlong(id_, var, values.data()) != NC_NOERR)
+      fail("cannot read a variable");
+    return values;
+  }
+  int num_vars() const {
+    int n = 0;
+    nc_inq_nvars(id_, &n);
+    return n;
+  }
+  std::string var_name(int var) const {
+    char name[NC_MAX_NAME + 1] = {};
+    nc_inq_varname(id_, var, name);
+    return name;
+  }
+
+ private:
+  std::string path_;
+  int id_ = -1;
+};
+
+// The CRS of a coordinate variable: its grid mapping's WKT (crs_wkt, spatial_ref, wkt)
+// or EPSG code (epsg, epsg_code); EPSG:4326 for longitudes; empty when unknown.
+std::string netcdf_crs(const NcReader& nc, int x) {
+  const std::string mapping = nc.text(x, "grid_mapping");
+  std::vector<std::string> candidates;
+  if (!mapping.empty()) candidates.push_back(mapping);
+  for (const char* name : {"projected_coordinate_system", "wgs84", "crs"})
+    candidates.push_back(name);
+  for (const std::string& name : candidates) {
+    const int var = nc.find(name);
+    if (var < 0) continue;
+    for (const char* att : {"crs_wkt", "spatial_ref", "wkt"}) {
+      const std::string wkt = nc.text(var, att);
+      if (!wkt.empty()) return wkt;
+    }
+    const std::string code = nc.text(var, "epsg_code");
+    if (!code.empty() && code != "EPSG:0") return code;
+    const long long epsg = nc.integer(var, "epsg", 0);
+    if (epsg > 0) return "EPSG:" + std::to_string(epsg);
+  }
+  const std::string standard = nc.text(x, "standard_name");
+  if (standard == "longitude" || nc.text(x, "units") == "degrees_east") return "EPSG:4326";
+  return "";
+}
+
+// UGRID-1.0 (the first variable with cf_role mesh_topology and topology_dimension 2:
+// its node coordinates and face_node_connectivity, numbered from start_index, with
+// _FillValue or negative numbers for missing corners), or D-Flow FM's older net file
+// (NetNode_x, NetNode_y, NetElemNode numbered from 1).
+void read_netcdf(const std::string& path, ReadMesh& mesh) {
+  const NcReader nc(path);
+  int topology = -1;
+  for (int v = 0; v < nc.num_vars() && topology < 0; ++v)
+    if (nc.text(v, "cf_role") == "mesh_topology" && nc.integer(v, "topology_dimension", 0) == 2)
+      topology = v;
+  int x = -1, y = -1, faces = -1;
+  long long start = 0;
+  bool transposed = false;
+  if (topology >= 0) {
+    const std::string name = nc.var_name(topology);
+    std::istringstream coordinates(nc.text(topology, "node_coordinates"));
+    std::string xn, yn;
+    if (!(coordinates >> xn >> yn)) nc.fail("mesh topology '" + name + "' has no node_coordinates");
+    x = nc.need(xn, name + "'s node_coordinates");
+    y = nc.need(yn, name + "'s node_coordinates");
+    const std::string face_name = nc.text(topology, "face_node_connectivity");
+    faces = nc.need(face_name, name + "'s face_node_connectivity");
+    start = nc.integer(faces, "start_index", 0);
+    const std::string face_dim = nc.text(topology, "face_dimension");
+    transposed = !face_dim.empty() && nc.dim_name(faces, 1) == face_dim;
+  } else if (nc.find("NetNode_x") >= 0) {
+    x = nc.need("NetNode_x", "a D-Flow FM net file's nodes");
+    y = nc.need("NetNode_y", "a D-Flow FM net file's nodes");
+    faces = nc.need("NetElemNode", "a D-Flow FM net file's cells");
+    start = 1;
+  } else {
+    nc.fail(
+        "no 2D mesh: no variable with cf_role mesh_topology and topology_dimension 2 "
+        "(UGRID), and no NetNode_x (a D-Flow FM net file)");
+  }
+  const std::vector<double> xs = nc.doubles(x), ys = nc.doubles(y);
+  if (xs.size() != ys.size()) nc.fail("the node coordinates differ in length");
+  for (std::size_t i = 0; i < xs.size(); ++i) {
+    if (!std::isfinite(xs[i]) || !std::isfinite(ys[i]))
+      nc.fail("node " + std::to_string(i + start) + " has no finite coordinates");
+    mesh.points.push_back({xs[i], ys[i]});
+  }
+  mesh.crs = netcdf_crs(nc, x);
+  const std::vector<std::size_t> shape = nc.shape(faces);
+  if (shape.size() != 2) nc.fail("the face-node connectivity is not a 2D array");
+  const std::size_t num_faces = shape[transposed ? 1 : 0], width = shape[transposed ? 0 : 1];
+  const std::vector<long long> table = nc.integers(faces);
+  const long long fill = nc.integer(faces, "_FillValue", NC_FILL_INT);
+  const long long np = static_cast<long long>(mesh.points.size());
+  for (std::size_t f = 0; f < num_faces; ++f) {
+    std::vector<int> nodes;
+    for (std::size_t k = 0; k < width; ++k) {
+      const long long n = table[transposed ? k * num_faces + f : f * width + k];
+      if (n == fill || n < start) continue;
+      if (n - start >= np)
+        nc.fail("face " + std::to_string(f + 1) + " has node " + std::to_string(n) +
+                ", beyond the " + std::to_string(np) + " nodes (numbered from " +
+                std::to_string(start) + ")");
+      nodes.push_back(static_cast<int>(n - start));
+    }
+    if (nodes.size() != 3 && nodes.size() != 4)
+      nc.fail("face " + std::to_string(f + 1) + " has " + std::to_string(nodes.size()) +
+              " nodes: only triangles and quadrangles are read");
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      for (std::size_t j = i + 1; j < nodes.size(); ++j)
+        if (nodes[i] == nodes[j])
+          nc.fail("face " + std::to_string(f + 1) + " has the same node twice");
+    if (nodes.size() == 3)
+      mesh.triangles.push_back({nodes[0], nodes[1], nodes[2]});
+    else
+      mesh.quads.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
+  }
+}
+
 }  // namespace
 
 std::string mesh_file_format(const std::string& path) {
@@ -384,10 +585,12 @@ std::string mesh_file_format(const std::string& path) {
   if (ext == ".2dm") return "2dm";
   if (ext == ".msh") return "msh";
   if (ext == ".mesh") return "mesh";
+  if (ext == ".nc") return "nc";
   throw Error(ErrorClass::usage, "options",
               "'" + path +
                   "': a mesh to measure is a .gr3 or .ll (SCHISM), .14 or .grd (ADCIRC), .2dm "
-                  "(SMS), .msh (Gmsh, ASCII) or .mesh (MIKE 21/3 FM)");
+                  "(SMS), .msh (Gmsh, ASCII), .mesh (MIKE 21/3 FM) or .nc (UGRID, D-Flow FM's net "
+                  "file)");
 }
 
 ReadMesh read_mesh(const std::string& path) {
@@ -395,15 +598,19 @@ ReadMesh read_mesh(const std::string& path) {
   mesh.format = mesh_file_format(path);
   if (!std::filesystem::is_regular_file(path))
     throw Error(ErrorClass::input, "read", "'" + path + "': no such mesh file");
-  LineReader r(path);
-  if (mesh.format == "gr3" || mesh.format == "14")
-    read_gr3(r, mesh);
-  else if (mesh.format == "2dm")
-    read_2dm(r, mesh);
-  else if (mesh.format == "msh")
-    read_msh(r, mesh);
-  else
-    read_mike(r, mesh);
+  if (mesh.format == "nc") {
+    read_netcdf(path, mesh);
+  } else {
+    LineReader r(path);
+    if (mesh.format == "gr3" || mesh.format == "14")
+      read_gr3(r, mesh);
+    else if (mesh.format == "2dm")
+      read_2dm(r, mesh);
+    else if (mesh.format == "msh")
+      read_msh(r, mesh);
+    else
+      read_mike(r, mesh);
+  }
   if (mesh.quads.empty() && mesh.triangles.empty())
     throw Error(ErrorClass::input, "read",
                 "'" + path + "': the mesh has no triangle or quadrangle");

@@ -1,7 +1,7 @@
 // Reading meshes that other tools wrote (and isoquad's own outputs), to measure them:
-// SCHISM's .gr3/.ll, ADCIRC's .14, SMS's .2dm, Gmsh's .msh (ASCII 2.2 and 4.1) and
-// MIKE 21/3 FM's .mesh. Only the nodes and the 2D elements are read: triangles and
-// quadrangles.
+// SCHISM's .gr3/.ll, ADCIRC's .14, SMS's .2dm, Gmsh's .msh (ASCII 2.2 and 4.1), MIKE
+// 21/3 FM's .mesh and UGRID netCDF (.nc, also D-Flow FM's older net files). Only the
+// nodes and the 2D elements are read: triangles and quadrangles.
 #pragma once
 
 #include <array>
@@ -18,13 +18,14 @@ struct ReadMesh {
   std::vector<std::array<int, 4>> quads;  // 0-based indices into points, as in the file
   std::vector<std::array<int, 3>> triangles;
   // The file's CRS, when the format holds one (MIKE's projection: "EPSG:4326" for its
-  // LONG/LAT, else its WKT); empty otherwise.
+  // LONG/LAT, else its WKT; UGRID's grid mapping: its WKT or EPSG code, or EPSG:4326 for
+  // longitudes); empty otherwise.
   std::string crs;
   std::size_t num_skipped_elements = 0;  // lines and points of a .msh
 };
 
 // The format from the file's extension (.gr3, .ll, .14 (also fort.14 and .grd), .2dm,
-// .msh, .mesh); Error(usage) for any other.
+// .msh, .mesh, .nc); Error(usage) for any other.
 std::string mesh_file_format(const std::string& path);
 
 // Reads the mesh. Error(input) naming the file and the line for what it cannot read:

@@ -736,7 +736,8 @@ TEST(MeshOutputs, FailureMidWriteLeavesNothing) {
 
 // read_mesh reads back what the writers write: the same nodes (to the files' precision)
 // and the same quads in every format that holds quads; ADCIRC's .14 two triangles per
-// quad over the same area; the MIKE file's projection as its CRS.
+// quad over the same area; the MIKE file's projection and the UGRID file's grid mapping
+// as their CRS.
 TEST(MeshOutputs, ReadMeshReadsBackEveryFormat) {
   const Fixture f;
   TempDir dir;
@@ -747,7 +748,7 @@ TEST(MeshOutputs, ReadMeshReadsBackEveryFormat) {
     options.msh_version = version;
     const std::string stem = "m" + std::string(version == "2.2" ? "22" : "41");
     std::vector<MeshOutput> outputs;
-    for (const char* ext : {".gr3", ".2dm", ".msh", ".mesh"})
+    for (const char* ext : {".gr3", ".2dm", ".msh", ".mesh", ".nc"})
       outputs.push_back({dir.file(stem + ext), "", false});
     write_mesh_outputs(f.data(), outputs, options);
     for (const MeshOutput& o : outputs) {
@@ -761,9 +762,9 @@ TEST(MeshOutputs, ReadMeshReadsBackEveryFormat) {
       // The .msh's boundary lines (its physical groups) are skipped.
       const bool msh = o.path.find(".msh") != std::string::npos;
       EXPECT_EQ(m.num_skipped_elements > 0, msh);
-      if (o.path.find(".mesh") != std::string::npos) {
+      if (o.path.find(".mesh") != std::string::npos || o.path.find(".nc") != std::string::npos) {
         ASSERT_FALSE(m.crs.empty());
-        EXPECT_EQ(parse_crs(m.crs, "the .mesh").name, parse_crs(f.crs_wkt, "EPSG:32631").name);
+        EXPECT_EQ(parse_crs(m.crs, "the file's").name, parse_crs(f.crs_wkt, "EPSG:32631").name);
       }
     }
   }

@@ -2,6 +2,7 @@
 // mixed triangles and quadrangles, nodes after elements, Fortran exponents, CRLF), and
 // its errors: each names the file and the line.
 #include <gtest/gtest.h>
+#include <netcdf.h>
 
 #include "core/error.h"
 #include "io/read_mesh.h"
@@ -81,6 +82,52 @@ TEST(ReadMesh, Msh41WithBlocksOfSeveralTypes) {
   ASSERT_EQ(m.triangles.size(), 1u);
   EXPECT_EQ(m.triangles[0], (std::array<int, 3>{1, 4, 2}));
   EXPECT_EQ(m.num_skipped_elements, 1u);
+}
+
+// D-Flow FM's older net file: NetNode_x, NetNode_y and NetElemNode (numbered from 1,
+// missing corners as the fill value), its CRS in projected_coordinate_system's epsg.
+TEST(ReadMesh, DflowfmNetFileWithATriangleAndAQuad) {
+  TempDir dir;
+  const std::string path = dir.file("m_net.nc");
+  int nc = -1, dn = -1, de = -1, d4 = -1, vx = -1, vy = -1, ve = -1, vc = -1;
+  ASSERT_EQ(nc_create(path.c_str(), NC_CLOBBER, &nc), NC_NOERR);
+  nc_def_dim(nc, "nNetNode", 5, &dn);
+  nc_def_dim(nc, "nNetElem", 2, &de);
+  nc_def_dim(nc, "nNetElemMaxNode", 4, &d4);
+  nc_def_var(nc, "NetNode_x", NC_DOUBLE, 1, &dn, &vx);
+  nc_def_var(nc, "NetNode_y", NC_DOUBLE, 1, &dn, &vy);
+  const int dims[2] = {de, d4};
+  nc_def_var(nc, "NetElemNode", NC_INT, 2, dims, &ve);
+  const int fill = -999;
+  nc_put_att_int(nc, ve, "_FillValue", NC_INT, 1, &fill);
+  nc_def_var(nc, "projected_coordinate_system", NC_INT, 0, nullptr, &vc);
+  const int epsg = 32631;
+  nc_put_att_int(nc, vc, "epsg", NC_INT, 1, &epsg);
+  nc_enddef(nc);
+  const double x[5] = {0, 10, 10, 0, 20}, y[5] = {0, 0, 10, 10, 5};
+  const int cells[8] = {1, 2, 3, 4, 2, 5, 3, -999};
+  nc_put_var_double(nc, vx, x);
+  nc_put_var_double(nc, vy, y);
+  nc_put_var_int(nc, ve, cells);
+  nc_close(nc);
+  const ReadMesh m = read_mesh(path);
+  EXPECT_EQ(m.format, "nc");
+  EXPECT_EQ(m.crs, "EPSG:32631");
+  ASSERT_EQ(m.quads.size(), 1u);
+  EXPECT_EQ(m.quads[0], (std::array<int, 4>{0, 1, 2, 3}));
+  ASSERT_EQ(m.triangles.size(), 1u);
+  EXPECT_EQ(m.triangles[0], (std::array<int, 3>{1, 4, 2}));
+  // Not netCDF, or netCDF without a mesh.
+  write_file(dir.file("text.nc"), "not netcdf\n");
+  EXPECT_THROW(read_mesh(dir.file("text.nc")), Error);
+  ASSERT_EQ(nc_create(dir.file("empty.nc").c_str(), NC_CLOBBER, &nc), NC_NOERR);
+  nc_close(nc);
+  try {
+    read_mesh(dir.file("empty.nc"));
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no 2D mesh"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
