@@ -145,6 +145,27 @@ void add_element(ReadMesh& mesh, const std::vector<int>& nodes, const LineReader
     mesh.quads.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
 }
 
+// A node: its id (read before) and the line's next two numbers, x and y (the rest of
+// the line ignored).
+void add_node(Fields& f, long long id, NodeIds& ids, ReadMesh& mesh, const LineReader& reader) {
+  ids.add(id, reader);
+  const double x = f.number("x");
+  mesh.points.push_back({x, f.number("y")});
+}
+
+// A .msh element of `count` nodes (msh_element_nodes), its node tags the line's next
+// numbers; counted as skipped when count < 0 (a line or a point).
+void add_msh_element(Fields& f, int count, long long id, const NodeIds& ids, ReadMesh& mesh,
+                     const LineReader& reader) {
+  if (count < 0) {
+    ++mesh.num_skipped_elements;
+    return;
+  }
+  std::vector<int> nodes;
+  for (int i = 0; i < count; ++i) nodes.push_back(ids.at(f.integer("a node tag"), reader, id));
+  add_element(mesh, nodes, reader, id);
+}
+
 long long need_count(Fields& f, const char* what, const LineReader& reader) {
   const long long n = f.integer(what);
   if (n < 0) reader.fail(std::string(what) + " is negative");
@@ -164,9 +185,7 @@ void read_gr3(LineReader& r, ReadMesh& mesh) {
   for (long long k = 0; k < np; ++k) {
     const std::string line = r.need("node " + std::to_string(k + 1) + " of " + std::to_string(np));
     Fields n(line, r);
-    ids.add(n.integer("a node id"), r);
-    const double x = n.number("x");
-    mesh.points.push_back({x, n.number("y")});
+    add_node(n, n.integer("a node id"), ids, mesh, r);
   }
   std::vector<int> nodes;
   for (long long k = 0; k < ne; ++k) {
@@ -200,9 +219,7 @@ void read_2dm(LineReader& r, ReadMesh& mesh) {
     if (f.at_end()) continue;
     const std::string card = f.word("a card");
     if (card == "ND") {
-      ids.add(f.integer("a node id"), r);
-      const double x = f.number("x");
-      mesh.points.push_back({x, f.number("y")});
+      add_node(f, f.integer("a node id"), ids, mesh, r);
     } else if (card == "E3T" || card == "E4Q") {
       Pending p{f.integer("an element id"), {}, r.number()};
       for (int i = 0; i < (card == "E3T" ? 3 : 4); ++i) p.nodes.push_back(f.integer("a node id"));
@@ -244,7 +261,6 @@ void read_msh(LineReader& r, ReadMesh& mesh) {
   double version = 0;
   NodeIds ids;
   bool has_nodes = false, has_elements = false;
-  std::vector<int> nodes;
   while (r.next(line)) {
     if (line == "$MeshFormat") {
       Fields f(r.need("the format's version"), r);
@@ -264,9 +280,7 @@ void read_msh(LineReader& r, ReadMesh& mesh) {
         const long long n = need_count(c, "the number of nodes", r);
         for (long long k = 0; k < n; ++k) {
           Fields f(r.need("a node"), r);
-          ids.add(f.integer("a node tag"), r);
-          const double x = f.number("x");
-          mesh.points.push_back({x, f.number("y")});
+          add_node(f, f.integer("a node tag"), ids, mesh, r);
         }
       } else {
         Fields c(r.need("the nodes' counts"), r);
@@ -284,9 +298,7 @@ void read_msh(LineReader& r, ReadMesh& mesh) {
           }
           for (long long k = 0; k < n; ++k) {
             Fields f(r.need("a node's coordinates"), r);
-            ids.add(tags[k], r);
-            const double x = f.number("x");
-            mesh.points.push_back({x, f.number("y")});  // z and parametric ones ignored
+            add_node(f, tags[k], ids, mesh, r);  // z and parametric ones ignored
           }
         }
       }
@@ -303,13 +315,7 @@ void read_msh(LineReader& r, ReadMesh& mesh) {
           const int count = msh_element_nodes(f.integer("the element type"), r);
           const long long tags = need_count(f, "the number of tags", r);
           for (long long t = 0; t < tags; ++t) f.integer("a tag");
-          if (count < 0) {
-            ++mesh.num_skipped_elements;
-            continue;
-          }
-          nodes.clear();
-          for (int i = 0; i < count; ++i) nodes.push_back(ids.at(f.integer("a node tag"), r, id));
-          add_element(mesh, nodes, r, id);
+          add_msh_element(f, count, id, ids, mesh, r);
         }
       } else {
         Fields c(r.need("the elements' counts"), r);
@@ -323,13 +329,7 @@ void read_msh(LineReader& r, ReadMesh& mesh) {
           for (long long k = 0; k < n; ++k) {
             Fields f(r.need("an element"), r);
             const long long id = f.integer("an element tag");
-            if (count < 0) {
-              ++mesh.num_skipped_elements;
-              continue;
-            }
-            nodes.clear();
-            for (int i = 0; i < count; ++i) nodes.push_back(ids.at(f.integer("a node tag"), r, id));
-            add_element(mesh, nodes, r, id);
+            add_msh_element(f, count, id, ids, mesh, r);
           }
         }
       }
@@ -355,9 +355,7 @@ void read_mike(LineReader& r, ReadMesh& mesh) {
   NodeIds ids;
   for (long long k = 0; k < np; ++k) {
     Fields f(r.need("node " + std::to_string(k + 1) + " of " + std::to_string(np)), r);
-    ids.add(f.integer("a node id"), r);
-    const double x = f.number("x");
-    mesh.points.push_back({x, f.number("y")});
+    add_node(f, f.integer("a node id"), ids, mesh, r);
   }
   Fields c(r.need("the number of elements"), r);
   const long long ne = need_count(c, "the number of elements", r);
