@@ -80,9 +80,6 @@ ChainLines chain_lines(const BackgroundMesh& bg) {
 // for isoquad's own meshes; counts the others and how far off they lie.
 void place_on_chains(const BackgroundMesh& bg, QuadMesh& m, QualityJobResult& r) {
   const int np = static_cast<int>(m.points.size());
-  m.chain.assign(np, -1);
-  m.arc_m.assign(np, 0.0);
-  m.fixed.assign(np, 0);
   double xmin = INFINITY, ymin = INFINITY, xmax = -INFINITY, ymax = -INFINITY;
   for (const Point2& p : bg.points) {
     xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
@@ -196,14 +193,15 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
 
   r.quads.points = std::move(points);
   r.quads.quads = std::move(file.quads);
+  r.quads.chain.assign(r.quads.points.size(), -1);
+  r.quads.arc_m.assign(r.quads.points.size(), 0.0);
+  r.quads.fixed.assign(r.quads.points.size(), 0);
   if (r.quads.quads.empty()) {
-    r.quads.chain.assign(r.quads.points.size(), -1);
-    r.quads.arc_m.assign(r.quads.points.size(), 0.0);
-    r.quads.fixed.assign(r.quads.points.size(), 0);
     r.warnings.push_back("'" + options.mesh_path + "' has " + std::to_string(r.num_triangles) +
                          " triangles and no quadrangle: only the triangles' angles are measured");
   } else {
-    place_on_chains(r.fields.mesh, r.quads, r);
+    // With triangles, the quads' own boundary runs round them too: not the coast.
+    if (r.num_triangles == 0) place_on_chains(r.fields.mesh, r.quads, r);
     r.quality = measure_quality(r.quads, r.fields.mesh, r.fields.size, r.fields.cross, &r.metrics);
     for (int q = 0; q < static_cast<int>(r.quads.quads.size()); ++q)
       r.num_quads_outside += locator.locate(quad_centroid(r.quads, q)).triangle < 0;
@@ -265,11 +263,13 @@ std::string quality_job_report_json(const QualityJobResult& r, const std::string
       .value("transformed", r.transformed)
       .value("reversed", r.reversed)
       .value("num_skipped_elements", r.num_skipped_elements)
-      .value("num_boundary_vertices_on_domain", r.num_boundary_on)
-      .value("num_boundary_vertices_off_domain", r.num_boundary_off)
-      .value("boundary_vertices_off_max_m", r.boundary_off_max_m)
-      .value("num_quads_outside_domain", r.num_quads_outside)
-      .end_object();
+      .value("num_quads_outside_domain", r.num_quads_outside);
+  if (r.num_triangles == 0)  // with triangles the quads' boundary is not the coast
+    j.value("num_boundary_vertices_on_domain", r.num_boundary_on)
+        .value("num_boundary_vertices_off_domain", r.num_boundary_off)
+        .value("num_boundary_vertices_far_off_domain", r.num_boundary_far)
+        .value("boundary_vertices_off_max_m", r.boundary_off_max_m);
+  j.end_object();
   j.begin_object("domain");
   add_domain_summary(j, r.fields.front.summary);
   j.end_object();
