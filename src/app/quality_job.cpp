@@ -21,15 +21,6 @@ double triangle_signed_area(const std::vector<Point2>& p, const std::array<int, 
   return signed_area(p[t[0]], p[t[1]], p[t[2]]);
 }
 
-double quad_signed_area(const std::vector<Point2>& p, const std::array<int, 4>& q) {
-  double a = 0;
-  for (int i = 0; i < 4; ++i) {
-    const Point2 &u = p[q[i]], &v = p[q[(i + 1) % 4]];
-    a += u.x * v.y - v.x * u.y;
-  }
-  return 0.5 * a;
-}
-
 // The mesh's points into the meshing CRS; records what they were read in.
 void to_meshing_crs(const QualityJobOptions& options, const ReadMesh& file,
                     const std::string& meshing_wkt, std::vector<Point2>& points,
@@ -80,13 +71,8 @@ ChainLines chain_lines(const BackgroundMesh& bg) {
 // for isoquad's own meshes; counts the others and how far off they lie.
 void place_on_chains(const BackgroundMesh& bg, QuadMesh& m, QualityJobResult& r) {
   const int np = static_cast<int>(m.points.size());
-  double xmin = INFINITY, ymin = INFINITY, xmax = -INFINITY, ymax = -INFINITY;
-  for (const Point2& p : bg.points) {
-    xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
-    ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
-  }
-  // The mesh's nodes written with six decimals, or Gmsh's on the domain's segments.
-  r.on_boundary_tolerance_m = std::max(1e-3, 1e-7 * std::hypot(xmax - xmin, ymax - ymin));
+  const std::array<double, 4> box = bounding_box(bg.points);
+  r.on_boundary_tolerance_m = std::max(1e-3, 1e-7 * std::hypot(box[2] - box[0], box[3] - box[1]));
   std::vector<double> lengths;
   for (const auto& q : m.quads)
     for (int i = 0; i < 4; ++i)
@@ -140,62 +126,62 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
   StageClock measure_clock(r.fields.times);
   progress.report("measure", 0.85);
 
-  std::vector<Point2> points = file.points;
-  to_meshing_crs(options, file, r.fields.front.domain.crs_wkt, points, r);
+  r.quads.points = std::move(file.points);
+  to_meshing_crs(options, file, r.fields.front.domain.crs_wkt, r.quads.points, r);
+  r.quads.quads = std::move(file.quads);
+  r.quads.chain.assign(r.quads.points.size(), -1);
+  r.quads.arc_m.assign(r.quads.points.size(), 0.0);
+  r.quads.fixed.assign(r.quads.points.size(), 0);
+  QuadMesh& m = r.quads;
+  std::vector<std::array<int, 3>>& triangles = file.triangles;
+  const int nq = static_cast<int>(m.quads.size());
 
   // The mesh must lie on the domain and cover about as much: another CRS puts it
   // elsewhere, or makes it far larger or smaller (degrees read as metres).
   const TriangleLocator locator(r.fields.mesh);
   std::size_t inside = 0;
-  for (const Point2& p : points) inside += locator.locate(p).triangle >= 0;
+  for (const Point2& p : m.points) inside += locator.locate(p).triangle >= 0;
   double mesh_area = 0;
-  for (const auto& q : file.quads) mesh_area += std::abs(quad_signed_area(points, q));
-  for (const auto& t : file.triangles) mesh_area += std::abs(triangle_signed_area(points, t));
+  for (int q = 0; q < nq; ++q) mesh_area += std::abs(quad_area(m, q));
+  for (const auto& t : triangles) mesh_area += std::abs(triangle_signed_area(m.points, t));
   const double domain_area = area(r.fields.mesh);
-  if (2 * inside < points.size() || mesh_area < 0.1 * domain_area || mesh_area > 10 * domain_area) {
-    double xmin = INFINITY, ymin = INFINITY, xmax = -INFINITY, ymax = -INFINITY;
-    for (const Point2& p : points) {
-      xmin = std::min(xmin, p.x), xmax = std::max(xmax, p.x);
-      ymin = std::min(ymin, p.y), ymax = std::max(ymax, p.y);
-    }
+  if (2 * inside < m.points.size() || mesh_area < 0.1 * domain_area ||
+      mesh_area > 10 * domain_area) {
+    const std::array<double, 4> box = bounding_box(m.points);
     throw Error(ErrorClass::input, "quality",
                 printf_string("'%s': %zu of its %zu nodes lie in the domain, and it covers %.4g "
                               "km2 where the domain covers %.4g km2 (its nodes span %s to %s in "
                               "the meshing CRS, read in %s): is the mesh in another CRS (give "
                               "it with --mesh-crs), or of another domain?",
-                              options.mesh_path.c_str(), inside, points.size(), mesh_area / 1e6,
-                              domain_area / 1e6, format_point({xmin, ymin}).c_str(),
-                              format_point({xmax, ymax}).c_str(), r.mesh_crs.c_str()));
+                              options.mesh_path.c_str(), inside, m.points.size(), mesh_area / 1e6,
+                              domain_area / 1e6, format_point({box[0], box[1]}).c_str(),
+                              format_point({box[2], box[3]}).c_str(), r.mesh_crs.c_str()));
   }
 
   // Counter-clockwise elements; a file whose elements are mostly clockwise is read
   // reversed (a mesh of mixed orientation keeps it: its clockwise elements count as
   // non-convex, as they fold).
   std::size_t clockwise = 0;
-  for (const auto& q : file.quads) clockwise += quad_signed_area(points, q) < 0;
-  for (const auto& t : file.triangles) clockwise += triangle_signed_area(points, t) < 0;
-  if (2 * clockwise > file.quads.size() + file.triangles.size()) {
+  for (int q = 0; q < nq; ++q) clockwise += quad_area(m, q) < 0;
+  for (const auto& t : triangles) clockwise += triangle_signed_area(m.points, t) < 0;
+  if (2 * clockwise > m.quads.size() + triangles.size()) {
     r.reversed = true;
-    for (auto& q : file.quads) std::reverse(q.begin(), q.end());
-    for (auto& t : file.triangles) std::reverse(t.begin(), t.end());
+    for (auto& q : m.quads) std::reverse(q.begin(), q.end());
+    for (auto& t : triangles) std::reverse(t.begin(), t.end());
   }
 
-  r.num_triangles = file.triangles.size();
+  r.num_triangles = triangles.size();
   r.triangle_min_angle_deg = 180, r.triangle_max_angle_deg = 0;
-  for (const auto& t : file.triangles)
+  for (const auto& t : triangles)
     for (int i = 0; i < 3; ++i) {
-      const Point2 &a = points[t[(i + 2) % 3]], &b = points[t[i]], &c = points[t[(i + 1) % 3]];
+      const Point2 &a = m.points[t[(i + 2) % 3]], &b = m.points[t[i]],
+                   &c = m.points[t[(i + 1) % 3]];
       const double angle = std::atan2(std::abs(signed_area(a, b, c)) * 2,
                                       (a.x - b.x) * (c.x - b.x) + (a.y - b.y) * (c.y - b.y));
       r.triangle_min_angle_deg = std::min(r.triangle_min_angle_deg, angle * 180 / M_PI);
       r.triangle_max_angle_deg = std::max(r.triangle_max_angle_deg, angle * 180 / M_PI);
     }
 
-  r.quads.points = std::move(points);
-  r.quads.quads = std::move(file.quads);
-  r.quads.chain.assign(r.quads.points.size(), -1);
-  r.quads.arc_m.assign(r.quads.points.size(), 0.0);
-  r.quads.fixed.assign(r.quads.points.size(), 0);
   if (r.quads.quads.empty()) {
     r.warnings.push_back("'" + options.mesh_path + "' has " + std::to_string(r.num_triangles) +
                          " triangles and no quadrangle: only the triangles' angles are measured");
