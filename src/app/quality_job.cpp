@@ -110,6 +110,15 @@ void place_on_chains(const BackgroundMesh& bg, QuadMesh& m, QualityJobResult& r)
   }
 }
 
+// What the summary holds: the quads' figures when it has quads, the regularity and the
+// coast when it has nothing else.
+QualityParts parts_of(const QualityJobResult& r) {
+  QualityParts parts;
+  parts.quads = !r.quads.quads.empty();
+  parts.connectivity = r.num_triangles == 0;
+  return parts;
+}
+
 }  // namespace
 
 QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progress& progress) {
@@ -172,7 +181,16 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
 
   r.num_triangles = triangles.size();
   r.triangle_min_angle_deg = 180, r.triangle_max_angle_deg = 0;
-  for (const auto& t : triangles)
+  std::vector<double> triangle_sizes;
+  for (const auto& t : triangles) {
+    const Point2 &p = m.points[t[0]], &q = m.points[t[1]], &s = m.points[t[2]];
+    const Location loc = locator.locate({(p.x + q.x + s.x) / 3, (p.y + q.y + s.y) / 3});
+    const double h =
+        loc.triangle >= 0 ? r.fields.size.at(r.fields.mesh, loc.triangle, loc.bary) : 0.0;
+    // The side of the equilateral triangle of its area, over h.
+    const double side = std::sqrt(4 * std::abs(signed_area(p, q, s)) / std::sqrt(3.0));
+    triangle_sizes.push_back(h > 0 ? side / h : 0.0);
+    r.num_inverted_triangles += signed_area(p, q, s) <= 0;
     for (int i = 0; i < 3; ++i) {
       const Point2 &a = m.points[t[(i + 2) % 3]], &b = m.points[t[i]],
                    &c = m.points[t[(i + 1) % 3]];
@@ -181,10 +199,20 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
       r.triangle_min_angle_deg = std::min(r.triangle_min_angle_deg, angle * 180 / M_PI);
       r.triangle_max_angle_deg = std::max(r.triangle_max_angle_deg, angle * 180 / M_PI);
     }
+  }
+  if (!triangle_sizes.empty()) {
+    std::size_t in_range = 0;
+    for (double x : triangle_sizes) in_range += x >= 0.8 && x <= 1.25;
+    r.triangle_share_size_08_125 = static_cast<double>(in_range) / triangle_sizes.size();
+    std::nth_element(triangle_sizes.begin(), triangle_sizes.begin() + triangle_sizes.size() / 2,
+                     triangle_sizes.end());
+    r.triangle_size_ratio_median = triangle_sizes[triangle_sizes.size() / 2];
+  }
 
   if (r.quads.quads.empty()) {
     r.warnings.push_back("'" + options.mesh_path + "' has " + std::to_string(r.num_triangles) +
-                         " triangles and no quadrangle: only the triangles' angles are measured");
+                         " triangles and no quadrangle: their angles and sizes and the D-Flow FM "
+                         "links are measured");
   } else {
     // With triangles, the quads' own boundary runs round them too: not the coast.
     if (r.num_triangles == 0) place_on_chains(r.fields.mesh, r.quads, r);
@@ -192,6 +220,10 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
     for (int q = 0; q < static_cast<int>(r.quads.quads.size()); ++q)
       r.num_quads_outside += locator.locate(quad_centroid(r.quads, q)).triangle < 0;
   }
+  // D-Flow FM's links between any two cells, with the triangles.
+  if (r.num_triangles > 0) summarize_dflowfm(dflowfm_links(m, triangles), r.quality);
+  r.quality.mesh_area_m2 = mesh_area;
+  r.quality.domain_area_m2 = domain_area;
   if (r.num_quads_outside > 0)
     r.warnings.push_back(std::to_string(r.num_quads_outside) +
                          " quad(s) have their centroid outside the domain: their size ratio and "
@@ -221,21 +253,20 @@ std::string format_quality_job_summary(const QualityJobResult& r) {
       r.reversed ? "; its elements clockwise, measured reversed" : "");
   out += "mesh CRS:     " + r.mesh_crs +
          (r.transformed ? ", transformed into the meshing CRS" : "") + "\n";
+  const QualitySummary& q = r.quality;
   if (!r.quads.quads.empty()) {
-    const QualitySummary& q = r.quality;
     out += printf_string("quads:        %zu non-convex (or clockwise)\n", q.num_nonconvex);
     out += format_quad_shape_lines(q);
-    QualityParts parts;
-    parts.connectivity = r.num_triangles == 0;
-    out += format_quad_connectivity_lines(q, parts);
-    if (!parts.connectivity)
-      out +=
-          "              (regularity, coast and D-Flow FM not measured: the mesh has "
-          "triangles)\n";
   }
   if (r.num_triangles > 0)
-    out += printf_string("triangles:    %zu, angles from %.1f to %.1f deg\n", r.num_triangles,
-                         r.triangle_min_angle_deg, r.triangle_max_angle_deg);
+    out += printf_string(
+        "triangles:    %zu, %zu clockwise (inverted), angles from %.1f to %.1f deg; size (the "
+        "side of the equilateral triangle of its area)/h median %.3f, %.1f%% in [0.8,1.25]\n",
+        r.num_triangles, r.num_inverted_triangles, r.triangle_min_angle_deg,
+        r.triangle_max_angle_deg, r.triangle_size_ratio_median, 100 * r.triangle_share_size_08_125);
+  out += format_quad_connectivity_lines(q, parts_of(r));
+  if (r.num_triangles > 0)
+    out += "              (regularity and the coast not measured: the mesh has triangles)\n";
   return out;
 }
 
@@ -267,13 +298,12 @@ std::string quality_job_report_json(const QualityJobResult& r, const std::string
       .value("num_vertices", r.quads.points.size())
       .value("num_triangles", r.num_triangles);
   if (r.num_triangles > 0)
-    j.value("triangle_min_angle_deg", r.triangle_min_angle_deg)
-        .value("triangle_max_angle_deg", r.triangle_max_angle_deg);
-  if (!r.quads.quads.empty()) {
-    QualityParts parts;
-    parts.connectivity = r.num_triangles == 0;
-    add_quality_values(j, r.quality, parts);
-  }
+    j.value("num_inverted_triangles", r.num_inverted_triangles)
+        .value("triangle_min_angle_deg", r.triangle_min_angle_deg)
+        .value("triangle_max_angle_deg", r.triangle_max_angle_deg)
+        .value("triangle_size_ratio_median", r.triangle_size_ratio_median)
+        .value("triangle_share_size_ratio_08_125", r.triangle_share_size_08_125);
+  add_quality_values(j, r.quality, parts_of(r));
   j.end_object();
   add_stage_times(j, r.fields.times);
   j.value("peak_memory_mb", process_peak_mb());

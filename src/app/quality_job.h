@@ -29,10 +29,13 @@ struct QualityJobResult {
   bool transformed = false;  // the points were transformed into the meshing CRS
   bool reversed = false;     // the file's elements were clockwise: measured reversed
   QuadMesh quads;            // in the meshing CRS, with the boundary vertices on the chains
-  QualitySummary quality;    // of the quads
+  QualitySummary quality;    // of the quads; D-Flow FM's links and the areas of every cell
   QuadMetrics metrics;
   std::size_t num_triangles = 0;
+  std::size_t num_inverted_triangles = 0;  // clockwise (or flat) after the file's orientation
   double triangle_min_angle_deg = 0, triangle_max_angle_deg = 0;
+  // The side of the equilateral triangle of a triangle's area over h at its centroid.
+  double triangle_size_ratio_median = 0, triangle_share_size_08_125 = 0;
   std::size_t num_skipped_elements = 0;  // lines and points of a .msh
   // Boundary vertices of the quads (edges of one quad) on the domain's boundary (within
   // `on_boundary_tolerance_m`), and how far the others lie from it (searched up to

@@ -39,36 +39,43 @@ std::string format_quad_connectivity_lines(const QualitySummary& q, QualityParts
         "regularity:   %.1f%% of interior, %.1f%% of boundary, %.1f%% of all vertices regular\n",
         100 * q.share_regular_interior, 100 * q.share_regular_boundary, 100 * q.share_regular_all);
   }
-  out +=
-      printf_string("SCHISM:       %zu quads with min/max angle < 0.5, %zu with aspect ratio > 5\n",
-                    q.schism_angle_ratio_violations, q.schism_aspect_violations);
-  if (parts.connectivity)
+  if (parts.quads)
     out += printf_string(
-        "D-Flow FM:    orthogonality max %.3f, mean %.3f, %zu links over 0.5, %.1f%% at "
-        "0.02 or less; smoothness max %.2f, %.1f%% of links at 1.2 or less\n",
-        q.dflowfm_orthogonality_max, q.dflowfm_orthogonality_mean,
-        q.dflowfm_orthogonality_violations, 100 * q.dflowfm_share_orthogonality_002,
-        q.dflowfm_smoothness_max, 100 * q.dflowfm_share_smoothness_12);
+        "SCHISM:       %zu quads with min/max angle < 0.5, %zu with aspect ratio > 5\n",
+        q.schism_angle_ratio_violations, q.schism_aspect_violations);
+  out += printf_string(
+      "D-Flow FM:    orthogonality max %.3f, mean %.3f, %zu links over 0.5, %.1f%% at "
+      "0.02 or less; smoothness max %.2f, %.1f%% of links at 1.2 or less\n",
+      q.dflowfm_orthogonality_max, q.dflowfm_orthogonality_mean, q.dflowfm_orthogonality_violations,
+      100 * q.dflowfm_share_orthogonality_002, q.dflowfm_smoothness_max,
+      100 * q.dflowfm_share_smoothness_12);
   return out;
 }
 
 void add_quality_values(JsonWriter& j, const QualitySummary& q, QualityParts parts) {
-  j.value("num_nonconvex", q.num_nonconvex)
-      .value("share_angles_75_105", q.share_angles_75_105)
-      .value("min_angle_deg", q.min_angle_deg)
-      .value("max_angle_deg", q.max_angle_deg)
-      .array("angle_histogram_5deg", q.angle_histogram)
-      .value("size_ratio_median", q.size_ratio_median)
-      .value("share_size_ratio_08_125", q.share_size_08_125)
-      .array("size_ratio_histogram_005_from_025", q.size_ratio_histogram)
-      .value("orientation_mean_deg", q.orientation_mean_deg)
-      .value("orientation_p90_deg", q.orientation_p90_deg)
-      .array("orientation_histogram_1deg", q.orientation_histogram)
-      .value("eta_mean", q.eta_mean)
-      .value("eta_min", q.eta_min)
-      .value("schism_angle_ratio_violations", q.schism_angle_ratio_violations)
-      .value("schism_aspect_ratio_violations", q.schism_aspect_violations)
-      .value("schism_failures", q.schism_failures)
+  if (parts.quads)
+    j.value("num_nonconvex", q.num_nonconvex)
+        .value("share_angles_75_105", q.share_angles_75_105)
+        .value("min_angle_deg", q.min_angle_deg)
+        .value("max_angle_deg", q.max_angle_deg)
+        .array("angle_histogram_5deg", q.angle_histogram)
+        .value("size_ratio_median", q.size_ratio_median)
+        .value("share_size_ratio_08_125", q.share_size_08_125)
+        .array("size_ratio_histogram_005_from_025", q.size_ratio_histogram)
+        .value("orientation_mean_deg", q.orientation_mean_deg)
+        .value("orientation_p90_deg", q.orientation_p90_deg)
+        .array("orientation_histogram_1deg", q.orientation_histogram)
+        .value("eta_mean", q.eta_mean)
+        .value("eta_min", q.eta_min)
+        .value("schism_angle_ratio_violations", q.schism_angle_ratio_violations)
+        .value("schism_aspect_ratio_violations", q.schism_aspect_violations)
+        .value("schism_failures", q.schism_failures);
+  j.value("dflowfm_orthogonality_max", q.dflowfm_orthogonality_max)
+      .value("dflowfm_orthogonality_mean", q.dflowfm_orthogonality_mean)
+      .value("dflowfm_orthogonality_violations", q.dflowfm_orthogonality_violations)
+      .value("dflowfm_share_orthogonality_002", q.dflowfm_share_orthogonality_002)
+      .value("dflowfm_smoothness_max", q.dflowfm_smoothness_max)
+      .value("dflowfm_share_smoothness_12", q.dflowfm_share_smoothness_12)
       .value("mesh_area_m2", q.mesh_area_m2)
       .value("domain_area_m2", q.domain_area_m2);
   if (!parts.connectivity) return;
@@ -78,12 +85,6 @@ void add_quality_values(JsonWriter& j, const QualitySummary& q, QualityParts par
       .value("share_regular_boundary", q.share_regular_boundary)
       .value("share_regular_all", q.share_regular_all)
       .array("interior_degree_histogram", q.interior_degree_histogram)
-      .value("dflowfm_orthogonality_max", q.dflowfm_orthogonality_max)
-      .value("dflowfm_orthogonality_mean", q.dflowfm_orthogonality_mean)
-      .value("dflowfm_orthogonality_violations", q.dflowfm_orthogonality_violations)
-      .value("dflowfm_share_orthogonality_002", q.dflowfm_share_orthogonality_002)
-      .value("dflowfm_smoothness_max", q.dflowfm_smoothness_max)
-      .value("dflowfm_share_smoothness_12", q.dflowfm_share_smoothness_12)
       .value("boundary_departure_max_m", q.boundary_departure_max_m)
       .value("boundary_departure_max_x_m", q.boundary_departure_where.x)
       .value("boundary_departure_max_y_m", q.boundary_departure_where.y)

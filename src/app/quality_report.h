@@ -10,19 +10,20 @@
 namespace isoquad {
 
 // What of the summary a mesh has: a mesh with triangles has its quads' shapes, sizes
-// and orientations measured, not its vertices' regularity, its coast or its D-Flow FM
-// links (which count the quads alone).
+// and orientations measured and its D-Flow FM links (between any two cells), not its
+// vertices' regularity or its coast (the quads' own boundary runs round the triangles).
 struct QualityParts {
-  bool connectivity = true;  // regularity, coast, D-Flow FM
+  bool quads = true;         // the quads' angles, sizes, orientation, SCHISM's checks
+  bool connectivity = true;  // regularity, the coast
 };
 
 // "angles:", "size:" and "orientation:" lines.
 std::string format_quad_shape_lines(const QualitySummary& q);
-// "coast:", "regularity:", "SCHISM:" and "D-Flow FM:" lines (SCHISM's alone without
-// parts.connectivity).
+// "coast:", "regularity:" (with parts.connectivity), "SCHISM:" (with parts.quads) and
+// "D-Flow FM:" lines.
 std::string format_quad_connectivity_lines(const QualitySummary& q, QualityParts parts = {});
 // The quality object's values (the caller opens and closes it), without the counts of
-// quads and vertices.
+// quads and vertices, those of `parts` and D-Flow FM's.
 void add_quality_values(JsonWriter& j, const QualitySummary& q, QualityParts parts = {});
 
 }  // namespace isoquad

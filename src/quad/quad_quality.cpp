@@ -58,6 +58,32 @@ bool inside_quad(const QuadMesh& m, int q, const Point2& p) {
   return true;
 }
 
+// For each cell (the quads, then the triangles), the cell across each side (side i from
+// corner i; -1 on the boundary; a triangle's fourth -1).
+std::vector<std::array<int, 4>> cells_across(const QuadMesh& m,
+                                             const std::vector<std::array<int, 3>>& triangles) {
+  const int nq = static_cast<int>(m.quads.size());
+  const int nc = nq + static_cast<int>(triangles.size());
+  // (edge, cell, side) sorted by edge: an edge of two cells comes twice in a row.
+  std::vector<std::tuple<std::array<int, 2>, int, int>> sides;
+  for (int c = 0; c < nc; ++c) {
+    const int n = c < nq ? 4 : 3;
+    for (int i = 0; i < n; ++i) {
+      const int v = c < nq ? m.quads[c][i] : triangles[c - nq][i];
+      const int w = c < nq ? m.quads[c][(i + 1) % 4] : triangles[c - nq][(i + 1) % 3];
+      sides.push_back({{std::min(v, w), std::max(v, w)}, c, i});
+    }
+  }
+  std::sort(sides.begin(), sides.end());
+  std::vector<std::array<int, 4>> across(nc, {-1, -1, -1, -1});
+  for (std::size_t k = 0; k + 1 < sides.size(); ++k)
+    if (std::get<0>(sides[k]) == std::get<0>(sides[k + 1])) {
+      across[std::get<1>(sides[k])][std::get<2>(sides[k])] = std::get<1>(sides[k + 1]);
+      across[std::get<1>(sides[k + 1])][std::get<2>(sides[k + 1])] = std::get<1>(sides[k]);
+    }
+  return across;
+}
+
 }  // namespace
 
 Point2 dflowfm_centre(const QuadMesh& m, int q, const std::array<bool, 4>& shared) {
@@ -101,40 +127,44 @@ double link_orthogonality(const Point2& a, const Point2& b, const Point2& ca, co
 }
 
 std::vector<std::array<int, 4>> quads_across(const QuadMesh& m) {
-  const int nq = static_cast<int>(m.quads.size());
-  // (edge, quad, side) sorted by edge: an edge of two quads comes twice in a row.
-  std::vector<std::tuple<std::array<int, 2>, int, int>> sides;
-  for (int q = 0; q < nq; ++q)
-    for (int i = 0; i < 4; ++i) {
-      const int v = m.quads[q][i], w = m.quads[q][(i + 1) % 4];
-      sides.push_back({{std::min(v, w), std::max(v, w)}, q, i});
-    }
-  std::sort(sides.begin(), sides.end());
-  std::vector<std::array<int, 4>> across(nq, {-1, -1, -1, -1});
-  for (std::size_t k = 0; k + 1 < sides.size(); ++k)
-    if (std::get<0>(sides[k]) == std::get<0>(sides[k + 1])) {
-      across[std::get<1>(sides[k])][std::get<2>(sides[k])] = std::get<1>(sides[k + 1]);
-      across[std::get<1>(sides[k + 1])][std::get<2>(sides[k + 1])] = std::get<1>(sides[k]);
-    }
-  return across;
+  return cells_across(m, {});
 }
 
 DflowfmLinks dflowfm_links(const QuadMesh& m) {
+  return dflowfm_links(m, {});
+}
+
+DflowfmLinks dflowfm_links(const QuadMesh& m, const std::vector<std::array<int, 3>>& triangles) {
   const int nq = static_cast<int>(m.quads.size());
-  const std::vector<std::array<int, 4>> across = quads_across(m);
-  std::vector<Point2> centre(nq);
-  std::vector<double> area(nq);
-  for (int q = 0; q < nq; ++q) {
-    const auto& a = across[q];
-    centre[q] = dflowfm_centre(m, q, {a[0] >= 0, a[1] >= 0, a[2] >= 0, a[3] >= 0});
-    area[q] = quad_area(m, q);
+  const int nc = nq + static_cast<int>(triangles.size());
+  auto corners = [&](int c) { return c < nq ? 4 : 3; };
+  auto corner = [&](int c, int i) { return c < nq ? m.quads[c][i] : triangles[c - nq][i]; };
+  const std::vector<std::array<int, 4>> across = cells_across(m, triangles);
+  std::vector<Point2> centre(nc);
+  std::vector<double> area(nc);
+  for (int c = 0; c < nc; ++c) {
+    const auto& a = across[c];
+    if (c < nq) {
+      centre[c] = dflowfm_centre(m, c, {a[0] >= 0, a[1] >= 0, a[2] >= 0, a[3] >= 0});
+      area[c] = std::abs(quad_area(m, c));
+      continue;
+    }
+    const Point2 &p = m.points[corner(c, 0)], &q = m.points[corner(c, 1)],
+                 &r = m.points[corner(c, 2)];
+    area[c] = std::abs(signed_area(p, q, r));
+    // The circumcentre, from p.
+    const double bx = q.x - p.x, by = q.y - p.y, cx = r.x - p.x, cy = r.y - p.y;
+    const double d = 2 * (bx * cy - by * cx);
+    const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
+    centre[c] = d != 0 ? Point2{p.x + (cy * b2 - by * c2) / d, p.y + (bx * c2 - cx * b2) / d}
+                       : Point2{(p.x + q.x + r.x) / 3, (p.y + q.y + r.y) / 3};
   }
   DflowfmLinks out;
-  for (int a = 0; a < nq; ++a)
-    for (int i = 0; i < 4; ++i) {
+  for (int a = 0; a < nc; ++a)
+    for (int i = 0; i < corners(a); ++i) {
       const int b = across[a][i];
-      if (b < a) continue;  // each link once, from its lower quad
-      const int v = m.quads[a][i], w = m.quads[a][(i + 1) % 4];
+      if (b < a) continue;  // each link once, from its lower cell
+      const int v = corner(a, i), w = corner(a, (i + 1) % corners(a));
       out.edge.push_back({std::min(v, w), std::max(v, w)});
       out.quads.push_back({a, b});
       out.orthogonality.push_back(
@@ -143,6 +173,33 @@ DflowfmLinks dflowfm_links(const QuadMesh& m) {
       out.smoothness.push_back(lo > 0 ? hi / lo : std::numeric_limits<double>::infinity());
     }
   return out;
+}
+
+void summarize_dflowfm(const DflowfmLinks& links, QualitySummary& s,
+                       std::vector<double>* per_quad) {
+  std::size_t ortho_ok = 0, smooth_ok = 0;
+  double ortho_sum = 0;
+  s.dflowfm_orthogonality_max = s.dflowfm_orthogonality_mean = 0;
+  s.dflowfm_orthogonality_violations = 0;
+  s.dflowfm_share_orthogonality_002 = s.dflowfm_smoothness_max = s.dflowfm_share_smoothness_12 = 0;
+  for (std::size_t k = 0; k < links.edge.size(); ++k) {
+    const double o = links.orthogonality[k], r = links.smoothness[k];
+    if (per_quad)
+      for (int q : links.quads[k])
+        if (q < static_cast<int>(per_quad->size())) (*per_quad)[q] = std::max((*per_quad)[q], o);
+    s.dflowfm_orthogonality_max = std::max(s.dflowfm_orthogonality_max, o);
+    ortho_sum += o;
+    s.dflowfm_orthogonality_violations += o > 0.5;
+    ortho_ok += o <= 0.02;
+    s.dflowfm_smoothness_max = std::max(s.dflowfm_smoothness_max, r);
+    smooth_ok += r <= 1.2;
+  }
+  if (!links.edge.empty()) {
+    const double n = static_cast<double>(links.edge.size());
+    s.dflowfm_orthogonality_mean = ortho_sum / n;
+    s.dflowfm_share_orthogonality_002 = ortho_ok / n;
+    s.dflowfm_share_smoothness_12 = smooth_ok / n;
+  }
 }
 
 QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, const SizingField& size,
@@ -265,26 +322,8 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
   s.share_regular_all =
       interior + boundary ? static_cast<double>(interior_regular + boundary_regular) / (interior + boundary) : 0;
 
-  const DflowfmLinks links = dflowfm_links(m);
-  std::size_t ortho_ok = 0, smooth_ok = 0;
-  double ortho_sum = 0;
   qm.orthogonality.assign(nq, 0.0);
-  for (std::size_t k = 0; k < links.edge.size(); ++k) {
-    const double o = links.orthogonality[k], r = links.smoothness[k];
-    for (int q : links.quads[k]) qm.orthogonality[q] = std::max(qm.orthogonality[q], o);
-    s.dflowfm_orthogonality_max = std::max(s.dflowfm_orthogonality_max, o);
-    ortho_sum += o;
-    s.dflowfm_orthogonality_violations += o > 0.5;
-    ortho_ok += o <= 0.02;
-    s.dflowfm_smoothness_max = std::max(s.dflowfm_smoothness_max, r);
-    smooth_ok += r <= 1.2;
-  }
-  if (!links.edge.empty()) {
-    const double n = static_cast<double>(links.edge.size());
-    s.dflowfm_orthogonality_mean = ortho_sum / n;
-    s.dflowfm_share_orthogonality_002 = ortho_ok / n;
-    s.dflowfm_share_smoothness_12 = smooth_ok / n;
-  }
+  summarize_dflowfm(dflowfm_links(m), s, &qm.orthogonality);
 
   for (int q = 0; q < nq; ++q) s.mesh_area_m2 += quad_area(m, q);
   s.domain_area_m2 = area(bg);

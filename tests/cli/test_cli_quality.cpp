@@ -131,8 +131,8 @@ TEST(CliQuality, IsoquadsOwnOutputsMeasureAsTheMeshReportSays) {
 // A mesh the gmsh binary makes of a 10 x 6 km rectangle (Frontal-Delaunay for quads,
 // Blossom full-quad recombination), saved as ASCII 4.1 and 2.2: both read the same, with
 // meshio's counts of quads and nodes, every boundary node on the domain's boundary, the
-// rectangle's area; with triangles (no recombination) only their angles are measured,
-// and -o stops.
+// rectangle's area; with triangles (no recombination) their angles, sizes and D-Flow FM
+// links are measured, and -o stops.
 TEST(CliQuality, GmshMeshesOfARectangle) {
   TempDir dir;
   const double x0 = 500000, y0 = 5000000, w = 10000, h = 6000;
@@ -213,7 +213,15 @@ print(sum(len(c.data) for c in m.cells if c.type == "quad"), len(m.points))
   EXPECT_EQ(report_number(t, "num_quads"), 0);
   EXPECT_GT(report_number(t, "triangle_min_angle_deg"), 20);
   EXPECT_LT(report_number(t, "triangle_max_angle_deg"), 120);
-  EXPECT_NE(tris.err.find("only the triangles' angles are measured"), std::string::npos)
+  EXPECT_EQ(report_number(t, "num_inverted_triangles"), 0);
+  // Gmsh's sides of about lc = h: the equilateral side of a triangle's area near h.
+  EXPECT_GT(report_number(t, "triangle_size_ratio_median"), 0.8);
+  EXPECT_LT(report_number(t, "triangle_size_ratio_median"), 1.25);
+  // Two triangles' circumcentres lie on their shared side's bisector: orthogonal links.
+  EXPECT_LT(report_number(t, "dflowfm_orthogonality_max"), 1e-9);
+  EXPECT_NEAR(report_number(t, "mesh_area_m2"), w * h, 1e-3);
+  EXPECT_NE(tris.err.find("their angles and sizes and the D-Flow FM links are measured"),
+            std::string::npos)
       << tris.err;
   args.insert(args.end(), {"-o", dir.file("t.gpkg"), "--overwrite"});
   const CliResult with_output = run_cli(args, dir);

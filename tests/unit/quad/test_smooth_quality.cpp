@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 
 #include "fields/cross_field.h"
 #include "fields/sizing_field.h"
@@ -1051,4 +1052,38 @@ TEST(EmbedLines, ALineOutsideTheDomainMovesNothing) {
   EXPECT_EQ(st.num_runs, 0u);
   EXPECT_EQ(st.num_skipped, 0u);
   EXPECT_EQ(m.points, before.points);
+}
+
+// D-Flow FM's links over quads and triangles: a unit square with a right triangle on its
+// right side and an obtuse one above. The square's centre is its middle; a triangle's its
+// circumcentre (the middle of the right triangle's hypotenuse; above the obtuse one's base,
+// outside it), so the links between two triangles or a triangle and the square run
+// along the shared side's perpendicular bisector: orthogonality 0. The smoothness, the
+// larger area over the smaller: 1 / 0.5 and 1 / 0.25.
+TEST(QuadQuality, DflowfmLinksBetweenQuadsAndTriangles) {
+  QuadMesh m;
+  m.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {2, 0}, {0.5, 1.5}};
+  m.quads = {{0, 1, 2, 3}};
+  const std::vector<std::array<int, 3>> triangles = {{1, 4, 2}, {3, 2, 5}};
+  const DflowfmLinks links = dflowfm_links(m, triangles);
+  ASSERT_EQ(links.edge.size(), 2u);
+  std::map<int, double> smoothness;  // by the triangle
+  for (std::size_t k = 0; k < links.edge.size(); ++k) {
+    EXPECT_EQ(links.quads[k][0], 0);
+    EXPECT_NEAR(links.orthogonality[k], 0.0, 1e-12) << k;
+    smoothness[links.quads[k][1]] = links.smoothness[k];
+  }
+  EXPECT_NEAR(smoothness[1], 2.0, 1e-12);
+  EXPECT_NEAR(smoothness[2], 4.0, 1e-12);
+  // The two triangles share no side; a shear of the square tilts its links.
+  m.points[2] = {1.3, 1};
+  m.points[3] = {0.3, 1};
+  const DflowfmLinks sheared = dflowfm_links(m, triangles);
+  for (double o : sheared.orthogonality) EXPECT_GT(o, 1e-3);
+  QualitySummary s;
+  summarize_dflowfm(sheared, s);
+  EXPECT_EQ(s.dflowfm_orthogonality_max,
+            std::max(sheared.orthogonality[0], sheared.orthogonality[1]));
+  EXPECT_NEAR(s.dflowfm_orthogonality_mean,
+              0.5 * (sheared.orthogonality[0] + sheared.orthogonality[1]), 1e-15);
 }
