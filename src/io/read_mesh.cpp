@@ -57,6 +57,14 @@ class LineReader {
   int number_ = 0;
 };
 
+// A word of the file as a message shows it: at most 32 characters, each byte outside
+// printable ASCII as '?'.
+std::string shown(const std::string& word) {
+  std::string out;
+  for (char c : word.substr(0, 32)) out += c >= 32 && c < 127 ? c : '?';
+  return word.size() > 32 ? out + "..." : out;
+}
+
 // Whitespace-separated fields of a line, read as numbers.
 class Fields {
  public:
@@ -77,7 +85,7 @@ class Fields {
     long long value = 0;
     const auto [end, ec] = std::from_chars(w.data(), w.data() + w.size(), value);
     if (ec != std::errc() || end != w.data() + w.size())
-      reader_.fail(std::string("expected ") + what + ", an integer, found '" + w + "'");
+      reader_.fail(std::string("expected ") + what + ", an integer, found '" + shown(w) + "'");
     return value;
   }
   double number(const char* what) {
@@ -91,7 +99,7 @@ class Fields {
     if (!text.empty() && text[0] == '+') ++first;
     const auto [end, ec] = std::from_chars(first, text.data() + text.size(), value);
     if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value))
-      reader_.fail(std::string("expected ") + what + ", a number, found '" + w + "'");
+      reader_.fail(std::string("expected ") + what + ", a number, found '" + shown(w) + "'");
     return value;
   }
   std::string rest() {

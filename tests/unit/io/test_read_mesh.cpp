@@ -141,6 +141,12 @@ TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
   EXPECT_NE(read_error(dir, "c.gr3", "grid\n1 3\n1 0 0 0\n2 1 x 0\n3 1 1 0\n1 3 1 2 3\n")
                 .find("line 4: expected y, a number, found 'x'"),
             std::string::npos);
+  // A damaged byte shows as '?', a long word cut.
+  const std::string damaged = read_error(
+      dir, "c2.gr3",
+      "grid\n1 3\n1 0 0 0\n2 1 \xeb\x01" + std::string(40, '7') + " 0\n3 1 1 0\n1 3 1 2 3\n");
+  EXPECT_NE(damaged.find("found '??" + std::string(30, '7') + "...'"), std::string::npos)
+      << damaged;
   EXPECT_NE(
       read_error(dir, "d.gr3", "grid\n1 4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n1 5 1 2 3 4 1\n")
           .find("line 7: element 1 has 5 nodes"),
