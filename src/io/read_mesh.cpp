@@ -4,6 +4,8 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -580,6 +582,124 @@ void read_netcdf(const std::string& path, ReadMesh& mesh) {
   }
 }
 
+// TELEMAC's Selafin (.slf): Fortran sequential records (a 4-byte length before and after),
+// big-endian (or little-endian, told by the first record's length, 80): the title (its
+// last 8 characters SERAFIN, or SERAFIND for doubles), the numbers of variables, their
+// names, IPARAM (10 integers; a date follows when the tenth is 1; the third and fourth
+// an origin added to the coordinates), NELEM NPOIN NDP 1, IKLE (numbered from 1), IPOBO,
+// X and Y. The time steps after them are not read.
+class SelafinReader {
+ public:
+  explicit SelafinReader(const std::string& path) : path_(path), in_(path, std::ios::binary) {
+    if (!in_) fail("cannot open the mesh file");
+    unsigned char b[4];
+    if (!in_.read(reinterpret_cast<char*>(b), 4)) fail("empty, not a Selafin file");
+    big_ = (b[0] << 24 | b[1] << 16 | b[2] << 8 | b[3]) == 80;
+    if (!big_ && (b[3] << 24 | b[2] << 16 | b[1] << 8 | b[0]) != 80)
+      fail("not a Selafin file (its first record is not an 80-character title)");
+    in_.seekg(0);
+  }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw Error(ErrorClass::input, "read", "'" + path_ + "': " + what);
+  }
+  // The next record's bytes.
+  std::string record(const char* what) {
+    const std::int64_t length = raw_int(what);
+    if (length < 0 || length > (std::int64_t{1} << 34))
+      fail(std::string("a damaged record (") + what + ")");
+    std::string bytes(static_cast<std::size_t>(length), '\0');
+    if (!in_.read(bytes.data(), length)) fail(std::string("the file ends inside ") + what);
+    if (raw_int(what) != length) fail(std::string("a damaged record (") + what + ")");
+    return bytes;
+  }
+  std::vector<std::int32_t> ints(const char* what, std::size_t at_least) {
+    const std::string r = record(what);
+    if (r.size() % 4 || r.size() / 4 < at_least)
+      fail(std::string("the record of ") + what + " holds " + std::to_string(r.size()) + " bytes");
+    std::vector<std::int32_t> out(r.size() / 4);
+    for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<std::int32_t>(word(r, 4 * i));
+    return out;
+  }
+  std::vector<double> reals(const char* what, std::size_t count, bool doubles) {
+    const std::string r = record(what);
+    const std::size_t width = doubles ? 8 : 4;
+    if (r.size() != count * width)
+      fail(std::string("the record of ") + what + " holds " + std::to_string(r.size()) +
+           " bytes, not " + std::to_string(count * width));
+    std::vector<double> out(count);
+    for (std::size_t i = 0; i < count; ++i) {
+      if (doubles) {
+        const std::uint64_t bits =
+            std::uint64_t{word(r, 8 * i + (big_ ? 0 : 4))} << 32 | word(r, 8 * i + (big_ ? 4 : 0));
+        std::memcpy(&out[i], &bits, 8);
+      } else {
+        const std::uint32_t bits = word(r, 4 * i);
+        float f;
+        std::memcpy(&f, &bits, 4);
+        out[i] = f;
+      }
+    }
+    return out;
+  }
+
+ private:
+  std::uint32_t word(const std::string& r, std::size_t at) const {
+    const auto* b = reinterpret_cast<const unsigned char*>(r.data() + at);
+    return big_ ? std::uint32_t{b[0]} << 24 | b[1] << 16 | b[2] << 8 | b[3]
+                : std::uint32_t{b[3]} << 24 | b[2] << 16 | b[1] << 8 | b[0];
+  }
+  std::int64_t raw_int(const char* what) {
+    char b[4];
+    if (!in_.read(b, 4)) fail(std::string("the file ends before ") + what);
+    return static_cast<std::int32_t>(word(std::string(b, 4), 0));
+  }
+  std::string path_;
+  std::ifstream in_;
+  bool big_ = true;
+};
+
+void read_selafin(const std::string& path, ReadMesh& mesh) {
+  SelafinReader r(path);
+  const std::string title = r.record("the title");
+  if (title.size() != 80) r.fail("not a Selafin file (its title is not 80 characters)");
+  const bool doubles = title.substr(72, 8).rfind("SERAFIND", 0) == 0;
+  const std::vector<std::int32_t> counts = r.ints("the numbers of variables", 2);
+  for (int i = 0; i < counts[0] + counts[1]; ++i) r.record("a variable's name");
+  const std::vector<std::int32_t> iparam = r.ints("IPARAM", 10);
+  if (iparam[9] == 1) r.record("the date");
+  const std::vector<std::int32_t> sizes = r.ints("NELEM NPOIN NDP", 3);
+  const std::int32_t nelem = sizes[0], npoin = sizes[1], ndp = sizes[2];
+  if (nelem < 0 || npoin <= 0) r.fail("a damaged record (NELEM NPOIN NDP)");
+  if (ndp != 3 && ndp != 4)
+    r.fail("elements of " + std::to_string(ndp) +
+           " nodes: only triangles and quadrangles are read");
+  const std::vector<std::int32_t> ikle = r.ints("IKLE", static_cast<std::size_t>(nelem) * ndp);
+  if (ikle.size() != static_cast<std::size_t>(nelem) * ndp)
+    r.fail("IKLE does not hold NELEM x NDP nodes");
+  r.record("IPOBO");
+  const std::vector<double> x = r.reals("X", npoin, doubles), y = r.reals("Y", npoin, doubles);
+  for (std::int32_t i = 0; i < npoin; ++i)
+    mesh.points.push_back({x[i] + iparam[2], y[i] + iparam[3]});
+  for (std::int32_t e = 0; e < nelem; ++e) {
+    std::vector<int> nodes;
+    for (int k = 0; k < ndp; ++k) {
+      const std::int32_t n = ikle[static_cast<std::size_t>(e) * ndp + k];
+      if (n < 1 || n > npoin)
+        r.fail("element " + std::to_string(e + 1) + " has node " + std::to_string(n) +
+               ", not among the " + std::to_string(npoin) + " nodes");
+      nodes.push_back(n - 1);
+    }
+    for (std::size_t i = 0; i < nodes.size(); ++i)
+      for (std::size_t j = i + 1; j < nodes.size(); ++j)
+        if (nodes[i] == nodes[j])
+          r.fail("element " + std::to_string(e + 1) + " has the same node twice");
+    if (ndp == 3)
+      mesh.triangles.push_back({nodes[0], nodes[1], nodes[2]});
+    else
+      mesh.quads.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
+  }
+}
+
 }  // namespace
 
 std::string mesh_file_format(const std::string& path) {
@@ -592,11 +712,12 @@ std::string mesh_file_format(const std::string& path) {
   if (ext == ".msh") return "msh";
   if (ext == ".mesh") return "mesh";
   if (ext == ".nc") return "nc";
+  if (ext == ".slf" || ext == ".srf") return "slf";
   throw Error(ErrorClass::usage, "options",
               "'" + path +
                   "': a mesh to measure is a .gr3 or .ll (SCHISM), .14 or .grd (ADCIRC), .2dm "
-                  "(SMS), .msh (Gmsh, ASCII), .mesh (MIKE 21/3 FM) or .nc (UGRID, D-Flow FM's net "
-                  "file)");
+                  "(SMS), .msh (Gmsh, ASCII), .mesh (MIKE 21/3 FM), .nc (UGRID, D-Flow FM's net "
+                  "file) or .slf (TELEMAC's Selafin)");
 }
 
 ReadMesh read_mesh(const std::string& path) {
@@ -606,6 +727,8 @@ ReadMesh read_mesh(const std::string& path) {
     throw Error(ErrorClass::input, "read", "'" + path + "': no such mesh file");
   if (mesh.format == "nc") {
     read_netcdf(path, mesh);
+  } else if (mesh.format == "slf") {
+    read_selafin(path, mesh);
   } else {
     LineReader r(path);
     if (mesh.format == "gr3" || mesh.format == "14")

@@ -1,7 +1,8 @@
 // Reading meshes that other tools wrote (and isoquad's own outputs), to measure them:
 // SCHISM's .gr3/.ll, ADCIRC's .14, SMS's .2dm, Gmsh's .msh (ASCII 2.2 and 4.1), MIKE
-// 21/3 FM's .mesh and UGRID netCDF (.nc, also D-Flow FM's older net files). Only the
-// nodes and the 2D elements are read: triangles and quadrangles.
+// 21/3 FM's .mesh, UGRID netCDF (.nc, also D-Flow FM's older net files) and TELEMAC's
+// Selafin (.slf). Only the nodes and the 2D elements are read: triangles and
+// quadrangles.
 #pragma once
 
 #include <array>
@@ -25,7 +26,7 @@ struct ReadMesh {
 };
 
 // The format from the file's extension (.gr3, .ll, .14 (also fort.14 and .grd), .2dm,
-// .msh, .mesh, .nc); Error(usage) for any other.
+// .msh, .mesh, .nc, .slf or .srf); Error(usage) for any other.
 std::string mesh_file_format(const std::string& path);
 
 // Reads the mesh. Error(input) naming the file and the line for what it cannot read:

@@ -48,14 +48,27 @@ std::vector<double> boundary_departures(const QuadMesh& m, const BackgroundMesh&
   return in_h;
 }
 
-// Whether p lies inside or on the counter-clockwise quad q.
-bool inside_quad(const QuadMesh& m, int q, const Point2& p) {
-  const auto& t = m.quads[q];
-  for (int i = 0; i < 4; ++i) {
-    const Point2 &a = m.points[t[i]], &b = m.points[t[(i + 1) % 4]];
-    if ((b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x) < 0) return false;
+// `c` when it lies inside or on the counter-clockwise polygon `corners`, else the point
+// where the segment from `mean` (inside) to it leaves the polygon (D-Flow FM keeps a
+// cell's centre inside it).
+Point2 inside_cell(const std::vector<Point2>& corners, const Point2& mean, const Point2& c) {
+  const std::size_t n = corners.size();
+  bool inside = true;
+  for (std::size_t i = 0; i < n && inside; ++i) {
+    const Point2 &a = corners[i], &b = corners[(i + 1) % n];
+    inside = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x) >= 0;
   }
-  return true;
+  if (inside) return c;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point2 &a = corners[i], &b = corners[(i + 1) % n];
+    const double dx = c.x - mean.x, dy = c.y - mean.y, ex = b.x - a.x, ey = b.y - a.y;
+    const double den = dx * ey - dy * ex;
+    if (den == 0) continue;
+    const double s = ((a.x - mean.x) * ey - (a.y - mean.y) * ex) / den;  // along mean -> c
+    const double u = ((a.x - mean.x) * dy - (a.y - mean.y) * dx) / den;  // along a -> b
+    if (s >= 0 && s <= 1 && u >= 0 && u <= 1) return {mean.x + s * dx, mean.y + s * dy};
+  }
+  return mean;
 }
 
 // For each cell (the quads, then the triangles), the cell across each side (side i from
@@ -106,18 +119,7 @@ Point2 dflowfm_centre(const QuadMesh& m, int q, const std::array<bool, 4>& share
     }
     if (sweep > 0 && std::abs(c.x - before.x) < 1e-3 && std::abs(c.y - before.y) < 1e-3) break;
   }
-  if (inside_quad(m, q, c)) return c;
-  // Back to where the segment from the mean leaves the quad.
-  for (int i = 0; i < 4; ++i) {
-    const Point2 &a = m.points[t[i]], &b = m.points[t[(i + 1) % 4]];
-    const double dx = c.x - mean.x, dy = c.y - mean.y, ex = b.x - a.x, ey = b.y - a.y;
-    const double den = dx * ey - dy * ex;
-    if (den == 0) continue;
-    const double s = ((a.x - mean.x) * ey - (a.y - mean.y) * ex) / den;  // along mean -> c
-    const double u = ((a.x - mean.x) * dy - (a.y - mean.y) * dx) / den;  // along a -> b
-    if (s >= 0 && s <= 1 && u >= 0 && u <= 1) return {mean.x + s * dx, mean.y + s * dy};
-  }
-  return mean;
+  return inside_cell({m.points[t[0]], m.points[t[1]], m.points[t[2]], m.points[t[3]]}, mean, c);
 }
 
 double link_orthogonality(const Point2& a, const Point2& b, const Point2& ca, const Point2& cb) {
@@ -156,8 +158,14 @@ DflowfmLinks dflowfm_links(const QuadMesh& m, const std::vector<std::array<int, 
     const double bx = q.x - p.x, by = q.y - p.y, cx = r.x - p.x, cy = r.y - p.y;
     const double d = 2 * (bx * cy - by * cx);
     const double b2 = bx * bx + by * by, c2 = cx * cx + cy * cy;
-    centre[c] = d != 0 ? Point2{p.x + (cy * b2 - by * c2) / d, p.y + (bx * c2 - cx * b2) / d}
-                       : Point2{(p.x + q.x + r.x) / 3, (p.y + q.y + r.y) / 3};
+    const Point2 mean{(p.x + q.x + r.x) / 3, (p.y + q.y + r.y) / 3};
+    if (d == 0) {
+      centre[c] = mean;
+      continue;
+    }
+    const Point2 circumcentre{p.x + (cy * b2 - by * c2) / d, p.y + (bx * c2 - cx * b2) / d};
+    centre[c] = d > 0 ? inside_cell({p, q, r}, mean, circumcentre)
+                      : inside_cell({r, q, p}, mean, circumcentre);
   }
   DflowfmLinks out;
   for (int a = 0; a < nc; ++a)

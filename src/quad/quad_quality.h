@@ -100,7 +100,9 @@ struct DflowfmLinks {
 DflowfmLinks dflowfm_links(const QuadMesh& mesh);
 // The same over a network of quads and triangles (a mesh read from a file): cells are
 // the quads (0 ..) then the triangles (#Q ..), a triangle's centre its circumcentre (as
-// D-Flow FM takes it), a quad's dflowfm_centre with the sides it shares with any cell.
+// D-Flow FM takes it), moved back inside as a quad's is (where the segment from its
+// centroid leaves it: an obtuse triangle's links then tilt), a quad's dflowfm_centre
+// with the sides it shares with any cell.
 DflowfmLinks dflowfm_links(const QuadMesh& mesh, const std::vector<std::array<int, 3>>& triangles);
 // The summary's D-Flow FM figures from the links; with `per_quad`, each quad's largest
 // orthogonality (#Q; cells past the quads ignored).

@@ -768,16 +768,23 @@ TEST(MeshOutputs, ReadMeshReadsBackEveryFormat) {
       }
     }
   }
-  // ADCIRC's grid in the mesh's CRS (ICS 1).
+  // ADCIRC's grid in the mesh's CRS (ICS 1) and TELEMAC's Selafin: two triangles a quad.
   MeshWriteOptions utm;
   utm.output_crs = "EPSG:32631";
-  write_mesh_outputs(f.data(), {{dir.file("fort.14"), "", false}}, utm);
-  const ReadMesh adcirc = read_mesh(dir.file("fort.14"));
-  EXPECT_EQ(adcirc.format, "14");
-  EXPECT_TRUE(adcirc.quads.empty());
-  ASSERT_EQ(adcirc.triangles.size(), 2 * f.mesh.quads.size());
-  double triangles = 0;
-  for (const auto& t : adcirc.triangles)
-    triangles += signed_area(adcirc.points[t[0]], adcirc.points[t[1]], adcirc.points[t[2]]);
-  EXPECT_NEAR(triangles, area, 1e-3);
+  write_mesh_outputs(f.data(), {{dir.file("fort.14"), "", false}, {dir.file("m.slf"), "", false}},
+                     utm);
+  for (const char* name : {"fort.14", "m.slf"}) {
+    SCOPED_TRACE(name);
+    const ReadMesh split = read_mesh(dir.file(name));
+    EXPECT_EQ(split.format, std::string(name) == "m.slf" ? "slf" : "14");
+    EXPECT_TRUE(split.quads.empty());
+    ASSERT_EQ(split.points.size(), f.mesh.points.size());
+    for (std::size_t i = 0; i < split.points.size(); ++i)
+      EXPECT_LT(distance(split.points[i], f.mesh.points[i]), 1e-5);
+    ASSERT_EQ(split.triangles.size(), 2 * f.mesh.quads.size());
+    double triangles = 0;
+    for (const auto& t : split.triangles)
+      triangles += signed_area(split.points[t[0]], split.points[t[1]], split.points[t[2]]);
+    EXPECT_NEAR(triangles, area, 1e-3);
+  }
 }

@@ -170,6 +170,12 @@ TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
                 .find("line 12: Gmsh element type 9"),
             std::string::npos);
   EXPECT_NE(read_error(dir, "j.msh", "hello\n").find("no $MeshFormat section"), std::string::npos);
+  EXPECT_NE(read_error(dir, "s.slf", "hello\n").find("not a Selafin file"), std::string::npos);
+  // A Selafin title record (big-endian length 80) and nothing after it.
+  EXPECT_NE(read_error(dir, "t.slf",
+                       std::string("\0\0\0P", 4) + std::string(80, ' ') + std::string("\0\0\0P", 4))
+                .find("the file ends before the numbers of variables"),
+            std::string::npos);
   EXPECT_NE(
       read_error(dir, "k.mesh", "100079 1000 3 LONG/LAT\n1 0 0 0 1\n2 1 0 0 1\n3 1 1 0 1\n1 5 25\n")
           .find("elements of 5 nodes"),

@@ -1055,11 +1055,12 @@ TEST(EmbedLines, ALineOutsideTheDomainMovesNothing) {
 }
 
 // D-Flow FM's links over quads and triangles: a unit square with a right triangle on its
-// right side and an obtuse one above. The square's centre is its middle; a triangle's its
-// circumcentre (the middle of the right triangle's hypotenuse; above the obtuse one's base,
-// outside it), so the links between two triangles or a triangle and the square run
-// along the shared side's perpendicular bisector: orthogonality 0. The smoothness, the
-// larger area over the smaller: 1 / 0.5 and 1 / 0.25.
+// right side and another above. The square's centre is its middle; a triangle's its
+// circumcentre (the middle of its hypotenuse), so the links run along the shared side's
+// perpendicular bisector: orthogonality 0. The smoothness, the larger area over the
+// smaller: 1 / 0.5 and 1 / 0.25. An obtuse triangle above instead has its circumcentre
+// below its base, outside it: moved back to where the segment from its centroid leaves
+// it, on the base left of the middle, the link tilts.
 TEST(QuadQuality, DflowfmLinksBetweenQuadsAndTriangles) {
   QuadMesh m;
   m.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {2, 0}, {0.5, 1.5}};
@@ -1075,7 +1076,12 @@ TEST(QuadQuality, DflowfmLinksBetweenQuadsAndTriangles) {
   }
   EXPECT_NEAR(smoothness[1], 2.0, 1e-12);
   EXPECT_NEAR(smoothness[2], 4.0, 1e-12);
-  // The two triangles share no side; a shear of the square tilts its links.
+  m.points[5] = {0.2, 1.2};
+  const DflowfmLinks obtuse = dflowfm_links(m, triangles);
+  const std::size_t above = obtuse.quads[0][1] == 2 ? 0 : 1;
+  EXPECT_GT(obtuse.orthogonality[above], 0.05);
+  EXPECT_NEAR(obtuse.orthogonality[1 - above], 0.0, 1e-12);
+  // A shear of the square tilts both links.
   m.points[2] = {1.3, 1};
   m.points[3] = {0.3, 1};
   const DflowfmLinks sheared = dflowfm_links(m, triangles);
