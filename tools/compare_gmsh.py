@@ -22,6 +22,11 @@ the simplification, minimum width and island area that `isoquad fields` reports 
 so that Gmsh meshes the same cleaned boundary (the script stops if the two domains'
 vertex counts differ).
 
+Then `isoquad quality` measures Gmsh's mesh too, and the last lines say whether its
+figures (counts, angles, regularity, SCHISM's and D-Flow FM's counts; orientation to half
+a degree, the cross field being interpolated otherwise here) are this script's: the two
+are computed apart, so each checks the other.
+
 Each program runs --repeat times (default 3), alternately, so that a slow spell of the
 machine falls on both: the table gives the median wall time with the range, and the
 ratio of the medians. isoquad's repeated outputs must be byte-identical.
@@ -276,6 +281,38 @@ def metrics(points, quads, triangles, size, cross, domain=None):
     }
 
 
+def quality_agreement(isoquad, common, msh, gm_metrics, work):
+    """`isoquad quality` on Gmsh's mesh, against this script's own figures for it: the
+    two are computed apart (C++ and numpy), so they check each other."""
+    report = os.path.join(work, "gmsh_quality.json")
+    run([isoquad, "quality", *common, "--mesh", msh, "--report", report])
+    with open(report) as f:
+        q = json.load(f)["quality"]
+    theirs = {
+        "quads": q["num_quads"],
+        "angles in [75,105]": f"{100 * q['share_angles_75_105']:.1f}%",
+        "min / max angle": f"{q['min_angle_deg']:.1f} / {q['max_angle_deg']:.1f}",
+        "SCHISM: angle ratio < 0.5": q["schism_angle_ratio_violations"],
+        "SCHISM: aspect ratio > 5": q["schism_aspect_ratio_violations"],
+    }
+    if "share_regular_interior" in q:
+        theirs["regular interior vertices"] = f"{100 * q['share_regular_interior']:.1f}%"
+        theirs["D-Flow FM: links over 0.5"] = q["dflowfm_orthogonality_violations"]
+    differ = [f"{k}: {gm_metrics[k]} here, {v} by isoquad quality"
+              for k, v in theirs.items() if k in gm_metrics and str(gm_metrics[k]) != str(v)]
+    # The cross field at the centroids is interpolated otherwise here (fields_vtu): the
+    # orientation agrees to a few tenths of a degree.
+    key = "orientation dev. mean / p90"
+    here = [float(x) for x in gm_metrics[key].split()[0:3:2]]
+    there = [q["orientation_mean_deg"], q["orientation_p90_deg"]]
+    if any(abs(a - b) > 0.5 for a, b in zip(here, there)):
+        differ.append(f"{key}: {gm_metrics[key]} here, {there[0]:.1f} / {there[1]:.1f} deg by "
+                      "isoquad quality")
+    if differ:
+        return "(isoquad quality on Gmsh's mesh differs: " + "; ".join(differ) + ")"
+    return "(isoquad quality on Gmsh's mesh gives the same figures)"
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("input")
@@ -379,6 +416,8 @@ def main():
     # (Gmsh's leftover triangles, if any, are not counted in its area or boundary.)
     gm_metrics = metrics(gm.points, gm_quads, gm_tris, size, cross, coast if not gm_tris else None)
 
+    agreement = quality_agreement(a.isoquad, common, msh, gm_metrics, work)
+
     seconds = "seconds (read to write)" if a.repeat == 1 else f"seconds, median of {a.repeat}"
     rows = list(iq_metrics.keys()) + [seconds, "peak memory (MB)"]
     iq_metrics[seconds] = f"{t_iq:.2f}"
@@ -396,6 +435,7 @@ def main():
     print(f"{'time ratio gmsh / isoquad':{w}}  {t_gm / t_iq:>16.2f}")
     if a.repeat > 1:
         print(f"(isoquad's {a.repeat} runs wrote byte-identical meshes)")
+    print(agreement)
     print(f"(files in {work})")
 
 
