@@ -8,12 +8,16 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <unordered_map>
 
 #include <netcdf.h>
+#include <ogrsf_frmts.h>
 
 #include "core/error.h"
+#include "gis/crs.h"
+#include "gis/gdal_env.h"
 
 namespace isoquad {
 
@@ -700,6 +704,64 @@ void read_selafin(const std::string& path, ReadMesh& mesh) {
   }
 }
 
+// A layer of polygons, each a triangle or a quadrangle (isoquad's GeoPackage layer
+// `quads`, or elements exported as polygons): the layer `quads` when there is one, else
+// the first of polygons; the nodes are the rings' vertices, the same where their
+// coordinates are (so that two polygons that share a corner share the node); the CRS the
+// layer's.
+void read_polygon_layer(const std::string& path, ReadMesh& mesh) {
+  const GdalDataset ds = open_vector_dataset(path, "read");
+  OGRLayer* layer = ds->GetLayerByName("quads");
+  for (int i = 0; i < ds->GetLayerCount() && !layer; ++i) {
+    const OGRwkbGeometryType type = wkbFlatten(ds->GetLayer(i)->GetGeomType());
+    if (type == wkbPolygon || type == wkbMultiPolygon) layer = ds->GetLayer(i);
+  }
+  auto fail = [&](const std::string& what) {
+    throw Error(ErrorClass::input, "read", "'" + path + "': " + what);
+  };
+  if (!layer) fail("no layer of polygons (the quads or triangles of a mesh)");
+  const std::string name = layer->GetName();
+  if (const OGRSpatialReference* srs = layer->GetSpatialRef()) mesh.crs = crs_from_srs(*srs).wkt;
+  std::map<std::pair<double, double>, int> nodes;
+  std::vector<int> corners;
+  layer->ResetReading();
+  for (auto& feature : *layer) {
+    const std::string which = "layer '" + name + "', feature " + std::to_string(feature->GetFID());
+    const OGRGeometry* g = feature->GetGeometryRef();
+    if (!g) fail(which + " has no geometry");
+    if (const auto* multi = dynamic_cast<const OGRMultiPolygon*>(g)) {
+      if (multi->getNumGeometries() != 1) fail(which + " is a multipolygon of several parts");
+      g = multi->getGeometryRef(0);
+    }
+    const auto* polygon = dynamic_cast<const OGRPolygon*>(g);
+    if (!polygon || !polygon->getExteriorRing()) fail(which + " is not a polygon");
+    if (polygon->getNumInteriorRings() > 0) fail(which + " has a hole");
+    const OGRLinearRing* ring = polygon->getExteriorRing();
+    int n = ring->getNumPoints();
+    if (n > 1 && ring->getX(0) == ring->getX(n - 1) && ring->getY(0) == ring->getY(n - 1)) --n;
+    if (n != 3 && n != 4)
+      fail(which + " has " + std::to_string(n) +
+           " corners: only triangles and quadrangles are read");
+    corners.clear();
+    for (int i = 0; i < n; ++i) {
+      const Point2 p{ring->getX(i), ring->getY(i)};
+      if (!std::isfinite(p.x) || !std::isfinite(p.y))
+        fail(which + " has a corner that is not finite");
+      const auto [it, added] =
+          nodes.emplace(std::make_pair(p.x, p.y), static_cast<int>(mesh.points.size()));
+      if (added) mesh.points.push_back(p);
+      corners.push_back(it->second);
+    }
+    for (std::size_t i = 0; i < corners.size(); ++i)
+      for (std::size_t j = i + 1; j < corners.size(); ++j)
+        if (corners[i] == corners[j]) fail(which + " has the same corner twice");
+    if (n == 3)
+      mesh.triangles.push_back({corners[0], corners[1], corners[2]});
+    else
+      mesh.quads.push_back({corners[0], corners[1], corners[2], corners[3]});
+  }
+}
+
 }  // namespace
 
 std::string mesh_file_format(const std::string& path) {
@@ -713,11 +775,13 @@ std::string mesh_file_format(const std::string& path) {
   if (ext == ".mesh") return "mesh";
   if (ext == ".nc") return "nc";
   if (ext == ".slf" || ext == ".srf") return "slf";
+  if (ext == ".gpkg" || ext == ".shp" || ext == ".geojson") return "polygons";
   throw Error(ErrorClass::usage, "options",
               "'" + path +
                   "': a mesh to measure is a .gr3 or .ll (SCHISM), .14 or .grd (ADCIRC), .2dm "
                   "(SMS), .msh (Gmsh, ASCII), .mesh (MIKE 21/3 FM), .nc (UGRID, D-Flow FM's net "
-                  "file) or .slf (TELEMAC's Selafin)");
+                  "file), .slf (TELEMAC's Selafin) or a layer of polygons, each a triangle or a "
+                  "quadrangle (.gpkg: isoquad's layer 'quads', .shp, .geojson)");
 }
 
 ReadMesh read_mesh(const std::string& path) {
@@ -729,6 +793,8 @@ ReadMesh read_mesh(const std::string& path) {
     read_netcdf(path, mesh);
   } else if (mesh.format == "slf") {
     read_selafin(path, mesh);
+  } else if (mesh.format == "polygons") {
+    read_polygon_layer(path, mesh);
   } else {
     LineReader r(path);
     if (mesh.format == "gr3" || mesh.format == "14")

@@ -1,8 +1,8 @@
 // Reading meshes that other tools wrote (and isoquad's own outputs), to measure them:
 // SCHISM's .gr3/.ll, ADCIRC's .14, SMS's .2dm, Gmsh's .msh (ASCII 2.2 and 4.1), MIKE
-// 21/3 FM's .mesh, UGRID netCDF (.nc, also D-Flow FM's older net files) and TELEMAC's
-// Selafin (.slf). Only the nodes and the 2D elements are read: triangles and
-// quadrangles.
+// 21/3 FM's .mesh, UGRID netCDF (.nc, also D-Flow FM's older net files), TELEMAC's
+// Selafin (.slf) and layers of polygons (isoquad's GeoPackage, or elements exported as
+// polygons). Only the nodes and the 2D elements are read: triangles and quadrangles.
 #pragma once
 
 #include <array>
@@ -20,13 +20,14 @@ struct ReadMesh {
   std::vector<std::array<int, 3>> triangles;
   // The file's CRS, when the format holds one (MIKE's projection: "EPSG:4326" for its
   // LONG/LAT, else its WKT; UGRID's grid mapping: its WKT or EPSG code, or EPSG:4326 for
-  // longitudes); empty otherwise.
+  // longitudes; a layer's CRS); empty otherwise.
   std::string crs;
   std::size_t num_skipped_elements = 0;  // lines and points of a .msh
 };
 
 // The format from the file's extension (.gr3, .ll, .14 (also fort.14 and .grd), .2dm,
-// .msh, .mesh, .nc, .slf or .srf); Error(usage) for any other.
+// .msh, .mesh, .nc, .slf or .srf, and .gpkg, .shp or .geojson for polygons); Error(usage)
+// for any other.
 std::string mesh_file_format(const std::string& path);
 
 // Reads the mesh. Error(input) naming the file and the line for what it cannot read:

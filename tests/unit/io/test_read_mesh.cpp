@@ -130,6 +130,31 @@ TEST(ReadMesh, DflowfmNetFileWithATriangleAndAQuad) {
   }
 }
 
+// Elements as polygons (GeoJSON here): corners at the same coordinates are one node;
+// the layer's CRS; a pentagon stops the reading, naming the feature.
+TEST(ReadMesh, PolygonLayerOfTrianglesAndQuadrangles) {
+  TempDir dir;
+  write_file(dir.file("m.geojson"), geojson_polygons({"[[[0,0],[10,0],[10,10],[0,10],[0,0]]]",
+                                                      "[[[10,0],[20,5],[10,10],[10,0]]]"},
+                                                     kUtm31nCrsMember));
+  const ReadMesh m = read_mesh(dir.file("m.geojson"));
+  EXPECT_EQ(m.format, "polygons");
+  EXPECT_EQ(m.points.size(), 5u);
+  ASSERT_EQ(m.quads.size(), 1u);
+  ASSERT_EQ(m.triangles.size(), 1u);
+  EXPECT_EQ(m.triangles[0], (std::array<int, 3>{1, 4, 2}));
+  EXPECT_NE(m.crs.find("32631"), std::string::npos);
+  write_file(dir.file("p.geojson"),
+             geojson_polygons({"[[[0,0],[10,0],[10,10],[0,10],[0,0]]]",
+                               "[[[10,0],[20,0],[25,5],[20,10],[10,10],[10,0]]]"}));
+  try {
+    read_mesh(dir.file("p.geojson"));
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("feature 1 has 5 corners"), std::string::npos) << e.what();
+  }
+}
+
 TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
   TempDir dir;
   EXPECT_NE(read_error(dir, "a.gr3", "grid\n1 3\n1 0 0 0\n2 1 0 0\n3 1 1 0\n1 3 1 2 9\n")
@@ -185,7 +210,7 @@ TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
             std::string::npos);
   // Not a mesh format, or no such file.
   try {
-    read_mesh(dir.file("m.shp"));
+    read_mesh(dir.file("m.txt"));
     ADD_FAILURE();
   } catch (const Error& e) {
     EXPECT_EQ(e.error_class(), ErrorClass::usage);
