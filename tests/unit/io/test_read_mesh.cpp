@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 #include <netcdf.h>
 
+#include <cstdint>
+
 #include "core/error.h"
 #include "io/read_mesh.h"
 #include "support/test_support.h"
@@ -153,6 +155,41 @@ TEST(ReadMesh, PolygonLayerOfTrianglesAndQuadrangles) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("feature 1 has 5 corners"), std::string::npos) << e.what();
   }
+}
+
+// A Selafin file as little-endian machines write it (single precision, SERAFIN): two
+// triangles of a unit square, its origin (IPARAM 3 and 4) added to the coordinates.
+TEST(ReadMesh, SelafinLittleEndianSinglePrecision) {
+  std::string file;
+  auto record = [&file](const std::string& bytes) {
+    const std::uint32_t n = static_cast<std::uint32_t>(bytes.size());
+    const std::string length(reinterpret_cast<const char*>(&n), 4);  // this machine's order
+    file += length + bytes + length;
+  };
+  auto ints = [](std::vector<std::int32_t> v) {
+    return std::string(reinterpret_cast<const char*>(v.data()), 4 * v.size());
+  };
+  auto floats = [](std::vector<float> v) {
+    return std::string(reinterpret_cast<const char*>(v.data()), 4 * v.size());
+  };
+  ASSERT_EQ(ints({1})[0], 1) << "a little-endian machine";
+  record(std::string(72, 'T') + "SERAFIN ");
+  record(ints({1, 0}));
+  record(std::string(32, 'B'));
+  record(ints({1, 0, 1000, 2000, 0, 0, 0, 0, 0, 0}));
+  record(ints({2, 4, 3, 1}));
+  record(ints({1, 2, 3, 1, 3, 4}));
+  record(ints({1, 2, 3, 4}));
+  record(floats({0, 1, 1, 0}));
+  record(floats({0, 0, 1, 1}));
+  TempDir dir;
+  write_file(dir.file("le.slf"), file);
+  const ReadMesh m = read_mesh(dir.file("le.slf"));
+  ASSERT_EQ(m.points.size(), 4u);
+  EXPECT_EQ(m.points[2].x, 1001.0);
+  EXPECT_EQ(m.points[2].y, 2001.0);
+  ASSERT_EQ(m.triangles.size(), 2u);
+  EXPECT_EQ(m.triangles[1], (std::array<int, 3>{0, 2, 3}));
 }
 
 TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
