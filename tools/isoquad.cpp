@@ -257,6 +257,11 @@ int run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
   check_report_path(a);
   mesh_file_format(q.mesh_path);  // a format it reads, before any work
   check_depth_options(f);
+  if (!f.sizing.bathymetry.empty() && !f.sizing.wavelength_period_s && !f.sizing.slope_factor &&
+      !f.sizing.time_step_s)
+    throw Error(ErrorClass::usage, "options",
+                "quality reads depths for the sizes alone: --bathymetry or --elevation needs "
+                "--wavelength-period, --slope-factor or --time-step, as the mesh was made with");
   QualityJobOptions options;
   options.fields = fields_options(a, f);
   options.mesh_path = q.mesh_path;

@@ -10,6 +10,7 @@
 
 #include "gis/gdal_env.h"
 #include "support/test_support.h"
+#include "support/write_raster.h"
 
 using namespace isoquad::test;
 
@@ -91,6 +92,15 @@ TEST(CliQuality, IsoquadsOwnOutputsMeasureAsTheMeshReportSays) {
   EXPECT_NE(degrees.err.find("is the mesh in another CRS (give it with --mesh-crs)"),
             std::string::npos)
       << degrees.err;
+
+  // Depths serve the sizes alone here: without a sizing rule they are refused.
+  const std::string dem = write_geotiff(dir.file("dem.tif"), 8, 44, 0.1, 30, 40, 4326,
+                                        [](double, double) { return 20.0; });
+  const CliResult depths = run_cli(quality_args(dir.file("m.gr3"), {"--bathymetry", dem}), dir);
+  EXPECT_EQ(depths.exit_code, 2);
+  EXPECT_NE(depths.err.find("--bathymetry or --elevation needs --wavelength-period"),
+            std::string::npos)
+      << depths.err;
 
   // Clockwise quads (a .2dm with every E4Q's nodes reversed) are measured reversed.
   std::istringstream in(read_file(dir.file("m.2dm")));
