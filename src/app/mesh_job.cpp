@@ -232,13 +232,7 @@ std::string format_mesh_summary(const MeshResult& r) {
                "corners:      %d reflex corner(s) given a third quad where an interior vertex was "
                "glued to them\n");
   os << format_quad_shape_lines(q);
-  if (r.fields.num_aligned_vertices > 0) {
-    std::snprintf(buf, sizeof buf,
-                  "along lines:  %zu quads within half their size of the --align lines, their "
-                  "edges %.2f deg off the lines on average\n",
-                  q.align_num_quads, q.align_deviation_mean_deg);
-    os << buf;
-  }
+  if (r.fields.num_aligned_vertices > 0) os << format_align_line(q);
   if (r.embed.requested && r.embed.line_length_m == 0) {
     os << "embedded:     no line lies farther than half a quad from the boundary (where the "
           "boundary's row of quads holds it)\n";
@@ -317,9 +311,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("num_vertices", q.num_vertices)
         .value("num_triangles", 0);
     add_quality_values(j, q);
-    if (r.fields.num_aligned_vertices > 0)
-      j.value("align_num_quads", q.align_num_quads)
-          .value("align_deviation_mean_deg", q.align_deviation_mean_deg);
+    if (r.fields.num_aligned_vertices > 0) add_align_values(j, q);
     if (r.embed.requested)
       j.value("embed_num_runs", r.embed.num_runs)
           .value("embed_num_skipped", r.embed.num_skipped)

@@ -217,6 +217,8 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
     // With triangles, the quads' own boundary runs round them too: not the coast.
     if (r.num_triangles == 0) place_on_chains(r.fields.mesh, r.quads, r);
     r.quality = measure_quality(r.quads, r.fields.mesh, r.fields.size, r.fields.cross, &r.metrics);
+    if (r.fields.num_aligned_vertices > 0)
+      measure_line_following(r.quads, r.fields.front.align_lines, r.quality);
     for (int q = 0; q < static_cast<int>(r.quads.quads.size()); ++q)
       r.num_quads_outside += locator.locate(quad_centroid(r.quads, q)).triangle < 0;
   }
@@ -257,6 +259,7 @@ std::string format_quality_job_summary(const QualityJobResult& r) {
   if (!r.quads.quads.empty()) {
     out += printf_string("quads:        %zu non-convex (or clockwise)\n", q.num_nonconvex);
     out += format_quad_shape_lines(q);
+    if (r.fields.num_aligned_vertices > 0) out += format_align_line(q);
   }
   if (r.num_triangles > 0)
     out += printf_string(
@@ -304,6 +307,7 @@ std::string quality_job_report_json(const QualityJobResult& r, const std::string
         .value("triangle_size_ratio_median", r.triangle_size_ratio_median)
         .value("triangle_share_size_ratio_08_125", r.triangle_share_size_08_125);
   add_quality_values(j, r.quality, parts_of(r));
+  if (r.fields.num_aligned_vertices > 0 && !r.quads.quads.empty()) add_align_values(j, r.quality);
   j.end_object();
   add_stage_times(j, r.fields.times);
   j.value("peak_memory_mb", process_peak_mb());

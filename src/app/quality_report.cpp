@@ -14,6 +14,18 @@ std::string format_quad_shape_lines(const QualitySummary& q) {
                        q.orientation_mean_deg, q.orientation_p90_deg);
 }
 
+std::string format_align_line(const QualitySummary& q) {
+  return printf_string(
+      "along lines:  %zu quads within half their size of the --align lines, their edges %.2f "
+      "deg off the lines on average\n",
+      q.align_num_quads, q.align_deviation_mean_deg);
+}
+
+void add_align_values(JsonWriter& j, const QualitySummary& q) {
+  j.value("align_num_quads", q.align_num_quads)
+      .value("align_deviation_mean_deg", q.align_deviation_mean_deg);
+}
+
 std::string format_quad_connectivity_lines(const QualitySummary& q, QualityParts parts) {
   std::string out;
   if (parts.connectivity) {

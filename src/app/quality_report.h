@@ -19,6 +19,9 @@ struct QualityParts {
 
 // "angles:", "size:" and "orientation:" lines.
 std::string format_quad_shape_lines(const QualitySummary& q);
+// "along lines:" (with --align: measure_line_following's figures).
+std::string format_align_line(const QualitySummary& q);
+void add_align_values(JsonWriter& j, const QualitySummary& q);
 // "coast:", "regularity:" (with parts.connectivity), "SCHISM:" (with parts.quads) and
 // "D-Flow FM:" lines.
 std::string format_quad_connectivity_lines(const QualitySummary& q, QualityParts parts = {});
