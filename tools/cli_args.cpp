@@ -138,6 +138,15 @@ void add_quality_options(CLI::App* cmd, QualityArgs& q) {
                   "and latitudes; default: the .mesh's or the .nc's own, else the meshing CRS, "
                   "as --dst-crs or the automatic projection gives it)")
       ->group("Mesh");
+  cmd->add_option("--each", q.each,
+                  "A mesh measured per value of this attribute over the selected features (each "
+                  "value's features together): {} in --mesh, -o, --report and --plot stands for "
+                  "the value; a region that fails does not stop the others")
+      ->group("Selection");
+  cmd->add_option("--jobs", q.jobs,
+                  "With --each: regions measured at once, each on its own thread (default 1)")
+      ->check(kPositive)
+      ->group("Selection");
 }
 
 void add_field_options(CLI::App* cmd, FieldArgs& f) {

@@ -70,6 +70,8 @@ struct MeshArgs {
 struct QualityArgs {
   std::string mesh_path;  // --mesh
   std::string mesh_crs;   // --mesh-crs
+  std::string each;       // --each FIELD: a mesh measured per value of the attribute
+  int jobs = 1;           // --jobs: regions of --each measured at once
 };
 
 // Input, selection, projection, cleaning and the outputs every subcommand has.

@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <functional>
 #include <iostream>
 #include <string>
 
@@ -241,8 +242,8 @@ RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::stri
 
 // A mesh from a file measured against the domain's fields; -o and --plot as the mesh
 // job's, for a mesh of quads alone.
-int run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
-                const std::string& command_line) {
+RegionOutcome run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
+                          const std::string& command_line, const Console& console = Console()) {
   finish_front_end_args(a);
   std::vector<MeshOutput> outputs;
   for (const std::string& o : a.outputs) {
@@ -267,7 +268,7 @@ int run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
   options.mesh_path = q.mesh_path;
   options.mesh_crs = q.mesh_crs;
   const auto t0 = std::chrono::steady_clock::now();
-  const Progress progress(make_progress(a.quiet));
+  const Progress progress(make_progress(a.quiet || !console.progress));
   const QualityJobResult r = measure_mesh_file(options, progress);
   const bool quads_only = r.num_triangles == 0 && !r.quads.quads.empty();
   if ((!outputs.empty() || !f.plot_path.empty()) && !quads_only)
@@ -305,24 +306,35 @@ int run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
-    std::cerr << format_domain_summary(r.fields.front.summary) << format_fields_summary(r.fields)
-              << format_quality_job_summary(r);
-    for (const std::string& o : a.outputs) std::cerr << "output:       " << o << "\n";
-    if (!f.plot_path.empty()) std::cerr << "plot:         " << f.plot_path << "\n";
-    std::fprintf(stderr, "time:         %.3f s, peak memory %.0f MB\n", seconds, process_peak_mb());
+    console.out << format_domain_summary(r.fields.front.summary) << format_fields_summary(r.fields)
+                << format_quality_job_summary(r);
+    for (const std::string& o : a.outputs) console.out << "output:       " << o << "\n";
+    if (!f.plot_path.empty()) console.out << "plot:         " << f.plot_path << "\n";
+    console.out << printf_string("time:         %.3f s, peak memory %.0f MB\n", seconds,
+                                 process_peak_mb());
     for (const std::string& w : r.fields.front.summary.warnings)
-      std::cerr << "isoquad: warning: " << w << "\n";
-    for (const std::string& w : r.warnings) std::cerr << "isoquad: warning: " << w << "\n";
+      console.err << "isoquad: warning: " << w << "\n";
+    for (const std::string& w : r.warnings) console.err << "isoquad: warning: " << w << "\n";
   }
-  return 0;
+  RegionOutcome outcome;
+  outcome.quality = r.quality;
+  outcome.seconds = seconds;
+  return outcome;
 }
 
-// --each FIELD: run_mesh once per value of the attribute, with the value's features
-// (and --where's) selected and {} in the output paths replaced by the value (made safe
-// for a file name). Failures are reported and the others go on; the exit code is the
-// first failure's.
-int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
-                  const std::string& command_line) {
+// A region of --each FIELD: the value's features (and --where's) selected, {} in -o,
+// --report and --plot replaced by the value made safe for a file name.
+struct EachRegion {
+  CommonArgs a;
+  FieldArgs f;
+  std::string value, name, filter;
+  bool skip = false;  // mesh --skip-existing, and every output exists
+};
+
+// The regions of --each `field` over the selected features; Error(usage) for a path
+// without {}, Error(input) when no feature has a value.
+std::vector<EachRegion> each_regions(const CommonArgs& a, const FieldArgs& f,
+                                     const std::string& field) {
   for (const std::string& o : a.outputs)
     if (!has_each_mark(o))
       throw Error(ErrorClass::usage, "options",
@@ -332,74 +344,103 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
       (!f.plot_path.empty() && !has_each_mark(f.plot_path)))
     throw Error(ErrorClass::usage, "options",
                 "with --each, --report and --plot need {} for the value");
-  if (!m.stop_after.empty())
-    throw Error(ErrorClass::usage, "options", "--each meshes: no --stop-after");
   CommonArgs base = a;
   finish_front_end_args(base);
-  const std::vector<SelectionValue> selected = selection_values(base.fe.read, m.each);
+  const std::vector<SelectionValue> selected = selection_values(base.fe.read, field);
   if (selected.empty())
     throw Error(ErrorClass::input, "read",
-                "'" + a.input + "': no selected feature has a value of '" + m.each + "'");
+                "'" + a.input + "': no selected feature has a value of '" + field + "'");
   std::vector<std::string> values;
   for (const SelectionValue& v : selected) values.push_back(v.text);
-  const std::vector<std::string> names = each_file_names(m.each, values);
-  // One region's arguments: its features and its paths, every one checked before any
-  // meshing.
-  struct Region {
-    CommonArgs a;
-    FieldArgs f;
-    bool skip = false;  // --skip-existing, and every output exists
-  };
-  std::vector<Region> regions;
+  const std::vector<std::string> names = each_file_names(field, values);
+  std::vector<EachRegion> regions;
   for (std::size_t k = 0; k < selected.size(); ++k) {
-    Region r{a, f};
+    EachRegion r{a, f, values[k], names[k], selected[k].filter};
     r.a.fe.align_optional = true;  // one file of --align lines for all the regions
     for (std::string& o : r.a.outputs) o = fill_each_mark(o, names[k]);
     r.a.report_path = fill_each_mark(r.a.report_path, names[k]);
     r.f.plot_path = fill_each_mark(r.f.plot_path, names[k]);
-    const std::string& filter = selected[k].filter;
     r.a.fe.read.where =
-        a.fe.read.where.empty() ? filter : "(" + a.fe.read.where + ") AND " + filter;
-    r.skip = m.skip_existing && every_output_exists(r.a, r.f, m);
-    if (!r.skip) {
-      if (!r.a.report_path.empty()) check_output_path(r.a.report_path, a.overwrite);
-      if (!r.f.plot_path.empty()) check_output_path(r.f.plot_path, a.overwrite);
-      check_mesh_outputs(mesh_outputs(r.a, m), mesh_write_options(m));
-    }
+        a.fe.read.where.empty() ? r.filter : "(" + a.fe.read.where + ") AND " + r.filter;
     regions.push_back(std::move(r));
   }
+  return regions;
+}
+
+// Runs `run` for every region, `jobs` at once; a failure (Error) is reported in its
+// console and the others go on. Then the table and the total ("M of N `done`"); the exit
+// code is the first failure's.
+int run_each(const CommonArgs& a, const std::string& field, std::vector<EachRegion>& regions,
+             int jobs, const std::string& done,
+             const std::function<RegionOutcome(EachRegion&, const Console&)>& run) {
+  std::vector<std::string> values;
+  for (const EachRegion& r : regions) values.push_back(r.value);
   auto header = [&](std::size_t k) -> std::string {
     if (a.quiet) return "";
-    return "== " + m.each + " = " + values[k] + " (" + std::to_string(k + 1) + " of " +
+    return "== " + field + " = " + values[k] + " (" + std::to_string(k + 1) + " of " +
            std::to_string(values.size()) + ")\n";
   };
-  // Region k's run; a failure (Error) is reported in its console and the others go on.
-  auto mesh_region = [&](std::size_t k, const Console& console) {
-    RegionOutcome outcome;
-    if (regions[k].skip) {
-      if (!a.quiet) console.out << "skipped: every output exists (--skip-existing)\n";
-      outcome.skipped = true;
-      return outcome;
-    }
-    MeshArgs mm = m;
+  auto region = [&](std::size_t k, const Console& console) {
     try {
-      return run_mesh(regions[k].a, regions[k].f, mm,
-                      command_line + " [--each: " + selected[k].filter + "]", console);
+      return run(regions[k], console);
     } catch (const Error& e) {
       if (console.progress) end_progress_line();
-      console.err << "isoquad: " << m.each << " = " << values[k] << ": " << e.what() << "\n";
+      console.err << "isoquad: " << field << " = " << values[k] << ": " << e.what() << "\n";
+      RegionOutcome outcome;
       outcome.exit = exit_code(e.error_class());
       return outcome;
     }
   };
   const std::vector<RegionOutcome> outcomes =
-      run_regions(regions.size(), static_cast<std::size_t>(m.jobs), header, mesh_region);
+      run_regions(regions.size(), static_cast<std::size_t>(jobs), header, region);
   const int exit = each_exit_code(outcomes);
-  if (!a.quiet) std::cerr << format_each_table(m.each, values, outcomes);
+  if (!a.quiet) std::cerr << format_each_table(field, values, outcomes);
   if (!a.quiet || exit)
-    std::cerr << (exit ? "isoquad: " : "") << format_each_total(m.each, values, outcomes);
+    std::cerr << (exit ? "isoquad: " : "") << format_each_total(field, values, outcomes, done);
   std::cerr << std::flush;
   return exit;
+}
+
+// --each FIELD: run_mesh once per region (each_regions). Every region's outputs are
+// checked before any meshing.
+int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
+                  const std::string& command_line) {
+  if (!m.stop_after.empty())
+    throw Error(ErrorClass::usage, "options", "--each meshes: no --stop-after");
+  std::vector<EachRegion> regions = each_regions(a, f, m.each);
+  for (EachRegion& r : regions) {
+    r.skip = m.skip_existing && every_output_exists(r.a, r.f, m);
+    if (r.skip) continue;
+    if (!r.a.report_path.empty()) check_output_path(r.a.report_path, a.overwrite);
+    if (!r.f.plot_path.empty()) check_output_path(r.f.plot_path, a.overwrite);
+    check_mesh_outputs(mesh_outputs(r.a, m), mesh_write_options(m));
+  }
+  return run_each(a, m.each, regions, m.jobs, "meshed", [&](EachRegion& r, const Console& console) {
+    if (r.skip) {
+      if (!a.quiet) console.out << "skipped: every output exists (--skip-existing)\n";
+      RegionOutcome outcome;
+      outcome.skipped = true;
+      return outcome;
+    }
+    MeshArgs mm = m;
+    return run_mesh(r.a, r.f, mm, command_line + " [--each: " + r.filter + "]", console);
+  });
+}
+
+// quality --each FIELD: each region's mesh ({} in --mesh) measured against its fields.
+int run_quality_each(const CommonArgs& a, const FieldArgs& f, const QualityArgs& q,
+                     const std::string& command_line) {
+  if (!has_each_mark(q.mesh_path))
+    throw Error(ErrorClass::usage, "options",
+                "with --each, --mesh needs {} for the value (e.g. --mesh out/{}.gr3): '" +
+                    q.mesh_path + "' has none");
+  std::vector<EachRegion> regions = each_regions(a, f, q.each);
+  return run_each(
+      a, q.each, regions, q.jobs, "measured", [&](EachRegion& r, const Console& console) {
+        QualityArgs qq = q;
+        qq.mesh_path = fill_each_mark(q.mesh_path, r.name);
+        return run_quality(r.a, r.f, qq, command_line + " [--each: " + r.filter + "]", console);
+      });
 }
 
 }  // namespace
@@ -499,9 +540,16 @@ int main(int argc, char** argv) {
       if (!mesh_args.quiet) std::cerr << "skipped: every output exists (--skip-existing)\n";
       return 0;
     }
-    if (quality_cmd->parsed())
-      return run_quality(quality_args, quality_field_args, quality_extra,
-                         joined_command_line(argc, argv));
+    if (quality_cmd->parsed() && !quality_extra.each.empty())
+      return run_quality_each(quality_args, quality_field_args, quality_extra,
+                              joined_command_line(argc, argv));
+    if (quality_cmd->parsed() && quality_extra.jobs != 1)
+      throw Error(ErrorClass::usage, "options",
+                  "--jobs measures the regions of --each at once: give --each");
+    if (quality_cmd->parsed()) {
+      run_quality(quality_args, quality_field_args, quality_extra, joined_command_line(argc, argv));
+      return 0;
+    }
     if (mesh_cmd->parsed()) {
       run_mesh(mesh_args, mesh_field_args, mesh_extra, joined_command_line(argc, argv));
       return 0;

@@ -125,7 +125,7 @@ std::string format_each_table(const std::string& field, const std::vector<std::s
 }
 
 std::string format_each_total(const std::string& field, const std::vector<std::string>& values,
-                              const std::vector<RegionOutcome>& outcomes) {
+                              const std::vector<RegionOutcome>& outcomes, const std::string& done) {
   std::vector<std::string> failed;
   std::size_t skipped = 0;
   for (std::size_t k = 0; k < values.size(); ++k)
@@ -135,7 +135,7 @@ std::string format_each_total(const std::string& field, const std::vector<std::s
       failed.push_back(values[k]);
   std::string line = "--each " + field + ": " +
                      std::to_string(values.size() - failed.size() - skipped) + " of " +
-                     std::to_string(values.size()) + " meshed";
+                     std::to_string(values.size()) + " " + done;
   if (skipped) line += ", " + std::to_string(skipped) + " skipped (every output exists)";
   for (std::size_t i = 0; i < failed.size(); ++i) line += (i ? ", " : "; failed: ") + failed[i];
   return line + "\n";

@@ -58,9 +58,11 @@ std::vector<RegionOutcome> run_regions(
 // header, the values padded to one width in characters (UTF-8).
 std::string format_each_table(const std::string& field, const std::vector<std::string>& values,
                               const std::vector<RegionOutcome>& outcomes);
-// "--each FIELD: M of N meshed[, S skipped (every output exists)][; failed: a, b]".
+// "--each FIELD: M of N meshed[, S skipped (every output exists)][; failed: a, b]" (`done`
+// for "meshed").
 std::string format_each_total(const std::string& field, const std::vector<std::string>& values,
-                              const std::vector<RegionOutcome>& outcomes);
+                              const std::vector<RegionOutcome>& outcomes,
+                              const std::string& done = "meshed");
 // The first failed region's exit code, 0 when none failed.
 int each_exit_code(const std::vector<RegionOutcome>& outcomes);
 

@@ -241,3 +241,44 @@ print(sum(len(c.data) for c in m.cells if c.type == "quad"), len(m.points))
       << with_output.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("t.gpkg")));
 }
+
+// quality --each: each region's mesh ({} in --mesh) measured against its own fields,
+// as the mesh job's --each reported it; a region whose mesh is missing fails alone.
+TEST(CliQuality, EachRegionsMeshMeasuredAsItsReportSays) {
+  TempDir dir;
+  write_file(dir.file("two.geojson"),
+             geojson_polygons({"[[[500000,5000000],[506000,5000000],[506000,5004000],"
+                               "[500000,5004000],[500000,5000000]]]",
+                               "[[[520000,5000000],[524000,5000000],[524000,5005000],"
+                               "[520000,5005000],[520000,5000000]]]",
+                               "[[[540000,5000000],[544000,5000000],[544000,5004000],"
+                               "[540000,5004000],[540000,5000000]]]"},
+                              kUtm31nCrsMember));
+  const std::vector<std::string> common = {
+      dir.file("two.geojson"), "--dst-crs", "EPSG:32631", "--size", "400", "--each", "name"};
+  std::vector<std::string> mesh = {"mesh"};
+  mesh.insert(mesh.end(), common.begin(), common.end());
+  mesh.insert(mesh.end(), {"--where", "name <> 'f2'", "-o", dir.file("{}.gr3"), "--report",
+                           dir.file("{}.json")});
+  const CliResult made = run_cli(mesh, dir);
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  std::vector<std::string> quality = {"quality"};
+  quality.insert(quality.end(), common.begin(), common.end());
+  quality.insert(quality.end(),
+                 {"--mesh", dir.file("{}.gr3"), "--report", dir.file("{}.q.json"), "--jobs", "2"});
+  const CliResult measured = run_cli(quality, dir);
+  EXPECT_EQ(measured.exit_code, 3) << measured.err;  // f2 has no mesh
+  EXPECT_NE(measured.err.find("name = f2: read: '" + dir.file("f2.gr3") + "': no such mesh file"),
+            std::string::npos)
+      << measured.err;
+  EXPECT_NE(measured.err.find("--each name: 2 of 3 measured; failed: f2"), std::string::npos)
+      << measured.err;
+  for (const char* name : {"f0", "f1"})
+    expect_same_quality(read_file(dir.file(std::string(name) + ".json")),
+                        read_file(dir.file(std::string(name) + ".q.json")), 1e-6, name);
+  // --mesh without {} under --each.
+  quality[quality.size() - 5] = dir.file("f0.gr3");
+  const CliResult no_mark = run_cli(quality, dir);
+  EXPECT_EQ(no_mark.exit_code, 2);
+  EXPECT_NE(no_mark.err.find("with --each, --mesh needs {}"), std::string::npos) << no_mark.err;
+}
