@@ -257,7 +257,13 @@ std::string format_quality_job_summary(const QualityJobResult& r) {
          (r.transformed ? ", transformed into the meshing CRS" : "") + "\n";
   const QualitySummary& q = r.quality;
   if (!r.quads.quads.empty()) {
-    out += printf_string("quads:        %zu non-convex (or clockwise)\n", q.num_nonconvex);
+    out += printf_string("quads:        %zu non-convex (or clockwise)%s\n", q.num_nonconvex,
+                         q.num_boundary_crossings > 0 && r.num_triangles == 0
+                             ? printf_string("; %zu pair(s) of boundary edges cross: the mesh "
+                                             "folds over itself",
+                                             q.num_boundary_crossings)
+                                   .c_str()
+                             : "");
     out += format_quad_shape_lines(q);
     if (r.fields.num_aligned_vertices > 0) out += format_align_line(q);
   }
