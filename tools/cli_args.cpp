@@ -134,9 +134,9 @@ void add_quality_options(CLI::App* cmd, QualityArgs& q) {
       ->required()
       ->group("Mesh");
   cmd->add_option("--mesh-crs", q.mesh_crs,
-                  "CRS of the mesh's coordinates (EPSG:4326 for a .ll or a .14 in longitudes "
-                  "and latitudes; default: the .mesh's or the .nc's own, else the meshing CRS, "
-                  "as --dst-crs or the automatic projection gives it)")
+                  "CRS of the mesh's coordinates (EPSG:4326 for a .14 in longitudes and "
+                  "latitudes; default: the file's own (.ll, .mesh, .nc, polygons), else the "
+                  "meshing CRS, as --dst-crs or the automatic projection gives it)")
       ->group("Mesh");
   cmd->add_option("--each", q.each,
                   "A mesh measured per value of this attribute over the selected features (each "

@@ -809,6 +809,8 @@ ReadMesh read_mesh(const std::string& path) {
   if (mesh.quads.empty() && mesh.triangles.empty())
     throw Error(ErrorClass::input, "read",
                 "'" + path + "': the mesh has no triangle or quadrangle");
+  // SCHISM's hgrid.ll is hgrid.gr3 in longitudes and latitudes.
+  if (lower(std::filesystem::path(path).extension().string()) == ".ll") mesh.crs = "EPSG:4326";
   return mesh;
 }
 

@@ -79,15 +79,16 @@ TEST(CliQuality, IsoquadsOwnOutputsMeasureAsTheMeshReportSays) {
     EXPECT_EQ(report_number(q, "num_boundary_vertices_off_domain"), 0) << ext;
     EXPECT_NE(r.err.find("regularity:"), std::string::npos);
   }
-  // hgrid.ll in longitudes and latitudes, transformed back (to 1e-10 degrees).
-  const CliResult ll = run_cli(
-      quality_args(dir.file("m.ll"), {"--mesh-crs", "EPSG:4326", "--report", dir.file("ll.json")}),
-      dir);
+  // hgrid.ll in longitudes and latitudes (its own CRS), transformed back (to 1e-10 degrees).
+  const CliResult ll =
+      run_cli(quality_args(dir.file("m.ll"), {"--report", dir.file("ll.json")}), dir);
   ASSERT_EQ(ll.exit_code, 0) << ll.err;
   expect_same_quality(mesh_report, read_file(dir.file("ll.json")), 1e-3, ".ll");
   EXPECT_NE(ll.err.find("WGS 84, transformed into the meshing CRS"), std::string::npos) << ll.err;
-  // Without --mesh-crs the degrees are read as metres: a clear stop.
-  const CliResult degrees = run_cli(quality_args(dir.file("m.ll")), dir);
+  // The .ll's nodes as a .gr3 without --mesh-crs: the degrees are read as metres, a clear
+  // stop.
+  std::filesystem::copy_file(dir.file("m.ll"), dir.file("degrees.gr3"));
+  const CliResult degrees = run_cli(quality_args(dir.file("degrees.gr3")), dir);
   EXPECT_EQ(degrees.exit_code, 3);
   EXPECT_NE(degrees.err.find("is the mesh in another CRS (give it with --mesh-crs)"),
             std::string::npos)
