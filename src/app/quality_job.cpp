@@ -200,6 +200,29 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
       r.triangle_max_angle_deg = std::max(r.triangle_max_angle_deg, angle * 180 / M_PI);
     }
   }
+  // A triangle mesh's regularity: its interior vertices (on no side of one triangle) in
+  // six triangles.
+  if (!triangles.empty() && m.quads.empty()) {
+    std::vector<std::array<int, 2>> sides;
+    std::vector<int> degree(m.points.size(), 0);
+    for (const auto& t : triangles)
+      for (int i = 0; i < 3; ++i) {
+        ++degree[t[i]];
+        sides.push_back({std::min(t[i], t[(i + 1) % 3]), std::max(t[i], t[(i + 1) % 3])});
+      }
+    std::sort(sides.begin(), sides.end());
+    std::vector<char> boundary(m.points.size(), 0);
+    for (std::size_t i = 0; i < sides.size();) {
+      std::size_t j = i;
+      while (j < sides.size() && sides[j] == sides[i]) ++j;
+      if (j - i == 1) boundary[sides[i][0]] = boundary[sides[i][1]] = 1;
+      i = j;
+    }
+    std::size_t interior = 0, regular = 0;
+    for (std::size_t v = 0; v < m.points.size(); ++v)
+      if (degree[v] > 0 && !boundary[v]) ++interior, regular += degree[v] == 6;
+    r.triangle_share_regular_interior = interior ? static_cast<double>(regular) / interior : 0.0;
+  }
   if (!triangle_sizes.empty()) {
     std::size_t in_range = 0;
     for (double x : triangle_sizes) in_range += x >= 0.8 && x <= 1.25;
@@ -211,8 +234,8 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
 
   if (r.quads.quads.empty()) {
     r.warnings.push_back("'" + options.mesh_path + "' has " + std::to_string(r.num_triangles) +
-                         " triangles and no quadrangle: their angles and sizes and the D-Flow FM "
-                         "links are measured");
+                         " triangles and no quadrangle: their angles, sizes and regularity and "
+                         "the D-Flow FM links are measured");
   } else {
     // With triangles, the quads' own boundary runs round them too: not the coast.
     if (r.num_triangles == 0) place_on_chains(r.fields.mesh, r.quads, r);
@@ -273,9 +296,15 @@ std::string format_quality_job_summary(const QualityJobResult& r) {
         "side of the equilateral triangle of its area)/h median %.3f, %.1f%% in [0.8,1.25]\n",
         r.num_triangles, r.num_inverted_triangles, r.triangle_min_angle_deg,
         r.triangle_max_angle_deg, r.triangle_size_ratio_median, 100 * r.triangle_share_size_08_125);
+  if (r.num_triangles > 0 && r.quads.quads.empty())
+    out += printf_string("regularity:   %.1f%% of interior vertices in six triangles\n",
+                         100 * r.triangle_share_regular_interior);
   out += format_quad_connectivity_lines(q, parts_of(r));
   if (r.num_triangles > 0)
-    out += "              (regularity and the coast not measured: the mesh has triangles)\n";
+    out += r.quads.quads.empty()
+               ? "              (the coast not measured: the mesh has triangles)\n"
+               : "              (regularity and the coast not measured: the mesh has "
+                 "triangles)\n";
   return out;
 }
 
@@ -312,6 +341,8 @@ std::string quality_job_report_json(const QualityJobResult& r, const std::string
         .value("triangle_max_angle_deg", r.triangle_max_angle_deg)
         .value("triangle_size_ratio_median", r.triangle_size_ratio_median)
         .value("triangle_share_size_ratio_08_125", r.triangle_share_size_08_125);
+  if (r.num_triangles > 0 && r.quads.quads.empty())
+    j.value("triangle_share_regular_interior", r.triangle_share_regular_interior);
   add_quality_values(j, r.quality, parts_of(r));
   if (r.fields.num_aligned_vertices > 0 && !r.quads.quads.empty()) add_align_values(j, r.quality);
   j.end_object();

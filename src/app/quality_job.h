@@ -36,6 +36,8 @@ struct QualityJobResult {
   double triangle_min_angle_deg = 0, triangle_max_angle_deg = 0;
   // The side of the equilateral triangle of a triangle's area over h at its centroid.
   double triangle_size_ratio_median = 0, triangle_share_size_08_125 = 0;
+  // With triangles alone: the interior vertices in six triangles.
+  double triangle_share_regular_interior = 0;
   std::size_t num_skipped_elements = 0;  // lines and points of a .msh
   // Boundary vertices of the quads (edges of one quad) on the domain's boundary (within
   // `on_boundary_tolerance_m`), and how far the others lie from it (searched up to
