@@ -502,10 +502,10 @@ int main(int argc, char** argv) {
   CLI::App* quality_cmd = app.add_subcommand(
       "quality",
       "Measure a mesh made by another tool (Gmsh, SMS, OceanMesh2D...) or an earlier run "
-      "(--mesh: .gpkg, .gr3, .ll, .14, .2dm, .msh, .mesh, .nc, .slf) as `mesh` measures its own: "
-      "angles, "
-      "regularity, SCHISM's and D-Flow FM's checks, and its sizes and orientation against "
-      "the fields that INPUT and the same options give; the same summary and --report.");
+      "(--mesh: .gpkg, .gr3, .ll, .14, .2dm, .msh, .mesh, .nc, .slf) as `mesh` measures its "
+      "own: angles, regularity, SCHISM's and D-Flow FM's checks, and its sizes and "
+      "orientation against the fields that INPUT and the same options give; the same "
+      "summary and --report.");
   add_front_end_options(quality_cmd, quality_args);
   add_field_options(quality_cmd, quality_field_args);
   add_quality_options(quality_cmd, quality_extra);
