@@ -55,11 +55,13 @@ std::array<double, 4> parse_bbox(const std::string& text) {
 }  // namespace
 
 void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
-  cmd->add_option("INPUT", a.input,
-                  "Input vector file (shapefile, GeoJSON, TopoJSON, GeoPackage...) of polygons, or "
-                  "of lines whose rings make them (a coastline drawn as lines; also Delft3D/D-Flow "
-                  "FM .ldb, .pol, .pli and Blue Kenue .i2s, with --src-crs)")
-      ->required();
+  CLI::Option* input = cmd->add_option(
+      "INPUT", a.input,
+      std::string("Input vector file (shapefile, GeoJSON, TopoJSON, GeoPackage...) of polygons, "
+                  "or of lines whose rings make them (a coastline drawn as lines; also "
+                  "Delft3D/D-Flow FM .ldb, .pol, .pli and Blue Kenue .i2s, with --src-crs)") +
+          (a.input_optional ? "; leave it out to measure against the mesh's own outline" : ""));
+  if (!a.input_optional) input->required();
   CLI::Option* output =
       cmd->add_option(
              "-o,--output", a.outputs,

@@ -24,6 +24,7 @@ struct CommonArgs {
   std::string output;                // the first
   bool many_outputs = false;         // the subcommand accepts several -o
   bool output_optional = false;      // -o may be left out (`quality`)
+  bool input_optional = false;       // INPUT may be left out (`quality`: the mesh's outline)
   std::string bbox;
   std::string domain_kind = "land";
   double simplify_m = -1.0;

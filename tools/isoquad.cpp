@@ -257,6 +257,19 @@ RegionOutcome run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
   if (!f.plot_path.empty()) check_output_path(f.plot_path, a.overwrite);
   check_report_path(a);
   mesh_file_format(q.mesh_path);  // a format it reads, before any work
+  if (a.input.empty()) {
+    // The domain is the mesh's outline: nothing to select from, and its CRS is the mesh's.
+    const std::pair<bool, const char*> selections[] = {
+        {!a.fe.read.layer.empty(), "--layer"}, {!a.fe.read.where.empty(), "--where"},
+        {!a.bbox.empty(), "--bbox"},           {!a.fe.read.bbox_crs.empty(), "--bbox-crs"},
+        {a.domain_kind != "land", "--domain"}, {!a.fe.read.src_crs.empty(), "--src-crs"}};
+    for (const auto& [given, option] : selections)
+      if (given)
+        throw Error(ErrorClass::usage, "options",
+                    std::string(option) +
+                        " selects from INPUT: without INPUT the domain is the mesh's own outline "
+                        "(its CRS: --mesh-crs)");
+  }
   check_depth_options(f);
   if (!f.sizing.bathymetry.empty() && !f.sizing.wavelength_period_s && !f.sizing.slope_factor &&
       !f.sizing.time_step_s)
@@ -434,6 +447,9 @@ int run_quality_each(const CommonArgs& a, const FieldArgs& f, const QualityArgs&
     throw Error(ErrorClass::usage, "options",
                 "with --each, --mesh needs {} for the value (e.g. --mesh out/{}.gr3): '" +
                     q.mesh_path + "' has none");
+  if (a.input.empty())
+    throw Error(ErrorClass::usage, "options",
+                "--each selects regions from INPUT's features: give INPUT");
   std::vector<EachRegion> regions = each_regions(a, f, q.each);
   return run_each(
       a, q.each, regions, q.jobs, "measured", [&](EachRegion& r, const Console& console) {
@@ -497,6 +513,7 @@ int main(int argc, char** argv) {
 
   CommonArgs quality_args;
   quality_args.output_optional = true;
+  quality_args.input_optional = true;
   FieldArgs quality_field_args;
   QualityArgs quality_extra;
   CLI::App* quality_cmd = app.add_subcommand(
@@ -504,8 +521,8 @@ int main(int argc, char** argv) {
       "Measure a mesh made by another tool (Gmsh, SMS, OceanMesh2D...) or an earlier run "
       "(--mesh: .gpkg, .gr3, .ll, .14, .2dm, .msh, .mesh, .nc, .slf) as `mesh` measures its "
       "own: angles, regularity, SCHISM's and D-Flow FM's checks, and its sizes and "
-      "orientation against the fields that INPUT and the same options give; the same "
-      "summary and --report.");
+      "orientation against the fields that INPUT and the same options give (without INPUT: "
+      "the mesh's own outline, in its CRS); the same summary and --report.");
   add_front_end_options(quality_cmd, quality_args);
   add_field_options(quality_cmd, quality_field_args);
   add_quality_options(quality_cmd, quality_extra);

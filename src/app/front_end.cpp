@@ -153,7 +153,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   progress.report("read", 0.0);
   ReadParams read = options.read;
   read.empty_bbox_selection_ok = options.kind == DomainKind::water;
-  SourceData source = read_polygons(read);
+  SourceData source = options.source ? *options.source : read_polygons(read);
   s.layer_name = source.layer_name;
   s.source_crs_name = source.crs.name;
   s.num_features = source.num_features;

@@ -21,6 +21,10 @@ namespace isoquad {
 
 struct FrontEndOptions {
   ReadParams read;
+  // Polygons given instead of read from read.path, which then names them in messages
+  // and the summary (`isoquad quality` without INPUT: the mesh's own outline). The
+  // read's selections do not apply to them.
+  std::optional<SourceData> source;
   DomainKind kind = DomainKind::land;
   bool largest = false;
   ProjectParams project;

@@ -11,6 +11,8 @@
 #include "core/stage_clock.h"
 #include "core/text.h"
 #include "gis/crs.h"
+#include "gis/rings_from_lines.h"
+#include "io/mesh_outline.h"
 #include "mesh/locate.h"
 
 namespace isoquad {
@@ -110,6 +112,58 @@ void place_on_chains(const BackgroundMesh& bg, QuadMesh& m, QualityJobResult& r)
   }
 }
 
+// Without INPUT: the domain is the mesh's outline, read in the mesh's CRS (the
+// --mesh-crs or the file's own) and meshed in it when it is projected in metres. Nothing
+// of it is simplified, filled or dropped unless asked: the mesh's boundary vertices lie
+// on its boundary.
+FrontEndOptions outline_front_end(const QualityJobOptions& options, const ReadMesh& file,
+                                  QualityJobResult& r) {
+  const std::string given = !options.mesh_crs.empty() ? options.mesh_crs : file.crs;
+  if (given.empty())
+    throw Error(ErrorClass::crs, "quality",
+                "'" + options.mesh_path +
+                    "' does not say its CRS: without INPUT, whose domain is the mesh's own "
+                    "outline, give it with --mesh-crs (EPSG:4326 for longitudes and latitudes, "
+                    "or the projected CRS it was made in, e.g. EPSG:32631)");
+  const CrsInfo crs =
+      parse_crs(given, options.mesh_crs.empty() ? "'" + options.mesh_path + "' (its projection)"
+                                                : "--mesh-crs");
+  const std::vector<std::vector<int>> loops =
+      mesh_outline(file.points, file.quads, file.triangles, options.mesh_path);
+  std::vector<SourceLine> lines;
+  for (const std::vector<int>& loop : loops) {
+    SourceLine line;
+    line.fid = static_cast<long long>(lines.size());
+    for (int v : loop) line.points.push_back(file.points[v]);
+    line.points.push_back(line.points.front());
+    lines.push_back(std::move(line));
+  }
+  LineRings rings;
+  try {
+    rings = rings_from_lines(lines, crs.geographic ? "degrees" : "m");
+  } catch (const LinesError& e) {
+    throw Error(ErrorClass::input, "quality",
+                "'" + options.mesh_path + "': its outline: " + e.what());
+  }
+  r.num_outline_loops = loops.size();
+  FrontEndOptions front = options.fields.front;
+  front.read = ReadParams();
+  front.read.path = options.mesh_path;
+  front.read.repair = options.fields.front.read.repair;
+  SourceData source;
+  source.polygons = std::move(rings.polygons);
+  source.crs = crs;
+  source.layer_name = "its outline";
+  source.num_features = loops.size();
+  front.source = std::move(source);
+  if (front.project.dst_crs.empty() && crs.projected && crs.linear_unit_m == 1.0)
+    front.project.dst_crs = given;
+  if (!front.simplify_m) front.simplify_m = 0.0;
+  if (!front.min_island_area_m2) front.min_island_area_m2 = 0.0;
+  if (!front.min_width_m) front.min_width_m = 0.0;
+  return front;
+}
+
 // What the summary holds: the quads' figures when it has quads, the regularity and the
 // coast when it has nothing else.
 QualityParts parts_of(const QualityJobResult& r) {
@@ -130,7 +184,10 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
   r.format = file.format;
   r.num_skipped_elements = file.num_skipped_elements;
   std::vector<StageTime> read_times = r.fields.times;
-  r.fields = build_fields(options.fields, progress.slice(0.05, 0.85));
+  FieldsOptions fields = options.fields;
+  if (fields.front.read.path.empty() && !fields.front.source)
+    fields.front = outline_front_end(options, file, r);
+  r.fields = build_fields(fields, progress.slice(0.05, 0.85));
   r.fields.times.insert(r.fields.times.begin(), read_times.begin(), read_times.end());
   StageClock measure_clock(r.fields.times);
   progress.report("measure", 0.85);
@@ -278,6 +335,9 @@ std::string format_quality_job_summary(const QualityJobResult& r) {
       r.reversed ? "; its elements clockwise, measured reversed" : "");
   out += "mesh CRS:     " + r.mesh_crs +
          (r.transformed ? ", transformed into the meshing CRS" : "") + "\n";
+  if (r.num_outline_loops > 0)
+    out += printf_string("domain from:  the mesh's outline (%zu loop(s) of boundary edges)\n",
+                         r.num_outline_loops);
   const QualitySummary& q = r.quality;
   if (!r.quads.quads.empty()) {
     out += printf_string("quads:        %zu non-convex (or clockwise)%s\n", q.num_nonconvex,
@@ -318,6 +378,7 @@ std::string quality_job_report_json(const QualityJobResult& r, const std::string
       .value("transformed", r.transformed)
       .value("reversed", r.reversed)
       .value("num_skipped_elements", r.num_skipped_elements)
+      .value("num_outline_loops", r.num_outline_loops)
       .value("num_quads_outside_domain", r.num_quads_outside);
   if (r.num_triangles == 0)  // with triangles the quads' boundary is not the coast
     j.value("num_boundary_vertices_on_domain", r.num_boundary_on)

@@ -14,7 +14,10 @@
 namespace isoquad {
 
 struct QualityJobOptions {
-  FieldsOptions fields;   // the domain, its sizes and its cross field
+  // The domain, its sizes and its cross field; without a path to read (fields.front.read
+  // .path empty), the domain is the mesh's own outline (mesh_outline), read in the mesh's
+  // CRS, which must then be known (mesh_crs or the file's).
+  FieldsOptions fields;
   std::string mesh_path;  // the mesh to measure (read_mesh's formats)
   // The mesh's CRS (anything parse_crs reads); empty: the file's own when its format
   // has one (a MIKE .mesh, a UGRID .nc), else the meshing CRS (the mesh and the domain
@@ -39,6 +42,8 @@ struct QualityJobResult {
   // With triangles alone: the interior vertices in six triangles.
   double triangle_share_regular_interior = 0;
   std::size_t num_skipped_elements = 0;  // lines and points of a .msh
+  // Without INPUT (an empty read path): the loops of the mesh's outline, its domain.
+  std::size_t num_outline_loops = 0;
   // Boundary vertices of the quads (edges of one quad) on the domain's boundary (within
   // `on_boundary_tolerance_m`), and how far the others lie from it (searched up to
   // `off_boundary_search_m`; those farther counted in num_boundary_far).

@@ -287,3 +287,54 @@ TEST(CliQuality, EachRegionsMeshMeasuredAsItsReportSays) {
   EXPECT_EQ(no_mark.exit_code, 2);
   EXPECT_NE(no_mark.err.find("with --each, --mesh needs {}"), std::string::npos) << no_mark.err;
 }
+
+// Without INPUT the domain is the mesh's own outline: a water mesh with four islands
+// read back from its .gpkg (in the meshing CRS) and its .ll (in lon/lat) has the same
+// holes, every boundary vertex on the outline, the outline's area, and the same shapes as
+// the mesh report; a .gr3 without --mesh-crs, and selections from INPUT, stop clearly.
+TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
+  TempDir dir;
+  const CliResult made =
+      run_cli({"mesh", sample("brittany_land.shp"), "--domain", "water",
+               "--bbox=-5.3,46.8,-1.95,49.35", "--hmax", "8000", "-o", dir.file("m.gpkg"), "-o",
+               dir.file("m.gr3"), "--report", dir.file("r.json")},
+              dir);
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string mesh_report = read_file(dir.file("r.json"));
+  ASSERT_GE(report_number(mesh_report, "num_holes"), 2);
+  for (const char* file : {"m.gpkg", "m.ll"}) {
+    const std::string report = dir.file(std::string(file) + ".json");
+    const CliResult r =
+        run_cli({"quality", "--mesh", dir.file(file), "--hmax", "8000", "--report", report}, dir);
+    ASSERT_EQ(r.exit_code, 0) << file << r.err;
+    EXPECT_NE(r.err.find("domain from:  the mesh's outline"), std::string::npos) << r.err;
+    const std::string q = read_file(report);
+    EXPECT_EQ(report_number(q, "num_holes"), report_number(mesh_report, "num_holes")) << file;
+    EXPECT_EQ(report_number(q, "num_outline_loops"), 1 + report_number(mesh_report, "num_holes"));
+    EXPECT_EQ(report_number(q, "num_quads"), report_number(mesh_report, "num_quads")) << file;
+    EXPECT_EQ(report_number(q, "num_boundary_vertices_off_domain"), 0) << file;
+    EXPECT_EQ(report_number(q, "num_boundary_vertices"),
+              report_number(mesh_report, "num_boundary_vertices"))
+        << file;
+    EXPECT_NEAR(report_number(q, "mesh_area_m2") / report_number(q, "domain_area_m2"), 1.0, 1e-9);
+    // The shapes do not depend on the fields (the .ll in another projection: conformal).
+    const double tolerance = std::string(file) == "m.gpkg" ? 1e-9 : 1e-3;
+    for (const char* key :
+         {"share_angles_75_105", "min_angle_deg", "max_angle_deg", "share_regular_interior",
+          "share_regular_boundary", "schism_angle_ratio_violations", "num_nonconvex"}) {
+      const double a = report_number(mesh_report, key), b = report_number(q, key);
+      EXPECT_NEAR(a, b, tolerance * std::max(1.0, std::abs(a))) << file << ": " << key;
+    }
+  }
+
+  const CliResult no_crs = run_cli({"quality", "--mesh", dir.file("m.gr3")}, dir);
+  EXPECT_EQ(no_crs.exit_code, 4);
+  EXPECT_NE(no_crs.err.find("give it with --mesh-crs"), std::string::npos) << no_crs.err;
+  const CliResult where =
+      run_cli({"quality", "--mesh", dir.file("m.gpkg"), "--where", "name = 'x'"}, dir);
+  EXPECT_EQ(where.exit_code, 2);
+  EXPECT_NE(where.err.find("--where selects from INPUT"), std::string::npos) << where.err;
+  const CliResult each = run_cli({"quality", "--mesh", dir.file("{}.gpkg"), "--each", "name"}, dir);
+  EXPECT_EQ(each.exit_code, 2);
+  EXPECT_NE(each.err.find("give INPUT"), std::string::npos) << each.err;
+}

@@ -1,0 +1,126 @@
+#include "io/mesh_outline.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
+#include "core/error.h"
+
+namespace isoquad {
+
+namespace {
+
+struct Side {
+  int from = 0, to = 0;  // as the first element that has it runs it
+  int uses = 0;
+};
+
+// The angle turned clockwise from direction u to direction v, in (0, 2 pi].
+double clockwise_turn(const Point2& u, const Point2& v) {
+  double a = std::atan2(u.y, u.x) - std::atan2(v.y, v.x);
+  while (a <= 0) a += 2 * M_PI;
+  while (a > 2 * M_PI) a -= 2 * M_PI;
+  return a;
+}
+
+// A closed walk that passes a node twice (two holes touching there: the walk that keeps
+// to the domain's side goes from one into the other) as the simple loops it is made of,
+// each cut off where the walk comes back to a node.
+void split_at_repeated_nodes(const std::vector<int>& walk, std::vector<std::vector<int>>& loops) {
+  std::vector<int> stack;
+  std::unordered_map<int, std::size_t> at;  // node -> its place in the stack
+  std::vector<std::vector<int>> cut;
+  for (int v : walk) {
+    const auto it = at.find(v);
+    if (it == at.end()) {
+      at.emplace(v, stack.size());
+      stack.push_back(v);
+      continue;
+    }
+    std::vector<int> loop(stack.begin() + static_cast<std::ptrdiff_t>(it->second), stack.end());
+    for (std::size_t i = 1; i < loop.size(); ++i) at.erase(loop[i]);
+    stack.resize(it->second + 1);
+    cut.push_back(std::move(loop));
+  }
+  loops.push_back(std::move(stack));
+  for (auto& loop : cut) loops.push_back(std::move(loop));
+}
+
+}  // namespace
+
+std::vector<std::vector<int>> mesh_outline(const std::vector<Point2>& points,
+                                           const std::vector<std::array<int, 4>>& quads,
+                                           const std::vector<std::array<int, 3>>& triangles,
+                                           const std::string& name) {
+  const std::string file = "'" + name + "'";
+  if (quads.empty() && triangles.empty())
+    throw Error(ErrorClass::input, "quality", file + " has no elements");
+  const auto n = static_cast<std::uint64_t>(points.size());
+  std::unordered_map<std::uint64_t, Side> sides;
+  std::vector<std::uint64_t> order;  // the sides' keys as first met
+  double orientation = 0;            // counter-clockwise elements minus clockwise ones
+  auto add = [&](const int* v, int k) {
+    double twice_area = 0;
+    for (int i = 0; i < k; ++i) {
+      const Point2 &a = points[v[i]], &b = points[v[(i + 1) % k]];
+      twice_area += a.x * b.y - a.y * b.x;
+      const int lo = std::min(v[i], v[(i + 1) % k]), hi = std::max(v[i], v[(i + 1) % k]);
+      const std::uint64_t key = static_cast<std::uint64_t>(lo) * n + static_cast<std::uint64_t>(hi);
+      auto [it, added] = sides.try_emplace(key, Side{v[i], v[(i + 1) % k], 0});
+      if (added) order.push_back(key);
+      if (++it->second.uses > 2)
+        throw Error(ErrorClass::input, "quality",
+                    file + ": the edge between nodes " + std::to_string(lo + 1) + " and " +
+                        std::to_string(hi + 1) + " is a side of three or more elements");
+    }
+    orientation += twice_area > 0 ? 1 : twice_area < 0 ? -1 : 0;
+  };
+  for (const auto& q : quads) add(q.data(), 4);
+  for (const auto& t : triangles) add(t.data(), 3);
+
+  // The boundary's edges leaving each node, domain on the left.
+  std::vector<std::vector<int>> out(points.size());
+  std::vector<std::array<int, 2>> edges;
+  for (std::uint64_t key : order) {
+    const Side& s = sides.at(key);
+    if (s.uses != 1) continue;
+    const std::array<int, 2> e =
+        orientation >= 0 ? std::array<int, 2>{s.from, s.to} : std::array<int, 2>{s.to, s.from};
+    out[e[0]].push_back(static_cast<int>(edges.size()));
+    edges.push_back(e);
+  }
+  std::vector<char> used(edges.size(), 0);
+  std::vector<std::vector<int>> loops;
+  for (std::size_t start_node = 0; start_node < out.size(); ++start_node) {
+    for (int first : out[start_node]) {
+      if (used[first]) continue;
+      std::vector<int> loop;
+      int e = first;
+      for (;;) {
+        used[e] = 1;
+        loop.push_back(edges[e][0]);
+        const int from = edges[e][0], at = edges[e][1];
+        int next = -1;
+        double best = 0;
+        for (int c : out[at]) {
+          if (used[c] && c != first) continue;
+          const Point2 &p = points[at], &back = points[from], &ahead = points[edges[c][1]];
+          const double turn =
+              clockwise_turn({back.x - p.x, back.y - p.y}, {ahead.x - p.x, ahead.y - p.y});
+          if (next < 0 || turn < best) next = c, best = turn;
+        }
+        if (next < 0)
+          throw Error(ErrorClass::input, "quality",
+                      file + ": its boundary does not close at node " + std::to_string(at + 1) +
+                          " (elements of both orientations meet there?)");
+        if (next == first) break;
+        e = next;
+      }
+      split_at_repeated_nodes(loop, loops);
+    }
+  }
+  return loops;
+}
+
+}  // namespace isoquad

@@ -1,0 +1,27 @@
+// The outline of a mesh read from a file (triangles and quadrangles): its boundary
+// edges, the sides of one element each, as closed loops. `isoquad quality` without
+// INPUT measures a mesh against the fields of this domain, the mesh's own.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+
+namespace isoquad {
+
+// Closed loops of node ids (first not repeated), domain on the left: outer loops
+// counter-clockwise, holes clockwise, whichever way the elements run (as most of them
+// do). Every loop is simple: where the boundary passes a node twice (two parts of the
+// mesh, two holes, or a hole and the outer boundary touching at a node), the loops touch
+// there. Loops are traced from the nodes in the order of their ids. `name` (the
+// file) starts the messages of Error(input), thrown for a side of three or more
+// elements, for elements whose orientations disagree along the boundary, and for a mesh
+// without elements.
+std::vector<std::vector<int>> mesh_outline(const std::vector<Point2>& points,
+                                           const std::vector<std::array<int, 4>>& quads,
+                                           const std::vector<std::array<int, 3>>& triangles,
+                                           const std::string& name);
+
+}  // namespace isoquad
