@@ -59,7 +59,9 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
       "INPUT", a.input,
       std::string("Input vector file (shapefile, GeoJSON, TopoJSON, GeoPackage...) of polygons, "
                   "or of lines whose rings make them (a coastline drawn as lines; also "
-                  "Delft3D/D-Flow FM .ldb, .pol, .pli and Blue Kenue .i2s, with --src-crs)") +
+                  "Delft3D/D-Flow FM .ldb, .pol, .pli and Blue Kenue .i2s, with --src-crs), or a "
+                  "mesh whose outline is the domain (.gr3 or .ll with its open boundaries, .14, "
+                  ".2dm, .msh, .mesh, .nc, .slf)") +
           (a.input_optional ? "; leave it out to measure against the mesh's own outline" : ""));
   if (!a.input_optional) input->required();
   CLI::Option* output =

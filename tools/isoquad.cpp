@@ -29,6 +29,7 @@
 #include "gis/read_polygons.h"
 #include "gis/write_domain.h"
 #include "io/mesh_boundary.h"
+#include "io/read_mesh.h"
 #include "io/write_fields.h"
 #include "io/write_mesh.h"
 #include "plot/plot_fields.h"
@@ -359,6 +360,11 @@ std::vector<EachRegion> each_regions(const CommonArgs& a, const FieldArgs& f,
                 "with --each, --report and --plot need {} for the value");
   CommonArgs base = a;
   finish_front_end_args(base);
+  if (is_mesh_file(base.fe.read.path))
+    throw Error(ErrorClass::usage, "options",
+                "'" + base.fe.read.path +
+                    "' is a mesh, whose outline is the domain: --each selects from a vector "
+                    "file's features");
   const std::vector<SelectionValue> selected = selection_values(base.fe.read, field);
   if (selected.empty())
     throw Error(ErrorClass::input, "read",

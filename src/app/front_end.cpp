@@ -9,6 +9,8 @@
 #include "domain/separate_rings.h"
 #include "gis/crs.h"
 #include "gis/read_lines.h"
+#include "io/mesh_outline.h"
+#include "io/read_mesh.h"
 
 namespace isoquad {
 
@@ -153,7 +155,32 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   progress.report("read", 0.0);
   ReadParams read = options.read;
   read.empty_bbox_selection_ok = options.kind == DomainKind::water;
-  SourceData source = options.source ? *options.source : read_polygons(read);
+  // A mesh file (hgrid.gr3, a .2dm...): its outline, and a .gr3's open boundaries.
+  std::vector<std::vector<Point2>> mesh_open_lines;
+  SourceData source;
+  if (options.source) {
+    source = *options.source;
+  } else if (is_mesh_file(read.path)) {
+    const std::pair<bool, const char*> selections[] = {
+        {!read.layer.empty(), "--layer"},
+        {!read.where.empty(), "--where"},
+        {read.bbox.has_value(), "--bbox"},
+        {options.kind != DomainKind::land, "--domain water"}};
+    for (const auto& [given, option] : selections)
+      if (given)
+        throw Error(ErrorClass::usage, "read",
+                    "'" + read.path + "' is a mesh, whose outline is the domain: " + option +
+                        " selects from a vector file's polygons");
+    const ReadMesh mesh = read_mesh(read.path);
+    source = outline_source(mesh, read.path, read.src_crs, "--src-crs");
+    for (const std::vector<int>& segment : mesh.open_boundaries) {
+      std::vector<Point2> line;
+      for (int v : segment) line.push_back(mesh.points[v]);
+      if (line.size() >= 2) mesh_open_lines.push_back(std::move(line));
+    }
+  } else {
+    source = read_polygons(read);
+  }
   s.layer_name = source.layer_name;
   s.source_crs_name = source.crs.name;
   s.num_features = source.num_features;
@@ -183,8 +210,16 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   s.local = projected.local;
   s.meshing_crs_proj = crs_proj_string(CrsInfo{result.domain.crs_wkt, result.domain.crs_name});
   const CrsInfo meshing_crs{result.domain.crs_wkt, result.domain.crs_name};
-  if (!options.open_boundary_path.empty()) {
-    s.open_boundary_path = options.open_boundary_path;
+  // Lines along the domain's edge that make it open there: --open-boundary's, or else a
+  // mesh's own open boundaries (each segment on its own, as --open-boundary's).
+  const bool open_lines_given = !options.open_boundary_path.empty() || !mesh_open_lines.empty();
+  const std::string open_lines_name = !options.open_boundary_path.empty()
+                                          ? "'" + options.open_boundary_path + "'"
+                                          : "the open boundaries of '" + read.path + "'";
+  if (!options.open_boundary_path.empty() || !mesh_open_lines.empty()) {
+    s.open_boundary_path = !options.open_boundary_path.empty()
+                               ? options.open_boundary_path
+                               : read.path + " (its open boundaries)";
     // Each segment on its own, with its own sag: a long segment's (500 m for 150 km of a
     // line in lon/lat) would otherwise widen the tolerance round the short ones, and
     // beyond the lines' ends. The domain's boundary along a segment runs from vertex to
@@ -193,9 +228,19 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     // Each such chord lies within 0.64 sag of the curve or of the whole chord (a chord
     // over a fraction f of the segment lies within f^2 sag of the curve, and its far end
     // 4 f (1 - f) sag from the whole chord): 0.7 sag is enough.
-    const ProjectedLines p =
-        read_projected_lines(options.open_boundary_path, options.open_boundary_layer,
-                             "open boundary", source.crs, meshing_crs, true);
+    ProjectedLines p;
+    if (!options.open_boundary_path.empty()) {
+      p = read_projected_lines(options.open_boundary_path, options.open_boundary_layer,
+                               "open boundary", source.crs, meshing_crs, true);
+    } else {
+      p = project_lines(mesh_open_lines, source.crs, meshing_crs, true);
+      if (p.failed_line >= 0)
+        throw Error(ErrorClass::crs, "open boundary",
+                    "'" + read.path + "': a node of open boundary " +
+                        std::to_string(p.failed_line + 1) +
+                        " cannot be transformed into the meshing CRS");
+      p.num_source_lines = mesh_open_lines.size();
+    }
     s.open_boundary_num_lines = p.num_source_lines;
     result.open_boundary_lines = p.lines;
     for (double sag : p.sag_m) result.open_boundary_slack_m.push_back(0.7 * sag);
@@ -331,7 +376,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   }
   if (!result.open_boundary_lines.empty())
     result.open_boundary_tolerance_m += 1.01 * simp.tolerance_m;
-  if (!options.open_boundary_path.empty()) {
+  if (open_lines_given) {
     // Lines that follow none of the domain's boundary would leave it all land: an
     // ocean model without a sea boundary. The length they follow: each edge of the
     // domain sampled about every tolerance (at most 256 pieces), a piece counted when
@@ -362,8 +407,8 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
       char text[32];
       std::snprintf(text, sizeof text, "%.4g", tolerance);
       throw Error(ErrorClass::input, "open boundary",
-                  "'" + options.open_boundary_path +
-                      "': its lines follow none of the domain's boundary (none of it lies within " +
+                  open_lines_name +
+                      ": the lines follow none of the domain's boundary (none of it lies within " +
                       text +
                       " m of them); draw them along the domain's edge (snapped to its vertices)");
     }

@@ -11,7 +11,6 @@
 #include "core/stage_clock.h"
 #include "core/text.h"
 #include "gis/crs.h"
-#include "gis/rings_from_lines.h"
 #include "io/mesh_outline.h"
 #include "mesh/locate.h"
 
@@ -118,46 +117,15 @@ void place_on_chains(const BackgroundMesh& bg, QuadMesh& m, QualityJobResult& r)
 // on its boundary.
 FrontEndOptions outline_front_end(const QualityJobOptions& options, const ReadMesh& file,
                                   QualityJobResult& r) {
-  const std::string given = !options.mesh_crs.empty() ? options.mesh_crs : file.crs;
-  if (given.empty())
-    throw Error(ErrorClass::crs, "quality",
-                "'" + options.mesh_path +
-                    "' does not say its CRS: without INPUT, whose domain is the mesh's own "
-                    "outline, give it with --mesh-crs (EPSG:4326 for longitudes and latitudes, "
-                    "or the projected CRS it was made in, e.g. EPSG:32631)");
-  const CrsInfo crs =
-      parse_crs(given, options.mesh_crs.empty() ? "'" + options.mesh_path + "' (its projection)"
-                                                : "--mesh-crs");
-  const std::vector<std::vector<int>> loops =
-      mesh_outline(file.points, file.quads, file.triangles, options.mesh_path);
-  std::vector<SourceLine> lines;
-  for (const std::vector<int>& loop : loops) {
-    SourceLine line;
-    line.fid = static_cast<long long>(lines.size());
-    for (int v : loop) line.points.push_back(file.points[v]);
-    line.points.push_back(line.points.front());
-    lines.push_back(std::move(line));
-  }
-  LineRings rings;
-  try {
-    rings = rings_from_lines(lines, crs.geographic ? "degrees" : "m");
-  } catch (const LinesError& e) {
-    throw Error(ErrorClass::input, "quality",
-                "'" + options.mesh_path + "': its outline: " + e.what());
-  }
-  r.num_outline_loops = loops.size();
   FrontEndOptions front = options.fields.front;
   front.read = ReadParams();
   front.read.path = options.mesh_path;
   front.read.repair = options.fields.front.read.repair;
-  SourceData source;
-  source.polygons = std::move(rings.polygons);
-  source.crs = crs;
-  source.layer_name = "its outline";
-  source.num_features = loops.size();
-  front.source = std::move(source);
+  front.source = outline_source(file, options.mesh_path, options.mesh_crs, "--mesh-crs");
+  r.num_outline_loops = front.source->num_features;
+  const CrsInfo& crs = front.source->crs;
   if (front.project.dst_crs.empty() && crs.projected && crs.linear_unit_m == 1.0)
-    front.project.dst_crs = given;
+    front.project.dst_crs = crs.wkt;
   if (!front.simplify_m) front.simplify_m = 0.0;
   if (!front.min_island_area_m2) front.min_island_area_m2 = 0.0;
   if (!front.min_width_m) front.min_width_m = 0.0;

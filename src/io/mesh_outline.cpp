@@ -6,6 +6,8 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "gis/crs.h"
+#include "gis/rings_from_lines.h"
 
 namespace isoquad {
 
@@ -121,6 +123,37 @@ std::vector<std::vector<int>> mesh_outline(const std::vector<Point2>& points,
     }
   }
   return loops;
+}
+
+SourceData outline_source(const ReadMesh& mesh, const std::string& path,
+                          const std::string& crs_text, const std::string& option) {
+  const std::string given = !crs_text.empty() ? crs_text : mesh.crs;
+  if (given.empty())
+    throw Error(ErrorClass::crs, "read",
+                "'" + path + "' does not say its CRS: its outline is the domain, so give the " +
+                    "CRS of its coordinates with " + option +
+                    " (EPSG:4326 for longitudes and latitudes, or the projected CRS it was made "
+                    "in, e.g. EPSG:32631)");
+  SourceData source;
+  source.crs = parse_crs(given, crs_text.empty() ? "'" + path + "' (its projection)" : option);
+  const std::vector<std::vector<int>> loops =
+      mesh_outline(mesh.points, mesh.quads, mesh.triangles, path);
+  std::vector<SourceLine> lines;
+  for (const std::vector<int>& loop : loops) {
+    SourceLine line;
+    line.fid = static_cast<long long>(lines.size());
+    for (int v : loop) line.points.push_back(mesh.points[v]);
+    line.points.push_back(line.points.front());
+    lines.push_back(std::move(line));
+  }
+  try {
+    source.polygons = rings_from_lines(lines, source.crs.geographic ? "degrees" : "m").polygons;
+  } catch (const LinesError& e) {
+    throw Error(ErrorClass::input, "read", "'" + path + "': its outline: " + e.what());
+  }
+  source.layer_name = "its outline";
+  source.num_features = loops.size();
+  return source;
 }
 
 }  // namespace isoquad

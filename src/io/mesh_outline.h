@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "core/geometry.h"
+#include "gis/read_polygons.h"
+#include "io/read_mesh.h"
 
 namespace isoquad {
 
@@ -23,5 +25,13 @@ std::vector<std::vector<int>> mesh_outline(const std::vector<Point2>& points,
                                            const std::vector<std::array<int, 4>>& quads,
                                            const std::vector<std::array<int, 3>>& triangles,
                                            const std::string& name);
+
+// A mesh as the polygons of a domain: its outline's loops nested into polygons with
+// holes by containment (rings_from_lines), in the CRS `crs_text` gives (as `option`,
+// for messages) or else the file's own; layer "its outline", a feature per loop.
+// Error(crs) when neither says the CRS, Error(input) as mesh_outline, or for loops that
+// do not nest.
+SourceData outline_source(const ReadMesh& mesh, const std::string& path,
+                          const std::string& crs_text, const std::string& option);
 
 }  // namespace isoquad

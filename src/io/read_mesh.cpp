@@ -187,7 +187,9 @@ long long need_count(Fields& f, const char* what, const LineReader& reader) {
 }
 
 // SCHISM's hgrid.gr3 / hgrid.ll and ADCIRC's fort.14: a title, "NE NP", NP lines
-// "id x y depth", NE lines "id k n1 .. nk"; the boundaries after them are not read.
+// "id x y depth", NE lines "id k n1 .. nk"; then, when the file goes on, the open
+// boundaries: "NOPE", "NETA", and for each "n" and n lines of a node id (the land
+// boundaries after them are not read: they are the rest of the outline).
 void read_gr3(LineReader& r, ReadMesh& mesh) {
   r.need("a title line");
   const std::string counts = r.need("the numbers of elements and nodes");
@@ -214,6 +216,29 @@ void read_gr3(LineReader& r, ReadMesh& mesh) {
     nodes.clear();
     for (long long i = 0; i < kind; ++i) nodes.push_back(ids.at(e.integer("a node id"), r, id));
     add_element(mesh, nodes, r, id);
+  }
+  std::string line;
+  while (r.next(line) && line.find_first_not_of(" \t") == std::string::npos) {
+  }
+  if (line.find_first_not_of(" \t") == std::string::npos) return;  // the end: no boundaries
+  Fields b(line, r);
+  const long long segments = need_count(b, "the number of open boundaries", r);
+  Fields total(r.need("the total number of open boundary nodes"), r);
+  need_count(total, "the total number of open boundary nodes", r);
+  for (long long k = 0; k < segments; ++k) {
+    const std::string what = "open boundary " + std::to_string(k + 1);
+    Fields c(r.need("the number of nodes of " + what), r);
+    const long long n = need_count(c, "the number of nodes of an open boundary", r);
+    std::vector<int> segment;
+    for (long long i = 0; i < n; ++i) {
+      Fields v(r.need("node " + std::to_string(i + 1) + " of " + what), r);
+      const long long id = v.integer("a node id");
+      const int index = ids.find(id);
+      if (index < 0)
+        r.fail(what + " has node " + std::to_string(id) + ", which is not among the file's nodes");
+      segment.push_back(index);
+    }
+    mesh.open_boundaries.push_back(std::move(segment));
   }
 }
 
@@ -782,6 +807,14 @@ std::string mesh_file_format(const std::string& path) {
                   "(SMS), .msh (Gmsh, ASCII), .mesh (MIKE 21/3 FM), .nc (UGRID, D-Flow FM's net "
                   "file), .slf (TELEMAC's Selafin) or a layer of polygons, each a triangle or a "
                   "quadrangle (.gpkg: isoquad's layer 'quads', .shp, .geojson)");
+}
+
+bool is_mesh_file(const std::string& path) {
+  try {
+    return mesh_file_format(path) != "polygons";
+  } catch (const Error&) {
+    return false;
+  }
 }
 
 ReadMesh read_mesh(const std::string& path) {

@@ -23,12 +23,20 @@ struct ReadMesh {
   // longitudes; a layer's CRS; EPSG:4326 for SCHISM's .ll); empty otherwise.
   std::string crs;
   std::size_t num_skipped_elements = 0;  // lines and points of a .msh
+  // A .gr3's (.ll's, .14's) open boundaries: each its nodes in order (indices into
+  // points); empty for the other formats, and for a file without boundaries.
+  std::vector<std::vector<int>> open_boundaries;
 };
 
 // The format from the file's extension (.gr3, .ll, .14 (also fort.14 and .grd), .2dm,
 // .msh, .mesh, .nc, .slf or .srf, and .gpkg, .shp or .geojson for polygons); Error(usage)
 // for any other.
 std::string mesh_file_format(const std::string& path);
+
+// Whether the path names a mesh file of one of read_mesh's formats but the layers of
+// polygons (.gpkg, .shp, .geojson), which are read as vector data elsewhere: a mesh
+// given where a domain is wanted is read with read_mesh and its outline taken.
+bool is_mesh_file(const std::string& path);
 
 // Reads the mesh. Error(input) naming the file and the line for what it cannot read:
 // a missing or malformed line, an element with a node that is not in the file, an

@@ -213,6 +213,80 @@ TEST(Cli, AModelsLineFilesMeshWithTheirOpenBoundary) {
   EXPECT_NE(read_file(dir.file("bay.json")).find("\"num_rings_from_lines\": 2"), std::string::npos);
 }
 
+// A mesh given as INPUT (an ocean model's hgrid.gr3, an SMS .2dm): its outline is the
+// domain, and a .gr3's open boundaries stay open in the new mesh.
+TEST(Cli, AMeshFileIsMeshedAgainWithinItsOutline) {
+  TempDir dir;
+  write_file(dir.file("bay.pol"),
+             "bay\n 4 2\n500000 5000000\n540000 5000000\n540000 5030000\n500000 5030000\n"
+             "lake\n 4 2\n510000 5010000\n510000 5020000\n520000 5020000\n520000 5010000\n");
+  write_file(dir.file("sea.pli"), "sea\n 2 2\n540000 5000000\n540000 5030000\n");
+  const std::vector<std::string> utm = {"--src-crs", "EPSG:32630", "--dst-crs", "EPSG:32630"};
+  std::vector<std::string> args = {"mesh",
+                                   dir.file("bay.pol"),
+                                   "--open-boundary",
+                                   dir.file("sea.pli"),
+                                   "--size",
+                                   "2000",
+                                   "-o",
+                                   dir.file("bay.gr3"),
+                                   "-o",
+                                   dir.file("bay.2dm")};
+  args.insert(args.end(), utm.begin(), utm.end());
+  CliResult r = run_cli(args, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+
+  args = {"mesh", dir.file("bay.gr3"), "--size", "3000", "-o", dir.file("again.gr3")};
+  args.insert(args.end(), utm.begin(), utm.end());
+  r = run_cli(args, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("(layer 'its outline', 2 feature(s), 1 polygon(s), CRS WGS 84 / UTM zone "
+                       "30N)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("domain:       1 component(s), 2 ring(s), 1 hole(s)"), std::string::npos)
+      << r.err;
+  EXPECT_NE(
+      r.err.find("open lines:   " + dir.file("bay.gr3") + " (its open boundaries): 1 line(s)"),
+      std::string::npos)
+      << r.err;
+  // The 30 km of open sea in edges of about 3 km.
+  const std::size_t at = r.err.find("boundary:     ");
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const int open_edges = std::stoi(r.err.substr(at + 14));
+  EXPECT_GE(open_edges, 8) << r.err;
+  EXPECT_LE(open_edges, 13) << r.err;
+  EXPECT_NE(read_file(dir.file("again.gr3")).find("1 = Number of open boundaries"),
+            std::string::npos);
+
+  // An SMS .2dm's outline as a domain: 40 x 30 km less the 10 x 10 km lake.
+  r = run_cli({"domain", dir.file("bay.2dm"), "--src-crs", "EPSG:32630", "--dst-crs", "EPSG:32630",
+               "-o", dir.file("d.gpkg"), "--report", dir.file("d.json")},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NEAR(report_number(read_file(dir.file("d.json")), "area_m2"), 1.1e9, 1e3);
+
+  r = run_cli({"mesh", dir.file("bay.gr3"), "--size", "3000", "-o", dir.file("x.gr3")}, dir);
+  EXPECT_EQ(r.exit_code, 4);
+  EXPECT_NE(r.err.find("does not say its CRS: its outline is the domain, so give the CRS of its "
+                       "coordinates with --src-crs"),
+            std::string::npos)
+      << r.err;
+  r = run_cli({"mesh", dir.file("bay.gr3"), "--src-crs", "EPSG:32630", "--where", "id = 1",
+               "--size", "3000", "-o", dir.file("x.gr3")},
+              dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("is a mesh, whose outline is the domain: --where selects"),
+            std::string::npos)
+      << r.err;
+  r = run_cli({"mesh", dir.file("bay.gr3"), "--src-crs", "EPSG:32630", "--each", "name", "--size",
+               "3000", "-o", dir.file("{}.gr3")},
+              dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("is a mesh, whose outline is the domain: --each selects"), std::string::npos)
+      << r.err;
+}
+
 TEST(Cli, WaterDomainAndRepairFromTheCommandLine) {
   TempDir dir;
   CliResult r = run_cli({"domain", sample("brittany_land.geojson"), "-o", dir.file("sea.gpkg"),

@@ -329,7 +329,7 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
 
   const CliResult no_crs = run_cli({"quality", "--mesh", dir.file("m.gr3")}, dir);
   EXPECT_EQ(no_crs.exit_code, 4);
-  EXPECT_NE(no_crs.err.find("give it with --mesh-crs"), std::string::npos) << no_crs.err;
+  EXPECT_NE(no_crs.err.find("with --mesh-crs"), std::string::npos) << no_crs.err;
   const CliResult where =
       run_cli({"quality", "--mesh", dir.file("m.gpkg"), "--where", "name = 'x'"}, dir);
   EXPECT_EQ(where.exit_code, 2);

@@ -35,8 +35,11 @@ TEST(ReadMesh, Gr3WithMixedElementsAndIdsOutOfOrder) {
   write_file(dir.file("hgrid.gr3"),
              "grid\r\n3 5\r\n10 0 0 -1\r\n30 1.0D+01 0 2\r\n20 10 10 3\r\n40 0 10 4\r\n"
              "50 2e1 5 1\r\n1 4 10 30 20 40\r\n2 3 30 50 20\r\n3 3 10 30 40\r\n"
-             "1 = Number of open boundaries\r\n");
+             "1 = Number of open boundaries\r\n2 = Total number of open boundary nodes\r\n"
+             "2 0 = Number of nodes for open boundary 1\r\n30\r\n50\r\n"
+             "1 = Number of land boundaries\r\n");
   const ReadMesh m = read_mesh(dir.file("hgrid.gr3"));
+  EXPECT_EQ(m.open_boundaries, (std::vector<std::vector<int>>{{1, 4}}));
   EXPECT_EQ(m.format, "gr3");
   ASSERT_EQ(m.points.size(), 5u);
   EXPECT_EQ(m.points[1].x, 10.0);  // the Fortran exponent
@@ -199,6 +202,16 @@ TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
             std::string::npos);
   EXPECT_NE(read_error(dir, "b.gr3", "grid\n1 3\n1 0 0 0\n2 1 0 0\n")
                 .find("b.gr3': the file ends at line 4"),
+            std::string::npos);
+  // The open boundaries: cut short, or with a node the file does not have.
+  const std::string tri = "grid\n1 3\n1 0 0 0\n2 1 0 0\n3 1 1 0\n1 3 1 2 3\n";
+  EXPECT_NE(read_error(dir, "f.gr3", tri + "1 = Number of open boundaries\n")
+                .find("f.gr3': the file ends at line 7 where the total number of open boundary "
+                      "nodes should follow"),
+            std::string::npos);
+  EXPECT_NE(read_error(dir, "g.gr3", tri + "1\n2\n2\n1\n7\n")
+                .find("g.gr3' line 11: open boundary 1 has node 7, which is not among the file's "
+                      "nodes"),
             std::string::npos);
   EXPECT_NE(read_error(dir, "c.gr3", "grid\n1 3\n1 0 0 0\n2 1 x 0\n3 1 1 0\n1 3 1 2 3\n")
                 .find("line 4: expected y, a number, found 'x'"),
