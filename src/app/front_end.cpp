@@ -8,9 +8,9 @@
 #include "core/error.h"
 #include "domain/separate_rings.h"
 #include "gis/crs.h"
+#include "gis/mesh_outline.h"
 #include "gis/read_lines.h"
-#include "io/mesh_outline.h"
-#include "io/read_mesh.h"
+#include "gis/read_mesh.h"
 
 namespace isoquad {
 

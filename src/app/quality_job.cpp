@@ -11,7 +11,7 @@
 #include "core/stage_clock.h"
 #include "core/text.h"
 #include "gis/crs.h"
-#include "io/mesh_outline.h"
+#include "gis/mesh_outline.h"
 #include "mesh/locate.h"
 
 namespace isoquad {

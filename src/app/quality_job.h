@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "app/fields_job.h"
-#include "io/read_mesh.h"
+#include "gis/read_mesh.h"
 #include "quad/quad_mesh.h"
 #include "quad/quad_quality.h"
 

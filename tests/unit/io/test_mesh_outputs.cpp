@@ -15,8 +15,8 @@
 #include "core/error.h"
 #include "gis/atomic_output.h"
 #include "gis/crs.h"
+#include "gis/read_mesh.h"
 #include "io/mesh_boundary.h"
-#include "io/read_mesh.h"
 #include "io/write_mesh.h"
 #include "support/test_support.h"
 

@@ -5,7 +5,7 @@
 #include <algorithm>
 
 #include "core/error.h"
-#include "io/mesh_outline.h"
+#include "gis/mesh_outline.h"
 
 using namespace isoquad;
 

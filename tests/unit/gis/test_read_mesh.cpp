@@ -7,7 +7,7 @@
 #include <cstdint>
 
 #include "core/error.h"
-#include "io/read_mesh.h"
+#include "gis/read_mesh.h"
 #include "support/test_support.h"
 
 using namespace isoquad;

@@ -1,4 +1,4 @@
-#include "io/read_mesh.h"
+#include "gis/read_mesh.h"
 
 #include <algorithm>
 #include <cctype>

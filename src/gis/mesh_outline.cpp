@@ -1,4 +1,4 @@
-#include "io/mesh_outline.h"
+#include "gis/mesh_outline.h"
 
 #include <algorithm>
 #include <cmath>

@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "core/geometry.h"
+#include "gis/read_mesh.h"
 #include "gis/read_polygons.h"
-#include "io/read_mesh.h"
 
 namespace isoquad {
 
