@@ -10,6 +10,8 @@
 
 #include "core/error.h"
 #include "gis/gdal_env.h"
+#include "gis/mesh_field.h"
+#include "gis/read_mesh.h"
 
 namespace isoquad {
 
@@ -34,7 +36,11 @@ std::unique_ptr<GDALDataset> open_raster(const std::string& path, const std::str
   GdalErrorCapture capture;
   std::unique_ptr<GDALDataset> ds(static_cast<GDALDataset*>(
       GDALOpenEx(open_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
-  if (!ds) fail("cannot read as a raster (" + capture.last_message() + ")");
+  if (!ds)
+    fail(capture.last_message().empty()
+             ? "cannot read as a raster (a mesh to read depths from is a .gr3, .ll, .14, .2dm "
+               "or .mesh)"
+             : "cannot read as a raster (" + capture.last_message() + ")");
   if (ds->GetRasterCount() < 1) fail("has no raster band");
   double gt[6];
   if (ds->GetGeoTransform(gt) != CE_None) fail("has no georeferencing (geotransform)");
@@ -45,6 +51,7 @@ std::unique_ptr<GDALDataset> open_raster(const std::string& path, const std::str
 }  // namespace
 
 void check_raster(const std::string& path, const std::string& what) {
+  if (is_mesh_file(path)) return check_mesh_field(path, what);
   double inverse[6];
   open_raster(path, what, inverse);
 }
@@ -144,8 +151,12 @@ double RasterField::sample(const Point2& p) const {
 RasterStack::RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo& query_crs,
                          const std::optional<std::array<double, 4>>& extent)
     : sources_(rasters) {
-  for (const DepthRaster& r : rasters)
-    rasters_.push_back(std::make_unique<RasterField>(r.path, r.option(), query_crs, extent));
+  for (const DepthRaster& r : rasters) {
+    if (is_mesh_file(r.path))
+      rasters_.push_back(std::make_unique<MeshNodeField>(r.path, r.option(), query_crs));
+    else
+      rasters_.push_back(std::make_unique<RasterField>(r.path, r.option(), query_crs, extent));
+  }
 }
 
 RasterStack::~RasterStack() = default;

@@ -13,7 +13,15 @@
 
 namespace isoquad {
 
-class RasterField {
+// Values at points of a query CRS, NaN where there is none: a raster (RasterField) or a
+// mesh's node values (MeshNodeField).
+class PointField {
+ public:
+  virtual ~PointField() = default;
+  virtual double sample(const Point2& p) const = 0;
+};
+
+class RasterField : public PointField {
  public:
   // Reads band 1 of `path`. `what` names the option in messages (e.g. "--size-raster").
   // `query_crs` is the CRS of the points passed to sample(). A raster without a CRS is
@@ -23,13 +31,13 @@ class RasterField {
   // Error(input) or Error(crs).
   RasterField(const std::string& path, const std::string& what, const CrsInfo& query_crs,
               const std::optional<std::array<double, 4>>& extent = std::nullopt);
-  ~RasterField();
+  ~RasterField() override;
   RasterField(const RasterField&) = delete;
   RasterField& operator=(const RasterField&) = delete;
 
   // Bilinear value at p (query CRS); NaN outside the raster or where a neighbouring
   // pixel is nodata.
-  double sample(const Point2& p) const;
+  double sample(const Point2& p) const override;
 
   const std::string& path() const { return path_; }
   int width() const { return width_; }
@@ -57,7 +65,9 @@ struct DepthRaster {
 };
 
 // Depth rasters in priority order (a harbour survey, then a regional grid, then a global
-// one): at a point, the first with a value there gives it. Throws as RasterField.
+// one): at a point, the first with a value there gives it. A mesh file among them
+// (is_mesh_file: a model's hgrid.gr3) gives its nodes' values (MeshNodeField). Throws as
+// RasterField and MeshNodeField.
 class RasterStack {
  public:
   RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo& query_crs,
@@ -74,12 +84,13 @@ class RasterStack {
   std::string paths_text() const;
 
  private:
-  std::vector<std::unique_ptr<RasterField>> rasters_;
+  std::vector<std::unique_ptr<PointField>> rasters_;
   std::vector<DepthRaster> sources_;
 };
 
-// Opens `path` as RasterField would, without reading its values: the errors (Error
-// input) before a long job rather than after it.
+// Opens `path` as RasterField would, without reading its values (a mesh file: reads it
+// as MeshNodeField would): the errors (Error input) before a long job rather than after
+// it.
 void check_raster(const std::string& path, const std::string& what);
 
 }  // namespace isoquad

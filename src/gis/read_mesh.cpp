@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 #include <unordered_map>
@@ -159,12 +160,17 @@ void add_element(ReadMesh& mesh, const std::vector<int>& nodes, const LineReader
     mesh.quads.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
 }
 
-// A node: its id (read before) and the line's next two numbers, x and y (the rest of
-// the line ignored).
-void add_node(Fields& f, long long id, NodeIds& ids, ReadMesh& mesh, const LineReader& reader) {
+// A node: its id (read before) and the line's next two numbers, x and y, and with
+// `value` the third one when the line has it (a depth, or z), else NaN (the rest of the
+// line ignored).
+void add_node(Fields& f, long long id, NodeIds& ids, ReadMesh& mesh, const LineReader& reader,
+              bool value = false) {
   ids.add(id, reader);
   const double x = f.number("x");
   mesh.points.push_back({x, f.number("y")});
+  if (value)
+    mesh.node_values.push_back(f.at_end() ? std::numeric_limits<double>::quiet_NaN()
+                                          : f.number("the node's depth or z"));
 }
 
 // A .msh element of `count` nodes (msh_element_nodes), its node tags the line's next
@@ -201,7 +207,7 @@ void read_gr3(LineReader& r, ReadMesh& mesh) {
   for (long long k = 0; k < np; ++k) {
     const std::string line = r.need("node " + std::to_string(k + 1) + " of " + std::to_string(np));
     Fields n(line, r);
-    add_node(n, n.integer("a node id"), ids, mesh, r);
+    add_node(n, n.integer("a node id"), ids, mesh, r, true);
   }
   std::vector<int> nodes;
   for (long long k = 0; k < ne; ++k) {
@@ -258,7 +264,7 @@ void read_2dm(LineReader& r, ReadMesh& mesh) {
     if (f.at_end()) continue;
     const std::string card = f.word("a card");
     if (card == "ND") {
-      add_node(f, f.integer("a node id"), ids, mesh, r);
+      add_node(f, f.integer("a node id"), ids, mesh, r, true);
     } else if (card == "E3T" || card == "E4Q") {
       Pending p{f.integer("an element id"), {}, r.number()};
       for (int i = 0; i < (card == "E3T" ? 3 : 4); ++i) p.nodes.push_back(f.integer("a node id"));
@@ -394,7 +400,7 @@ void read_mike(LineReader& r, ReadMesh& mesh) {
   NodeIds ids;
   for (long long k = 0; k < np; ++k) {
     Fields f(r.need("node " + std::to_string(k + 1) + " of " + std::to_string(np)), r);
-    add_node(f, f.integer("a node id"), ids, mesh, r);
+    add_node(f, f.integer("a node id"), ids, mesh, r, true);
   }
   Fields c(r.need("the number of elements"), r);
   const long long ne = need_count(c, "the number of elements", r);
@@ -842,6 +848,9 @@ ReadMesh read_mesh(const std::string& path) {
   if (mesh.quads.empty() && mesh.triangles.empty())
     throw Error(ErrorClass::input, "read",
                 "'" + path + "': the mesh has no triangle or quadrangle");
+  if (std::any_of(mesh.node_values.begin(), mesh.node_values.end(),
+                  [](double v) { return std::isnan(v); }))
+    mesh.node_values.clear();
   // SCHISM's hgrid.ll is hgrid.gr3 in longitudes and latitudes.
   if (lower(std::filesystem::path(path).extension().string()) == ".ll") mesh.crs = "EPSG:4326";
   return mesh;

@@ -1407,6 +1407,34 @@ std::vector<double> quad_time_steps(const std::string& gpkg) {
 
 }  // namespace
 
+// A model's grid meshed again: hgrid.ll as INPUT (its outline the domain, its open
+// boundaries kept) and as --bathymetry (its depths, linear over its elements, at the new
+// vertices). The raster's depths are linear in lon/lat, so the old grid's give them again
+// inside it; the new boundary vertices take the value of the old grid's nearest boundary
+// point.
+TEST(CliOutputs, AModelsGridMeshedAgainKeepsItsSeaBoundaryAndDepths) {
+  TempDir dir;
+  CliResult r = mesh_water_box(dir, {"-o", dir.file("hgrid.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 old = parse_gr3(dir.file("hgrid.ll"));
+  ASSERT_FALSE(old.open.empty());
+  r = run_cli({"mesh", dir.file("hgrid.ll"), "--size", "1200", "--bathymetry", dir.file("hgrid.ll"),
+               "-o", dir.file("again.gr3")},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("outside the bathymetry"), std::string::npos) << r.err;
+  const Gr3 again = parse_gr3(dir.file("again.ll"));
+  EXPECT_EQ(again.open.size(), old.open.size());
+  EXPECT_LT(again.nodes.size(), old.nodes.size());
+  std::size_t close = 0;
+  for (const auto& n : again.nodes) {
+    const double error = std::abs(n[2] - depth_at(n[0], n[1]));
+    EXPECT_LT(error, 10.0) << n[0] << " " << n[1];
+    close += error < 0.5;
+  }
+  EXPECT_GT(close, 0.9 * again.nodes.size());
+}
+
 // --time-step raises the sizes to what an explicit model needs at that step and Courant
 // number: fewer quads under it than without; every time step reported at --courant.
 TEST(CliOutputs, TimeStepRuleWidensTheQuadsInDeepWater) {

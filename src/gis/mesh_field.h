@@ -1,0 +1,40 @@
+// A mesh's node values as a field (an ocean model's grid as a depth source: the depths
+// of the hgrid.gr3 a model runs on now, for the mesh that replaces it).
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+#include "gis/crs.h"
+#include "gis/raster_field.h"
+
+namespace isoquad {
+
+// Linear over each triangle (a quadrangle cut along its shorter diagonal) between the
+// node values read_mesh gives (a .gr3's depths, a .2dm's z); NaN off the mesh. The mesh
+// is read in its file's CRS, or else, as a raster without one, in the query CRS.
+class MeshNodeField : public PointField {
+ public:
+  // `what` names the option in messages (e.g. "--bathymetry"). Throws Error(input) for a
+  // mesh read_mesh cannot read or whose nodes have no values, Error(crs) for a CRS that
+  // cannot be used.
+  MeshNodeField(const std::string& path, const std::string& what, const CrsInfo& query_crs);
+  double sample(const Point2& p) const override;
+
+ private:
+  std::vector<Point2> points_;  // in the query CRS
+  std::vector<double> values_;
+  std::vector<std::array<int, 3>> triangles_;
+  // A grid over the mesh's box: each cell's triangles (whose boxes meet it), as ranges
+  // of cell_triangles_.
+  double x0_ = 0, y0_ = 0, cell_ = 1;
+  int nx_ = 0, ny_ = 0;
+  std::vector<int> cell_start_, cell_triangles_;
+};
+
+// Reads the mesh as MeshNodeField would, for its errors before a long job.
+void check_mesh_field(const std::string& path, const std::string& what);
+
+}  // namespace isoquad

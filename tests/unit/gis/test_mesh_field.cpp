@@ -1,0 +1,88 @@
+// MeshNodeField: a mesh's node values read as a depth source. A linear function on the
+// nodes is sampled exactly inside (quads cut in two, a triangle beside them), at the
+// nearest boundary point just outside, NaN far off; a .ll is transformed from lon/lat;
+// RasterStack takes a mesh among its rasters; a mesh without values is refused.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "gis/crs.h"
+#include "gis/mesh_field.h"
+#include "support/test_support.h"
+
+using namespace isoquad;
+using namespace isoquad::test;
+
+namespace {
+
+double linear(double x, double y) {
+  return 3 * x + 2 * y + 1;
+}
+
+// Two quads (0..200 x 0..100, times `scale`, from x0, y0) and a triangle to their right,
+// node values f(x, y).
+std::string grid_gr3(double (*f)(double, double), double x0 = 0, double y0 = 0,
+                     double scale = 1.0) {
+  const double xs[] = {0, 100, 200, 0, 100, 200, 300};
+  const double ys[] = {0, 0, 0, 100, 100, 100, 50};
+  std::string text = "grid\n3 7\n";
+  for (int i = 0; i < 7; ++i) {
+    const double x = x0 + xs[i] * scale, y = y0 + ys[i] * scale;
+    text += std::to_string(i + 1) + " " + std::to_string(x) + " " + std::to_string(y) + " " +
+            std::to_string(f(x, y)) + "\n";
+  }
+  return text + "1 4 1 2 5 4\n2 4 2 3 6 5\n3 3 3 7 6\n";
+}
+
+double shifted(double lon, double lat) {
+  return 1000 * (lon - 3) + 10 * (lat - 45);
+}
+
+}  // namespace
+
+TEST(MeshNodeField, LinearInsideNearestBoundaryJustOutsideNanFarOff) {
+  TempDir dir;
+  write_file(dir.file("hgrid.gr3"), grid_gr3(linear));
+  const CrsInfo utm = parse_crs("EPSG:32631", "test");
+  const MeshNodeField f(dir.file("hgrid.gr3"), "--bathymetry", utm);
+  for (const Point2 p : {Point2{10, 10}, Point2{150, 70}, Point2{199.5, 1}, Point2{250, 50},
+                         Point2{100, 100}, Point2{0, 0}})
+    EXPECT_NEAR(f.sample(p), linear(p.x, p.y), 1e-9) << p.x << " " << p.y;
+  // 5 m below the bottom side: the value on it.
+  EXPECT_NEAR(f.sample({50, -5}), linear(50, 0), 1e-9);
+  EXPECT_TRUE(std::isnan(f.sample({50, -1000})));
+  EXPECT_TRUE(std::isnan(f.sample({5000, 50})));
+}
+
+TEST(MeshNodeField, LonLatNodesTransformedAndStackedWithRasters) {
+  TempDir dir;
+  // hgrid.ll: the same grid in degrees from 3 E 45 N (EPSG:4326 by its extension).
+  write_file(dir.file("hgrid.ll"), grid_gr3(shifted, 3, 45, 1e-3));
+  const CrsInfo utm = parse_crs("EPSG:32631", "test");
+  const CrsInfo wgs84 = parse_crs("EPSG:4326", "test");
+  const CrsTransform to_utm(wgs84, utm);
+  Point2 node{3.1, 45.1};  // the fifth node
+  ASSERT_TRUE(to_utm.transform(node));
+  const MeshNodeField f(dir.file("hgrid.ll"), "--bathymetry", utm);
+  EXPECT_NEAR(f.sample(node), shifted(3.1, 45.1), 1e-6);
+  const RasterStack stack({DepthRaster{dir.file("hgrid.ll"), false}}, utm);
+  EXPECT_NEAR(stack.sample(node), shifted(3.1, 45.1), 1e-6);
+  const RasterStack elevations({DepthRaster{dir.file("hgrid.ll"), true}}, utm);
+  EXPECT_NEAR(elevations.sample(node), -shifted(3.1, 45.1), 1e-6);
+}
+
+TEST(MeshNodeField, AMeshWithoutValuesIsRefused) {
+  TempDir dir;
+  write_file(dir.file("m.msh"),
+             "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n3\n1 0 0 0\n2 1 0 0\n3 0 1 0\n"
+             "$EndNodes\n$Elements\n1\n1 2 2 0 1 1 2 3\n$EndElements\n");
+  try {
+    check_raster(dir.file("m.msh"), "--bathymetry");
+    FAIL() << "a .msh has no depths";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::input);
+    EXPECT_NE(std::string(e.what()).find("the mesh's nodes have no depths or z"), std::string::npos)
+        << e.what();
+  }
+}
