@@ -197,7 +197,8 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
                        "outputs; with --wavelength-period, --slope-factor or --time-step also the "
                        "sizing. Repeat it (or --elevation) for several, in priority order (a "
                        "survey, then a regional grid, then GEBCO): at each point the first with a "
-                       "depth gives it. A mesh (.gr3, .ll, .14) gives its nodes' depths")
+                       "depth gives it. A mesh gives its nodes' values: .gr3, .ll, .14 depths; "
+                       ".2dm, .mesh, .nc, .slf bed levels, for --elevation")
         ->trigger_on_parse()
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)

@@ -16,8 +16,9 @@ ReadMesh read_values(const std::string& path, const std::string& what) {
   if (mesh.node_values.empty())
     throw Error(ErrorClass::input, "raster",
                 what + " '" + path +
-                    "': the mesh's nodes have no depths or z to read (a .gr3, .ll or .14 has "
-                    "depths, a .2dm or .mesh z, on every node)");
+                    "': the mesh's nodes have no depths or bed levels to read (a .gr3, .ll or "
+                    ".14 has depths, a .2dm or .mesh z, a .nc *_node_z, a .slf BOTTOM, on every "
+                    "node)");
   return mesh;
 }
 

@@ -13,8 +13,10 @@
 namespace isoquad {
 
 // Linear over each triangle (a quadrangle cut along its shorter diagonal) between the
-// node values read_mesh gives (a .gr3's depths, a .2dm's z); NaN off the mesh. The mesh
-// is read in its file's CRS, or else, as a raster without one, in the query CRS.
+// node values read_mesh gives (a .gr3's depths, a .2dm's z...); off the mesh, within
+// about a triangle's size of it, the value at the nearest point of its boundary, else
+// NaN. The mesh is read in its file's CRS, or else, as a raster without one, in the
+// query CRS.
 class MeshNodeField : public PointField {
  public:
   // `what` names the option in messages (e.g. "--bathymetry"). Throws Error(input) for a

@@ -465,6 +465,20 @@ class NcReader {
       return otherwise;
     return nc_get_att_longlong(id_, var, name, &value) == NC_NOERR ? value : otherwise;
   }
+  // A numeric attribute; `otherwise` when there is none.
+  double number(int var, const char* name, double otherwise) const {
+    double value = 0;
+    nc_type type;
+    std::size_t length = 0;
+    if (nc_inq_att(id_, var, name, &type, &length) != NC_NOERR || length != 1 || type == NC_CHAR)
+      return otherwise;
+    return nc_get_att_double(id_, var, name, &value) == NC_NOERR ? value : otherwise;
+  }
+  nc_type type(int var) const {
+    nc_type t = NC_NAT;
+    nc_inq_vartype(id_, var, &t);
+    return t;
+  }
   std::vector<std::size_t> shape(int var) const {
     int ndims = 0;
     nc_inq_varndims(id_, var, &ndims);
@@ -553,11 +567,20 @@ void read_netcdf(const std::string& path, ReadMesh& mesh) {
   for (int v = 0; v < nc.num_vars() && topology < 0; ++v)
     if (nc.text(v, "cf_role") == "mesh_topology" && nc.integer(v, "topology_dimension", 0) == 2)
       topology = v;
-  int x = -1, y = -1, faces = -1;
+  int x = -1, y = -1, faces = -1, z = -1;
   long long start = 0;
   bool transposed = false;
   if (topology >= 0) {
     const std::string name = nc.var_name(topology);
+    // The nodes' bed levels: a variable on the mesh's nodes named *_node_z, or of
+    // standard_name altitude.
+    for (int v = 0; v < nc.num_vars() && z < 0; ++v) {
+      const std::string var = nc.var_name(v);
+      if (nc.text(v, "mesh") == name && nc.text(v, "location") == "node" &&
+          (nc.text(v, "standard_name") == "altitude" ||
+           (var.size() > 7 && var.compare(var.size() - 7, 7, "_node_z") == 0)))
+        z = v;
+    }
     std::istringstream coordinates(nc.text(topology, "node_coordinates"));
     std::string xn, yn;
     if (!(coordinates >> xn >> yn)) nc.fail("mesh topology '" + name + "' has no node_coordinates");
@@ -572,6 +595,7 @@ void read_netcdf(const std::string& path, ReadMesh& mesh) {
     x = nc.need("NetNode_x", "a D-Flow FM net file's nodes");
     y = nc.need("NetNode_y", "a D-Flow FM net file's nodes");
     faces = nc.need("NetElemNode", "a D-Flow FM net file's cells");
+    z = nc.find("NetNode_z");
     start = 1;
   } else {
     nc.fail(
@@ -586,6 +610,15 @@ void read_netcdf(const std::string& path, ReadMesh& mesh) {
     mesh.points.push_back({xs[i], ys[i]});
   }
   mesh.crs = netcdf_crs(nc, x);
+  if (z >= 0) {
+    mesh.node_values = nc.doubles(z);
+    const int kind = nc.type(z);
+    const double fill =
+        nc.number(z, "_FillValue", kind == NC_FLOAT ? NC_FILL_FLOAT : NC_FILL_DOUBLE);
+    for (double& v : mesh.node_values)
+      if (v == fill || !std::isfinite(v)) v = std::numeric_limits<double>::quiet_NaN();
+    if (mesh.node_values.size() != mesh.points.size()) mesh.node_values.clear();
+  }
   const std::vector<std::size_t> shape = nc.shape(faces);
   if (shape.size() != 2) nc.fail("the face-node connectivity is not a 2D array");
   const std::size_t num_faces = shape[transposed ? 1 : 0], width = shape[transposed ? 0 : 1];
@@ -655,6 +688,7 @@ class SelafinReader {
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = static_cast<std::int32_t>(word(r, 4 * i));
     return out;
   }
+  bool at_end() { return in_.peek() == std::char_traits<char>::eof(); }
   std::vector<double> reals(const char* what, std::size_t count, bool doubles) {
     const std::string r = record(what);
     const std::size_t width = doubles ? 8 : 4;
@@ -699,7 +733,15 @@ void read_selafin(const std::string& path, ReadMesh& mesh) {
   if (title.size() != 80) r.fail("not a Selafin file (its title is not 80 characters)");
   const bool doubles = title.substr(72, 8).rfind("SERAFIND", 0) == 0;
   const std::vector<std::int32_t> counts = r.ints("the numbers of variables", 2);
-  for (int i = 0; i < counts[0] + counts[1]; ++i) r.record("a variable's name");
+  // The bed level's variable: BOTTOM (FOND in French), its name the record's first 16
+  // characters.
+  int bottom = -1;
+  for (int i = 0; i < counts[0] + counts[1]; ++i) {
+    std::string name = r.record("a variable's name").substr(0, 16);
+    while (!name.empty() && name.back() == ' ') name.pop_back();
+    if (bottom < 0 && i < counts[0] && (lower(name) == "bottom" || lower(name) == "fond"))
+      bottom = i;
+  }
   const std::vector<std::int32_t> iparam = r.ints("IPARAM", 10);
   if (iparam[9] == 1) r.record("the date");
   const std::vector<std::int32_t> sizes = r.ints("NELEM NPOIN NDP", 3);
@@ -732,6 +774,13 @@ void read_selafin(const std::string& path, ReadMesh& mesh) {
       mesh.triangles.push_back({nodes[0], nodes[1], nodes[2]});
     else
       mesh.quads.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
+  }
+  // The bed level at the first time step, when the file has one.
+  if (bottom < 0 || r.at_end()) return;
+  r.record("the first time step's time");
+  for (int i = 0; i <= bottom; ++i) {
+    std::vector<double> values = r.reals("a variable at the first time step", npoin, doubles);
+    if (i == bottom) mesh.node_values = std::move(values);
   }
 }
 

@@ -23,9 +23,10 @@ struct ReadMesh {
   // longitudes; a layer's CRS; EPSG:4326 for SCHISM's .ll); empty otherwise.
   std::string crs;
   std::size_t num_skipped_elements = 0;  // lines and points of a .msh
-  // Each node's value after x and y where the format has one (.gr3, .ll, .14: the
-  // depth; .2dm, .mesh: z), in the order of points; empty for the other formats, or
-  // when a node lacks it.
+  // Each node's depth or bed level where the format has one (.gr3, .ll, .14: the depth;
+  // .2dm, .mesh: z; .nc: the nodes' bed level (*_node_z, NetNode_z); .slf: BOTTOM at the
+  // first time step), in the order of points; empty for the other formats (.msh, a layer
+  // of polygons), or when a node lacks it.
   std::vector<double> node_values;
   // A .gr3's (.ll's, .14's) open boundaries: each its nodes in order (indices into
   // points); empty for the other formats, and for a file without boundaries.

@@ -1414,7 +1414,7 @@ std::vector<double> quad_time_steps(const std::string& gpkg) {
 // point.
 TEST(CliOutputs, AModelsGridMeshedAgainKeepsItsSeaBoundaryAndDepths) {
   TempDir dir;
-  CliResult r = mesh_water_box(dir, {"-o", dir.file("hgrid.gr3")});
+  CliResult r = mesh_water_box(dir, {"-o", dir.file("hgrid.gr3"), "-o", dir.file("net.nc")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Gr3 old = parse_gr3(dir.file("hgrid.ll"));
   ASSERT_FALSE(old.open.empty());
@@ -1433,6 +1433,15 @@ TEST(CliOutputs, AModelsGridMeshedAgainKeepsItsSeaBoundaryAndDepths) {
     close += error < 0.5;
   }
   EXPECT_GT(close, 0.9 * again.nodes.size());
+  // The UGRID file's bed levels (mesh_node_z, positive up) give the same depths.
+  r = run_cli({"mesh", dir.file("hgrid.ll"), "--size", "1200", "--elevation", dir.file("net.nc"),
+               "-o", dir.file("from_nc.gr3")},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 from_nc = parse_gr3(dir.file("from_nc.ll"));
+  ASSERT_EQ(from_nc.nodes.size(), again.nodes.size());
+  for (std::size_t i = 0; i < again.nodes.size(); ++i)
+    EXPECT_NEAR(from_nc.nodes[i][2], again.nodes[i][2], 0.01) << i;
 }
 
 // --time-step raises the sizes to what an explicit model needs at that step and Courant

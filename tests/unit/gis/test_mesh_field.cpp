@@ -82,7 +82,8 @@ TEST(MeshNodeField, AMeshWithoutValuesIsRefused) {
     FAIL() << "a .msh has no depths";
   } catch (const Error& e) {
     EXPECT_EQ(e.error_class(), ErrorClass::input);
-    EXPECT_NE(std::string(e.what()).find("the mesh's nodes have no depths or z"), std::string::npos)
+    EXPECT_NE(std::string(e.what()).find("the mesh's nodes have no depths or bed levels"),
+              std::string::npos)
         << e.what();
   }
 }

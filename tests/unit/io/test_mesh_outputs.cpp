@@ -766,6 +766,15 @@ TEST(MeshOutputs, ReadMeshReadsBackEveryFormat) {
         ASSERT_FALSE(m.crs.empty());
         EXPECT_EQ(parse_crs(m.crs, "the file's").name, parse_crs(f.crs_wkt, "EPSG:32631").name);
       }
+      // The depths (a .gr3's) or bed levels (the others'), 10 + i / 2 m deep; none in a .msh.
+      if (msh) {
+        EXPECT_TRUE(m.node_values.empty());
+      } else {
+        const double sign = o.path.find(".gr3") != std::string::npos ? 1.0 : -1.0;
+        ASSERT_EQ(m.node_values.size(), f.mesh.points.size());
+        for (std::size_t i = 0; i < m.node_values.size(); ++i)
+          EXPECT_NEAR(sign * m.node_values[i], 10.0 + 0.5 * i, 1e-5) << i;
+      }
     }
   }
   // ADCIRC's grid in the mesh's CRS (ICS 1) and TELEMAC's Selafin: two triangles a quad.
@@ -786,5 +795,10 @@ TEST(MeshOutputs, ReadMeshReadsBackEveryFormat) {
     for (const auto& t : split.triangles)
       triangles += signed_area(split.points[t[0]], split.points[t[1]], split.points[t[2]]);
     EXPECT_NEAR(triangles, area, 1e-3);
+    // fort.14's depths, the Selafin's BOTTOM (the bed level).
+    const double sign = std::string(name) == "m.slf" ? -1.0 : 1.0;
+    ASSERT_EQ(split.node_values.size(), f.mesh.points.size());
+    for (std::size_t i = 0; i < split.node_values.size(); ++i)
+      EXPECT_NEAR(sign * split.node_values[i], 10.0 + 0.5 * i, 1e-5) << i;
   }
 }
