@@ -158,9 +158,10 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   // A mesh file (hgrid.gr3, a .2dm...): its outline, and a .gr3's open boundaries.
   std::vector<std::vector<Point2>> mesh_open_lines;
   SourceData source;
+  const bool from_mesh = options.source.has_value() || is_mesh_file(read.path);
   if (options.source) {
     source = *options.source;
-  } else if (is_mesh_file(read.path)) {
+  } else if (from_mesh) {
     const std::pair<bool, const char*> selections[] = {
         {!read.layer.empty(), "--layer"},
         {!read.where.empty(), "--where"},
@@ -203,7 +204,14 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   s.num_repaired = selected.num_repaired;
 
   progress.report("project", 0.6);
-  ProjectResult projected = project_domain(selected.polygons, source.crs, options.project);
+  // A mesh's outline in a projected CRS in metres (a model's grid in UTM) is meshed in
+  // that CRS, unless --dst-crs says otherwise: the new grid's coordinates are the old's,
+  // and a depth source without a CRS of its own (the old .gr3) is read in it.
+  ProjectParams project = options.project;
+  if (from_mesh && project.dst_crs.empty() && source.crs.projected &&
+      source.crs.linear_unit_m == 1.0)
+    project.dst_crs = source.crs.wkt;
+  ProjectResult projected = project_domain(selected.polygons, source.crs, project);
   result.domain = std::move(projected.domain);
   s.meshing_crs_name = result.domain.crs_name;
   s.automatic_crs = projected.local.has_value();

@@ -23,7 +23,9 @@ struct FrontEndOptions {
   ReadParams read;
   // Polygons given instead of read from read.path, which then names them in messages
   // and the summary (`isoquad quality` without INPUT: the mesh's own outline). The
-  // read's selections do not apply to them.
+  // read's selections do not apply to them. They, and a mesh file's outline (read.path
+  // a mesh: is_mesh_file), are meshed in their CRS when it is projected in metres and
+  // project.dst_crs is empty.
   std::optional<SourceData> source;
   DomainKind kind = DomainKind::land;
   bool largest = false;

@@ -112,9 +112,9 @@ void place_on_chains(const BackgroundMesh& bg, QuadMesh& m, QualityJobResult& r)
 }
 
 // Without INPUT: the domain is the mesh's outline, read in the mesh's CRS (the
-// --mesh-crs or the file's own) and meshed in it when it is projected in metres. Nothing
-// of it is simplified, filled or dropped unless asked: the mesh's boundary vertices lie
-// on its boundary.
+// --mesh-crs or the file's own; the front end measures in it when it is projected in
+// metres). Nothing of it is simplified, filled or dropped unless asked: the mesh's
+// boundary vertices lie on its boundary.
 FrontEndOptions outline_front_end(const QualityJobOptions& options, const ReadMesh& file,
                                   QualityJobResult& r) {
   FrontEndOptions front = options.fields.front;
@@ -123,9 +123,6 @@ FrontEndOptions outline_front_end(const QualityJobOptions& options, const ReadMe
   front.read.repair = options.fields.front.read.repair;
   front.source = outline_source(file, options.mesh_path, options.mesh_crs, "--mesh-crs");
   r.num_outline_loops = front.source->num_features;
-  const CrsInfo& crs = front.source->crs;
-  if (front.project.dst_crs.empty() && crs.projected && crs.linear_unit_m == 1.0)
-    front.project.dst_crs = crs.wkt;
   if (!front.simplify_m) front.simplify_m = 0.0;
   if (!front.min_island_area_m2) front.min_island_area_m2 = 0.0;
   if (!front.min_width_m) front.min_width_m = 0.0;

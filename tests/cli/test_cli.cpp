@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <sstream>
 
 #include "gis/gdal_env.h"
 #include "support/fixtures.h"
@@ -258,6 +259,47 @@ TEST(Cli, AMeshFileIsMeshedAgainWithinItsOutline) {
   EXPECT_LE(open_edges, 13) << r.err;
   EXPECT_NE(read_file(dir.file("again.gr3")).find("1 = Number of open boundaries"),
             std::string::npos);
+
+  // Without --dst-crs the grid is meshed in its own CRS, where a depth source without
+  // one (the .gr3 itself, depths (x - 500 km) / 1000 written in) is read.
+  {
+    std::istringstream in(read_file(dir.file("bay.gr3")));
+    std::string line, text;
+    std::getline(in, line);
+    text += line + "\n";
+    std::getline(in, line);
+    text += line + "\n";
+    std::size_t ne = 0, np = 0;
+    std::istringstream(line) >> ne >> np;
+    for (std::size_t i = 0; i < np && std::getline(in, line); ++i) {
+      long id;
+      double x, y;
+      std::istringstream(line) >> id >> x >> y;
+      text += std::to_string(id) + " " + std::to_string(x) + " " + std::to_string(y) + " " +
+              std::to_string((x - 500000) / 1000) + "\n";
+    }
+    while (std::getline(in, line)) text += line + "\n";
+    write_file(dir.file("deep.gr3"), text);
+  }
+  r = run_cli({"mesh", dir.file("deep.gr3"), "--src-crs", "EPSG:32630", "--bathymetry",
+               dir.file("deep.gr3"), "--size", "3000", "-o", dir.file("deep_again.gr3")},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("meshing CRS:  WGS 84 / UTM zone 30N\n"), std::string::npos) << r.err;
+  {
+    std::istringstream in(read_file(dir.file("deep_again.gr3")));
+    std::string line;
+    std::getline(in, line);
+    std::size_t ne = 0, np = 0;
+    in >> ne >> np;
+    ASSERT_GT(np, 50u);
+    for (std::size_t i = 0; i < np; ++i) {
+      long id;
+      double x, y, depth;
+      in >> id >> x >> y >> depth;
+      EXPECT_NEAR(depth, (x - 500000) / 1000, 0.01) << id;
+    }
+  }
 
   // An SMS .2dm's outline as a domain: 40 x 30 km less the 10 x 10 km lake.
   r = run_cli({"domain", dir.file("bay.2dm"), "--src-crs", "EPSG:32630", "--dst-crs", "EPSG:32630",
