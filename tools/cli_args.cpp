@@ -513,9 +513,13 @@ FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {
   return o;
 }
 
-// The depth rasters can be read, and the options that need depths have them.
-void check_depth_options(const FieldArgs& f) {
-  for (const DepthRaster& r : f.sizing.bathymetry) check_raster(r.path, r.option());
+// The depth rasters can be read, and the options that need depths have them; a mesh
+// among them without a CRS of its own is in --src-crs, when given.
+void finish_depth_options(const CommonArgs& a, FieldArgs& f) {
+  for (DepthRaster& r : f.sizing.bathymetry) {
+    r.mesh_crs = a.fe.read.src_crs;
+    check_raster(r.path, r.option());
+  }
   if (!f.sizing.bathymetry.empty()) return;
   auto needs = [](const char* option) {
     throw Error(ErrorClass::usage, "options",

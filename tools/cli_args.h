@@ -91,8 +91,9 @@ void finish_front_end_args(CommonArgs& a);
 // The fields' options from the arguments; Error(usage) for arguments that do not fit
 // together.
 FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f);
-// The depth rasters can be read, and the options that need depths have them.
-void check_depth_options(const FieldArgs& f);
+// The depth rasters can be read, and the options that need depths have them; a mesh
+// among them without a CRS of its own is in --src-crs, when given.
+void finish_depth_options(const CommonArgs& a, FieldArgs& f);
 // The mesh outputs with their formats (--output-format, once or once per -o).
 std::vector<MeshOutput> mesh_outputs(const CommonArgs& a, const MeshArgs& m);
 // The mesh job's options from the arguments (the fields', the tiling's choices named on

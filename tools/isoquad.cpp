@@ -139,7 +139,7 @@ int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
   const std::string ext = std::filesystem::path(a.output).extension().string();
   if (ext != ".vtu" && ext != ".gpkg")
     throw Error(ErrorClass::usage, "options", "'" + a.output + "': the fields are written as .vtu or .gpkg");
-  check_depth_options(f);
+  finish_depth_options(a, f);
   const FieldsOptions options = fields_options(a, f);
   const auto t0 = std::chrono::steady_clock::now();
   FieldsResult r = build_fields(options, Progress(make_progress(a.quiet)));
@@ -194,8 +194,8 @@ RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::stri
                       "--open-boundary FILE, or --domain water with --bbox");
   // --bathymetry alone gives the depths of the outputs; with a wavelength, slope or time
   // step rule it also sets the sizing.
+  finish_depth_options(a, f);
   const std::vector<DepthRaster> bathymetry = f.sizing.bathymetry;
-  check_depth_options(f);
   if (!bathymetry.empty() && !f.sizing.wavelength_period_s && !f.sizing.slope_factor &&
       !f.sizing.time_step_s)
     f.sizing.bathymetry.clear();
@@ -271,7 +271,7 @@ RegionOutcome run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
                         " selects from INPUT: without INPUT the domain is the mesh's own outline "
                         "(its CRS: --mesh-crs)");
   }
-  check_depth_options(f);
+  finish_depth_options(a, f);
   if (!f.sizing.bathymetry.empty() && !f.sizing.wavelength_period_s && !f.sizing.slope_factor &&
       !f.sizing.time_step_s)
     throw Error(ErrorClass::usage, "options",

@@ -29,13 +29,15 @@ void check_mesh_field(const std::string& path, const std::string& what) {
 }
 
 MeshNodeField::MeshNodeField(const std::string& path, const std::string& what,
-                             const CrsInfo& query_crs) {
+                             const CrsInfo& query_crs, const std::string& crs_if_none) {
   ReadMesh mesh = read_values(path, what);
   points_ = std::move(mesh.points);
   values_ = std::move(mesh.node_values);
-  if (!mesh.crs.empty()) {
-    const CrsTransform transform(parse_crs(mesh.crs, what + " '" + path + "' (its projection)"),
-                                 query_crs);
+  const std::string crs = !mesh.crs.empty() ? mesh.crs : crs_if_none;
+  if (!crs.empty()) {
+    const CrsTransform transform(
+        parse_crs(crs, mesh.crs.empty() ? "--src-crs" : what + " '" + path + "' (its projection)"),
+        query_crs);
     const long failed = transform.transform(points_);
     if (failed >= 0)
       throw Error(ErrorClass::crs, "raster",

@@ -15,14 +15,15 @@ namespace isoquad {
 // Linear over each triangle (a quadrangle cut along its shorter diagonal) between the
 // node values read_mesh gives (a .gr3's depths, a .2dm's z...); off the mesh, within
 // about a triangle's size of it, the value at the nearest point of its boundary, else
-// NaN. The mesh is read in its file's CRS, or else, as a raster without one, in the
-// query CRS.
+// NaN. The mesh is read in its file's CRS, else in `crs_if_none` (CRS text), else, as a
+// raster without one, in the query CRS.
 class MeshNodeField : public PointField {
  public:
   // `what` names the option in messages (e.g. "--bathymetry"). Throws Error(input) for a
   // mesh read_mesh cannot read or whose nodes have no values, Error(crs) for a CRS that
   // cannot be used.
-  MeshNodeField(const std::string& path, const std::string& what, const CrsInfo& query_crs);
+  MeshNodeField(const std::string& path, const std::string& what, const CrsInfo& query_crs,
+                const std::string& crs_if_none = "");
   double sample(const Point2& p) const override;
 
  private:

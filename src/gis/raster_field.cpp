@@ -153,7 +153,8 @@ RasterStack::RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo&
     : sources_(rasters) {
   for (const DepthRaster& r : rasters) {
     if (is_mesh_file(r.path))
-      rasters_.push_back(std::make_unique<MeshNodeField>(r.path, r.option(), query_crs));
+      rasters_.push_back(
+          std::make_unique<MeshNodeField>(r.path, r.option(), query_crs, r.mesh_crs));
     else
       rasters_.push_back(std::make_unique<RasterField>(r.path, r.option(), query_crs, extent));
   }

@@ -61,6 +61,9 @@ class RasterField : public PointField {
 struct DepthRaster {
   std::string path;
   bool elevation = false;
+  // The CRS of a mesh file that does not say its own (a .gr3, .14, .2dm: --src-crs);
+  // empty: the query CRS, as for a raster without one.
+  std::string mesh_crs;
   const char* option() const { return elevation ? "--elevation" : "--bathymetry"; }
 };
 

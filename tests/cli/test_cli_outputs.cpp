@@ -1442,6 +1442,24 @@ TEST(CliOutputs, AModelsGridMeshedAgainKeepsItsSeaBoundaryAndDepths) {
   ASSERT_EQ(from_nc.nodes.size(), again.nodes.size());
   for (std::size_t i = 0; i < again.nodes.size(); ++i)
     EXPECT_NEAR(from_nc.nodes[i][2], again.nodes[i][2], 0.01) << i;
+  // An ADCIRC grid in lon/lat (a fort.14 says no CRS): read in --src-crs; without it, in
+  // the meshing CRS, where it gives no vertex a depth.
+  r = mesh_water_box(dir, {"-o", dir.file("lonlat.14"), "--output-crs", "EPSG:4326"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli({"mesh", dir.file("hgrid.ll"), "--src-crs", "EPSG:4326", "--size", "1200",
+               "--bathymetry", dir.file("lonlat.14"), "-o", dir.file("from_14.gr3")},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 from_14 = parse_gr3(dir.file("from_14.ll"));
+  ASSERT_EQ(from_14.nodes.size(), again.nodes.size());
+  for (std::size_t i = 0; i < again.nodes.size(); ++i)
+    EXPECT_NEAR(from_14.nodes[i][2], again.nodes[i][2], 0.01) << i;
+  r = run_cli({"mesh", dir.file("hgrid.ll"), "--size", "1200", "--bathymetry",
+               dir.file("lonlat.14"), "-o", dir.file("no_crs.gr3")},
+              dir);
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("no vertex of the mesh lies where it has a depth"), std::string::npos)
+      << r.err;
 }
 
 // --time-step raises the sizes to what an explicit model needs at that step and Courant
