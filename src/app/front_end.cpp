@@ -145,6 +145,30 @@ void add_domain_chords(FrontEndResult& result, const CrsInfo& source_crs,
   }
 }
 
+// A mesh file given as INPUT (hgrid.gr3, a .2dm...): its outline as the polygons, and a
+// .gr3's open boundaries as lines in its CRS (`open_lines`).
+SourceData read_mesh_source(const FrontEndOptions& options,
+                            std::vector<std::vector<Point2>>& open_lines) {
+  const ReadParams& read = options.read;
+  const std::pair<bool, const char*> selections[] = {
+      {!read.layer.empty(), "--layer"},
+      {!read.where.empty(), "--where"},
+      {read.bbox.has_value(), "--bbox"},
+      {options.kind != DomainKind::land, "--domain water"}};
+  for (const auto& [given, option] : selections)
+    if (given)
+      throw Error(ErrorClass::usage, "read",
+                  "'" + read.path + "' is a mesh, whose outline is the domain: " + option +
+                      " selects from a vector file's polygons");
+  const ReadMesh mesh = read_mesh(read.path);
+  for (const std::vector<int>& segment : mesh.open_boundaries) {
+    std::vector<Point2> line;
+    for (int v : segment) line.push_back(mesh.points[v]);
+    if (line.size() >= 2) open_lines.push_back(std::move(line));
+  }
+  return outline_source(mesh, read.path, read.src_crs, "--src-crs");
+}
+
 }  // namespace
 
 FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progress& progress) {
@@ -155,33 +179,11 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   progress.report("read", 0.0);
   ReadParams read = options.read;
   read.empty_bbox_selection_ok = options.kind == DomainKind::water;
-  // A mesh file (hgrid.gr3, a .2dm...): its outline, and a .gr3's open boundaries.
   std::vector<std::vector<Point2>> mesh_open_lines;
-  SourceData source;
   const bool from_mesh = options.source.has_value() || is_mesh_file(read.path);
-  if (options.source) {
-    source = *options.source;
-  } else if (from_mesh) {
-    const std::pair<bool, const char*> selections[] = {
-        {!read.layer.empty(), "--layer"},
-        {!read.where.empty(), "--where"},
-        {read.bbox.has_value(), "--bbox"},
-        {options.kind != DomainKind::land, "--domain water"}};
-    for (const auto& [given, option] : selections)
-      if (given)
-        throw Error(ErrorClass::usage, "read",
-                    "'" + read.path + "' is a mesh, whose outline is the domain: " + option +
-                        " selects from a vector file's polygons");
-    const ReadMesh mesh = read_mesh(read.path);
-    source = outline_source(mesh, read.path, read.src_crs, "--src-crs");
-    for (const std::vector<int>& segment : mesh.open_boundaries) {
-      std::vector<Point2> line;
-      for (int v : segment) line.push_back(mesh.points[v]);
-      if (line.size() >= 2) mesh_open_lines.push_back(std::move(line));
-    }
-  } else {
-    source = read_polygons(read);
-  }
+  SourceData source = options.source ? *options.source
+                      : from_mesh    ? read_mesh_source(options, mesh_open_lines)
+                                     : read_polygons(read);
   s.layer_name = source.layer_name;
   s.source_crs_name = source.crs.name;
   s.num_features = source.num_features;
@@ -224,7 +226,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   const std::string open_lines_name = !options.open_boundary_path.empty()
                                           ? "'" + options.open_boundary_path + "'"
                                           : "the open boundaries of '" + read.path + "'";
-  if (!options.open_boundary_path.empty() || !mesh_open_lines.empty()) {
+  if (open_lines_given) {
     s.open_boundary_path = !options.open_boundary_path.empty()
                                ? options.open_boundary_path
                                : read.path + " (its open boundaries)";

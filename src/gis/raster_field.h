@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "core/geometry.h"
@@ -59,6 +60,9 @@ class RasterField : public PointField {
 // A raster of depths (metres, positive down: --bathymetry) or of elevations (positive
 // up, as GEBCO, EMODnet and SRTM15+ give them: --elevation), read as depths.
 struct DepthRaster {
+  DepthRaster() = default;
+  DepthRaster(std::string path_, bool elevation_ = false)
+      : path(std::move(path_)), elevation(elevation_) {}
   std::string path;
   bool elevation = false;
   // The CRS of a mesh file that does not say its own (a .gr3, .14, .2dm: --src-crs);
