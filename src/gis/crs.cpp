@@ -56,7 +56,15 @@ CrsInfo parse_crs(const std::string& text, const std::string& what) {
                     (detail.empty() ? "" : " (" + detail + ")") +
                     "; give EPSG:n, WKT, a PROJ string or PROJJSON");
   }
-  return crs_from_srs(srs);
+  CrsInfo crs = crs_from_srs(srs);
+  // A PROJ string names no CRS (nor a WKT made from one): messages and summaries show
+  // the PROJ string instead.
+  if (crs.name.empty() || crs.name == "unknown") {
+    const std::string proj = crs_proj_string(crs);
+    const std::string& shown = proj.empty() ? text : proj;
+    crs.name = shown.size() <= 100 ? shown : shown.substr(0, 97) + "...";
+  }
+  return crs;
 }
 
 CrsInfo geographic_base(const CrsInfo& crs) {

@@ -104,3 +104,12 @@ TEST(Crs, LocalProjectionOfADomainRoundAPoleIsCentredOnThePole) {
   EXPECT_NEAR(lp.lon0_deg, 135.0, 1e-6);
   EXPECT_NEAR(lp.lat0_deg, -72.3, 0.05);
 }
+
+// A PROJ string names no CRS: the summaries show the PROJ string, not "unknown", also
+// for the WKT made from it.
+TEST(Crs, ACrsWithoutANameIsShownByItsProjString) {
+  const CrsInfo utm = parse_crs("+proj=utm +zone=31 +datum=WGS84 +units=m +no_defs", "test");
+  EXPECT_EQ(utm.name.rfind("+proj=utm +zone=31", 0), 0u) << utm.name;
+  EXPECT_EQ(parse_crs(utm.wkt, "test").name, utm.name);
+  EXPECT_EQ(parse_crs("EPSG:32631", "test").name, "WGS 84 / UTM zone 31N");
+}
