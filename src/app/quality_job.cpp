@@ -67,10 +67,13 @@ ChainLines chain_lines(const BackgroundMesh& bg) {
   return c;
 }
 
-// Puts the quads' boundary vertices that lie on the domain's boundary onto its chains
-// (QuadMesh::chain and arc_m), so that the coast's departure from the mesh is measured as
-// for isoquad's own meshes; counts the others and how far off they lie.
-void place_on_chains(const BackgroundMesh& bg, QuadMesh& m, QualityJobResult& r) {
+// Puts the mesh's boundary vertices (the ends of `edges`) that lie on the domain's
+// boundary onto its chains (QuadMesh::chain and arc_m), so that the coast's departure
+// from the mesh is measured as for isoquad's own meshes; counts the others and how far
+// off they lie (searched up to ten times the elements' median side).
+void place_on_chains(const BackgroundMesh& bg, QuadMesh& m,
+                     const std::vector<std::array<int, 3>>& triangles,
+                     const std::vector<std::array<int, 2>>& edges, QualityJobResult& r) {
   const int np = static_cast<int>(m.points.size());
   const std::array<double, 4> box = bounding_box(bg.points);
   r.on_boundary_tolerance_m = std::max(1e-3, 1e-7 * std::hypot(box[2] - box[0], box[3] - box[1]));
@@ -78,13 +81,16 @@ void place_on_chains(const BackgroundMesh& bg, QuadMesh& m, QualityJobResult& r)
   for (const auto& q : m.quads)
     for (int i = 0; i < 4; ++i)
       lengths.push_back(distance(m.points[q[i]], m.points[q[(i + 1) % 4]]));
+  for (const auto& t : triangles)
+    for (int i = 0; i < 3; ++i)
+      lengths.push_back(distance(m.points[t[i]], m.points[t[(i + 1) % 3]]));
   std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
   r.off_boundary_search_m = 10 * lengths[lengths.size() / 2];
 
   const ChainLines chains = chain_lines(bg);
   const PolylineIndex index(chains.lines);
   std::vector<char> boundary(np, 0);
-  for (const auto& e : boundary_edges(m)) boundary[e[0]] = boundary[e[1]] = 1;
+  for (const auto& e : edges) boundary[e[0]] = boundary[e[1]] = 1;
   for (int v = 0; v < np; ++v) {
     if (!boundary[v]) continue;
     const Point2& p = m.points[v];
@@ -135,6 +141,7 @@ QualityParts parts_of(const QualityJobResult& r) {
   QualityParts parts;
   parts.quads = !r.quads.quads.empty();
   parts.connectivity = r.num_triangles == 0;
+  parts.coast = r.coast_measured;
   return parts;
 }
 
@@ -254,18 +261,39 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
     r.triangle_size_ratio_median = triangle_sizes[triangle_sizes.size() / 2];
   }
 
+  // The coast: along the quads' boundary edges, or with triangles along the outline of
+  // every element (the quads' own boundary runs round the triangles too).
+  std::vector<std::array<int, 2>> coast_edges;
+  if (r.num_triangles == 0) {
+    coast_edges = boundary_edges(m);
+  } else {
+    try {
+      for (const std::vector<int>& loop :
+           mesh_outline(m.points, m.quads, triangles, options.mesh_path))
+        for (std::size_t i = 0; i < loop.size(); ++i)
+          coast_edges.push_back({loop[i], loop[(i + 1) % loop.size()]});
+    } catch (const Error& e) {
+      r.coast_measured = false;
+      r.warnings.push_back("the coast is not measured: " + e.message());
+    }
+  }
+  if (r.coast_measured) place_on_chains(r.fields.mesh, m, triangles, coast_edges, r);
   if (r.quads.quads.empty()) {
     r.warnings.push_back("'" + options.mesh_path + "' has " + std::to_string(r.num_triangles) +
-                         " triangles and no quadrangle: their angles, sizes and regularity and "
-                         "the D-Flow FM links are measured");
+                         " triangles and no quadrangle: their angles, sizes and regularity, "
+                         "the coast and the D-Flow FM links are measured");
   } else {
-    // With triangles, the quads' own boundary runs round them too: not the coast.
-    if (r.num_triangles == 0) place_on_chains(r.fields.mesh, r.quads, r);
     r.quality = measure_quality(r.quads, r.fields.mesh, r.fields.size, r.fields.cross, &r.metrics);
     if (r.fields.num_aligned_vertices > 0)
       measure_line_following(r.quads, r.fields.front.align_lines, r.quality);
     for (int q = 0; q < static_cast<int>(r.quads.quads.size()); ++q)
       r.num_quads_outside += locator.locate(quad_centroid(r.quads, q)).triangle < 0;
+  }
+  if (r.num_triangles > 0 && r.coast_measured) {
+    QualitySummary& q = r.quality;  // the quads' boundary's figures replaced
+    q.boundary_departure_max_m = q.boundary_departure_max_h = q.boundary_departure_p95_h = 0;
+    q.num_boundary_backtracks = 0;
+    measure_coast(m, r.fields.mesh, r.fields.size, coast_edges, q);
   }
   // D-Flow FM's links between any two cells, with the triangles.
   if (r.num_triangles > 0) summarize_dflowfm(dflowfm_links(m, triangles), r.quality);
@@ -325,11 +353,8 @@ std::string format_quality_job_summary(const QualityJobResult& r) {
     out += printf_string("regularity:   %.1f%% of interior vertices in six triangles\n",
                          100 * r.triangle_share_regular_interior);
   out += format_quad_connectivity_lines(q, parts_of(r));
-  if (r.num_triangles > 0)
-    out += r.quads.quads.empty()
-               ? "              (the coast not measured: the mesh has triangles)\n"
-               : "              (regularity and the coast not measured: the mesh has "
-                 "triangles)\n";
+  if (r.num_triangles > 0 && !r.quads.quads.empty())
+    out += "              (the quads' regularity not measured: the mesh has triangles)\n";
   return out;
 }
 
@@ -345,7 +370,7 @@ std::string quality_job_report_json(const QualityJobResult& r, const std::string
       .value("num_skipped_elements", r.num_skipped_elements)
       .value("num_outline_loops", r.num_outline_loops)
       .value("num_quads_outside_domain", r.num_quads_outside);
-  if (r.num_triangles == 0)  // with triangles the quads' boundary is not the coast
+  if (r.coast_measured)
     j.value("num_boundary_vertices_on_domain", r.num_boundary_on)
         .value("num_boundary_vertices_off_domain", r.num_boundary_off)
         .value("num_boundary_vertices_far_off_domain", r.num_boundary_far)

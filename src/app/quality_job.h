@@ -44,10 +44,13 @@ struct QualityJobResult {
   std::size_t num_skipped_elements = 0;  // lines and points of a .msh
   // Without INPUT (an empty read path): the loops of the mesh's outline, its domain.
   std::size_t num_outline_loops = 0;
-  // Boundary vertices of the quads (edges of one quad) on the domain's boundary (within
+  // Boundary vertices of the mesh (on sides of one element) on the domain's boundary (within
   // `on_boundary_tolerance_m`), and how far the others lie from it (searched up to
   // `off_boundary_search_m`; those farther counted in num_boundary_far).
   std::size_t num_boundary_on = 0, num_boundary_off = 0, num_boundary_far = 0;
+  // False when a mesh with triangles has no outline (mesh_outline refused it): then
+  // neither the boundary vertices nor the coast's departure are measured.
+  bool coast_measured = true;
   double on_boundary_tolerance_m = 0, off_boundary_search_m = 0, boundary_off_max_m = 0;
   // Quads whose centroid lies outside the domain (no size or cross there: their size
   // ratio and orientation count as 0).

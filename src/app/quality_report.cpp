@@ -28,7 +28,7 @@ void add_align_values(JsonWriter& j, const QualitySummary& q) {
 
 std::string format_quad_connectivity_lines(const QualitySummary& q, QualityParts parts) {
   std::string out;
-  if (parts.connectivity) {
+  if (parts.coast) {
     const double area_share = q.domain_area_m2 > 0 ? 100 * q.mesh_area_m2 / q.domain_area_m2 : 0.0;
     if (q.boundary_departure_max_h < 0.005)
       out += printf_string(
@@ -47,6 +47,8 @@ std::string format_quad_connectivity_lines(const QualitySummary& q, QualityParts
           "              %zu boundary edge(s) run backwards along the domain's boundary "
           "(the mesh's boundary turns back over the coast there)\n",
           q.num_boundary_backtracks);
+  }
+  if (parts.connectivity) {
     out += printf_string(
         "regularity:   %.1f%% of interior, %.1f%% of boundary, %.1f%% of all vertices regular\n",
         100 * q.share_regular_interior, 100 * q.share_regular_boundary, 100 * q.share_regular_all);
@@ -90,14 +92,15 @@ void add_quality_values(JsonWriter& j, const QualitySummary& q, QualityParts par
       .value("dflowfm_share_smoothness_12", q.dflowfm_share_smoothness_12)
       .value("mesh_area_m2", q.mesh_area_m2)
       .value("domain_area_m2", q.domain_area_m2);
-  if (!parts.connectivity) return;
-  j.value("num_boundary_vertices", q.num_boundary_vertices)
-      .value("num_boundary_crossings", q.num_boundary_crossings)
-      .value("share_regular_interior", q.share_regular_interior)
-      .value("share_regular_boundary", q.share_regular_boundary)
-      .value("share_regular_all", q.share_regular_all)
-      .array("interior_degree_histogram", q.interior_degree_histogram)
-      .value("boundary_departure_max_m", q.boundary_departure_max_m)
+  if (parts.connectivity)
+    j.value("num_boundary_vertices", q.num_boundary_vertices)
+        .value("num_boundary_crossings", q.num_boundary_crossings)
+        .value("share_regular_interior", q.share_regular_interior)
+        .value("share_regular_boundary", q.share_regular_boundary)
+        .value("share_regular_all", q.share_regular_all)
+        .array("interior_degree_histogram", q.interior_degree_histogram);
+  if (!parts.coast) return;
+  j.value("boundary_departure_max_m", q.boundary_departure_max_m)
       .value("boundary_departure_max_x_m", q.boundary_departure_where.x)
       .value("boundary_departure_max_y_m", q.boundary_departure_where.y)
       .value("boundary_departure_max_h", q.boundary_departure_max_h)

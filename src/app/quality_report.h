@@ -14,7 +14,8 @@ namespace isoquad {
 // vertices' regularity or its coast (the quads' own boundary runs round the triangles).
 struct QualityParts {
   bool quads = true;         // the quads' angles, sizes, orientation, SCHISM's checks
-  bool connectivity = true;  // regularity, the coast
+  bool connectivity = true;  // the quads' regularity
+  bool coast = true;         // the boundary's departure from the domain's
 };
 
 // "angles:", "size:" and "orientation:" lines.
@@ -22,8 +23,8 @@ std::string format_quad_shape_lines(const QualitySummary& q);
 // "along lines:" (with --align: measure_line_following's figures).
 std::string format_align_line(const QualitySummary& q);
 void add_align_values(JsonWriter& j, const QualitySummary& q);
-// "coast:", "regularity:" (with parts.connectivity), "SCHISM:" (with parts.quads) and
-// "D-Flow FM:" lines.
+// "coast:" (with parts.coast), "regularity:" (with parts.connectivity), "SCHISM:" (with
+// parts.quads) and "D-Flow FM:" lines.
 std::string format_quad_connectivity_lines(const QualitySummary& q, QualityParts parts = {});
 // The quality object's values (the caller opens and closes it), without the counts of
 // quads and vertices, those of `parts` and D-Flow FM's.

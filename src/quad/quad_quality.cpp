@@ -27,9 +27,10 @@ void add_to_histogram(std::vector<int>& h, double value, double lo, double width
 // The departures of the domain's boundary from the mesh's (QualitySummary): per boundary
 // edge, in sizes h; the largest in metres and where, into s.
 std::vector<double> boundary_departures(const QuadMesh& m, const BackgroundMesh& bg,
-                                        const SizingField& size, QualitySummary& s) {
+                                        const SizingField& size,
+                                        const std::vector<std::array<int, 2>>& edges,
+                                        QualitySummary& s) {
   std::vector<double> in_h;
-  const std::vector<std::array<int, 2>> edges = boundary_edges(m);
   const std::vector<char> back = boundary_backtracks(m, bg, edges);
   for (std::size_t i = 0; i < edges.size(); ++i) {
     const std::array<int, 2>& e = edges[i];
@@ -335,12 +336,18 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
 
   for (int q = 0; q < nq; ++q) s.mesh_area_m2 += quad_area(m, q);
   s.domain_area_m2 = area(bg);
-  const std::vector<double> departures = boundary_departures(m, bg, size, s);
-  if (!departures.empty()) {
-    s.boundary_departure_max_h = *std::max_element(departures.begin(), departures.end());
-    s.boundary_departure_p95_h = percentile(departures, 0.95);
-  }
+  measure_coast(m, bg, size, boundary_edges(m), s);
   return s;
+}
+
+void measure_coast(const QuadMesh& mesh, const BackgroundMesh& background, const SizingField& size,
+                   const std::vector<std::array<int, 2>>& edges, QualitySummary& summary) {
+  const std::vector<double> departures =
+      boundary_departures(mesh, background, size, edges, summary);
+  if (!departures.empty()) {
+    summary.boundary_departure_max_h = *std::max_element(departures.begin(), departures.end());
+    summary.boundary_departure_p95_h = percentile(departures, 0.95);
+  }
 }
 
 void measure_line_following(const QuadMesh& mesh, const std::vector<std::vector<Point2>>& lines,

@@ -113,6 +113,13 @@ QualitySummary measure_quality(const QuadMesh& mesh, const BackgroundMesh& backg
                                const SizingField& size, const CrossField& cross,
                                QuadMetrics* metrics = nullptr);
 
+// How far the domain's boundary departs from the mesh's boundary `edges` (domain on the
+// left; their ends on the background mesh's chains: chain and arc_m), into the summary's
+// boundary_departure_* and num_boundary_backtracks. measure_quality does it for the
+// quads' boundary edges; a mesh with triangles (read from a file) gives its outline's.
+void measure_coast(const QuadMesh& mesh, const BackgroundMesh& background, const SizingField& size,
+                   const std::vector<std::array<int, 2>>& edges, QualitySummary& summary);
+
 // How closely the quads along lines follow them (--align): the quads whose centroid lies
 // within half their own size (the square root of their area) of a line, and the mean
 // over them of their four edges' angle to the nearest segment's cross, in degrees, into

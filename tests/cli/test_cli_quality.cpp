@@ -103,6 +103,29 @@ TEST(CliQuality, IsoquadsOwnOutputsMeasureAsTheMeshReportSays) {
             std::string::npos)
       << depths.err;
 
+  // Quads cut into triangles (all of them in TELEMAC's .slf, SCHISM's failing ones with
+  // --schism-split): the coast along the outline of every element, as the mesh report's.
+  {
+    std::vector<std::string> split = {
+        "mesh", sample("corsica.geojson"), "--schism-split", "-o", dir.file("s.gr3"),
+        "-o",   dir.file("s.slf"),         "--overwrite"};
+    split.insert(split.end(), kCorsica.begin(), kCorsica.end());
+    ASSERT_EQ(run_cli(split, dir).exit_code, 0);
+    for (const char* file : {"s.gr3", "s.slf"}) {
+      const std::string report = dir.file(std::string(file) + ".json");
+      const CliResult r = run_cli(quality_args(dir.file(file), {"--report", report}), dir);
+      ASSERT_EQ(r.exit_code, 0) << file << r.err;
+      const std::string q = read_file(report);
+      EXPECT_GT(report_number(q, "num_triangles"), 0) << file;
+      EXPECT_EQ(report_number(q, "num_boundary_vertices_off_domain"), 0) << file;
+      for (const char* key :
+           {"boundary_departure_max_m", "boundary_departure_p95_h", "mesh_area_m2"})
+        EXPECT_NEAR(report_number(q, key), report_number(mesh_report, key),
+                    1e-6 * std::max(1.0, report_number(mesh_report, key)))
+            << file << ": " << key;
+    }
+  }
+
   // Clockwise quads (a .2dm with every E4Q's nodes reversed) are measured reversed.
   std::istringstream in(read_file(dir.file("m.2dm")));
   std::string line, reversed;
@@ -234,10 +257,13 @@ print(sum(len(c.data) for c in m.cells if c.type == "quad"), len(m.points))
   // Delaunay-like triangles: most interior vertices in six.
   EXPECT_GT(report_number(t, "triangle_share_regular_interior"), 0.3);
   EXPECT_LE(report_number(t, "triangle_share_regular_interior"), 1.0);
-  EXPECT_NE(
-      tris.err.find("their angles, sizes and regularity and the D-Flow FM links are measured"),
-      std::string::npos)
+  EXPECT_NE(tris.err.find("their angles, sizes and regularity, the coast and the D-Flow FM "
+                          "links are measured"),
+            std::string::npos)
       << tris.err;
+  // Gmsh's triangles have a node at each of the rectangle's corners: the coast exactly.
+  EXPECT_EQ(report_number(t, "num_boundary_vertices_off_domain"), 0);
+  EXPECT_LT(report_number(t, "boundary_departure_max_m"), 1e-6);
   args.insert(args.end(), {"-o", dir.file("t.gpkg"), "--overwrite"});
   const CliResult with_output = run_cli(args, dir);
   EXPECT_EQ(with_output.exit_code, 2);
