@@ -135,8 +135,8 @@ FrontEndOptions outline_front_end(const QualityJobOptions& options, const ReadMe
   return front;
 }
 
-// What the summary holds: the quads' figures when it has quads, the regularity and the
-// coast when it has nothing else.
+// What the summary holds: the quads' figures when it has quads, their regularity when it
+// has nothing else, the coast when its outline was found.
 QualityParts parts_of(const QualityJobResult& r) {
   QualityParts parts;
   parts.quads = !r.quads.quads.empty();
