@@ -19,6 +19,7 @@
 #include "core/error.h"
 #include "gis/crs.h"
 #include "gis/gdal_env.h"
+#include "gis/mesh_outline.h"
 
 namespace isoquad {
 
@@ -57,6 +58,7 @@ class LineReader {
                 "'" + path_ + "' line " + std::to_string(line) + ": " + what);
   }
   int number() const { return number_; }
+  const std::string& path() const { return path_; }
 
  private:
   std::string path_;
@@ -385,6 +387,50 @@ void read_msh(LineReader& r, ReadMesh& mesh) {
   if (!has_nodes || !has_elements) r.fail("no $Nodes or no $Elements section");
 }
 
+// The open boundaries of a MIKE mesh from its nodes' codes (0 inside, 1 land, 2, 3...
+// open), by MIKE's rule: a boundary face is land when either end is, else open with its
+// end node's code. Runs of faces of one open code along the outline's loops, as node
+// lists (a whole loop repeats its first node). A mesh without an outline has none here:
+// where the outline is needed, its error comes then.
+void mike_open_boundaries(const std::vector<long long>& codes, const std::string& path,
+                          ReadMesh& mesh) {
+  if (std::none_of(codes.begin(), codes.end(), [](long long c) { return c > 1; })) return;
+  std::vector<std::vector<int>> loops;
+  try {
+    loops = mesh_outline(mesh.points, mesh.quads, mesh.triangles, path);
+  } catch (const Error&) {
+    return;
+  }
+  for (const std::vector<int>& loop : loops) {
+    const std::size_t n = loop.size();
+    auto kind = [&](std::size_t i) {  // the face from loop[i] to the next node
+      const int a = loop[i % n], b = loop[(i + 1) % n];
+      return codes[a] > 1 && codes[b] > 1 ? codes[b] : 0;
+    };
+    // Start where the kind changes, so that no run wraps round the loop's start.
+    std::size_t start = 0;
+    while (start < n && kind(start) == kind(start + n - 1)) ++start;
+    if (start == n) {  // one kind all round
+      if (kind(0) == 0) continue;
+      std::vector<int> whole = loop;
+      whole.push_back(loop.front());
+      mesh.open_boundaries.push_back(std::move(whole));
+      continue;
+    }
+    for (std::size_t k = 0; k < n;) {
+      const long long code = kind(start + k);
+      std::size_t end = k;
+      while (end < n && kind(start + end) == code) ++end;
+      if (code > 1) {
+        std::vector<int> run;
+        for (std::size_t i = k; i <= end; ++i) run.push_back(loop[(start + i) % n]);
+        mesh.open_boundaries.push_back(std::move(run));
+      }
+      k = end;
+    }
+  }
+}
+
 // MIKE 21/3 FM's .mesh: "itemtype unit N projection", N lines "id x y z code", then
 // "NE maxnodes type" and NE lines "id n1 .. n_maxnodes" (0 for a triangle's fourth).
 void read_mike(LineReader& r, ReadMesh& mesh) {
@@ -398,9 +444,11 @@ void read_mike(LineReader& r, ReadMesh& mesh) {
   else if (!projection.empty() && projection != "NON-UTM")
     mesh.crs = projection;
   NodeIds ids;
+  std::vector<long long> codes;
   for (long long k = 0; k < np; ++k) {
     Fields f(r.need("node " + std::to_string(k + 1) + " of " + std::to_string(np)), r);
     add_node(f, f.integer("a node id"), ids, mesh, r, true);
+    codes.push_back(f.at_end() ? 0 : f.integer("the node's boundary code"));
   }
   Fields c(r.need("the number of elements"), r);
   const long long ne = need_count(c, "the number of elements", r);
@@ -418,6 +466,7 @@ void read_mike(LineReader& r, ReadMesh& mesh) {
     }
     add_element(mesh, nodes, r, id);
   }
+  mike_open_boundaries(codes, r.path(), mesh);
 }
 
 // A netCDF file open for reading; Error(input) naming the file for each failure.

@@ -766,6 +766,16 @@ TEST(MeshOutputs, ReadMeshReadsBackEveryFormat) {
         ASSERT_FALSE(m.crs.empty());
         EXPECT_EQ(parse_crs(m.crs, "the file's").name, parse_crs(f.crs_wkt, "EPSG:32631").name);
       }
+      // The open boundaries: the .gr3's segments, the .mesh's runs of open faces.
+      if (o.path.find(".gr3") != std::string::npos || o.path.find(".mesh") != std::string::npos) {
+        std::vector<std::vector<int>> open;
+        for (const BoundarySegment& segment : f.data().boundary.segments)
+          if (segment.kind == BoundaryKind::open) open.push_back(segment.nodes);
+        ASSERT_FALSE(open.empty());
+        EXPECT_EQ(m.open_boundaries, open);
+      } else {
+        EXPECT_TRUE(m.open_boundaries.empty());
+      }
       // The depths (a .gr3's) or bed levels (the others'), 10 + i / 2 m deep; none in a .msh.
       if (msh) {
         EXPECT_TRUE(m.node_values.empty());
