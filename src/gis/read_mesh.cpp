@@ -387,13 +387,13 @@ void read_msh(LineReader& r, ReadMesh& mesh) {
   if (!has_nodes || !has_elements) r.fail("no $Nodes or no $Elements section");
 }
 
-// The open boundaries of a MIKE mesh from its nodes' codes (0 inside, 1 land, 2, 3...
-// open), by MIKE's rule: a boundary face is land when either end is, else open with its
-// end node's code. Runs of faces of one open code along the outline's loops, as node
-// lists (a whole loop repeats its first node). A mesh without an outline has none here:
-// where the outline is needed, its error comes then.
-void mike_open_boundaries(const std::vector<long long>& codes, const std::string& path,
-                          ReadMesh& mesh) {
+// The open boundaries from the nodes' codes (0 inside, 1 land, 2, 3... open: a MIKE
+// mesh's), by MIKE's rule: a boundary face is land when either end is, else open with
+// its end node's code. Runs of faces of one open code along the outline's loops, as
+// node lists (a whole loop repeats its first node). A mesh without an outline has none
+// here: where the outline is needed, its error comes then.
+void open_boundaries_from_codes(const std::vector<long long>& codes, const std::string& path,
+                                ReadMesh& mesh) {
   if (std::none_of(codes.begin(), codes.end(), [](long long c) { return c > 1; })) return;
   std::vector<std::vector<int>> loops;
   try {
@@ -466,7 +466,7 @@ void read_mike(LineReader& r, ReadMesh& mesh) {
     }
     add_element(mesh, nodes, r, id);
   }
-  mike_open_boundaries(codes, r.path(), mesh);
+  open_boundaries_from_codes(codes, r.path(), mesh);
 }
 
 // A netCDF file open for reading; Error(input) naming the file for each failure.
@@ -833,6 +833,31 @@ void read_selafin(const std::string& path, ReadMesh& mesh) {
   }
 }
 
+// TELEMAC's boundary conditions beside its geometry (geo.cli beside geo.slf), when there:
+// a line per boundary node, LIHBOR first and the node (from 1) twelfth of 13 fields; a
+// node of LIHBOR 2 (a wall) is land, any other (4 free, 5 prescribed, 6 incident waves)
+// open, and the faces between two open nodes of one LIHBOR are open boundaries
+// (open_boundaries_from_codes).
+void read_telemac_cli(const std::string& slf_path, ReadMesh& mesh) {
+  const std::string cli = std::filesystem::path(slf_path).replace_extension(".cli").string();
+  if (!std::filesystem::is_regular_file(cli)) return;
+  LineReader r(cli);
+  std::vector<long long> codes(mesh.points.size(), 0);
+  std::string line;
+  while (r.next(line)) {
+    Fields f(line, r);
+    if (f.at_end()) continue;
+    const long long lihbor = f.integer("LIHBOR");
+    for (int k = 0; k < 10; ++k) f.word("the boundary condition's fields");
+    const long long node = f.integer("the node (the 12th field)");
+    if (node < 1 || node > static_cast<long long>(mesh.points.size()))
+      r.fail("node " + std::to_string(node) + " is not among the geometry's " +
+             std::to_string(mesh.points.size()) + " nodes");
+    codes[node - 1] = lihbor == 2 ? 1 : 2 + std::max(0LL, lihbor);
+  }
+  open_boundaries_from_codes(codes, cli, mesh);
+}
+
 // A layer of polygons, each a triangle or a quadrangle (isoquad's GeoPackage layer
 // `quads`, or elements exported as polygons): the layer `quads` when there is one, else
 // the first of polygons; the nodes are the rings' vertices, the same where their
@@ -930,6 +955,7 @@ ReadMesh read_mesh(const std::string& path) {
     read_netcdf(path, mesh);
   } else if (mesh.format == "slf") {
     read_selafin(path, mesh);
+    read_telemac_cli(path, mesh);
   } else if (mesh.format == "polygons") {
     read_polygon_layer(path, mesh);
   } else {

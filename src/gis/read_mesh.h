@@ -28,9 +28,9 @@ struct ReadMesh {
   // first time step), in the order of points; empty for the other formats (.msh, a layer
   // of polygons), or when a node lacks it.
   std::vector<double> node_values;
-  // A .gr3's (.ll's, .14's) open boundaries, or a MIKE .mesh's (its nodes' codes): each
-  // its nodes in order (indices into points); empty for the other formats, and for a
-  // file without them.
+  // A .gr3's (.ll's, .14's) open boundaries, a MIKE .mesh's (its nodes' codes) or a
+  // TELEMAC .slf's (the .cli beside it): each its nodes in order (indices into points);
+  // empty for the other formats, and for a file without them.
   std::vector<std::vector<int>> open_boundaries;
 };
 

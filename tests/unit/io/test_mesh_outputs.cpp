@@ -805,10 +805,18 @@ TEST(MeshOutputs, ReadMeshReadsBackEveryFormat) {
     for (const auto& t : split.triangles)
       triangles += signed_area(split.points[t[0]], split.points[t[1]], split.points[t[2]]);
     EXPECT_NEAR(triangles, area, 1e-3);
+    // The open boundaries: fort.14's segments; the Selafin's from the .cli beside it.
+    std::vector<std::vector<int>> open;
+    for (const BoundarySegment& segment : f.data().boundary.segments)
+      if (segment.kind == BoundaryKind::open) open.push_back(segment.nodes);
+    EXPECT_EQ(split.open_boundaries, open);
     // fort.14's depths, the Selafin's BOTTOM (the bed level).
     const double sign = std::string(name) == "m.slf" ? -1.0 : 1.0;
     ASSERT_EQ(split.node_values.size(), f.mesh.points.size());
     for (std::size_t i = 0; i < split.node_values.size(); ++i)
       EXPECT_NEAR(sign * split.node_values[i], 10.0 + 0.5 * i, 1e-5) << i;
   }
+  // Without its .cli, a Selafin has no open boundaries.
+  std::filesystem::remove(dir.file("m.cli"));
+  EXPECT_TRUE(read_mesh(dir.file("m.slf")).open_boundaries.empty());
 }
