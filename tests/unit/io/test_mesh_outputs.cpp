@@ -816,7 +816,17 @@ TEST(MeshOutputs, ReadMeshReadsBackEveryFormat) {
     for (std::size_t i = 0; i < split.node_values.size(); ++i)
       EXPECT_NEAR(sign * split.node_values[i], 10.0 + 0.5 * i, 1e-5) << i;
   }
-  // Without its .cli, a Selafin has no open boundaries.
+  // A .cli naming a node the geometry lacks stops the reading at its line; without its
+  // .cli, a Selafin has no open boundaries.
+  write_file(dir.file("m.cli"), "5 4 4 0 0 0 0 4 0 0 0 1 1\n5 4 4 0 0 0 0 4 0 0 0 999 2\n");
+  try {
+    read_mesh(dir.file("m.slf"));
+    ADD_FAILURE() << "node 999 read";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("m.cli' line 2: node 999 is not among the geometry's"),
+              std::string::npos)
+        << e.what();
+  }
   std::filesystem::remove(dir.file("m.cli"));
   EXPECT_TRUE(read_mesh(dir.file("m.slf")).open_boundaries.empty());
 }
