@@ -10,6 +10,7 @@
 #include "app/mesh_outputs.h"
 #include "core/error.h"
 #include "gis/raster_field.h"
+#include "gis/read_mesh.h"
 
 namespace isoquad::cli {
 
@@ -164,6 +165,11 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
                   "\"0.01*(2+sin(6*x*pi-pi/2))\"")
       ->group(g);
   cmd->add_option("--size-raster", f.sizing.raster_path, "GDAL raster of sizes in metres, any CRS")
+      ->group(g);
+  cmd->add_option("--size-mesh", f.sizing.size_mesh_path,
+                  "A mesh whose elements give the sizes (a model's grid: .gr3, .ll, .14, .2dm, "
+                  ".msh, .mesh, .nc, .slf): each node's mean side length, linear between "
+                  "nodes; in the file's CRS, else --src-crs, else the meshing CRS")
       ->group(g);
   cmd->add_option("--refine", f.sizing.refine_path,
                   "Vector file (any format, with a CRS) of polygons, lines or points whose "
@@ -486,6 +492,10 @@ FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {
   FieldsOptions o;
   o.front = a.fe;
   o.sizing = f.sizing;
+  if (!o.sizing.size_mesh_path.empty()) {
+    mesh_file_format(o.sizing.size_mesh_path);  // a mesh format, or a usage error
+    o.sizing.size_mesh_crs = a.fe.read.src_crs;
+  }
   if (a.fe.target_size_m > 0) o.sizing.constant_m = a.fe.target_size_m;
   if (f.min_depth_m) o.sizing.min_depth_m = std::max(o.sizing.min_depth_m, *f.min_depth_m);
   o.sizing.automatic = f.size_auto || !has_explicit_source(o.sizing);

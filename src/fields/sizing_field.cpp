@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "fields/feature_size.h"
 #include "fields/size_features.h"
+#include "gis/mesh_field.h"
 #include "gis/raster_field.h"
 #include "gis/read_size_features.h"
 #include "mesh/background_mesh.h"
@@ -27,6 +28,7 @@ struct SizingOracle::Expression {
 
 bool has_explicit_source(const SizingParams& p) {
   return p.constant_m || !p.expression.empty() || !p.raster_path.empty() ||
+         !p.size_mesh_path.empty() ||
          (!p.bathymetry.empty() && (p.wavelength_period_s > 0 || p.slope_factor > 0));
 }
 
@@ -80,6 +82,14 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
   if (!params.raster_path.empty()) {
     raster_ = std::make_unique<RasterField>(params.raster_path, "--size-raster", crs, extent);
     summary_.sources.push_back("raster " + params.raster_path);
+  }
+  if (!params.size_mesh_path.empty()) {
+    mesh_sizes_ =
+        std::make_unique<MeshNodeField>(params.size_mesh_path, "--size-mesh", crs,
+                                        params.size_mesh_crs, MeshNodeField::Values::element_sizes);
+    summary_.sources.push_back("mesh " + params.size_mesh_path + " (its elements' sides)");
+    // Off the mesh, without --hmax: its largest elements' size.
+    if (!std::isfinite(hmax_)) hmax_ = summary_.hmax_m = mesh_sizes_->max_value();
   }
   if (!(params.courant > 0)) usage("--courant must be positive");
   if (params.time_step_s < 0) usage("--time-step must be positive");
@@ -152,8 +162,8 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
 SizingOracle::~SizingOracle() = default;
 
 bool SizingOracle::is_uniform() const {
-  return params_.constant_m && !automatic_ && !expression_ && !raster_ && !bathymetry_ &&
-         !features_ && params_.refinements.empty();
+  return params_.constant_m && !automatic_ && !expression_ && !raster_ && !mesh_sizes_ &&
+         !bathymetry_ && !features_ && params_.refinements.empty();
 }
 
 double SizingOracle::operator()(const Point2& p) const {
@@ -185,6 +195,10 @@ double SizingOracle::operator()(const Point2& p) const {
       h = std::min(h, v);
     }
   }
+  if (mesh_sizes_) {
+    const double v = mesh_sizes_->sample(p);
+    if (v > 0) h = std::min(h, v);
+  }
   const double raw = depth_at(p);
   if (bathymetry_) {
     if (!std::isnan(raw)) {
@@ -205,7 +219,8 @@ double SizingOracle::operator()(const Point2& p) const {
   if (!std::isfinite(h)) h = hmax_;
   if (!std::isfinite(h))
     throw Error(ErrorClass::usage, "sizing",
-                "no size at " + format_point(p) + " (outside every raster); give --hmax or --size");
+                "no size at " + format_point(p) +
+                    " (outside every raster or mesh of sizes); give --hmax or --size");
   h = std::clamp(h, hmin_, hmax_);
   if (automatic_) h = std::min(h, automatic_->narrow(p));
   return limit_locally(p, std::max(h, raw_time_step_floor(raw)));

@@ -12,6 +12,7 @@
 
 #include "core/geometry.h"
 #include "gis/crs.h"
+#include "gis/mesh_field.h"
 #include "gis/raster_field.h"
 
 namespace isoquad {
@@ -43,6 +44,10 @@ struct SizingParams {
   std::optional<double> constant_m;  // --size
   std::string expression;            // --size-expr, in x and y (metres, meshing CRS)
   std::string raster_path;           // --size-raster: sizes in metres, any GDAL raster
+  // --size-mesh: the sizes of a mesh's elements (MeshNodeField::Values::element_sizes: a
+  // model's grid, to mesh again at its resolution), in its CRS, else size_mesh_crs
+  // (--src-crs), else the meshing CRS.
+  std::string size_mesh_path, size_mesh_crs;
   // Ocean-model sizing from depth rasters (--bathymetry, --elevation), in priority
   // order: the first with a depth at a point gives it.
   std::vector<DepthRaster> bathymetry;
@@ -71,7 +76,7 @@ struct SizingParams {
   std::vector<LocalRefinement> refinements;
 };
 
-// A size source besides the automatic one: --size, --size-expr, --size-raster, or
+// A size source besides the automatic one: --size, --size-expr, --size-raster, --size-mesh, or
 // --bathymetry with the wavelength or slope rule (the time step rule only bounds sizes).
 // Without one, the sizing is automatic.
 bool has_explicit_source(const SizingParams& params);
@@ -122,6 +127,7 @@ class SizingOracle {
   std::unique_ptr<BoundaryFeatureSize> automatic_;
   std::unique_ptr<Expression> expression_;
   std::unique_ptr<RasterField> raster_;
+  std::unique_ptr<MeshNodeField> mesh_sizes_;
   std::unique_ptr<RasterStack> bathymetry_;
   std::unique_ptr<FeatureSizes> features_;
   double gradient_step_m_ = 1.0;

@@ -29,8 +29,9 @@ void check_mesh_field(const std::string& path, const std::string& what) {
 }
 
 MeshNodeField::MeshNodeField(const std::string& path, const std::string& what,
-                             const CrsInfo& query_crs, const std::string& crs_if_none) {
-  ReadMesh mesh = read_values(path, what);
+                             const CrsInfo& query_crs, const std::string& crs_if_none,
+                             Values values) {
+  ReadMesh mesh = values == Values::nodes ? read_values(path, what) : read_mesh(path);
   points_ = std::move(mesh.points);
   values_ = std::move(mesh.node_values);
   const std::string crs = !mesh.crs.empty() ? mesh.crs : crs_if_none;
@@ -43,6 +44,27 @@ MeshNodeField::MeshNodeField(const std::string& path, const std::string& what,
       throw Error(ErrorClass::crs, "raster",
                   what + " '" + path + "': node " + std::to_string(failed + 1) +
                       " cannot be transformed into the meshing CRS");
+  }
+  if (values == Values::element_sizes) {
+    // Each side once (a side of two elements too), its length to both its ends.
+    std::vector<std::array<int, 2>> sides;
+    auto add = [&](const int* v, int k) {
+      for (int i = 0; i < k; ++i)
+        sides.push_back({std::min(v[i], v[(i + 1) % k]), std::max(v[i], v[(i + 1) % k])});
+    };
+    for (const auto& q : mesh.quads) add(q.data(), 4);
+    for (const auto& t : mesh.triangles) add(t.data(), 3);
+    std::sort(sides.begin(), sides.end());
+    sides.erase(std::unique(sides.begin(), sides.end()), sides.end());
+    std::vector<double> sum(points_.size(), 0.0);
+    std::vector<int> count(points_.size(), 0);
+    for (const auto& s : sides) {
+      const double length = distance(points_[s[0]], points_[s[1]]);
+      for (int v : s) sum[v] += length, ++count[v];
+    }
+    values_.assign(points_.size(), 0.0);
+    for (std::size_t v = 0; v < points_.size(); ++v)
+      values_[v] = count[v] ? sum[v] / count[v] : 0.0;
   }
   triangles_ = std::move(mesh.triangles);
   for (const auto& q : mesh.quads) {
@@ -95,6 +117,10 @@ MeshNodeField::MeshNodeField(const std::string& path, const std::string& what,
       for (int i = r[0]; i <= r[2]; ++i)
         cell_triangles_[count[static_cast<std::size_t>(j) * nx_ + i]++] = k;
   }
+}
+
+double MeshNodeField::max_value() const {
+  return values_.empty() ? 0.0 : *std::max_element(values_.begin(), values_.end());
 }
 
 double MeshNodeField::sample(const Point2& p) const {

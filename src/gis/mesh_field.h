@@ -19,12 +19,18 @@ namespace isoquad {
 // raster without one, in the query CRS.
 class MeshNodeField : public PointField {
  public:
+  enum class Values {
+    nodes,          // the file's node values (read_mesh's node_values)
+    element_sizes,  // each node's mean side length (metres, in the query CRS) over its elements
+  };
   // `what` names the option in messages (e.g. "--bathymetry"). Throws Error(input) for a
   // mesh read_mesh cannot read or whose nodes have no values, Error(crs) for a CRS that
   // cannot be used.
   MeshNodeField(const std::string& path, const std::string& what, const CrsInfo& query_crs,
-                const std::string& crs_if_none = "");
+                const std::string& crs_if_none = "", Values values = Values::nodes);
   double sample(const Point2& p) const override;
+  // The largest node value.
+  double max_value() const;
 
  private:
   std::vector<Point2> points_;  // in the query CRS

@@ -301,6 +301,26 @@ TEST(Cli, AMeshFileIsMeshedAgainWithinItsOutline) {
     }
   }
 
+  // --size-mesh: the old grid's resolution (2 km) again, in about as many quads.
+  r = run_cli({"mesh", dir.file("bay.gr3"), "--src-crs", "EPSG:32630", "--size-mesh",
+               dir.file("bay.gr3"), "-o", dir.file("same.gr3"), "--report", dir.file("same.json")},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("sizing:       mesh " + dir.file("bay.gr3") + " (its elements' sides)"),
+            std::string::npos)
+      << r.err;
+  {
+    std::istringstream gr3(read_file(dir.file("bay.gr3")));
+    std::string title;
+    std::getline(gr3, title);
+    double old_quads = 0;
+    gr3 >> old_quads;
+    ASSERT_GT(old_quads, 100);
+    const double quads = report_number(read_file(dir.file("same.json")), "num_quads");
+    EXPECT_GT(quads, 0.8 * old_quads);
+    EXPECT_LT(quads, 1.25 * old_quads);
+  }
+
   // An SMS .2dm's outline as a domain: 40 x 30 km less the 10 x 10 km lake.
   r = run_cli({"domain", dir.file("bay.2dm"), "--src-crs", "EPSG:32630", "--dst-crs", "EPSG:32630",
                "-o", dir.file("d.gpkg"), "--report", dir.file("d.json")},

@@ -87,3 +87,18 @@ TEST(MeshNodeField, AMeshWithoutValuesIsRefused) {
         << e.what();
   }
 }
+
+// --size-mesh: each node's mean side length, linear between nodes; the largest of them.
+TEST(MeshNodeField, ElementSizesAreTheNodesMeanSides) {
+  TempDir dir;
+  write_file(dir.file("hgrid.gr3"), grid_gr3(linear));
+  const CrsInfo utm = parse_crs("EPSG:32631", "test");
+  const MeshNodeField f(dir.file("hgrid.gr3"), "--size-mesh", utm, "",
+                        MeshNodeField::Values::element_sizes);
+  EXPECT_NEAR(f.sample({0, 0}), 100.0, 1e-9);
+  EXPECT_NEAR(f.sample({60, 40}), 100.0, 1e-9);  // inside the first quad, every node 100
+  const double slant = std::hypot(100.0, 50.0);
+  EXPECT_NEAR(f.sample({300, 50}), slant, 1e-9);                   // the triangle's tip
+  EXPECT_NEAR(f.sample({200, 0}), (100 + 100 + slant) / 3, 1e-9);  // three sides
+  EXPECT_NEAR(f.max_value(), slant, 1e-9);
+}
