@@ -93,9 +93,13 @@ void check_report_path(const CommonArgs& a) {
 }
 
 // Adds the report to the outputs written together, unless it goes to stdout.
-void write_report(const CommonArgs& a, OutputSet& set, const std::string& json) {
+// The report written beside the other outputs, all moved into place together, then
+// the report on stdout when asked (--report -), once every output is written.
+void commit_with_report(const CommonArgs& a, OutputSet& set, const std::string& json) {
   if (!a.report_path.empty() && a.report_path != kStdoutPath)
     write_text_file(set.add(a.report_path, a.overwrite), json, true);
+  set.commit_all();
+  if (a.report_path == kStdoutPath) std::cout << json << std::flush;
 }
 
 int run_domain(CommonArgs& a) {
@@ -117,9 +121,7 @@ int run_domain(CommonArgs& a) {
   wp.overwrite = true;
   write_domain_gpkg(r.domain, wp);
   const std::string report = domain_summary_json(r.summary);
-  write_report(a, set, report);
-  set.commit_all();
-  if (a.report_path == kStdoutPath) std::cout << report << std::flush;
+  commit_with_report(a, set, report);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
@@ -155,9 +157,7 @@ int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
     plot_fields(r.mesh, r.size, r.cross, r.singularities, pp);
   }
   const std::string report = fields_report_json(r, command_line);
-  write_report(a, set, report);
-  set.commit_all();
-  if (a.report_path == kStdoutPath) std::cout << report << std::flush;
+  commit_with_report(a, set, report);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
     std::cerr << format_domain_summary(r.front.summary) << format_fields_summary(r);
@@ -314,9 +314,7 @@ RegionOutcome run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
     plot_mesh(r.quads, r.metrics, r.quality, pp);
   }
   const std::string report = quality_job_report_json(r, command_line);
-  write_report(a, set, report);
-  set.commit_all();
-  if (a.report_path == kStdoutPath) std::cout << report << std::flush;
+  commit_with_report(a, set, report);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
