@@ -313,6 +313,12 @@ void add_open_boundary_options(CLI::App* cmd, FrontEndOptions& fe) {
                   "Layer of --open-boundary to read (default: its first layer of lines, or its "
                   "first layer)")
       ->group("Output");
+  cmd->add_option("--open-groups", fe.open_groups,
+                  "With a Gmsh .msh as INPUT: its physical groups of curves (names or numbers, "
+                  "comma-separated) whose lines along the outline are open boundaries (default: "
+                  "the groups whose name begins with 'open', as isoquad's own .msh names them)")
+      ->delimiter(',')
+      ->group("Output");
 }
 
 void add_mesh_options(CLI::App* cmd, MeshArgs& m) {

@@ -118,7 +118,7 @@ ProjectedLines read_projected_lines(const std::string& path, const std::string& 
 // whose middle (in the source CRS) does too is added to them as it is, a chord.
 void add_domain_chords(FrontEndResult& result, const CrsInfo& source_crs,
                        const CrsInfo& meshing_crs) {
-  const double tolerance = result.open_boundary_tolerance_m;
+  const double tolerance = open_line_tolerance(result);
   const PolylineIndex index(result.open_boundary_lines, result.open_boundary_slack_m);
   const CrsTransform to_source(meshing_crs, source_crs), from_source(source_crs, meshing_crs);
   std::vector<std::vector<Point2>> chords;
@@ -160,16 +160,36 @@ SourceData read_mesh_source(const FrontEndOptions& options,
       throw Error(ErrorClass::usage, "read",
                   "'" + read.path + "' is a mesh, whose outline is the domain: " + option +
                       " selects from a vector file's polygons");
-  const ReadMesh mesh = read_mesh(read.path);
+  ReadMesh mesh = read_mesh(read.path);
+  if (!options.open_groups.empty()) {
+    if (!options.open_boundary_path.empty())
+      throw Error(ErrorClass::usage, "options",
+                  "give the open boundaries once: --open-boundary or --open-groups");
+    open_boundaries_from_groups(mesh, options.open_groups, read.path);
+  }
   for (const std::vector<int>& segment : mesh.open_boundaries) {
     std::vector<Point2> line;
     for (int v : segment) line.push_back(mesh.points[v]);
     if (line.size() >= 2) open_lines.push_back(std::move(line));
   }
-  return outline_source(mesh, read.path, read.src_crs, "--src-crs");
+  SourceData source = outline_source(mesh, read.path, read.src_crs, "--src-crs");
+  if (mesh.open_boundaries.empty() && !mesh.curve_groups.empty() &&
+      options.open_boundary_path.empty()) {
+    source.warnings.push_back("physical groups of curves " + curve_groups_text(mesh) +
+                              ", none named open...: the whole boundary is land (name the "
+                              "open ones with --open-groups)");
+  }
+  return source;
 }
 
 }  // namespace
+
+double open_line_tolerance(const FrontEndResult& result) {
+  double extent = 0.0;
+  for (const auto& line : result.open_boundary_lines)
+    for (const Point2& p : line) extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
+  return result.open_boundary_tolerance_m + 1e-7 * extent;
+}
 
 FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progress& progress) {
   FrontEndResult result;
@@ -181,6 +201,9 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   read.empty_bbox_selection_ok = options.kind == DomainKind::water;
   std::vector<std::vector<Point2>> mesh_open_lines;
   const bool from_mesh = options.source.has_value() || is_mesh_file(read.path);
+  if (!options.open_groups.empty() && (options.source || !from_mesh))
+    throw Error(ErrorClass::usage, "options",
+                "--open-groups names physical groups of a Gmsh .msh given as INPUT");
   SourceData source = options.source ? *options.source
                       : from_mesh    ? read_mesh_source(options, mesh_open_lines)
                                      : read_polygons(read);
@@ -391,8 +414,8 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     // ocean model without a sea boundary. The length they follow: each edge of the
     // domain sampled about every tolerance (at most 256 pieces), a piece counted when
     // both its ends lie within the tolerance of the lines.
-    const double tolerance = result.open_boundary_tolerance_m;
     add_domain_chords(result, source.crs, meshing_crs);
+    const double tolerance = open_line_tolerance(result);
     const PolylineIndex index(result.open_boundary_lines, result.open_boundary_slack_m);
     auto follow = [&](const Ring& ring) {
       for (std::size_t i = 0; i < ring.size(); ++i) {

@@ -46,6 +46,9 @@ struct FrontEndOptions {
   // boundary they follow is open, the rest land, instead of a water domain's bbox.
   std::string open_boundary_path;
   std::string open_boundary_layer;  // empty: its first layer of lines, or its first layer
+  // With a Gmsh .msh as INPUT: its physical groups of curves (names or tags) that are
+  // open; empty: those named "open..." (open_boundaries_from_groups).
+  std::vector<std::string> open_groups;
   // A vector file of lines inside the domain that the cross field follows (--align).
   std::string align_path;
   std::string align_layer;  // empty: its first layer of lines, or its first layer
@@ -129,5 +132,10 @@ struct FrontEndResult {
 
 FrontEndResult build_planar_domain(const FrontEndOptions& options,
                                    const Progress& progress = Progress());
+
+// open_boundary_tolerance_m plus the rounding of the lines' coordinates (1e-7 of their
+// largest): the distance within which a point lies on the open boundary's lines, even
+// where the tolerance is 0 (a mesh's outline, not simplified, and its open boundaries).
+double open_line_tolerance(const FrontEndResult& result);
 
 }  // namespace isoquad

@@ -54,12 +54,9 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
     data.crs_wkt = front.domain.crs_wkt;
     // Boundary parts on the open boundary's lines (the projected bbox, or the lines of
     // --open-boundary; within the front end's tolerance, plus rounding) are open.
-    double extent = 0.0;
-    for (const auto& line : front.open_boundary_lines)
-      for (const Point2& p : line) extent = std::max({extent, std::abs(p.x), std::abs(p.y)});
     data.boundary = extract_boundary(
         r.quads, PolylineIndex(front.open_boundary_lines, front.open_boundary_slack_m),
-        front.open_boundary_tolerance_m + 1e-7 * extent, front.open_boundary_chord_share);
+        open_line_tolerance(front), front.open_boundary_chord_share);
     written.num_open_edges = data.boundary.num_open_edges;
     written.num_land_edges = data.boundary.num_land_edges;
     if (!o.bathymetry.empty()) {

@@ -8,6 +8,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -176,11 +177,19 @@ void add_node(Fields& f, long long id, NodeIds& ids, ReadMesh& mesh, const LineR
 }
 
 // A .msh element of `count` nodes (msh_element_nodes), its node tags the line's next
-// numbers; counted as skipped when count < 0 (a line or a point).
+// numbers: a triangle or a quadrangle into the mesh; a line (count -2) into the physical
+// groups of curves `physical` (its nodes, into each); a point counted as skipped.
 void add_msh_element(Fields& f, int count, long long id, const NodeIds& ids, ReadMesh& mesh,
+                     const std::vector<long long>& physical,
+                     std::map<long long, std::vector<std::array<int, 2>>>& lines,
                      const LineReader& reader) {
   if (count < 0) {
     ++mesh.num_skipped_elements;
+    if (count == -2) {
+      const int a = ids.at(f.integer("a node tag"), reader, id);
+      const int b = ids.at(f.integer("a node tag"), reader, id);
+      for (long long tag : physical) lines[tag].push_back({a, b});
+    }
     return;
   }
   std::vector<int> nodes;
@@ -301,13 +310,53 @@ int msh_element_nodes(long long type, const LineReader& r) {
          "skipped (second-order or 3D elements are not)");
 }
 
-// Gmsh's .msh, ASCII, version 2.2 or 4.1 ($Nodes and $Elements; the other sections
-// skipped).
+// A .msh's $PhysicalNames: the names of the groups of curves (dimension 1) by tag.
+void read_msh_names(LineReader& r, std::map<long long, std::string>& names) {
+  Fields c(r.need("the number of physical names"), r);
+  const long long n = need_count(c, "the number of physical names", r);
+  for (long long k = 0; k < n; ++k) {
+    Fields f(r.need("a physical name"), r);
+    const long long dim = f.integer("a physical group's dimension");
+    const long long tag = f.integer("a physical group's tag");
+    std::string name = f.rest();
+    if (name.size() >= 2 && name.front() == '"' && name.back() == '"')
+      name = name.substr(1, name.size() - 2);
+    if (dim == 1) names[tag] = name;
+  }
+  if (r.need("$EndPhysicalNames") != "$EndPhysicalNames") r.fail("expected $EndPhysicalNames");
+}
+
+// A .msh 4.1's $Entities: the physical groups of each curve (the points', surfaces' and
+// volumes' lines skipped).
+void read_msh_entities(LineReader& r, std::map<long long, std::vector<long long>>& of_curve) {
+  Fields c(r.need("the numbers of entities"), r);
+  const long long points = need_count(c, "the number of points", r);
+  const long long curves = need_count(c, "the number of curves", r);
+  for (long long k = 0; k < points; ++k) r.need("a point entity");
+  for (long long k = 0; k < curves; ++k) {
+    Fields f(r.need("a curve entity"), r);
+    const long long tag = f.integer("a curve's tag");
+    for (int i = 0; i < 6; ++i) f.number("a curve's bounding box");
+    const long long n = need_count(f, "a curve's number of physical tags", r);
+    std::vector<long long>& groups = of_curve[tag];
+    for (long long i = 0; i < n; ++i) groups.push_back(f.integer("a physical tag"));
+  }
+  std::string line;
+  while (r.next(line))
+    if (line == "$EndEntities") return;
+  r.fail("no $EndEntities");
+}
+
+// Gmsh's .msh, ASCII, version 2.2 or 4.1 ($Nodes and $Elements; the physical groups of
+// curves from $PhysicalNames, $Entities and the lines' tags; the other sections skipped).
 void read_msh(LineReader& r, ReadMesh& mesh) {
   std::string line;
   double version = 0;
   NodeIds ids;
   bool has_nodes = false, has_elements = false;
+  std::map<long long, std::string> names;
+  std::map<long long, std::vector<long long>> of_curve;
+  std::map<long long, std::vector<std::array<int, 2>>> lines;
   while (r.next(line)) {
     if (line == "$MeshFormat") {
       Fields f(r.need("the format's version"), r);
@@ -319,6 +368,10 @@ void read_msh(LineReader& r, ReadMesh& mesh) {
             "or Mesh.Binary = 0)");
       if (version < 2 || version >= 5 || (version >= 3 && version < 4))
         r.fail("version " + std::to_string(version) + " of the .msh format: 2.2 and 4.1 are read");
+    } else if (line == "$PhysicalNames") {
+      read_msh_names(r, names);
+    } else if (line == "$Entities" && version >= 4) {
+      read_msh_entities(r, of_curve);
     } else if (line == "$Nodes") {
       if (version == 0) r.fail("$Nodes before $MeshFormat");
       has_nodes = true;
@@ -356,27 +409,35 @@ void read_msh(LineReader& r, ReadMesh& mesh) {
       if (version < 3) {
         Fields c(r.need("the number of elements"), r);
         const long long n = need_count(c, "the number of elements", r);
+        std::vector<long long> physical;
         for (long long k = 0; k < n; ++k) {
           Fields f(r.need("an element"), r);
           const long long id = f.integer("an element tag");
           const int count = msh_element_nodes(f.integer("the element type"), r);
           const long long tags = need_count(f, "the number of tags", r);
-          for (long long t = 0; t < tags; ++t) f.integer("a tag");
-          add_msh_element(f, count, id, ids, mesh, r);
+          physical.clear();
+          for (long long t = 0; t < tags; ++t) {
+            const long long tag = f.integer("a tag");
+            if (t == 0 && tag != 0) physical.push_back(tag);  // the first: the physical group
+          }
+          add_msh_element(f, count, id, ids, mesh, physical, lines, r);
         }
       } else {
         Fields c(r.need("the elements' counts"), r);
         const long long blocks = need_count(c, "the number of entity blocks", r);
+        const std::vector<long long> none;
         for (long long b = 0; b < blocks; ++b) {
           Fields h(r.need("an entity block of elements"), r);
-          h.integer("the entity's dimension");
-          h.integer("the entity's tag");
+          const long long dim = h.integer("the entity's dimension");
+          const long long entity = h.integer("the entity's tag");
           const int count = msh_element_nodes(h.integer("the element type"), r);
           const long long n = need_count(h, "the block's number of elements", r);
+          const auto it = dim == 1 ? of_curve.find(entity) : of_curve.end();
+          const std::vector<long long>& physical = it == of_curve.end() ? none : it->second;
           for (long long k = 0; k < n; ++k) {
             Fields f(r.need("an element"), r);
             const long long id = f.integer("an element tag");
-            add_msh_element(f, count, id, ids, mesh, r);
+            add_msh_element(f, count, id, ids, mesh, physical, lines, r);
           }
         }
       }
@@ -385,28 +446,30 @@ void read_msh(LineReader& r, ReadMesh& mesh) {
   }
   if (version == 0) r.fail("no $MeshFormat section: not a Gmsh .msh file");
   if (!has_nodes || !has_elements) r.fail("no $Nodes or no $Elements section");
+  for (auto& [tag, edges] : lines) {
+    const auto name = names.find(tag);
+    mesh.curve_groups.push_back(
+        {tag, name == names.end() ? std::string() : name->second, std::move(edges)});
+  }
+  open_boundaries_from_groups(mesh, {}, r.path());
 }
 
-// The open boundaries from the nodes' codes (0 inside, 1 land, 2, 3... open: a MIKE
-// mesh's), by MIKE's rule: a boundary face is land when either end is, else open with
-// its end node's code. Runs of faces of one open code along the outline's loops, as
-// node lists (a whole loop repeats its first node). A mesh without an outline has none
-// here: where the outline is needed, its error comes then.
-void open_boundaries_from_codes(const std::vector<long long>& codes, const std::string& path,
-                                ReadMesh& mesh) {
-  if (std::none_of(codes.begin(), codes.end(), [](long long c) { return c > 1; })) return;
+// Runs of boundary faces of one open kind along the outline's loops, as node lists (a
+// whole loop repeats its first node) into mesh.open_boundaries: kind(a, b) is 0 where
+// the face from node a to node b is land, else the open boundary's kind (a code, a
+// group), so that two open boundaries that meet stay two. A mesh without an outline has
+// none here (false): where the outline is needed, its error comes then.
+bool open_runs(ReadMesh& mesh, const std::string& path,
+               const std::function<long long(int, int)>& face_kind) {
   std::vector<std::vector<int>> loops;
   try {
     loops = mesh_outline(mesh.points, mesh.quads, mesh.triangles, path);
   } catch (const Error&) {
-    return;
+    return false;
   }
   for (const std::vector<int>& loop : loops) {
     const std::size_t n = loop.size();
-    auto kind = [&](std::size_t i) {  // the face from loop[i] to the next node
-      const int a = loop[i % n], b = loop[(i + 1) % n];
-      return codes[a] > 1 && codes[b] > 1 ? codes[b] : 0;
-    };
+    auto kind = [&](std::size_t i) { return face_kind(loop[i % n], loop[(i + 1) % n]); };
     // Start where the kind changes, so that no run wraps round the loop's start.
     std::size_t start = 0;
     while (start < n && kind(start) == kind(start + n - 1)) ++start;
@@ -421,7 +484,7 @@ void open_boundaries_from_codes(const std::vector<long long>& codes, const std::
       const long long code = kind(start + k);
       std::size_t end = k;
       while (end < n && kind(start + end) == code) ++end;
-      if (code > 1) {
+      if (code != 0) {
         std::vector<int> run;
         for (std::size_t i = k; i <= end; ++i) run.push_back(loop[(start + i) % n]);
         mesh.open_boundaries.push_back(std::move(run));
@@ -429,6 +492,16 @@ void open_boundaries_from_codes(const std::vector<long long>& codes, const std::
       k = end;
     }
   }
+  return true;
+}
+
+// The open boundaries from the nodes' codes (0 inside, 1 land, 2, 3... open: a MIKE
+// mesh's), by MIKE's rule: a boundary face is land when either end is, else open with
+// its end node's code.
+void open_boundaries_from_codes(const std::vector<long long>& codes, const std::string& path,
+                                ReadMesh& mesh) {
+  if (std::none_of(codes.begin(), codes.end(), [](long long c) { return c > 1; })) return;
+  open_runs(mesh, path, [&](int a, int b) { return codes[a] > 1 && codes[b] > 1 ? codes[b] : 0; });
 }
 
 // MIKE 21/3 FM's .mesh: "itemtype unit N projection", N lines "id x y z code", then
@@ -944,6 +1017,65 @@ bool is_mesh_file(const std::string& path) {
   } catch (const Error&) {
     return false;
   }
+}
+
+namespace {
+
+std::string describe(const ReadMesh::CurveGroup& g) {
+  return std::to_string(g.tag) + (g.name.empty() ? "" : " \"" + g.name + "\"");
+}
+
+}  // namespace
+
+std::string curve_groups_text(const ReadMesh& mesh) {
+  std::string text;
+  for (const ReadMesh::CurveGroup& g : mesh.curve_groups)
+    text += (text.empty() ? "" : ", ") + describe(g);
+  return text;
+}
+
+void open_boundaries_from_groups(ReadMesh& mesh, const std::vector<std::string>& groups,
+                                 const std::string& path) {
+  if (mesh.format != "msh")
+    throw Error(ErrorClass::usage, "read",
+                "'" + path + "' is not a Gmsh .msh: only a .msh has physical groups of curves");
+  std::vector<const ReadMesh::CurveGroup*> open;
+  if (groups.empty()) {
+    for (const ReadMesh::CurveGroup& g : mesh.curve_groups)
+      if (lower(g.name).rfind("open", 0) == 0) open.push_back(&g);
+  }
+  for (const std::string& given : groups) {
+    const auto it = std::find_if(mesh.curve_groups.begin(), mesh.curve_groups.end(),
+                                 [&](const ReadMesh::CurveGroup& g) {
+                                   return g.name == given || std::to_string(g.tag) == given;
+                                 });
+    if (it == mesh.curve_groups.end()) {
+      const std::string there = curve_groups_text(mesh);
+      throw Error(ErrorClass::usage, "read",
+                  "'" + path + "' has no physical group of curves '" + given + "' (" +
+                      (there.empty() ? "it has none" : "its groups: " + there) + ")");
+    }
+    open.push_back(&*it);
+  }
+  // Each face of the outline's open kind: the index of its group among those open, + 1.
+  std::map<std::pair<int, int>, long long> kind;
+  for (std::size_t k = 0; k < open.size(); ++k)
+    for (const auto& e : open[k]->edges)
+      kind.emplace(std::minmax(e[0], e[1]), static_cast<long long>(k) + 1);
+  mesh.open_boundaries.clear();
+  std::vector<bool> on_outline(open.size(), false);
+  const bool traced = open_runs(mesh, path, [&](int a, int b) -> long long {
+    const auto it = kind.find(std::minmax(a, b));
+    if (it == kind.end()) return 0;
+    on_outline[it->second - 1] = true;
+    return it->second;
+  });
+  if (groups.empty() || !traced) return;
+  for (std::size_t k = 0; k < open.size(); ++k)
+    if (!on_outline[k])
+      throw Error(ErrorClass::usage, "read",
+                  "'" + path + "': no line of physical group " + describe(*open[k]) +
+                      " lies on the mesh's outline, where an open boundary is");
 }
 
 ReadMesh read_mesh(const std::string& path) {

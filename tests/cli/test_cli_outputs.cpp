@@ -1462,6 +1462,53 @@ TEST(CliOutputs, AModelsGridMeshedAgainKeepsItsSeaBoundaryAndDepths) {
       << r.err;
 }
 
+// A Gmsh .msh keeps its sea boundary when meshed again: the lines of its physical groups
+// named open..., or of the groups given with --open-groups; groups of other names leave
+// the boundary land, with a warning that names them.
+TEST(CliOutputs, AGmshGridMeshedAgainKeepsTheOpenBoundaryOfItsPhysicalGroups) {
+  TempDir dir;
+  CliResult r = mesh_water_box(
+      dir, {"--dst-crs", "EPSG:32630", "-o", dir.file("hgrid.gr3"), "-o", dir.file("grid.msh")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 old = parse_gr3(dir.file("hgrid.gr3"));
+  ASSERT_FALSE(old.open.empty());
+  auto again = [&](const std::string& input, std::vector<std::string> extra) {
+    std::vector<std::string> args = {"mesh", input, "--src-crs",           "EPSG:32630", "--size",
+                                     "1200", "-o",  dir.file("again.gr3"), "--overwrite"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args, dir);
+  };
+  r = again(dir.file("grid.msh"), {});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("physical groups"), std::string::npos) << r.err;
+  EXPECT_EQ(parse_gr3(dir.file("again.gr3")).open.size(), old.open.size());
+  // The groups renamed as a model's set-up may name them: land until named.
+  std::string text = read_file(dir.file("grid.msh"));
+  text.replace(text.find("\"open\""), 6, "\"ocean\"");
+  write_file(dir.file("renamed.msh"), text);
+  r = again(dir.file("renamed.msh"), {});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("physical groups of curves 1 \"land\", 2 \"ocean\", none named open"),
+            std::string::npos)
+      << r.err;
+  EXPECT_TRUE(parse_gr3(dir.file("again.gr3")).open.empty());
+  for (const char* group : {"ocean", "2"}) {
+    r = again(dir.file("renamed.msh"), {"--open-groups", group});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(parse_gr3(dir.file("again.gr3")).open.size(), old.open.size());
+  }
+  // Every group open: the whole outline, one open boundary a ring.
+  r = again(dir.file("renamed.msh"), {"--open-groups", "land,ocean"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(parse_gr3(dir.file("again.gr3")).land.empty());
+  r = again(dir.file("renamed.msh"), {"--open-groups", "sea"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("no physical group of curves 'sea'"), std::string::npos) << r.err;
+  r = again(dir.file("hgrid.gr3"), {"--open-groups", "open"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("not a Gmsh .msh"), std::string::npos) << r.err;
+}
+
 // --time-step raises the sizes to what an explicit model needs at that step and Courant
 // number: fewer quads under it than without; every time step reported at --courant.
 TEST(CliOutputs, TimeStepRuleWidensTheQuadsInDeepWater) {

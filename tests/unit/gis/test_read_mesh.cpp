@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <netcdf.h>
 
+#include <algorithm>
 #include <cstdint>
 
 #include "core/error.h"
@@ -87,6 +88,75 @@ TEST(ReadMesh, Msh41WithBlocksOfSeveralTypes) {
   ASSERT_EQ(m.triangles.size(), 1u);
   EXPECT_EQ(m.triangles[0], (std::array<int, 3>{1, 4, 2}));
   EXPECT_EQ(m.num_skipped_elements, 1u);
+}
+
+namespace {
+
+// Two quads side by side, 20 x 10: the right side in group 11 "open_1", the top in 12
+// "OpenSea" (two open groups that meet at node 4), the rest in 1 "land", and the line
+// between the quads in group 5 (no name in 2.2, none at all in 4.1).
+const char* const kMsh22Groups =
+    "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n4\n1 1 \"land\"\n"
+    "1 11 \"open_1\"\n1 12 \"OpenSea\"\n2 3 \"domain\"\n$EndPhysicalNames\n$Nodes\n6\n"
+    "1 0 0 0\n2 10 0 0\n3 20 0 0\n4 20 10 0\n5 10 10 0\n6 0 10 0\n$EndNodes\n$Elements\n9\n"
+    "1 1 2 11 1 3 4\n2 1 2 12 2 4 5\n3 1 2 12 2 5 6\n4 1 2 1 3 6 1\n5 1 2 1 3 1 2\n"
+    "6 1 2 1 3 2 3\n7 1 2 5 4 2 5\n8 3 2 3 1 1 2 5 6\n9 3 2 3 1 2 3 4 5\n$EndElements\n";
+const char* const kMsh41Groups =
+    "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n4\n1 1 \"land\"\n"
+    "1 11 \"open_1\"\n1 12 \"OpenSea\"\n2 3 \"domain\"\n$EndPhysicalNames\n$Entities\n"
+    "1 4 1 0\n1 0 0 0 0\n1 20 0 0 20 10 0 1 11 0\n2 0 10 0 20 10 0 1 12 0\n"
+    "3 0 0 0 20 10 0 1 1 0\n4 10 0 0 10 10 0 0 0\n1 0 0 0 20 10 0 1 3 4 1 2 3 4\n"
+    "$EndEntities\n$Nodes\n1 6 1 6\n2 1 0 6\n1\n2\n3\n4\n5\n6\n0 0 0\n10 0 0\n20 0 0\n"
+    "20 10 0\n10 10 0\n0 10 0\n$EndNodes\n$Elements\n5 9 1 9\n1 1 1 1\n1 3 4\n1 2 1 2\n"
+    "2 4 5\n3 5 6\n1 3 1 3\n4 6 1\n5 1 2\n6 2 3\n1 4 1 1\n7 2 5\n2 1 3 2\n8 1 2 5 6\n"
+    "9 2 3 4 5\n$EndElements\n";
+
+std::vector<std::vector<int>> sorted_runs(std::vector<std::vector<int>> runs) {
+  std::sort(runs.begin(), runs.end());
+  return runs;
+}
+
+std::string groups_error(ReadMesh& m, const std::vector<std::string>& groups) {
+  try {
+    open_boundaries_from_groups(m, groups, "m.msh");
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::usage) << e.what();
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+// The open boundaries of a .msh: the outline's runs along the lines of the groups named
+// open... (each group a run of its own where two meet), or of the groups given.
+TEST(ReadMesh, MshPhysicalGroupsOfCurvesGiveTheOpenBoundaries) {
+  TempDir dir;
+  for (const char* text : {kMsh22Groups, kMsh41Groups}) {
+    write_file(dir.file("m.msh"), text);
+    ReadMesh m = read_mesh(dir.file("m.msh"));
+    EXPECT_EQ(m.quads.size(), 2u);
+    EXPECT_EQ(m.num_skipped_elements, 7u);
+    EXPECT_EQ(sorted_runs(m.open_boundaries), (std::vector<std::vector<int>>{{2, 3}, {3, 4, 5}}));
+    EXPECT_EQ(m.curve_groups.size(), text == kMsh22Groups ? 4u : 3u);
+    EXPECT_EQ(m.curve_groups.front().name, "land");
+    open_boundaries_from_groups(m, {"land"}, "m.msh");
+    EXPECT_EQ(m.open_boundaries, (std::vector<std::vector<int>>{{5, 0, 1, 2}}));
+    open_boundaries_from_groups(m, {"11", "1"}, "m.msh");  // tags
+    EXPECT_EQ(sorted_runs(m.open_boundaries),
+              (std::vector<std::vector<int>>{{2, 3}, {5, 0, 1, 2}}));
+    EXPECT_NE(groups_error(m, {"sea"})
+                  .find("no physical group of curves 'sea' (its groups: 1 \"land\", " +
+                        std::string(text == kMsh22Groups ? "5, " : "") +
+                        "11 \"open_1\", 12 \"OpenSea\")"),
+              std::string::npos);
+  }
+  write_file(dir.file("m.msh"), kMsh22Groups);
+  ReadMesh m = read_mesh(dir.file("m.msh"));
+  EXPECT_NE(groups_error(m, {"5"}).find("no line of physical group 5 lies on the mesh's outline"),
+            std::string::npos);
+  m.format = "gr3";
+  EXPECT_NE(groups_error(m, {"land"}).find("not a Gmsh .msh"), std::string::npos);
 }
 
 // D-Flow FM's older net file: NetNode_x, NetNode_y and NetElemNode (numbered from 1,

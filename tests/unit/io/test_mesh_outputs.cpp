@@ -759,15 +759,17 @@ TEST(MeshOutputs, ReadMeshReadsBackEveryFormat) {
         EXPECT_LT(distance(m.points[i], f.mesh.points[i]), 1e-5);
       EXPECT_EQ(m.quads, f.mesh.quads);
       EXPECT_TRUE(m.triangles.empty());
-      // The .msh's boundary lines (its physical groups) are skipped.
+      // The .msh's boundary lines (its physical groups) are not elements of the mesh.
       const bool msh = o.path.find(".msh") != std::string::npos;
       EXPECT_EQ(m.num_skipped_elements > 0, msh);
       if (o.path.find(".mesh") != std::string::npos || o.path.find(".nc") != std::string::npos) {
         ASSERT_FALSE(m.crs.empty());
         EXPECT_EQ(parse_crs(m.crs, "the file's").name, parse_crs(f.crs_wkt, "EPSG:32631").name);
       }
-      // The open boundaries: the .gr3's segments, the .mesh's runs of open faces.
-      if (o.path.find(".gr3") != std::string::npos || o.path.find(".mesh") != std::string::npos) {
+      // The open boundaries: the .gr3's segments, the .mesh's runs of open faces, the
+      // .msh's runs along its group "open".
+      if (o.path.find(".gr3") != std::string::npos || o.path.find(".mesh") != std::string::npos ||
+          msh) {
         std::vector<std::vector<int>> open;
         for (const BoundarySegment& segment : f.data().boundary.segments)
           if (segment.kind == BoundaryKind::open) open.push_back(segment.nodes);
