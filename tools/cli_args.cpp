@@ -314,9 +314,10 @@ void add_open_boundary_options(CLI::App* cmd, FrontEndOptions& fe) {
                   "first layer)")
       ->group("Output");
   cmd->add_option("--open-groups", fe.open_groups,
-                  "With a Gmsh .msh as INPUT: its physical groups of curves (names or numbers, "
-                  "comma-separated) whose lines along the outline are open boundaries (default: "
-                  "the groups whose name begins with 'open', as isoquad's own .msh names them)")
+                  "With a Gmsh .msh or an SMS .2dm as INPUT: its physical groups of curves or "
+                  "nodestrings (names or numbers, comma-separated; nodestrings numbered from 1) "
+                  "whose lines along the outline are open boundaries (default: those whose name "
+                  "begins with 'open', as isoquad's own .msh names them)")
       ->delimiter(',')
       ->group("Output");
 }

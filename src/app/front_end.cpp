@@ -175,7 +175,7 @@ SourceData read_mesh_source(const FrontEndOptions& options,
   SourceData source = outline_source(mesh, read.path, read.src_crs, "--src-crs");
   if (mesh.open_boundaries.empty() && !mesh.curve_groups.empty() &&
       options.open_boundary_path.empty()) {
-    source.warnings.push_back("physical groups of curves " + curve_groups_text(mesh) +
+    source.warnings.push_back(curve_groups_kind(mesh, true) + " " + curve_groups_text(mesh) +
                               ", none named open...: the whole boundary is land (name the "
                               "open ones with --open-groups)");
   }
@@ -202,8 +202,10 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   std::vector<std::vector<Point2>> mesh_open_lines;
   const bool from_mesh = options.source.has_value() || is_mesh_file(read.path);
   if (!options.open_groups.empty() && (options.source || !from_mesh))
-    throw Error(ErrorClass::usage, "options",
-                "--open-groups names physical groups of a Gmsh .msh given as INPUT");
+    throw Error(
+        ErrorClass::usage, "options",
+        "--open-groups names physical groups of a Gmsh .msh, or nodestrings of an SMS .2dm, "
+        "given as INPUT");
   SourceData source = options.source ? *options.source
                       : from_mesh    ? read_mesh_source(options, mesh_open_lines)
                                      : read_polygons(read);

@@ -259,8 +259,11 @@ void read_gr3(LineReader& r, ReadMesh& mesh) {
   }
 }
 
-// SMS's .2dm: cards ND (nodes), E3T and E4Q (elements); the others (MESH2D, NS,
-// MESHNAME...) skipped, second-order elements refused.
+// SMS's .2dm: cards ND (nodes), E3T and E4Q (elements), NS (nodestrings: node ids, the
+// last negative, then perhaps the string's name, as BASEMENT writes it; one string may
+// run over several cards), each nodestring a group of curves numbered from 1 in the
+// file's order; the other cards (MESH2D, MESHNAME...) skipped, second-order elements
+// refused.
 void read_2dm(LineReader& r, ReadMesh& mesh) {
   NodeIds ids;
   struct Pending {
@@ -269,6 +272,9 @@ void read_2dm(LineReader& r, ReadMesh& mesh) {
     int line;
   };
   std::vector<Pending> elements;  // nodes may follow the elements
+  std::vector<Pending> strings;   // id: the string's number; its name in names
+  std::vector<std::string> names;
+  bool string_open = false;
   std::string line;
   while (r.next(line)) {
     Fields f(line, r);
@@ -282,6 +288,21 @@ void read_2dm(LineReader& r, ReadMesh& mesh) {
       elements.push_back(std::move(p));
     } else if (card == "E6T" || card == "E8Q" || card == "E9Q" || card == "E2L" || card == "E3L") {
       r.fail("element card " + card + ": only E3T and E4Q (triangles and quadrangles) are read");
+    } else if (card == "NS") {
+      while (!f.at_end()) {
+        if (!string_open) {
+          strings.push_back({static_cast<long long>(strings.size()) + 1, {}, r.number()});
+          names.emplace_back();
+          string_open = true;
+        }
+        const long long id = f.integer("a node id of the nodestring");
+        strings.back().nodes.push_back(std::abs(id));
+        if (id < 0) {
+          string_open = false;
+          if (!f.at_end()) names.back() = f.word("the nodestring's name");
+          break;
+        }
+      }
     }
   }
   if (mesh.points.empty()) r.fail("no ND (node) card in the file");
@@ -297,6 +318,21 @@ void read_2dm(LineReader& r, ReadMesh& mesh) {
     }
     add_element(mesh, nodes, r, p.id);
   }
+  for (std::size_t k = 0; k < strings.size(); ++k) {
+    const Pending& p = strings[k];
+    ReadMesh::CurveGroup group{p.id, names[k], {}};
+    int previous = -1;
+    for (long long id : p.nodes) {
+      const int index = ids.find(id);
+      if (index < 0)
+        r.fail_at(p.line, "nodestring " + std::to_string(p.id) + " has node " + std::to_string(id) +
+                              ", which is not among the ND cards");
+      if (previous >= 0 && previous != index) group.edges.push_back({previous, index});
+      previous = index;
+    }
+    mesh.curve_groups.push_back(std::move(group));
+  }
+  if (!mesh.curve_groups.empty()) open_boundaries_from_groups(mesh, {}, r.path());
 }
 
 // Gmsh's element types read: 2 (3-node triangle), 3 (4-node quadrangle); 1 (line) and
@@ -1027,18 +1063,29 @@ std::string describe(const ReadMesh::CurveGroup& g) {
 
 }  // namespace
 
+std::string curve_groups_kind(const ReadMesh& mesh, bool plural) {
+  if (mesh.format == "2dm") return plural ? "nodestrings" : "nodestring";
+  return plural ? "physical groups of curves" : "physical group of curves";
+}
+
 std::string curve_groups_text(const ReadMesh& mesh) {
+  constexpr std::size_t kShown = 10;
   std::string text;
-  for (const ReadMesh::CurveGroup& g : mesh.curve_groups)
-    text += (text.empty() ? "" : ", ") + describe(g);
+  for (std::size_t k = 0; k < mesh.curve_groups.size() && k < kShown; ++k)
+    text += (text.empty() ? "" : ", ") + describe(mesh.curve_groups[k]);
+  if (mesh.curve_groups.size() > kShown)
+    text += "... (" + std::to_string(mesh.curve_groups.size()) + " in all)";
   return text;
 }
 
 void open_boundaries_from_groups(ReadMesh& mesh, const std::vector<std::string>& groups,
                                  const std::string& path) {
-  if (mesh.format != "msh")
+  if (mesh.format != "msh" && mesh.format != "2dm")
     throw Error(ErrorClass::usage, "read",
-                "'" + path + "' is not a Gmsh .msh: only a .msh has physical groups of curves");
+                "'" + path +
+                    "' is neither a Gmsh .msh nor an SMS .2dm: only these name lines of the "
+                    "boundary (physical groups of curves, nodestrings)");
+  const std::string kind_name = curve_groups_kind(mesh, false);
   std::vector<const ReadMesh::CurveGroup*> open;
   if (groups.empty()) {
     for (const ReadMesh::CurveGroup& g : mesh.curve_groups)
@@ -1052,17 +1099,18 @@ void open_boundaries_from_groups(ReadMesh& mesh, const std::vector<std::string>&
     if (it == mesh.curve_groups.end()) {
       const std::string there = curve_groups_text(mesh);
       throw Error(ErrorClass::usage, "read",
-                  "'" + path + "' has no physical group of curves '" + given + "' (" +
-                      (there.empty() ? "it has none" : "its groups: " + there) + ")");
+                  "'" + path + "' has no " + kind_name + " '" + given + "' (" +
+                      (there.empty() ? "it has none" : "it has " + there) + ")");
     }
     open.push_back(&*it);
   }
+  mesh.open_boundaries.clear();
+  if (open.empty()) return;
   // Each face of the outline's open kind: the index of its group among those open, + 1.
   std::map<std::pair<int, int>, long long> kind;
   for (std::size_t k = 0; k < open.size(); ++k)
     for (const auto& e : open[k]->edges)
       kind.emplace(std::minmax(e[0], e[1]), static_cast<long long>(k) + 1);
-  mesh.open_boundaries.clear();
   std::vector<bool> on_outline(open.size(), false);
   const bool traced = open_runs(mesh, path, [&](int a, int b) -> long long {
     const auto it = kind.find(std::minmax(a, b));
@@ -1074,7 +1122,7 @@ void open_boundaries_from_groups(ReadMesh& mesh, const std::vector<std::string>&
   for (std::size_t k = 0; k < open.size(); ++k)
     if (!on_outline[k])
       throw Error(ErrorClass::usage, "read",
-                  "'" + path + "': no line of physical group " + describe(*open[k]) +
+                  "'" + path + "': no line of " + kind_name + " " + describe(*open[k]) +
                       " lies on the mesh's outline, where an open boundary is");
 }
 

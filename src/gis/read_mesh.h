@@ -32,9 +32,11 @@ struct ReadMesh {
   // TELEMAC .slf's (the .cli beside it): each its nodes in order (indices into points);
   // empty for the other formats, and for a file without them.
   std::vector<std::vector<int>> open_boundaries;
-  // A Gmsh .msh's physical groups of curves: each its tag, its name ($PhysicalNames;
-  // empty when it has none) and its line elements (node pairs, indices into points), in
-  // the order of the tags; empty for the other formats.
+  // Named lines of the boundary: a Gmsh .msh's physical groups of curves (each its tag,
+  // its name from $PhysicalNames or empty, and its line elements) or an SMS .2dm's
+  // nodestrings (each its number in the file from 1, the name after its last node or
+  // empty, and its edges), as node pairs (indices into points), in the order of the
+  // tags; empty for the other formats.
   struct CurveGroup {
     long long tag = 0;
     std::string name;
@@ -59,16 +61,21 @@ bool is_mesh_file(const std::string& path);
 // binary .msh.
 ReadMesh read_mesh(const std::string& path);
 
-// Sets a .msh's open boundaries from its physical groups of curves (curve_groups): the
-// runs of the outline along the lines of the groups given, by name or by tag (each run
-// within one group); none given: the groups whose name begins with "open" (any case:
-// isoquad's "open" and "open_1"..., "OpenBoundary"), as read_mesh does. Error(usage) for
-// a group the file does not have (naming those it has), for a group given none of
-// whose lines lies on the outline, and for a mesh of another format than .msh.
+// Sets the open boundaries of a .msh or a .2dm from its named lines (curve_groups): the
+// runs of the outline along the lines of the groups given, by name or by number (each
+// run within one group); none given: the groups whose name begins with "open" (any
+// case: isoquad's "open" and "open_1"..., "OpenBoundary"), as read_mesh does.
+// Error(usage) for a group the file does not have (naming those it has), for a group
+// given none of whose lines lies on the outline, and for a mesh of another format.
 void open_boundaries_from_groups(ReadMesh& mesh, const std::vector<std::string>& groups,
                                  const std::string& path);
 
-// The physical groups of curves for a message: `7, 8 "land"`; empty when none.
+// What the format calls its groups: "physical group(s) of curves" (.msh),
+// "nodestring(s)" (.2dm).
+std::string curve_groups_kind(const ReadMesh& mesh, bool plural);
+
+// The groups for a message: `7, 8 "land"` (the first ten, then the count); empty when
+// none.
 std::string curve_groups_text(const ReadMesh& mesh);
 
 }  // namespace isoquad

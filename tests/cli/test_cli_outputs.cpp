@@ -1464,11 +1464,11 @@ TEST(CliOutputs, AModelsGridMeshedAgainKeepsItsSeaBoundaryAndDepths) {
 
 // A Gmsh .msh keeps its sea boundary when meshed again: the lines of its physical groups
 // named open..., or of the groups given with --open-groups; groups of other names leave
-// the boundary land, with a warning that names them.
+// the boundary land, with a warning that names them. The same with a .2dm's nodestrings.
 TEST(CliOutputs, AGmshGridMeshedAgainKeepsTheOpenBoundaryOfItsPhysicalGroups) {
   TempDir dir;
-  CliResult r = mesh_water_box(
-      dir, {"--dst-crs", "EPSG:32630", "-o", dir.file("hgrid.gr3"), "-o", dir.file("grid.msh")});
+  CliResult r = mesh_water_box(dir, {"--dst-crs", "EPSG:32630", "-o", dir.file("hgrid.gr3"), "-o",
+                                     dir.file("grid.msh"), "-o", dir.file("grid.2dm")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const Gr3 old = parse_gr3(dir.file("hgrid.gr3"));
   ASSERT_FALSE(old.open.empty());
@@ -1504,9 +1504,17 @@ TEST(CliOutputs, AGmshGridMeshedAgainKeepsTheOpenBoundaryOfItsPhysicalGroups) {
   r = again(dir.file("renamed.msh"), {"--open-groups", "sea"});
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_NE(r.err.find("no physical group of curves 'sea'"), std::string::npos) << r.err;
+  // isoquad's .2dm: nodestrings without names, the open segments' first.
+  r = again(dir.file("grid.2dm"), {});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("nodestrings 1, 2"), std::string::npos) << r.err;
+  EXPECT_TRUE(parse_gr3(dir.file("again.gr3")).open.empty());
+  r = again(dir.file("grid.2dm"), {"--open-groups", "1"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(parse_gr3(dir.file("again.gr3")).open.size(), old.open.size());
   r = again(dir.file("hgrid.gr3"), {"--open-groups", "open"});
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("not a Gmsh .msh"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("neither a Gmsh .msh nor an SMS .2dm"), std::string::npos) << r.err;
 }
 
 // --time-step raises the sizes to what an explicit model needs at that step and Courant

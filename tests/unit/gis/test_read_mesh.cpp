@@ -56,11 +56,22 @@ TEST(ReadMesh, TwoDmWithNodesAfterElements) {
   TempDir dir;
   write_file(dir.file("m.2dm"),
              "MESH2D\nMESHNAME \"test\"\nE4Q 1 1 2 3 4 1\nE3T 2 2 5 3 1\nND 1 0 0 0\n"
-             "ND 2 10 0 0\nND 3 10 10 0\nND 4 0 10 0\nND 5 20 5 0\nNS 1 2 -5\n");
-  const ReadMesh m = read_mesh(dir.file("m.2dm"));
+             "ND 2 10 0 0\nND 3 10 10 0\nND 4 0 10 0\nND 5 20 5 0\nNS 1 2 -5\n"
+             "NS 3\nNS -4 Open_north\n");
+  ReadMesh m = read_mesh(dir.file("m.2dm"));
   EXPECT_EQ(m.quads.size(), 1u);
   EXPECT_EQ(m.triangles.size(), 1u);
   EXPECT_EQ(m.points.size(), 5u);
+  // The nodestrings, numbered from 1; the second over two cards, named as BASEMENT does,
+  // and open by its name.
+  ASSERT_EQ(m.curve_groups.size(), 2u);
+  EXPECT_EQ(m.curve_groups[0].tag, 1);
+  EXPECT_EQ(m.curve_groups[0].name, "");
+  EXPECT_EQ(m.curve_groups[0].edges, (std::vector<std::array<int, 2>>{{0, 1}, {1, 4}}));
+  EXPECT_EQ(m.curve_groups[1].name, "Open_north");
+  EXPECT_EQ(m.open_boundaries, (std::vector<std::vector<int>>{{2, 3}}));
+  open_boundaries_from_groups(m, {"1"}, "m.2dm");
+  EXPECT_EQ(m.open_boundaries, (std::vector<std::vector<int>>{{0, 1, 4}}));
 }
 
 TEST(ReadMesh, MikeMeshWithTrianglesAndLonLat) {
@@ -146,17 +157,19 @@ TEST(ReadMesh, MshPhysicalGroupsOfCurvesGiveTheOpenBoundaries) {
     EXPECT_EQ(sorted_runs(m.open_boundaries),
               (std::vector<std::vector<int>>{{2, 3}, {5, 0, 1, 2}}));
     EXPECT_NE(groups_error(m, {"sea"})
-                  .find("no physical group of curves 'sea' (its groups: 1 \"land\", " +
+                  .find("no physical group of curves 'sea' (it has 1 \"land\", " +
                         std::string(text == kMsh22Groups ? "5, " : "") +
                         "11 \"open_1\", 12 \"OpenSea\")"),
               std::string::npos);
   }
   write_file(dir.file("m.msh"), kMsh22Groups);
   ReadMesh m = read_mesh(dir.file("m.msh"));
-  EXPECT_NE(groups_error(m, {"5"}).find("no line of physical group 5 lies on the mesh's outline"),
+  EXPECT_NE(groups_error(m, {"5"}).find(
+                "no line of physical group of curves 5 lies on the mesh's outline"),
             std::string::npos);
   m.format = "gr3";
-  EXPECT_NE(groups_error(m, {"land"}).find("not a Gmsh .msh"), std::string::npos);
+  EXPECT_NE(groups_error(m, {"land"}).find("neither a Gmsh .msh nor an SMS .2dm"),
+            std::string::npos);
 }
 
 // D-Flow FM's older net file: NetNode_x, NetNode_y and NetElemNode (numbered from 1,
