@@ -70,7 +70,8 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
              "-o,--output", a.outputs,
              a.output_optional ? "Also write the measured quads with their metrics (.gpkg or .vtu)"
              : a.many_outputs  ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, "
-                                 ".pli, .slf, .14); repeat for several"
+                                 ".pli, .slf, .14; the quads alone: .geojson, .fgb); repeat for "
+                                 "several"
                                : "Output file (.gpkg)")
           ->expected(1)
           ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
@@ -448,15 +449,16 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "of angles")
       ->check(kNonNegative)
       ->group("Quads");
-  cmd->add_option(
-         "--output-format", m.output_formats,
-         "gpkg, vtu, vtk, msh, gr3, nc, 2dm, mesh, pli, slf or 14: once for every -o, or once per "
-         "-o in order "
-         "(default: by extension)")
+  cmd->add_option("--output-format", m.output_formats,
+                  "gpkg, vtu, vtk, msh, gr3, nc, 2dm, mesh, pli, slf, 14, geojson or fgb: once for "
+                  "every -o, "
+                  "or once per "
+                  "-o in order "
+                  "(default: by extension)")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-      ->check(CLI::IsMember(
-          {"gpkg", "vtu", "vtk", "msh", "gr3", "nc", "2dm", "mesh", "pli", "slf", "14"}))
+      ->check(CLI::IsMember({"gpkg", "vtu", "vtk", "msh", "gr3", "nc", "2dm", "mesh", "pli", "slf",
+                             "14", "geojson", "fgb"}))
       ->group("Output");
   cmd->add_option("--msh-version", m.msh_version, "Gmsh file version: 4.1 (default) or 2.2")
       ->check(CLI::IsMember({"4.1", "2.2"}))

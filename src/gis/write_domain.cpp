@@ -1,11 +1,11 @@
 #include "gis/write_domain.h"
 
-#include "gis/gpkg_writer.h"
+#include "gis/vector_writer.h"
 
 namespace isoquad {
 
 void write_domain_gpkg(const Domain& domain, const WriteDomainParams& params) {
-  GpkgWriter w(params.path, params.overwrite, domain.crs_wkt);
+  VectorWriter w(params.path, params.overwrite, domain.crs_wkt);
   w.begin_layer(params.layer, GeometryKind::polygon,
                 {{"component", FieldType::integer},
                  {"area_m2", FieldType::real},

@@ -4,7 +4,7 @@
 #include <filesystem>
 
 #include "core/error.h"
-#include "gis/gpkg_writer.h"
+#include "gis/vector_writer.h"
 #include "io/write_vtu.h"
 
 namespace isoquad {
@@ -26,7 +26,7 @@ void write_vtu_fields(const BackgroundMesh& mesh, const SizingField& size, const
 
 void write_gpkg_fields(const BackgroundMesh& mesh, const SizingField& size, const CrossField& cross,
                        const std::string& crs_wkt, const std::string& path, bool overwrite) {
-  GpkgWriter w(path, overwrite, crs_wkt);
+  VectorWriter w(path, overwrite, crs_wkt);
   w.begin_layer("vertices", GeometryKind::point,
                 {{"size_m", FieldType::real}, {"cross_angle_deg", FieldType::real},
                  {"boundary_chain", FieldType::integer}});

@@ -8,7 +8,7 @@
 #include "core/text.h"
 #include "gis/atomic_output.h"
 #include "gis/crs.h"
-#include "gis/gpkg_writer.h"
+#include "gis/vector_writer.h"
 #include "io/mesh_formats.h"
 #include "io/mesh_styles.h"
 #include "io/write_vtu.h"
@@ -22,7 +22,8 @@ const std::map<std::string, MeshFormat>& format_names() {
       {"gpkg", MeshFormat::gpkg},  {"vtu", MeshFormat::vtu},   {"vtk", MeshFormat::vtk},
       {"msh", MeshFormat::msh},    {"gr3", MeshFormat::gr3},   {"nc", MeshFormat::nc},
       {"2dm", MeshFormat::sms2dm}, {"mesh", MeshFormat::mike}, {"pli", MeshFormat::pli},
-      {"slf", MeshFormat::slf},    {"14", MeshFormat::fort14}};
+      {"slf", MeshFormat::slf},    {"14", MeshFormat::fort14}, {"geojson", MeshFormat::geojson},
+      {"fgb", MeshFormat::fgb}};
   return names;
 }
 
@@ -30,12 +31,12 @@ std::string companion(const std::string& path, const char* extension) {
   return std::filesystem::path(path).replace_extension(extension).string();
 }
 
-void write_gpkg(const MeshView& v, const std::string& path, const std::string& what) {
+// The quads as polygons with their metrics: the GeoPackage's layer `quads`, and the
+// whole of a GeoJSON or FlatGeobuf output.
+void write_quads_layer(const MeshView& v, VectorWriter& w) {
   const QuadMesh& m = *v.data->mesh;
   const QuadMetrics& q = *v.data->metrics;
   const auto& pts = v.points;
-  GpkgWriter w(path, true, v.crs_wkt);
-  (void)what;
   std::vector<FieldDef> qfields = {{"id", FieldType::integer},
                                    {"size_ratio", FieldType::real},
                                    {"orientation_deg", FieldType::real},
@@ -62,6 +63,23 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
     if (time_steps) values.push_back(FieldValue::real(v.data->time_step_s[i]));
     w.add_polygon(std::vector<Point2>{pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]]}, values);
   }
+}
+
+// GeoJSON (`geojson`: RFC 7946 when in longitudes and latitudes) or FlatGeobuf: the quads.
+void write_quad_polygons(const MeshView& v, const std::string& path, const std::string& driver) {
+  std::vector<std::string> options;
+  if (driver == "GeoJSON" && v.geographic) options.push_back("RFC7946=YES");
+  VectorWriter w(path, true, v.crs_wkt, driver, options);
+  write_quads_layer(v, w);
+  w.commit();
+}
+
+void write_gpkg(const MeshView& v, const std::string& path, const std::string& what) {
+  const QuadMetrics& q = *v.data->metrics;
+  const auto& pts = v.points;
+  VectorWriter w(path, true, v.crs_wkt);
+  (void)what;
+  write_quads_layer(v, w);
   std::vector<FieldDef> vfields = {{"id", FieldType::integer},
                                    {"degree", FieldType::integer},
                                    {"ideal_degree", FieldType::integer},
@@ -222,9 +240,10 @@ MeshFormat mesh_output_format(const MeshOutput& out) {
                 out.format.empty()
                     ? "'" + out.path + "': unknown mesh format '" + ext +
                           "'; use .gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, .pli, "
-                          ".slf or .14 (or --output-format)"
+                          ".slf, .14, .geojson or .fgb (or --output-format)"
                     : "unknown --output-format '" + out.format +
-                          "'; use gpkg, vtu, vtk, msh, gr3, nc, 2dm, mesh, pli, slf or 14");
+                          "'; use gpkg, vtu, vtk, msh, gr3, nc, 2dm, mesh, pli, slf, 14, geojson "
+                          "or fgb");
   return it->second;
 }
 
@@ -329,6 +348,14 @@ std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
     files.push_back(o.path);
     switch (fmt) {
       case MeshFormat::gpkg: write_gpkg(*view, tmp, o.path); break;
+      case MeshFormat::geojson:
+        // GeoJSON is read as longitudes and latitudes (RFC 7946) unless --output-crs says.
+        write_quad_polygons(options.output_crs.empty() ? lonlat_view("GeoJSON") : *view, tmp,
+                            "GeoJSON");
+        break;
+      case MeshFormat::fgb:
+        write_quad_polygons(*view, tmp, "FlatGeobuf");
+        break;
       case MeshFormat::vtu: write_vtu_mesh(*view, tmp); break;
       case MeshFormat::vtk: write_vtk_legacy_file(*view, tmp, o.path); break;
       case MeshFormat::msh:

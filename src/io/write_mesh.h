@@ -14,7 +14,10 @@
 //   pli   D-Flow FM polylines of the open boundary: one file per open segment, the path
 //         itself for one, else STEM_1.pli, STEM_2.pli... (Error(meshing) without any);
 //   slf   TELEMAC-2D geometry (Selafin, the quads cut into triangles) and its boundary
-//         conditions (same name, extension .cli).
+//         conditions (same name, extension .cli);
+//   geojson, fgb  the quads alone, as polygons with the per-quad metrics: GeoJSON in
+//         longitudes and latitudes (RFC 7946) unless an output CRS is given, FlatGeobuf
+//         in the mesh's CRS.
 // Several outputs are written as one transaction (gis/atomic_output.h: OutputSet).
 #pragma once
 
@@ -34,12 +37,26 @@ namespace isoquad {
 // them.
 bool unwrap_antimeridian(const QuadMesh& mesh, std::vector<Point2>& lonlat);
 
-enum class MeshFormat { gpkg, vtu, vtk, msh, gr3, nc, sms2dm, mike, pli, slf, fort14 };
+enum class MeshFormat {
+  gpkg,
+  vtu,
+  vtk,
+  msh,
+  gr3,
+  nc,
+  sms2dm,
+  mike,
+  pli,
+  slf,
+  fort14,
+  geojson,
+  fgb
+};
 
 struct MeshOutput {
   std::string path;
-  std::string format;  // gpkg, vtu, vtk, msh, gr3, nc, 2dm, mesh, pli, slf, 14; empty: by the
-                       // path's extension
+  std::string format;  // gpkg, vtu, vtk, msh, gr3, nc, 2dm, mesh, pli, slf, 14, geojson,
+                       // fgb; empty: by the path's extension
   bool overwrite = false;
 };
 

@@ -1517,6 +1517,76 @@ TEST(CliOutputs, AGmshGridMeshedAgainKeepsTheOpenBoundaryOfItsPhysicalGroups) {
   EXPECT_NE(r.err.find("neither a Gmsh .msh nor an SMS .2dm"), std::string::npos) << r.err;
 }
 
+// The quads alone as GeoJSON (longitudes and latitudes, RFC 7946) and FlatGeobuf (the
+// mesh's CRS), read with GDAL: the GeoPackage's quads, the same metrics by id, every
+// ring closed and counter-clockwise; the same bytes from a second run; and read back by
+// `isoquad quality` as a mesh of polygons.
+TEST(CliOutputs, QuadsAsGeoJsonAndFlatGeobuf) {
+  TempDir dir;
+  const std::vector<std::string> outputs = {"-o", dir.file("m.gpkg"), "-o", dir.file("m.geojson"),
+                                            "-o", dir.file("m.fgb")};
+  CliResult r = mesh_box_800(dir, outputs);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The metrics of each quad by id, from a layer.
+  auto metrics = [](OGRLayer* layer) {
+    std::map<GIntBig, std::array<double, 3>> by_id;
+    for (auto& f : *layer)
+      by_id[f->GetFieldAsInteger64("id")] = {f->GetFieldAsDouble("size_ratio"),
+                                             f->GetFieldAsDouble("min_angle_deg"),
+                                             f->GetFieldAsDouble("orthogonality")};
+    return by_id;
+  };
+  GDALDataset* gpkg = open_vector(dir.file("m.gpkg"));
+  ASSERT_NE(gpkg, nullptr);
+  const auto expected = metrics(gpkg->GetLayerByName("quads"));
+  OGREnvelope native;
+  ASSERT_EQ(gpkg->GetLayerByName("quads")->GetExtent(&native), OGRERR_NONE);
+  GDALClose(gpkg);
+  ASSERT_GT(expected.size(), 50u);
+  for (const char* name : {"m.geojson", "m.fgb"}) {
+    SCOPED_TRACE(name);
+    GDALDataset* ds = open_vector(dir.file(name));
+    ASSERT_NE(ds, nullptr);
+    ASSERT_EQ(ds->GetLayerCount(), 1);
+    OGRLayer* layer = ds->GetLayer(0);
+    const auto got = metrics(layer);
+    ASSERT_EQ(got.size(), expected.size());
+    for (const auto& [id, m] : expected)
+      for (int k = 0; k < 3; ++k) EXPECT_NEAR(got.at(id)[k], m[k], 1e-9) << id;
+    const bool geojson = std::string(name) == "m.geojson";
+    layer->ResetReading();
+    for (auto& f : *layer) {
+      const OGRLinearRing* ring = f->GetGeometryRef()->toPolygon()->getExteriorRing();
+      ASSERT_EQ(ring->getNumPoints(), 5);
+      EXPECT_TRUE(ring->get_IsClosed());
+      EXPECT_FALSE(ring->isClockwise());
+      for (int i = 0; i < 4; ++i)
+        if (geojson) {  // within the box, to its projected sides' chords
+          EXPECT_TRUE(ring->getX(i) > kBox[0] - 1e-3 && ring->getX(i) < kBox[2] + 1e-3);
+          EXPECT_TRUE(ring->getY(i) > kBox[1] - 1e-3 && ring->getY(i) < kBox[3] + 1e-3);
+        }
+    }
+    OGREnvelope e;
+    ASSERT_EQ(layer->GetExtent(&e), OGRERR_NONE);
+    if (!geojson) {  // the mesh's CRS and coordinates
+      EXPECT_NEAR(e.MinX, native.MinX, 1e-6);
+      EXPECT_NEAR(e.MaxY, native.MaxY, 1e-6);
+    }
+    ASSERT_NE(layer->GetSpatialRef(), nullptr);
+    EXPECT_EQ(layer->GetSpatialRef()->IsGeographic(), geojson);
+    GDALClose(ds);
+  }
+  const std::string first = read_file(dir.file("m.geojson"));
+  const std::string first_fgb = read_file(dir.file("m.fgb"));
+  r = mesh_box_800(dir, {"-o", dir.file("m.geojson"), "-o", dir.file("m.fgb"), "--overwrite"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(read_file(dir.file("m.geojson")) == first);
+  EXPECT_TRUE(read_file(dir.file("m.fgb")) == first_fgb);
+  r = run_cli({"quality", "--mesh", dir.file("m.geojson")}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find(std::to_string(expected.size()) + " quads"), std::string::npos) << r.err;
+}
+
 // --time-step raises the sizes to what an explicit model needs at that step and Courant
 // number: fewer quads under it than without; every time step reported at --courant.
 TEST(CliOutputs, TimeStepRuleWidensTheQuadsInDeepWater) {

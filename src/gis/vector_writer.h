@@ -1,5 +1,5 @@
-// A GeoPackage written atomically, layer by layer: the common part of every GeoPackage
-// output (domain, fields, mesh).
+// A vector file written atomically, layer by layer: the common part of every GeoPackage
+// output (domain, fields, mesh), and of the mesh's quads as GeoJSON or FlatGeobuf.
 #pragma once
 
 #include <memory>
@@ -26,20 +26,36 @@ struct FieldValue {
   long long i = 0;
   double r = 0.0;
   std::string s;
-  static FieldValue integer(long long v) { FieldValue f; f.i = v; return f; }
-  static FieldValue real(double v) { FieldValue f; f.r = v; return f; }
-  static FieldValue text(std::string v) { FieldValue f; f.s = std::move(v); return f; }
+  static FieldValue integer(long long v) {
+    FieldValue f;
+    f.i = v;
+    return f;
+  }
+  static FieldValue real(double v) {
+    FieldValue f;
+    f.r = v;
+    return f;
+  }
+  static FieldValue text(std::string v) {
+    FieldValue f;
+    f.s = std::move(v);
+    return f;
+  }
 };
 
 enum class GeometryKind { point, line, polygon, none };  // none: an attribute table
 
-class GpkgWriter {
+class VectorWriter {
  public:
-  // Creates the temporary file next to `path`. Throws Error(output).
-  GpkgWriter(const std::string& path, bool overwrite, const std::string& crs_wkt);
-  ~GpkgWriter();  // without commit(), removes everything
-  GpkgWriter(const GpkgWriter&) = delete;
-  GpkgWriter& operator=(const GpkgWriter&) = delete;
+  // Creates the temporary file next to `path` with OGR's driver (GeoPackage by default;
+  // "GeoJSON" or "FlatGeobuf" hold one layer), its layers created with `layer_options`
+  // (OGR's NAME=VALUE). Throws Error(output).
+  VectorWriter(const std::string& path, bool overwrite, const std::string& crs_wkt,
+               const std::string& driver = "GPKG",
+               const std::vector<std::string>& layer_options = {});
+  ~VectorWriter();  // without commit(), removes everything
+  VectorWriter(const VectorWriter&) = delete;
+  VectorWriter& operator=(const VectorWriter&) = delete;
 
   // Starts a layer (ending the previous one).
   void begin_layer(const std::string& name, GeometryKind kind, const std::vector<FieldDef>& fields);
@@ -57,6 +73,7 @@ class GpkgWriter {
   void add(OGRGeometry* g, const std::vector<FieldValue>& values);
   void end_layer();
   [[noreturn]] void fail(const std::string& what) const;
+  std::string shown_name() const;  // the driver's, GeoPackage for GPKG
 
   struct State;
   std::unique_ptr<State> state_;

@@ -1,4 +1,4 @@
-#include "gis/gpkg_writer.h"
+#include "gis/vector_writer.h"
 
 #include <cpl_conv.h>
 #include <gdal_priv.h>
@@ -28,7 +28,7 @@ struct DatasetCloser {
 
 }  // namespace
 
-struct GpkgWriter::State {
+struct VectorWriter::State {
   std::string path;
   std::unique_ptr<AtomicOutput> out;
   // Same input, same bytes: GeoPackage stores a "last change" time, which we pin unless
@@ -39,40 +39,50 @@ struct GpkgWriter::State {
   OGRSpatialReference srs;
   OGRLayer* layer = nullptr;
   std::vector<FieldDef> fields;
+  std::string driver;
+  std::vector<std::string> layer_options;
 };
 
-void GpkgWriter::fail(const std::string& what) const {
+std::string VectorWriter::shown_name() const {
+  return state_->driver == "GPKG" ? "GeoPackage" : state_->driver;
+}
+
+void VectorWriter::fail(const std::string& what) const {
   const std::string detail = state_->capture.last_message();
   throw Error(ErrorClass::output, "write",
               "'" + state_->path + "': " + what + (detail.empty() ? "" : ": " + detail));
 }
 
-GpkgWriter::GpkgWriter(const std::string& path, bool overwrite, const std::string& crs_wkt) {
+VectorWriter::VectorWriter(const std::string& path, bool overwrite, const std::string& crs_wkt,
+                           const std::string& driver_name,
+                           const std::vector<std::string>& layer_options) {
   ensure_gdal_registered();
   state_ = std::make_unique<State>();
   state_->path = path;
+  state_->driver = driver_name;
+  state_->layer_options = layer_options;
   state_->out = std::make_unique<AtomicOutput>(path, overwrite);
-  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("GPKG");
-  if (!driver) fail("GDAL has no GeoPackage driver");
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName(driver_name.c_str());
+  if (!driver) fail("GDAL has no " + shown_name() + " driver");
   state_->ds.reset(driver->Create(state_->out->temp_path().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
-  if (!state_->ds) fail("cannot create the GeoPackage");
+  if (!state_->ds) fail("cannot create the " + shown_name() + " file");
   state_->srs.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   if (!crs_wkt.empty() && state_->srs.importFromWkt(crs_wkt.c_str()) != OGRERR_NONE)
     fail("cannot use the CRS");
 }
 
-GpkgWriter::~GpkgWriter() {
+VectorWriter::~VectorWriter() {
   if (state_) state_->ds.reset();  // close before the temporary file is removed
 }
 
-void GpkgWriter::end_layer() {
+void VectorWriter::end_layer() {
   if (state_->layer && state_->layer->CommitTransaction() != OGRERR_NONE)
     fail("cannot commit layer '" + std::string(state_->layer->GetName()) + "'");
   state_->layer = nullptr;
 }
 
-void GpkgWriter::begin_layer(const std::string& name, GeometryKind kind,
-                             const std::vector<FieldDef>& fields) {
+void VectorWriter::begin_layer(const std::string& name, GeometryKind kind,
+                               const std::vector<FieldDef>& fields) {
   end_layer();
   const OGRwkbGeometryType type = kind == GeometryKind::point  ? wkbPoint
                                   : kind == GeometryKind::line ? wkbLineString
@@ -80,7 +90,11 @@ void GpkgWriter::begin_layer(const std::string& name, GeometryKind kind,
                                                                : wkbPolygon;
   OGRSpatialReference* srs =
       state_->srs.IsEmpty() || kind == GeometryKind::none ? nullptr : &state_->srs;
-  state_->layer = state_->ds->CreateLayer(name.c_str(), srs, type, nullptr);
+  std::vector<const char*> options;
+  for (const std::string& o : state_->layer_options) options.push_back(o.c_str());
+  options.push_back(nullptr);
+  state_->layer =
+      state_->ds->CreateLayer(name.c_str(), srs, type, const_cast<char**>(options.data()));
   if (!state_->layer) fail("cannot create layer '" + name + "'");
   for (const FieldDef& f : fields) {
     OGRFieldDefn def(f.name.c_str(), f.type == FieldType::integer ? OFTInteger64
@@ -92,27 +106,33 @@ void GpkgWriter::begin_layer(const std::string& name, GeometryKind kind,
   if (state_->layer->StartTransaction() != OGRERR_NONE) fail("cannot start a transaction");
 }
 
-void GpkgWriter::add(OGRGeometry* g, const std::vector<FieldValue>& values) {
+void VectorWriter::add(OGRGeometry* g, const std::vector<FieldValue>& values) {
   if (!state_->layer) throw Error(ErrorClass::internal, "write", "no layer begun");
   OGRFeature feature(state_->layer->GetLayerDefn());
   for (std::size_t i = 0; i < state_->fields.size() && i < values.size(); ++i) {
     const int idx = static_cast<int>(i);
     switch (state_->fields[i].type) {
-      case FieldType::integer: feature.SetField(idx, static_cast<GIntBig>(values[i].i)); break;
-      case FieldType::real: feature.SetField(idx, values[i].r); break;
-      case FieldType::text: feature.SetField(idx, values[i].s.c_str()); break;
+      case FieldType::integer:
+        feature.SetField(idx, static_cast<GIntBig>(values[i].i));
+        break;
+      case FieldType::real:
+        feature.SetField(idx, values[i].r);
+        break;
+      case FieldType::text:
+        feature.SetField(idx, values[i].s.c_str());
+        break;
     }
   }
   if (g) feature.SetGeometry(g);
   if (state_->layer->CreateFeature(&feature) != OGRERR_NONE) fail("cannot write a feature");
 }
 
-void GpkgWriter::add_point(const Point2& p, const std::vector<FieldValue>& values) {
+void VectorWriter::add_point(const Point2& p, const std::vector<FieldValue>& values) {
   OGRPoint pt(p.x, p.y);
   add(&pt, values);
 }
 
-void GpkgWriter::add_polygon(const Polygon& polygon, const std::vector<FieldValue>& values) {
+void VectorWriter::add_polygon(const Polygon& polygon, const std::vector<FieldValue>& values) {
   OGRPolygon poly;
   OGRLinearRing outer = to_ogr_ring(polygon.outer);
   poly.addRing(&outer);
@@ -123,26 +143,30 @@ void GpkgWriter::add_polygon(const Polygon& polygon, const std::vector<FieldValu
   add(&poly, values);
 }
 
-void GpkgWriter::add_polygon(const std::vector<Point2>& ring, const std::vector<FieldValue>& values) {
+void VectorWriter::add_polygon(const std::vector<Point2>& ring,
+                               const std::vector<FieldValue>& values) {
   OGRPolygon poly;
   OGRLinearRing outer = to_ogr_ring(ring);
   poly.addRing(&outer);
   add(&poly, values);
 }
 
-void GpkgWriter::add_line(const std::vector<Point2>& line, const std::vector<FieldValue>& values) {
+void VectorWriter::add_line(const std::vector<Point2>& line,
+                            const std::vector<FieldValue>& values) {
   OGRLineString ls;
   for (const Point2& p : line) ls.addPoint(p.x, p.y);
   add(&ls, values);
 }
 
-void GpkgWriter::add_row(const std::vector<FieldValue>& values) { add(nullptr, values); }
+void VectorWriter::add_row(const std::vector<FieldValue>& values) {
+  add(nullptr, values);
+}
 
-void GpkgWriter::commit() {
+void VectorWriter::commit() {
   end_layer();
   CPLErrorReset();
   state_->ds.reset();  // closes the file; GDAL reports failures through its error state
-  if (CPLGetLastErrorType() == CE_Failure) fail("cannot finish the GeoPackage");
+  if (CPLGetLastErrorType() == CE_Failure) fail("cannot finish the " + shown_name() + " file");
   state_->out->commit();
 }
 
