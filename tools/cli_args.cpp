@@ -85,8 +85,14 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
       ->group("Selection");
   cmd->add_option("--bbox-crs", a.fe.read.bbox_crs, "CRS of --bbox (default: the source CRS)")
       ->group("Selection");
+  cmd->add_option("--clip", a.fe.clip_path,
+                  "Vector file (any format, with a CRS) of one polygon, the area to mesh, in place "
+                  "of --bbox: land inside it, or water: it minus the polygons, its edge open (sea) "
+                  "where it is not land")
+      ->group("Selection");
   cmd->add_option("--domain", a.domain_kind,
-                  "land: inside the polygons (clipped to --bbox); water: --bbox minus the polygons")
+                  "land: inside the polygons (clipped to --bbox or --clip); water: --bbox (or "
+                  "--clip) minus the polygons")
       ->check(CLI::IsMember({"land", "water"}))
       ->group("Selection");
   cmd->add_flag("--largest", a.fe.largest, "Keep only the largest component")->group("Selection");

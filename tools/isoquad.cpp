@@ -185,13 +185,14 @@ RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::stri
   if (!tiling_only) check_mesh_outputs(outputs, write_options);
   else check_output_path(a.output, a.overwrite);
   const bool has_open_boundary =
-      !a.fe.open_boundary_path.empty() || (a.fe.kind == DomainKind::water && !a.bbox.empty());
+      !a.fe.open_boundary_path.empty() ||
+      (a.fe.kind == DomainKind::water && (!a.bbox.empty() || !a.fe.clip_path.empty()));
   for (const MeshOutput& o : outputs)
     if (!tiling_only && !has_open_boundary && mesh_output_format(o) == MeshFormat::pli)
       throw Error(ErrorClass::usage, "options",
                   "'" + o.path +
                       "': a .pli holds the open boundary, and this domain has none: give "
-                      "--open-boundary FILE, or --domain water with --bbox");
+                      "--open-boundary FILE, or --domain water with --bbox or --clip");
   // --bathymetry alone gives the depths of the outputs; with a wavelength, slope or time
   // step rule it also sets the sizing.
   finish_depth_options(a, f);
@@ -260,10 +261,13 @@ RegionOutcome run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
   mesh_file_format(q.mesh_path);  // a format it reads, before any work
   if (a.input.empty()) {
     // The domain is the mesh's outline: nothing to select from, and its CRS is the mesh's.
-    const std::pair<bool, const char*> selections[] = {
-        {!a.fe.read.layer.empty(), "--layer"}, {!a.fe.read.where.empty(), "--where"},
-        {!a.bbox.empty(), "--bbox"},           {!a.fe.read.bbox_crs.empty(), "--bbox-crs"},
-        {a.domain_kind != "land", "--domain"}, {!a.fe.read.src_crs.empty(), "--src-crs"}};
+    const std::pair<bool, const char*> selections[] = {{!a.fe.read.layer.empty(), "--layer"},
+                                                       {!a.fe.read.where.empty(), "--where"},
+                                                       {!a.bbox.empty(), "--bbox"},
+                                                       {!a.fe.read.bbox_crs.empty(), "--bbox-crs"},
+                                                       {!a.fe.clip_path.empty(), "--clip"},
+                                                       {a.domain_kind != "land", "--domain"},
+                                                       {!a.fe.read.src_crs.empty(), "--src-crs"}};
     for (const auto& [given, option] : selections)
       if (given)
         throw Error(ErrorClass::usage, "options",

@@ -154,6 +154,7 @@ SourceData read_mesh_source(const FrontEndOptions& options,
       {!read.layer.empty(), "--layer"},
       {!read.where.empty(), "--where"},
       {read.bbox.has_value(), "--bbox"},
+      {!options.clip_path.empty(), "--clip"},
       {options.kind != DomainKind::land, "--domain water"}};
   for (const auto& [given, option] : selections)
     if (given)
@@ -199,6 +200,13 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   progress.report("read", 0.0);
   ReadParams read = options.read;
   read.empty_bbox_selection_ok = options.kind == DomainKind::water;
+  if (!options.clip_path.empty()) {
+    if (read.bbox || !read.bbox_crs.empty())
+      throw Error(ErrorClass::usage, "options",
+                  "give the area once: --bbox (with --bbox-crs) or --clip");
+    read.clip = read_clip_area(options.clip_path, "", read.bbox_crs);
+    read.clip_name = "--clip '" + options.clip_path + "'";
+  }
   std::vector<std::vector<Point2>> mesh_open_lines;
   const bool from_mesh = options.source.has_value() || is_mesh_file(read.path);
   if (!options.open_groups.empty() && (options.source || !from_mesh))

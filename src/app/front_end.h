@@ -46,6 +46,9 @@ struct FrontEndOptions {
   // boundary they follow is open, the rest land, instead of a water domain's bbox.
   std::string open_boundary_path;
   std::string open_boundary_layer;  // empty: its first layer of lines, or its first layer
+  // A vector file of one polygon, the area to mesh in place of a bbox (--clip): land
+  // inside it, or water: it minus the polygons, its edge open where it is not land.
+  std::string clip_path;
   // With a Gmsh .msh as INPUT: its physical groups of curves (names or tags) that are
   // open; empty: those named "open..." (open_boundaries_from_groups).
   std::vector<std::string> open_groups;

@@ -217,7 +217,8 @@ SelectResult select_domain(const SourceData& input, const SelectParams& params) 
   const SourceData& source = unwrap ? unwrapped : input;
   if (params.kind == DomainKind::water && !source.bbox_ring)
     throw Error(ErrorClass::usage, "domain",
-                "--domain water needs --bbox: the water domain is the bbox minus the polygons");
+                "--domain water needs --bbox or --clip: the water domain is the bbox (or the "
+                "area of --clip) minus the polygons");
 
   SelectResult result;
   GeosContext geos;
@@ -300,8 +301,8 @@ SelectResult select_domain(const SourceData& input, const SelectParams& params) 
     throw Error(ErrorClass::input, "domain",
                 file + ": the " + std::string(params.kind == DomainKind::water ? "water" : "land") +
                     " domain is empty" +
-                    (params.kind == DomainKind::water ? " (the bbox is covered by the polygons)"
-                                                      : " (no polygon inside the bbox)"));
+                    (params.kind == DomainKind::water ? " (the area is covered by the polygons)"
+                                                      : " (no polygon inside the area)"));
   sort_by_area(result.polygons);
   return result;
 }

@@ -142,18 +142,27 @@ class Reader {
   // `filter_lines`: a layer of lines is filtered too (the values of --each: those of the
   // lines that reach the bbox); otherwise it is read whole (polygons_from_lines).
   void apply_bbox(bool filter_lines) {
-    if (!p_.bbox) return;
-    const auto& b = *p_.bbox;
-    for (double v : b)
-      if (!std::isfinite(v)) fail(ErrorClass::usage, "--bbox has a value that is not finite");
-    if (!(b[0] < b[2] && b[1] < b[3]))
-      fail(ErrorClass::usage, "--bbox must be XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX");
-    Ring ring = densified_box(b, 64);
+    if (!p_.bbox && !p_.clip) return;
+    Ring ring;
+    std::string what = p_.clip_name;
+    if (p_.clip) {
+      ring = *p_.clip;
+    } else {
+      const auto& b = *p_.bbox;
+      for (double v : b)
+        if (!std::isfinite(v)) fail(ErrorClass::usage, "--bbox has a value that is not finite");
+      if (!(b[0] < b[2] && b[1] < b[3]))
+        fail(ErrorClass::usage,
+             "--bbox must be XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX");
+      ring = densified_box(b, 64);
+      what = "--bbox " + fmt(b[0]) + "," + fmt(b[1]) + "," + fmt(b[2]) + "," + fmt(b[3]);
+    }
     if (!p_.bbox_crs.empty()) {
       CrsInfo bcrs = parse_crs(p_.bbox_crs, "--bbox-crs");
       CrsTransform t(bcrs, out_.crs);
       if (t.transform(ring) >= 0)
-        fail(ErrorClass::crs, "--bbox cannot be transformed from " + quote(bcrs.name) + " to " +
+        fail(ErrorClass::crs, (p_.clip ? what : std::string("--bbox")) +
+                                  " cannot be transformed from " + quote(bcrs.name) + " to " +
                                   quote(out_.crs.name));
     }
     double xmin = 1e300, ymin = 1e300, xmax = -1e300, ymax = -1e300;
@@ -182,11 +191,10 @@ class Reader {
       reach_pole(ext);
       if (std::none_of(filters_.begin(), filters_.end(),
                        [&](const OGREnvelope& f) { return f.Intersects(ext); }))
-        fail(ErrorClass::input, "--bbox " + fmt(b[0]) + "," + fmt(b[1]) + "," + fmt(b[2]) + "," +
-                                    fmt(b[3]) + " misses the data of layer " +
-                                    quote(out_.layer_name) + " (extent " + fmt(ext.MinX) + "," +
-                                    fmt(ext.MinY) + "," + fmt(ext.MaxX) + "," + fmt(ext.MaxY) +
-                                    " in " + out_.crs.name + ")");
+        fail(ErrorClass::input, what + " misses the data of layer " + quote(out_.layer_name) +
+                                    " (extent " + fmt(ext.MinX) + "," + fmt(ext.MinY) + "," +
+                                    fmt(ext.MaxX) + "," + fmt(ext.MaxY) + " in " + out_.crs.name +
+                                    ")");
     }
     // OGR's filter tests the geometry itself, drawn in lon/lat: land round a pole that
     // it does not reach as drawn (reach_pole) would miss a bbox near the pole. Polar
@@ -241,10 +249,12 @@ class Reader {
     std::string selection;
     if (!p_.where.empty()) selection += " --where " + quote(p_.where);
     if (p_.bbox) selection += " --bbox";
-    if (out_.polygons.empty() && p_.empty_bbox_selection_ok && p_.bbox && p_.where.empty() &&
-        (out_.num_features == 0 || num_other == 0)) {
-      out_.warnings.push_back("no polygon of layer " + quote(out_.layer_name) +
-                              " reaches the bbox: the water domain is the whole bbox");
+    if (p_.clip) selection += " --clip";
+    if (out_.polygons.empty() && p_.empty_bbox_selection_ok && (p_.bbox || p_.clip) &&
+        p_.where.empty() && (out_.num_features == 0 || num_other == 0)) {
+      const char* area = p_.clip ? "area of --clip" : "bbox";
+      out_.warnings.push_back("no polygon of layer " + quote(out_.layer_name) + " reaches the " +
+                              area + ": the water domain is the whole " + area);
       return;
     }
     if (out_.polygons.empty() && out_.num_rings_from_lines > 0 && !selection.empty())
@@ -502,6 +512,44 @@ SourceData read_polygons(const ReadParams& params) { return Reader(params).run()
 
 std::vector<SelectionValue> selection_values(const ReadParams& params, const std::string& field) {
   return Reader(params).values(field);
+}
+
+Ring read_clip_area(const std::string& path, const std::string& src_crs, std::string& crs_wkt) {
+  ReadParams params;
+  params.path = path;
+  params.src_crs = src_crs;
+  SourceData area;
+  try {
+    area = read_polygons(params);
+  } catch (const Error& e) {  // named as the option it came from
+    throw Error(e.error_class(), e.stage(), "--clip: " + e.message());
+  }
+  const std::string file = "--clip '" + path + "'";
+  if (area.polygons.size() != 1)
+    throw Error(ErrorClass::input, "read",
+                file + " holds " + std::to_string(area.polygons.size()) +
+                    " polygons: it takes one, the area to mesh (merge them first)");
+  const std::vector<Ring>& rings = area.polygons.front().rings;
+  if (rings.size() != 1)
+    throw Error(ErrorClass::input, "read",
+                file + ": its polygon has " + std::to_string(rings.size() - 1) +
+                    " hole(s): the area to mesh is one ring");
+  const Ring& ring = rings.front();
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const Point2& p : ring)
+    x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+  const double piece = std::max(x1 - x0, y1 - y0) / 64.0;
+  Ring dense;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const Point2 a = ring[i], b = ring[(i + 1) % ring.size()];
+    const int n = std::max(1, static_cast<int>(std::ceil(distance(a, b) / piece)));
+    for (int k = 0; k < n; ++k) {
+      const double t = static_cast<double>(k) / n;
+      dense.push_back({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
+    }
+  }
+  crs_wkt = area.crs.wkt;
+  return dense;
 }
 
 }  // namespace isoquad

@@ -19,6 +19,11 @@ struct ReadParams {
   std::string where;                        // OGR SQL attribute filter (--where)
   std::optional<std::array<double, 4>> bbox;  // xmin, ymin, xmax, ymax (--bbox)
   std::string bbox_crs;                     // CRS of the bbox; empty: the source CRS
+  // An area to read within instead of the bbox (--clip, read_clip_area): a ring in
+  // bbox_crs (or the source CRS), its edges short enough to be taken as straight there.
+  // It selects as the bbox does, and it is the ring a domain is cut by (bbox_ring).
+  std::optional<Ring> clip;
+  std::string clip_name;                    // how messages name it: "--clip 'aoi.gpkg'"
   std::string src_crs;                      // assigns the source CRS (overrides the file's)
   bool repair = false;                      // accept unclosed and degenerate rings, fixing them
   // A --bbox selection (without --where) that matches no polygon gives no polygons and a
@@ -75,5 +80,12 @@ std::vector<SelectionValue> selection_values(const ReadParams& params, const std
 // The bbox rectangle as a ring with `per_side` points per side, so that it bends
 // correctly when projected.
 Ring densified_box(const std::array<double, 4>& bbox, int per_side);
+
+// The area of --clip: the one polygon of a vector file (any format with a CRS, or
+// `src_crs`), without holes, its edges cut into pieces of at most 1/64 of its extent so
+// that they stay straight in its CRS when transformed; `crs_wkt` its CRS. Error(input) for
+// a file of no polygon, of several (their union must be one polygon) or of a polygon with
+// holes.
+Ring read_clip_area(const std::string& path, const std::string& src_crs, std::string& crs_wkt);
 
 }  // namespace isoquad

@@ -22,6 +22,7 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include "core/geometry.h"
 #include "gis/gdal_env.h"
 #include "support/test_support.h"
 #include "support/write_raster.h"
@@ -1585,6 +1586,71 @@ TEST(CliOutputs, QuadsAsGeoJsonAndFlatGeobuf) {
   r = run_cli({"quality", "--mesh", dir.file("m.geojson")}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find(std::to_string(expected.size()) + " quads"), std::string::npos) << r.err;
+}
+
+// --clip: the water within a drawn polygon instead of a bbox. Every vertex of the mesh
+// inside the polygon; the open boundary on its edges, where they cross water; the land
+// inside it land. One polygon only, and not with --bbox.
+TEST(CliOutputs, ClipMeshesTheWaterOfADrawnArea) {
+  TempDir dir;
+  const std::vector<isoquad::Point2> area = {
+      {-4.6, 48.2}, {-4.35, 48.18}, {-4.3, 48.33}, {-4.45, 48.4}, {-4.62, 48.33}};
+  std::string ring;
+  for (std::size_t i = 0; i <= area.size(); ++i) {
+    const isoquad::Point2& p = area[i % area.size()];
+    ring += std::string(i ? "," : "") + "[" + std::to_string(p.x) + "," + std::to_string(p.y) + "]";
+  }
+  write_file(dir.file("area.geojson"), geojson_polygons({"[[" + ring + "]]"}));
+  CliResult r = run_cli({"mesh", water_input(dir), "--domain", "water", "--clip",
+                         dir.file("area.geojson"), "--size", "800", "-q", "-o", dir.file("m.gr3")},
+                        dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 ll = parse_gr3(dir.file("m.ll"));
+  ASSERT_GT(ll.elements.size(), 50u);
+  // Distance in degrees from a point to the area's edges, and whether it is inside.
+  auto to_edge = [&](double x, double y) {
+    double best = 1e9;
+    for (std::size_t i = 0; i < area.size(); ++i) {
+      const isoquad::Point2 &a = area[i], &b = area[(i + 1) % area.size()];
+      const double dx = b.x - a.x, dy = b.y - a.y;
+      const double t =
+          std::clamp(((x - a.x) * dx + (y - a.y) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
+      best = std::min(best, std::hypot(x - a.x - t * dx, y - a.y - t * dy));
+    }
+    return best;
+  };
+  auto inside = [&](double x, double y) {
+    bool in = false;
+    for (std::size_t i = 0, j = area.size() - 1; i < area.size(); j = i++)
+      if ((area[i].y > y) != (area[j].y > y) &&
+          x < (area[j].x - area[i].x) * (y - area[i].y) / (area[j].y - area[i].y) + area[i].x)
+        in = !in;
+    return in;
+  };
+  for (const auto& n : ll.nodes) EXPECT_TRUE(inside(n[0], n[1]) || to_edge(n[0], n[1]) < 1e-4);
+  ASSERT_FALSE(ll.open.empty());
+  std::size_t open_nodes = 0;
+  for (const auto& segment : ll.open)
+    for (int n : segment) {
+      EXPECT_LT(to_edge(ll.nodes[n - 1][0], ll.nodes[n - 1][1]), 1e-4) << n;
+      ++open_nodes;
+    }
+  EXPECT_GT(open_nodes, 20u);
+  // The big island reaches across the area's east edge: its coast there is land, between
+  // the two ends of the one open segment, which runs round the rest of the area; the
+  // small island a land boundary of its own.
+  EXPECT_EQ(ll.open.size(), 1u);
+  EXPECT_EQ(ll.land.size(), 2u);
+  r = run_cli({"mesh", water_input(dir), "--domain", "water", "--clip", dir.file("area.geojson"),
+               "--bbox=-4.6,48.2,-4.4,48.35", "-o", dir.file("x.gpkg")},
+              dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--bbox (with --bbox-crs) or --clip"), std::string::npos) << r.err;
+  r = run_cli({"mesh", water_input(dir), "--domain", "water", "--clip", water_input(dir), "-o",
+               dir.file("x.gpkg")},
+              dir);
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("holds 2 polygons: it takes one"), std::string::npos) << r.err;
 }
 
 // --time-step raises the sizes to what an explicit model needs at that step and Courant
