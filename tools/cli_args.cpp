@@ -90,6 +90,13 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
                   "of --bbox: land inside it, or water: it minus the polygons, its edge open (sea) "
                   "where it is not land")
       ->group("Selection");
+  cmd->add_option("--clip-layer", a.fe.clip_layer,
+                  "Layer of --clip to read (default: its first layer with polygons)")
+      ->group("Selection");
+  cmd->add_option("--clip-where", a.fe.clip_where,
+                  "OGR SQL filter picking the area among the polygons of --clip, e.g. \"name = "
+                  "'Loire'\"")
+      ->group("Selection");
   cmd->add_option("--domain", a.domain_kind,
                   "land: inside the polygons (clipped to --bbox or --clip); water: --bbox (or "
                   "--clip) minus the polygons")

@@ -49,6 +49,8 @@ struct FrontEndOptions {
   // A vector file of one polygon, the area to mesh in place of a bbox (--clip): land
   // inside it, or water: it minus the polygons, its edge open where it is not land.
   std::string clip_path;
+  std::string clip_layer;  // its layer (empty: the first with polygons)
+  std::string clip_where;  // OGR SQL selecting its polygon among several
   // With a Gmsh .msh as INPUT: its physical groups of curves (names or tags) that are
   // open; empty: those named "open..." (open_boundaries_from_groups).
   std::vector<std::string> open_groups;

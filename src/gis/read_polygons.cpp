@@ -514,21 +514,29 @@ std::vector<SelectionValue> selection_values(const ReadParams& params, const std
   return Reader(params).values(field);
 }
 
-Ring read_clip_area(const std::string& path, const std::string& src_crs, std::string& crs_wkt) {
+Ring read_clip_area(const std::string& path, const std::string& layer, const std::string& where,
+                    std::string& crs_wkt) {
   ReadParams params;
   params.path = path;
-  params.src_crs = src_crs;
+  params.layer = layer;
+  params.where = where;
   SourceData area;
   try {
     area = read_polygons(params);
-  } catch (const Error& e) {  // named as the option it came from
-    throw Error(e.error_class(), e.stage(), "--clip: " + e.message());
+  } catch (const Error& e) {  // named as the options it came from
+    std::string message = e.message();
+    for (std::size_t at = message.find("--where"); at != std::string::npos;
+         at = message.find("--where", at + 12))
+      message.replace(at, 7, "--clip-where");
+    throw Error(e.error_class(), e.stage(), "--clip: " + message);
   }
   const std::string file = "--clip '" + path + "'";
   if (area.polygons.size() != 1)
     throw Error(ErrorClass::input, "read",
-                file + " holds " + std::to_string(area.polygons.size()) +
-                    " polygons: it takes one, the area to mesh (merge them first)");
+                file + (where.empty() ? "" : " --clip-where " + quote(where)) + " holds " +
+                    std::to_string(area.polygons.size()) +
+                    " polygons: it takes one, the area to mesh (merge them first, or pick one "
+                    "with --clip-where)");
   const std::vector<Ring>& rings = area.polygons.front().rings;
   if (rings.size() != 1)
     throw Error(ErrorClass::input, "read",

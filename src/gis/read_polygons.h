@@ -81,11 +81,12 @@ std::vector<SelectionValue> selection_values(const ReadParams& params, const std
 // correctly when projected.
 Ring densified_box(const std::array<double, 4>& bbox, int per_side);
 
-// The area of --clip: the one polygon of a vector file (any format with a CRS, or
-// `src_crs`), without holes, its edges cut into pieces of at most 1/64 of its extent so
-// that they stay straight in its CRS when transformed; `crs_wkt` its CRS. Error(input) for
-// a file of no polygon, of several (their union must be one polygon) or of a polygon with
-// holes.
-Ring read_clip_area(const std::string& path, const std::string& src_crs, std::string& crs_wkt);
+// The area of --clip: the one polygon of a vector file (any format with a CRS), of its
+// layer `layer` (empty: the first with polygons) and its features that `where` selects
+// (OGR SQL; empty: all), without holes, its edges cut into pieces of at most 1/64 of its
+// extent so that they stay straight in its CRS when transformed; `crs_wkt` its CRS.
+// Error(input) for no polygon, several or a polygon with holes.
+Ring read_clip_area(const std::string& path, const std::string& layer, const std::string& where,
+                    std::string& crs_wkt);
 
 }  // namespace isoquad

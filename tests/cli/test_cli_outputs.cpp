@@ -1651,6 +1651,21 @@ TEST(CliOutputs, ClipMeshesTheWaterOfADrawnArea) {
               dir);
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.err.find("holds 2 polygons: it takes one"), std::string::npos) << r.err;
+  // One of several picked by --clip-where: the drawn area among others gives the same
+  // mesh, byte for byte.
+  write_file(dir.file("areas.geojson"),
+             geojson_polygons(
+                 {"[[[-4.7,48.1],[-4.69,48.1],[-4.69,48.11],[-4.7,48.1]]]", "[[" + ring + "]]"}));
+  r = run_cli({"mesh", water_input(dir), "--domain", "water", "--clip", dir.file("areas.geojson"),
+               "--clip-where", "name = 'f1'", "--size", "800", "-q", "-o", dir.file("f1.gr3")},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_file(dir.file("f1.gr3")), read_file(dir.file("m.gr3")));
+  r = run_cli({"mesh", water_input(dir), "--domain", "water", "--clip", dir.file("areas.geojson"),
+               "--clip-where", "name = 'f9'", "-o", dir.file("x.gpkg")},
+              dir);
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("--clip-where 'name = 'f9''"), std::string::npos) << r.err;
 }
 
 // --time-step raises the sizes to what an explicit model needs at that step and Courant
