@@ -367,6 +367,7 @@ std::vector<EachRegion> each_regions(const CommonArgs& a, const FieldArgs& f,
                 "'" + base.fe.read.path +
                     "' is a mesh, whose outline is the domain: --each selects from a vector "
                     "file's features");
+  read_clip(base.fe, base.fe.read);  // the values of the features that reach the area
   const std::vector<SelectionValue> selected = selection_values(base.fe.read, field);
   if (selected.empty())
     throw Error(ErrorClass::input, "read",

@@ -185,6 +185,18 @@ SourceData read_mesh_source(const FrontEndOptions& options,
 
 }  // namespace
 
+void read_clip(const FrontEndOptions& options, ReadParams& read) {
+  if ((!options.clip_layer.empty() || !options.clip_where.empty()) && options.clip_path.empty())
+    throw Error(ErrorClass::usage, "options", "--clip-layer and --clip-where need --clip");
+  if (options.clip_path.empty()) return;
+  if (read.bbox || !read.bbox_crs.empty())
+    throw Error(ErrorClass::usage, "options",
+                "give the area once: --bbox (with --bbox-crs) or --clip");
+  read.clip =
+      read_clip_area(options.clip_path, options.clip_layer, options.clip_where, read.bbox_crs);
+  read.clip_name = "--clip '" + options.clip_path + "'";
+}
+
 double open_line_tolerance(const FrontEndResult& result) {
   double extent = 0.0;
   for (const auto& line : result.open_boundary_lines)
@@ -200,16 +212,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   progress.report("read", 0.0);
   ReadParams read = options.read;
   read.empty_bbox_selection_ok = options.kind == DomainKind::water;
-  if ((!options.clip_layer.empty() || !options.clip_where.empty()) && options.clip_path.empty())
-    throw Error(ErrorClass::usage, "options", "--clip-layer and --clip-where need --clip");
-  if (!options.clip_path.empty()) {
-    if (read.bbox || !read.bbox_crs.empty())
-      throw Error(ErrorClass::usage, "options",
-                  "give the area once: --bbox (with --bbox-crs) or --clip");
-    read.clip =
-        read_clip_area(options.clip_path, options.clip_layer, options.clip_where, read.bbox_crs);
-    read.clip_name = "--clip '" + options.clip_path + "'";
-  }
+  read_clip(options, read);
   std::vector<std::vector<Point2>> mesh_open_lines;
   const bool from_mesh = options.source.has_value() || is_mesh_file(read.path);
   if (!options.open_groups.empty() && (options.source || !from_mesh))

@@ -138,6 +138,11 @@ struct FrontEndResult {
 FrontEndResult build_planar_domain(const FrontEndOptions& options,
                                    const Progress& progress = Progress());
 
+// The area of --clip (options.clip_path) into `read` (its ring, and its CRS as
+// bbox_crs); nothing without --clip. Error(usage) with --bbox or --bbox-crs, or for
+// --clip-layer or --clip-where without --clip; read_clip_area's errors.
+void read_clip(const FrontEndOptions& options, ReadParams& read);
+
 // open_boundary_tolerance_m plus the rounding of the lines' coordinates (1e-7 of their
 // largest): the distance within which a point lies on the open boundary's lines, even
 // where the tolerance is 0 (a mesh's outline, not simplified, and its open boundaries).

@@ -1666,6 +1666,15 @@ TEST(CliOutputs, ClipMeshesTheWaterOfADrawnArea) {
               dir);
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.err.find("--clip-where 'name = 'f9''"), std::string::npos) << r.err;
+  // --each over the features that reach the area only: the big island, cut to it.
+  write_file(dir.file("east.geojson"),
+             geojson_polygons({"[[[-4.47,48.24],[-4.36,48.24],[-4.36,48.32],[-4.47,48.24]]]"}));
+  r = run_cli({"mesh", water_input(dir), "--clip", dir.file("east.geojson"), "--each", "name",
+               "--size", "400", "-q", "-o", dir.file("each_{}.gr3")},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("each_f0.gr3")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("each_f1.gr3")));
 }
 
 // --time-step raises the sizes to what an explicit model needs at that step and Courant
