@@ -107,10 +107,11 @@ int run_domain(CommonArgs& a) {
   // Fail before any work when an output cannot be written.
   check_output_path(a.output, a.overwrite);
   check_report_path(a);
-  const std::string ext = std::filesystem::path(a.output).extension().string();
-  if (ext != ".gpkg" && ext != ".GPKG")
+  if (!is_domain_output(a.output))
     throw Error(ErrorClass::usage, "options",
-                "'" + a.output + "': the domain is written as a GeoPackage; use a .gpkg name");
+                "'" + a.output +
+                    "': the domain is written as a GeoPackage (.gpkg), a FlatGeobuf (.fgb) or a "
+                    "GeoJSON in longitudes and latitudes (.geojson, .json)");
 
   const auto t0 = std::chrono::steady_clock::now();
   FrontEndResult r = build_planar_domain(a.fe, Progress(make_progress(a.quiet)));
@@ -118,8 +119,9 @@ int run_domain(CommonArgs& a) {
   OutputSet set;
   WriteDomainParams wp;
   wp.path = set.add(a.output, a.overwrite);
+  wp.final_path = a.output;
   wp.overwrite = true;
-  write_domain_gpkg(r.domain, wp);
+  write_domain(r.domain, wp);
   const std::string report = domain_summary_json(r.summary);
   commit_with_report(a, set, report);
   const double seconds =

@@ -488,3 +488,47 @@ TEST(Cli, SameInputGivesByteIdenticalOutput) {
   }
   EXPECT_EQ(read_file(dir.file("a.gpkg")), read_file(dir.file("b.gpkg")));
 }
+
+// The domain as FlatGeobuf (its CRS) and GeoJSON (longitudes and latitudes): the same
+// components, holes and areas as the GeoPackage's, valid, the GeoJSON within the bbox.
+TEST(Cli, DomainAsFlatGeobufAndGeoJson) {
+  TempDir dir;
+  for (const char* name : {"sea.gpkg", "sea.fgb", "sea.geojson"}) {
+    const CliResult r =
+        run_cli({"domain", sample("brittany_land.geojson"), "-o", dir.file(name), "--domain",
+                 "water", "--bbox", "-5.3,46.8,-1.95,49.35", "--size", "2000", "-q"},
+                dir);
+    ASSERT_EQ(r.exit_code, 0) << name << ": " << r.err;
+  }
+  const DomainLayer gpkg = read_domain_layer(dir.file("sea.gpkg"));
+  ASSERT_GT(gpkg.area_m2, 1e10);
+  for (const char* name : {"sea.fgb", "sea.geojson"}) {
+    SCOPED_TRACE(name);
+    const DomainLayer d = read_domain_layer(dir.file(name));
+    EXPECT_TRUE(d.valid);
+    EXPECT_DOUBLE_EQ(d.area_m2, gpkg.area_m2);
+    GDALDataset* ds = static_cast<GDALDataset*>(
+        GDALOpenEx(dir.file(name).c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+    ASSERT_NE(ds, nullptr);
+    OGRLayer* layer = ds->GetLayerByName("domain");
+    ASSERT_NE(layer, nullptr);
+    ASSERT_NE(layer->GetSpatialRef(), nullptr);
+    const bool geojson = std::string(name) == "sea.geojson";
+    EXPECT_EQ(layer->GetSpatialRef()->IsGeographic(), geojson);
+    OGREnvelope e;
+    ASSERT_EQ(layer->GetExtent(&e), OGRERR_NONE);
+    if (geojson) {
+      EXPECT_NEAR(e.MinX, -5.3, 1e-6);
+      EXPECT_NEAR(e.MaxX, -1.95, 1e-6);
+      EXPECT_NEAR(e.MinY, 46.8, 1e-6);
+      EXPECT_NEAR(e.MaxY, 49.35, 1e-6);
+    }
+    int holes = 0;
+    for (auto& f : *layer) holes += f->GetFieldAsInteger("num_holes");
+    EXPECT_GT(holes, 0);
+    GDALClose(ds);
+  }
+  const CliResult r = run_cli({"domain", sample("corsica.shp"), "-o", dir.file("c.shp")}, dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find(".gpkg"), std::string::npos) << r.err;
+}
