@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 
 #include "core/error.h"
 #include "gis/gdal_env.h"
@@ -220,6 +222,15 @@ bool crs_area_of_use(const CrsInfo& crs, double bounds[4]) {
   const char* name = nullptr;
   return srs->GetAreaOfUse(&bounds[0], &bounds[1], &bounds[2], &bounds[3], &name) &&
          bounds[0] > -1000.0;
+}
+
+int epsg_code(const std::string& wkt) {
+  OGRSpatialReference srs;
+  if (wkt.empty() || srs.importFromWkt(wkt.c_str()) != OGRERR_NONE) return 0;
+  const char* authority = srs.GetAuthorityName(nullptr);
+  const char* code = srs.GetAuthorityCode(nullptr);
+  if (!authority || !code || std::strcmp(authority, "EPSG") != 0) return 0;
+  return std::atoi(code);
 }
 
 }  // namespace isoquad

@@ -36,6 +36,8 @@ std::string crs_proj_string(const CrsInfo& crs);
 std::string crs_esri_wkt(const CrsInfo& crs);
 // Longitudes and latitudes on WGS 84 (EPSG:4326, either axis order).
 bool crs_is_wgs84_lonlat(const CrsInfo& crs);
+// The EPSG code of a CRS (its WKT) that names one, else 0.
+int epsg_code(const std::string& wkt);
 
 // The automatic meshing CRS: an oblique stereographic projection (conformal, so
 // squares stay squares) centred on the domain, with its scale factor chosen so that

@@ -273,7 +273,17 @@ void check_mesh_outputs(const std::vector<MeshOutput>& outputs, const MeshWriteO
     throw Error(ErrorClass::usage, "options", "--msh-groups must be kind or segment");
   if (options.msh_version != "4.1" && options.msh_version != "2.2")
     throw Error(ErrorClass::usage, "options", "--msh-version must be 4.1 or 2.2");
-  if (!options.output_crs.empty()) parse_crs(options.output_crs, "--output-crs");
+  if (!options.output_crs.empty()) {
+    const CrsInfo crs = parse_crs(options.output_crs, "--output-crs");
+    // A GeoJSON names its CRS by an EPSG code, and is read as lon/lat without one.
+    for (const MeshOutput& o : outputs)
+      if (mesh_output_format(o) == MeshFormat::geojson && epsg_code(crs.wkt) == 0)
+        throw Error(ErrorClass::usage, "options",
+                    "'" + o.path + "': a GeoJSON names its CRS by an EPSG code, and '" +
+                        options.output_crs +
+                        "' (--output-crs) has none: readers would take its coordinates for "
+                        "longitudes and latitudes; write .fgb or .gpkg, or give an EPSG CRS");
+  }
   OutputSet probe;  // checks every path (exists, directory writable, given twice)
   for (const MeshOutput& o : outputs) {
     for (const std::string& f : mesh_output_files(o)) probe.add(f, o.overwrite);

@@ -11,6 +11,7 @@
 #include <map>
 
 #include "core/error.h"
+#include "gis/crs.h"
 #include "io/mesh_formats.h"
 
 namespace isoquad {
@@ -117,16 +118,6 @@ void write_cf_grid_mapping(NcFile& nc, int var, const std::string& wkt) {
     nc.real(var, "latitude_of_projection_origin", parm(SRS_PP_LATITUDE_OF_ORIGIN));
     false_origin();
   }
-}
-
-// The EPSG code of a CRS that has one, else 0.
-int epsg_code(const std::string& wkt) {
-  OGRSpatialReference srs;
-  if (wkt.empty() || srs.importFromWkt(wkt.c_str()) != OGRERR_NONE) return 0;
-  const char* authority = srs.GetAuthorityName(nullptr);
-  const char* code = srs.GetAuthorityCode(nullptr);
-  if (!authority || !code || std::strcmp(authority, "EPSG") != 0) return 0;
-  return std::atoi(code);
 }
 
 }  // namespace

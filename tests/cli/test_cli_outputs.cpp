@@ -1585,7 +1585,19 @@ TEST(CliOutputs, QuadsAsGeoJsonAndFlatGeobuf) {
   EXPECT_TRUE(read_file(dir.file("m.fgb")) == first_fgb);
   r = run_cli({"quality", "--mesh", dir.file("m.geojson")}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.err.find(std::to_string(expected.size()) + " quads"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(std::to_string(expected.size()) + " quads"), std::string::npos)
+      << r.err;  // Another CRS named by its EPSG code in the file; one without a code refused
+                 // before
+  // any meshing (a reader would take its coordinates for longitudes and latitudes).
+  r = mesh_box_800(dir, {"-o", dir.file("l93.geojson"), "--output-crs", "EPSG:2154"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(read_file(dir.file("l93.geojson")).find("urn:ogc:def:crs:EPSG::2154"),
+            std::string::npos);
+  r = mesh_box_800(dir, {"-o", dir.file("custom.geojson"), "--output-crs",
+                         "+proj=stere +lat_0=48 +lon_0=-4 +datum=WGS84"});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("names its CRS by an EPSG code"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("custom.geojson")));
 }
 
 // --clip: the water within a drawn polygon instead of a bbox. Every vertex of the mesh
