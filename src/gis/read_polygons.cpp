@@ -543,6 +543,20 @@ Ring read_clip_area(const std::string& path, const std::string& layer, const std
                 file + ": its polygon has " + std::to_string(rings.size() - 1) +
                     " hole(s): the area to mesh is one ring");
   const Ring& ring = rings.front();
+  {
+    OGRLinearRing lr;
+    for (const Point2& p : ring) lr.addPoint(p.x, p.y);
+    lr.closeRings();
+    OGRPolygon polygon;
+    polygon.addRing(&lr);
+    GdalErrorCapture capture;  // GEOS's reason, for the message
+    if (!polygon.IsValid()) {
+      const std::string reason = capture.last_message();
+      throw Error(ErrorClass::input, "read",
+                  file + ": its polygon is invalid" + (reason.empty() ? "" : " (" + reason + ")") +
+                      ": draw it again, or fix it (QGIS: Fix geometries)");
+    }
+  }
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
   for (const Point2& p : ring)
     x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);

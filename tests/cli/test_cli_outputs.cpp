@@ -1678,6 +1678,17 @@ TEST(CliOutputs, ClipMeshesTheWaterOfADrawnArea) {
               dir);
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.err.find("--clip-where 'name = 'f9''"), std::string::npos) << r.err;
+  // A ring that crosses itself, named with where.
+  write_file(
+      dir.file("bowtie.geojson"),
+      geojson_polygons({"[[[-4.6,48.2],[-4.3,48.35],[-4.3,48.2],[-4.6,48.35],[-4.6,48.2]]]"}));
+  r = run_cli({"mesh", water_input(dir), "--domain", "water", "--clip", dir.file("bowtie.geojson"),
+               "-o", dir.file("x.gpkg")},
+              dir);
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("its polygon is invalid (Self-intersection at or near point -4.4"),
+            std::string::npos)
+      << r.err;
   // --each over the features that reach the area only: the big island, cut to it.
   write_file(dir.file("east.geojson"),
              geojson_polygons({"[[[-4.47,48.24],[-4.36,48.24],[-4.36,48.32],[-4.47,48.24]]]"}));
