@@ -66,13 +66,14 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
           (a.input_optional ? "; leave it out to measure against the mesh's own outline" : ""));
   if (!a.input_optional) input->required();
   CLI::Option* output =
-      cmd->add_option(
-             "-o,--output", a.outputs,
-             a.output_optional ? "Also write the measured quads with their metrics (.gpkg or .vtu)"
-             : a.many_outputs  ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, "
-                                 ".pli, .slf, .14; the quads alone: .geojson, .fgb); repeat for "
-                                 "several"
-                               : "Output file (.gpkg)")
+      cmd->add_option("-o,--output", a.outputs,
+                      a.output_optional ? "Also write the measured quads with their metrics "
+                                          "(.gpkg, .vtu, .geojson or .fgb)"
+                      : a.many_outputs
+                          ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, "
+                            ".pli, .slf, .14; the quads alone: .geojson, .fgb); repeat for "
+                            "several"
+                          : "Output file (.gpkg)")
           ->expected(1)
           ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   if (!a.output_optional) output->required();

@@ -251,10 +251,10 @@ RegionOutcome run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
   finish_front_end_args(a);
   std::vector<MeshOutput> outputs;
   for (const std::string& o : a.outputs) {
-    const std::string ext = std::filesystem::path(o).extension().string();
-    if (ext != ".gpkg" && ext != ".vtu")
+    const std::string ext = lower_case(std::filesystem::path(o).extension().string());
+    if (ext != ".gpkg" && ext != ".vtu" && ext != ".geojson" && ext != ".fgb")
       throw Error(ErrorClass::usage, "options",
-                  "'" + o + "': the measured quads are written as .gpkg or .vtu");
+                  "'" + o + "': the measured quads are written as .gpkg, .vtu, .geojson or .fgb");
     outputs.push_back({o, "", a.overwrite});
   }
   if (!outputs.empty()) check_mesh_outputs(outputs, MeshWriteOptions());

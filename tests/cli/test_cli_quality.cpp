@@ -146,20 +146,24 @@ TEST(CliQuality, IsoquadsOwnOutputsMeasureAsTheMeshReportSays) {
   expect_same_quality(mesh_report, read_file(dir.file("cw.json")), 1e-6, "clockwise .2dm");
 
   // -o and --plot: the measured quads with their metrics, as the mesh job writes them.
-  const CliResult out = run_cli(
-      quality_args(dir.file("m.gr3"), {"-o", dir.file("q.gpkg"), "--plot", dir.file("q.png")}),
-      dir);
+  const CliResult out =
+      run_cli(quality_args(dir.file("m.gr3"), {"-o", dir.file("q.gpkg"), "-o",
+                                               dir.file("q.geojson"), "--plot", dir.file("q.png")}),
+              dir);
   ASSERT_EQ(out.exit_code, 0) << out.err;
   EXPECT_TRUE(std::filesystem::exists(dir.file("q.png")));
   isoquad::ensure_gdal_registered();
-  GDALDataset* ds = static_cast<GDALDataset*>(
-      GDALOpenEx(dir.file("q.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
-  ASSERT_NE(ds, nullptr);
-  OGRLayer* quads = ds->GetLayerByName("quads");
-  ASSERT_NE(quads, nullptr);
-  EXPECT_EQ(static_cast<double>(quads->GetFeatureCount()), report_number(mesh_report, "num_quads"));
-  EXPECT_GE(quads->GetLayerDefn()->GetFieldIndex("size_ratio"), 0);
-  GDALClose(ds);
+  for (const char* name : {"q.gpkg", "q.geojson"}) {
+    GDALDataset* ds = static_cast<GDALDataset*>(
+        GDALOpenEx(dir.file(name).c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+    ASSERT_NE(ds, nullptr) << name;
+    OGRLayer* quads = ds->GetLayerByName("quads");
+    ASSERT_NE(quads, nullptr) << name;
+    EXPECT_EQ(static_cast<double>(quads->GetFeatureCount()),
+              report_number(mesh_report, "num_quads"));
+    EXPECT_GE(quads->GetLayerDefn()->GetFieldIndex("size_ratio"), 0);
+    GDALClose(ds);
+  }
 }
 
 // A mesh the gmsh binary makes of a 10 x 6 km rectangle (Frontal-Delaunay for quads,
