@@ -121,6 +121,7 @@ int run_domain(CommonArgs& a) {
   wp.path = set.add(a.output, a.overwrite);
   wp.final_path = a.output;
   wp.overwrite = true;
+  wp.open_parts = &r.open_boundary_parts;
   write_domain(r.domain, wp);
   const std::string report = domain_summary_json(r.summary);
   commit_with_report(a, set, report);
@@ -128,7 +129,14 @@ int run_domain(CommonArgs& a) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (!a.quiet) {
     std::cerr << format_domain_summary(r.summary);
-    std::cerr << "output:       " << a.output << " (layer 'domain')\n";
+    std::cerr << "output:       " << a.output << " (layer 'domain'"
+              << (r.open_boundary_parts.empty() ||
+                          lower_case(std::filesystem::path(a.output).extension().string()) !=
+                              ".gpkg"
+                      ? ""
+                      : ", and 'open_boundary': " + std::to_string(r.open_boundary_parts.size()) +
+                            " line(s)")
+              << ")\n";
     std::fprintf(stderr, "time:         %.3f s\n", seconds);
     for (const std::string& w : r.summary.warnings) std::cerr << "isoquad: warning: " << w << "\n";
   }

@@ -145,6 +145,43 @@ void add_domain_chords(FrontEndResult& result, const CrsInfo& source_crs,
   }
 }
 
+// The runs of the domain's rings along the open lines (FrontEndResult::open_boundary_parts):
+// an edge is open when its ends and its middle lie within the tolerance of the lines.
+std::vector<std::vector<Point2>> open_parts(const FrontEndResult& result) {
+  const double tolerance = open_line_tolerance(result);
+  const PolylineIndex index(result.open_boundary_lines, result.open_boundary_slack_m);
+  std::vector<std::vector<Point2>> parts;
+  auto visit = [&](const Ring& ring) {
+    const std::size_t n = ring.size();
+    std::vector<char> open(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point2 &a = ring[i], &b = ring[(i + 1) % n];
+      open[i] = index.near(a, tolerance) && index.near(b, tolerance) &&
+                index.near({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}, tolerance);
+    }
+    std::size_t start = 0;  // a land edge, so that no run wraps round the ring's start
+    while (start < n && open[start]) ++start;
+    if (start == n) {  // open all round
+      std::vector<Point2> whole(ring.begin(), ring.end());
+      whole.push_back(ring.front());
+      parts.push_back(std::move(whole));
+      return;
+    }
+    for (std::size_t k = 1; k <= n; ++k) {
+      const std::size_t i = (start + k) % n;
+      if (!open[i]) continue;
+      std::vector<Point2> run{ring[i]};
+      for (; k <= n && open[(start + k) % n]; ++k) run.push_back(ring[(start + k + 1) % n]);
+      parts.push_back(std::move(run));
+    }
+  };
+  for (const Polygon& polygon : result.domain.polygons) {
+    visit(polygon.outer);
+    for (const Ring& hole : polygon.holes) visit(hole);
+  }
+  return parts;
+}
+
 // A mesh file given as INPUT (hgrid.gr3, a .2dm...): its outline as the polygons, and a
 // .gr3's open boundaries as lines in its CRS (`open_lines`).
 SourceData read_mesh_source(const FrontEndOptions& options,
@@ -463,6 +500,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     }
   }
 
+  if (!result.open_boundary_lines.empty()) result.open_boundary_parts = open_parts(result);
   s.num_components = result.domain.polygons.size();
   s.num_holes = num_holes(result.domain);
   s.num_rings = s.num_components + s.num_holes;

@@ -133,6 +133,10 @@ struct FrontEndResult {
   // its line in the file.
   std::vector<std::vector<Point2>> align_lines;
   std::vector<int> align_line_of;
+  // The domain's boundary where it is open, before meshing: runs of its edges whose
+  // ends and middle lie on open_boundary_lines (within open_line_tolerance), each run a
+  // polyline in the meshing CRS, the domain on its left; empty without open lines.
+  std::vector<std::vector<Point2>> open_boundary_parts;
 };
 
 FrontEndResult build_planar_domain(const FrontEndOptions& options,

@@ -66,6 +66,16 @@ void write_domain(const Domain& domain, const WriteDomainParams& params) {
                           FieldValue::integer(static_cast<long long>(p.holes.size())),
                           FieldValue::integer(static_cast<long long>(num_vertices(p)))});
   }
+  if (driver == "GPKG" && params.open_parts && !params.open_parts->empty()) {
+    w.begin_layer("open_boundary", GeometryKind::line,
+                  {{"id", FieldType::integer}, {"length_m", FieldType::real}});
+    for (std::size_t k = 0; k < params.open_parts->size(); ++k) {
+      const std::vector<Point2>& line = (*params.open_parts)[k];
+      double length = 0.0;
+      for (std::size_t i = 0; i + 1 < line.size(); ++i) length += distance(line[i], line[i + 1]);
+      w.add_line(line, {FieldValue::integer(static_cast<long long>(k)), FieldValue::real(length)});
+    }
+  }
   w.commit();
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "core/geometry.h"
 
@@ -15,13 +16,17 @@ struct WriteDomainParams {
   std::string final_path;
   std::string layer = "domain";
   bool overwrite = false;
+  // The boundary's open parts (FrontEndResult::open_boundary_parts), written in a
+  // GeoPackage as the layer `open_boundary` (lines: id, length_m) when not empty.
+  const std::vector<std::vector<Point2>>* open_parts = nullptr;
 };
 
 // Whether the path names a format write_domain writes (.gpkg, .fgb, .geojson, .json).
 bool is_domain_output(const std::string& path);
 
 // One feature per component: polygon with holes, fields component, area_m2,
-// perimeter_m, num_holes, num_vertices (measured in the domain's CRS). Written
+// perimeter_m, num_holes, num_vertices (measured in the domain's CRS); in a GeoPackage
+// also the open parts. Written
 // atomically. Throws Error(output), Error(crs) when a vertex has no longitude and
 // latitude for a GeoJSON.
 void write_domain(const Domain& domain, const WriteDomainParams& params);

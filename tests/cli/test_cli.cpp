@@ -502,6 +502,25 @@ TEST(Cli, DomainAsFlatGeobufAndGeoJson) {
   }
   const DomainLayer gpkg = read_domain_layer(dir.file("sea.gpkg"));
   ASSERT_GT(gpkg.area_m2, 1e10);
+  // The GeoPackage's open parts: the bbox's sides where they cross water, three runs
+  // between the coast's ends on the sides (the bbox is 250 by 284 km).
+  {
+    GDALDataset* ds = static_cast<GDALDataset*>(
+        GDALOpenEx(dir.file("sea.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+    ASSERT_NE(ds, nullptr);
+    OGRLayer* open = ds->GetLayerByName("open_boundary");
+    ASSERT_NE(open, nullptr);
+    EXPECT_EQ(open->GetFeatureCount(), 3);
+    double length = 0;
+    for (auto& f : *open) {
+      const double l = f->GetFieldAsDouble("length_m");
+      EXPECT_NEAR(f->GetGeometryRef()->toLineString()->get_Length(), l, 1e-6 * l);
+      length += l;
+    }
+    EXPECT_GT(length, 500e3);
+    EXPECT_LT(length, 1070e3);
+    GDALClose(ds);
+  }
   for (const char* name : {"sea.fgb", "sea.geojson"}) {
     SCOPED_TRACE(name);
     const DomainLayer d = read_domain_layer(dir.file(name));
