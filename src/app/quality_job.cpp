@@ -229,16 +229,21 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
       r.triangle_max_angle_deg = std::max(r.triangle_max_angle_deg, angle * 180 / M_PI);
     }
   }
-  // A triangle mesh's regularity: its interior vertices (on no side of one triangle) in
-  // six triangles.
-  if (!triangles.empty() && m.quads.empty()) {
+  // The regularity of a mesh with triangles: its interior vertices (on no side of one
+  // element) whose elements' ideal angles (60 degrees a triangle's, 90 a quad's) make 360:
+  // six triangles, four quads, or three triangles and two quads.
+  if (!triangles.empty()) {
     std::vector<std::array<int, 2>> sides;
-    std::vector<int> degree(m.points.size(), 0);
-    for (const auto& t : triangles)
-      for (int i = 0; i < 3; ++i) {
-        ++degree[t[i]];
-        sides.push_back({std::min(t[i], t[(i + 1) % 3]), std::max(t[i], t[(i + 1) % 3])});
+    std::vector<int> sixties(m.points.size(), 0);  // the ideal angles in units of 30 degrees
+    auto add = [&](const int* corners, int n) {
+      for (int i = 0; i < n; ++i) {
+        sixties[corners[i]] += n == 3 ? 2 : 3;
+        const int a = corners[i], b = corners[(i + 1) % n];
+        sides.push_back({std::min(a, b), std::max(a, b)});
       }
+    };
+    for (const auto& t : triangles) add(t.data(), 3);
+    for (const auto& q : m.quads) add(q.data(), 4);
     std::sort(sides.begin(), sides.end());
     std::vector<char> boundary(m.points.size(), 0);
     for (std::size_t i = 0; i < sides.size();) {
@@ -249,7 +254,7 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
     }
     std::size_t interior = 0, regular = 0;
     for (std::size_t v = 0; v < m.points.size(); ++v)
-      if (degree[v] > 0 && !boundary[v]) ++interior, regular += degree[v] == 6;
+      if (sixties[v] > 0 && !boundary[v]) ++interior, regular += sixties[v] == 12;
     r.triangle_share_regular_interior = interior ? static_cast<double>(regular) / interior : 0.0;
   }
   if (!triangle_sizes.empty()) {
@@ -354,7 +359,10 @@ std::string format_quality_job_summary(const QualityJobResult& r) {
                          100 * r.triangle_share_regular_interior);
   out += format_quad_connectivity_lines(q, parts_of(r));
   if (r.num_triangles > 0 && !r.quads.quads.empty())
-    out += "              (the quads' regularity not measured: the mesh has triangles)\n";
+    out += printf_string(
+        "regularity:   %.1f%% of interior vertices regular (ideal angles, 60 deg a triangle's "
+        "and 90 a quad's, summing to 360)\n",
+        100 * r.triangle_share_regular_interior);
   return out;
 }
 
@@ -392,8 +400,10 @@ std::string quality_job_report_json(const QualityJobResult& r, const std::string
         .value("triangle_max_angle_deg", r.triangle_max_angle_deg)
         .value("triangle_size_ratio_median", r.triangle_size_ratio_median)
         .value("triangle_share_size_ratio_08_125", r.triangle_share_size_08_125);
-  if (r.num_triangles > 0 && r.quads.quads.empty())
-    j.value("triangle_share_regular_interior", r.triangle_share_regular_interior);
+  if (r.num_triangles > 0)  // by the elements' ideal angles when the mesh has quads too
+    j.value(
+        r.quads.quads.empty() ? "triangle_share_regular_interior" : "mixed_share_regular_interior",
+        r.triangle_share_regular_interior);
   add_quality_values(j, r.quality, parts_of(r));
   if (r.fields.num_aligned_vertices > 0 && !r.quads.quads.empty()) add_align_values(j, r.quality);
   j.end_object();

@@ -39,7 +39,9 @@ struct QualityJobResult {
   double triangle_min_angle_deg = 0, triangle_max_angle_deg = 0;
   // The side of the equilateral triangle of a triangle's area over h at its centroid.
   double triangle_size_ratio_median = 0, triangle_share_size_08_125 = 0;
-  // With triangles alone: the interior vertices in six triangles.
+  // With triangles: the interior vertices whose elements' ideal angles (60 degrees a
+  // triangle's, 90 a quad's) make 360 (six triangles alone; or four quads, or three
+  // triangles and two quads, in a mesh of both).
   double triangle_share_regular_interior = 0;
   std::size_t num_skipped_elements = 0;  // lines and points of a .msh
   // Without INPUT (an empty read path): the loops of the mesh's outline, its domain.

@@ -117,6 +117,13 @@ TEST(CliQuality, IsoquadsOwnOutputsMeasureAsTheMeshReportSays) {
       ASSERT_EQ(r.exit_code, 0) << file << r.err;
       const std::string q = read_file(report);
       EXPECT_GT(report_number(q, "num_triangles"), 0) << file;
+      // Regularity by the elements' ideal angles: cutting a quad in two makes no vertex
+      // regular (it changes a corner's 90 degrees into 60 or 120), and the .gr3 cuts few.
+      const bool mixed = std::string(file) == "s.gr3";
+      const double regular = report_number(
+          q, mixed ? "mixed_share_regular_interior" : "triangle_share_regular_interior");
+      EXPECT_LE(regular, report_number(mesh_report, "share_regular_interior")) << file;
+      EXPECT_GT(regular, mixed ? 0.7 : 0.1) << file;
       EXPECT_EQ(report_number(q, "num_boundary_vertices_off_domain"), 0) << file;
       for (const char* key :
            {"boundary_departure_max_m", "boundary_departure_p95_h", "mesh_area_m2"})
