@@ -501,6 +501,10 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   }
 
   if (!result.open_boundary_lines.empty()) result.open_boundary_parts = open_parts(result);
+  s.num_open_parts = result.open_boundary_parts.size();
+  for (const auto& part : result.open_boundary_parts)
+    for (std::size_t i = 0; i + 1 < part.size(); ++i)
+      s.open_parts_length_m += distance(part[i], part[i + 1]);
   s.num_components = result.domain.polygons.size();
   s.num_holes = num_holes(result.domain);
   s.num_rings = s.num_components + s.num_holes;

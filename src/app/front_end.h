@@ -101,6 +101,9 @@ struct DomainSummary {
   std::string open_boundary_path;
   std::size_t open_boundary_num_lines = 0;
   double open_boundary_length_m = 0.0;
+  // The boundary's open parts (FrontEndResult::open_boundary_parts): how many, how long.
+  std::size_t num_open_parts = 0;
+  double open_parts_length_m = 0.0;
   // --align: the file and its lines.
   std::string align_path;
   std::size_t align_num_lines = 0;

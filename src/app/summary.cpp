@@ -66,6 +66,9 @@ std::string format_domain_summary(const DomainSummary& s) {
     os << "open lines:   " << s.open_boundary_path << ": " << s.open_boundary_num_lines
        << " line(s), along " << num(s.open_boundary_length_m / 1e3, 6)
        << " km of the domain's boundary\n";
+  if (s.num_open_parts > 0)
+    os << "open parts:   " << s.num_open_parts << " run(s) of the boundary, "
+       << num(s.open_parts_length_m / 1e3, 6) << " km, open (sea); the rest land\n";
   return os.str();
 }
 
@@ -110,6 +113,8 @@ void add_domain_summary(JsonWriter& j, const DomainSummary& s) {
     j.value("open_boundary", s.open_boundary_path)
         .value("open_boundary_num_lines", s.open_boundary_num_lines)
         .value("open_boundary_length_m", s.open_boundary_length_m);
+  if (s.num_open_parts > 0)
+    j.value("num_open_parts", s.num_open_parts).value("open_parts_length_m", s.open_parts_length_m);
   j.array("warnings", s.warnings);
 }
 

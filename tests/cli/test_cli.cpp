@@ -520,6 +520,17 @@ TEST(Cli, DomainAsFlatGeobufAndGeoJson) {
     EXPECT_GT(length, 500e3);
     EXPECT_LT(length, 1070e3);
     GDALClose(ds);
+    // The summary's count and length of them.
+    const CliResult r =
+        run_cli({"domain", sample("brittany_land.geojson"), "-o", dir.file("sea2.gpkg"), "--domain",
+                 "water", "--bbox", "-5.3,46.8,-1.95,49.35", "--size", "2000", "--report",
+                 dir.file("sea.json")},
+                dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("open parts:   3 run(s) of the boundary"), std::string::npos) << r.err;
+    const std::string report = read_file(dir.file("sea.json"));
+    EXPECT_EQ(report_number(report, "num_open_parts"), 3);
+    EXPECT_NEAR(report_number(report, "open_parts_length_m"), length, 1e-6 * length);
   }
   for (const char* name : {"sea.fgb", "sea.geojson"}) {
     SCOPED_TRACE(name);
