@@ -145,34 +145,57 @@ void add_domain_chords(FrontEndResult& result, const CrsInfo& source_crs,
   }
 }
 
-// The runs of the domain's rings along the open lines (FrontEndResult::open_boundary_parts):
-// an edge is open when its ends and its middle lie within the tolerance of the lines.
+// The runs of the domain's rings along the open lines (FrontEndResult::open_boundary_parts),
+// as the summary measures their length: each edge cut into pieces of about the tolerance
+// (at most 256), a piece open when both its ends lie within the tolerance of the lines; a
+// run may so start or end within an edge (where the simplification joined a vertex on
+// the lines to one off them).
 std::vector<std::vector<Point2>> open_parts(const FrontEndResult& result) {
   const double tolerance = open_line_tolerance(result);
   const PolylineIndex index(result.open_boundary_lines, result.open_boundary_slack_m);
   std::vector<std::vector<Point2>> parts;
   auto visit = [&](const Ring& ring) {
     const std::size_t n = ring.size();
-    std::vector<char> open(n);
+    // The pieces in order round the ring: their edge, their number there and its count.
+    struct Piece {
+      std::size_t edge;
+      int k, pieces;
+    };
+    std::vector<Piece> pieces;
+    std::vector<char> near_end;  // whether each piece's end lies on the lines
     for (std::size_t i = 0; i < n; ++i) {
       const Point2 &a = ring[i], &b = ring[(i + 1) % n];
-      open[i] = index.near(a, tolerance) && index.near(b, tolerance) &&
-                index.near({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}, tolerance);
+      const int count = static_cast<int>(
+          std::clamp(std::ceil(distance(a, b) / std::max(tolerance, 1e-9)), 1.0, 256.0));
+      for (int k = 1; k <= count; ++k) {
+        const double t = static_cast<double>(k) / count;
+        pieces.push_back({i, k, count});
+        near_end.push_back(index.near({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)}, tolerance));
+      }
     }
-    std::size_t start = 0;  // a land edge, so that no run wraps round the ring's start
-    while (start < n && open[start]) ++start;
-    if (start == n) {  // open all round
+    const std::size_t m = pieces.size();
+    auto point = [&](std::size_t p, int k) {  // the point at k of piece p's edge
+      const Point2 &a = ring[pieces[p].edge], &b = ring[(pieces[p].edge + 1) % n];
+      const double t = static_cast<double>(k) / pieces[p].pieces;
+      return Point2{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)};
+    };
+    auto open = [&](std::size_t p) { return near_end[p] && near_end[(p + m - 1) % m]; };
+    std::size_t start = 0;  // a piece not open, so that no run wraps round the start
+    while (start < m && open(start)) ++start;
+    if (start == m) {  // open all round
       std::vector<Point2> whole(ring.begin(), ring.end());
       whole.push_back(ring.front());
       parts.push_back(std::move(whole));
       return;
     }
-    for (std::size_t k = 1; k <= n; ++k) {
-      const std::size_t i = (start + k) % n;
-      if (!open[i]) continue;
-      std::vector<Point2> run{ring[i]};
-      for (; k <= n && open[(start + k) % n]; ++k) run.push_back(ring[(start + k + 1) % n]);
-      parts.push_back(std::move(run));
+    std::vector<Point2> run;
+    for (std::size_t j = 1; j <= m; ++j) {
+      const std::size_t p = (start + j) % m;
+      if (!open(p)) continue;
+      if (run.empty()) run.push_back(point(p, pieces[p].k - 1));
+      const bool last = !open((p + 1) % m);
+      if (pieces[p].k == pieces[p].pieces || last) run.push_back(point(p, pieces[p].k));
+      if (last) parts.push_back(std::move(run)), run.clear();
     }
   };
   for (const Polygon& polygon : result.domain.polygons) {
@@ -464,31 +487,13 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     result.open_boundary_tolerance_m += 1.01 * simp.tolerance_m;
   if (open_lines_given) {
     // Lines that follow none of the domain's boundary would leave it all land: an
-    // ocean model without a sea boundary. The length they follow: each edge of the
-    // domain sampled about every tolerance (at most 256 pieces), a piece counted when
-    // both its ends lie within the tolerance of the lines.
+    // ocean model without a sea boundary. The length they follow: that of the boundary's
+    // open parts (open_parts).
     add_domain_chords(result, source.crs, meshing_crs);
     const double tolerance = open_line_tolerance(result);
-    const PolylineIndex index(result.open_boundary_lines, result.open_boundary_slack_m);
-    auto follow = [&](const Ring& ring) {
-      for (std::size_t i = 0; i < ring.size(); ++i) {
-        const Point2 &a = ring[i], &b = ring[(i + 1) % ring.size()];
-        const double length = distance(a, b);
-        const int pieces =
-            static_cast<int>(std::clamp(std::ceil(length / std::max(tolerance, 1e-9)), 1.0, 256.0));
-        bool previous = index.near(a, tolerance);
-        for (int k = 1; k <= pieces; ++k) {
-          const double t = static_cast<double>(k) / pieces;
-          const bool near = index.near({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)}, tolerance);
-          if (previous && near) s.open_boundary_length_m += length / pieces;
-          previous = near;
-        }
-      }
-    };
-    for (const Polygon& polygon : result.domain.polygons) {
-      follow(polygon.outer);
-      for (const Ring& hole : polygon.holes) follow(hole);
-    }
+    for (const auto& part : open_parts(result))
+      for (std::size_t i = 0; i + 1 < part.size(); ++i)
+        s.open_boundary_length_m += distance(part[i], part[i + 1]);
     if (!(s.open_boundary_length_m > 0.0)) {
       char text[32];
       std::snprintf(text, sizeof text, "%.4g", tolerance);
