@@ -491,9 +491,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     // open parts (open_parts).
     add_domain_chords(result, source.crs, meshing_crs);
     const double tolerance = open_line_tolerance(result);
-    for (const auto& part : open_parts(result))
-      for (std::size_t i = 0; i + 1 < part.size(); ++i)
-        s.open_boundary_length_m += distance(part[i], part[i + 1]);
+    for (const auto& part : open_parts(result)) s.open_boundary_length_m += polyline_length(part);
     if (!(s.open_boundary_length_m > 0.0)) {
       char text[32];
       std::snprintf(text, sizeof text, "%.4g", tolerance);
@@ -508,8 +506,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   if (!result.open_boundary_lines.empty()) result.open_boundary_parts = open_parts(result);
   s.num_open_parts = result.open_boundary_parts.size();
   for (const auto& part : result.open_boundary_parts)
-    for (std::size_t i = 0; i + 1 < part.size(); ++i)
-      s.open_parts_length_m += distance(part[i], part[i + 1]);
+    s.open_parts_length_m += polyline_length(part);
   s.num_components = result.domain.polygons.size();
   s.num_holes = num_holes(result.domain);
   s.num_rings = s.num_components + s.num_holes;

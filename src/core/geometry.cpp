@@ -38,6 +38,12 @@ double signed_area(const Ring& ring) {
   return 0.5 * twice;
 }
 
+double polyline_length(const std::vector<Point2>& line) {
+  double len = 0.0;
+  for (std::size_t i = 0; i + 1 < line.size(); ++i) len += distance(line[i], line[i + 1]);
+  return len;
+}
+
 double perimeter(const Ring& ring) {
   double len = 0.0;
   const std::size_t n = ring.size();

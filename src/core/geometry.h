@@ -50,6 +50,8 @@ inline double signed_area(const Point2& a, const Point2& b, const Point2& c) {
 }
 // Length of the closed ring.
 double perimeter(const Ring& ring);
+// Length of the open polyline (its points in order; the last not joined to the first).
+double polyline_length(const std::vector<Point2>& line);
 // Area of the polygon: outer area minus the holes' areas (unsigned).
 double area(const Polygon& polygon);
 double area(const Domain& domain);

@@ -71,9 +71,8 @@ void write_domain(const Domain& domain, const WriteDomainParams& params) {
                   {{"id", FieldType::integer}, {"length_m", FieldType::real}});
     for (std::size_t k = 0; k < params.open_parts->size(); ++k) {
       const std::vector<Point2>& line = (*params.open_parts)[k];
-      double length = 0.0;
-      for (std::size_t i = 0; i + 1 < line.size(); ++i) length += distance(line[i], line[i + 1]);
-      w.add_line(line, {FieldValue::integer(static_cast<long long>(k)), FieldValue::real(length)});
+      w.add_line(line, {FieldValue::integer(static_cast<long long>(k)),
+                        FieldValue::real(polyline_length(line))});
     }
   }
   w.commit();

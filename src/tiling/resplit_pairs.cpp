@@ -71,9 +71,7 @@ double convexity(const Point2& a, const Point2& b, const Point2& c, const Point2
 
 // The point at half the arc length of a polyline.
 Point2 arc_midpoint(const std::vector<Point2>& line) {
-  double total = 0.0;
-  for (std::size_t i = 0; i + 1 < line.size(); ++i) total += distance(line[i], line[i + 1]);
-  double left = 0.5 * total;
+  double left = 0.5 * polyline_length(line);
   for (std::size_t i = 0; i + 1 < line.size(); ++i) {
     const double l = distance(line[i], line[i + 1]);
     if (l >= left && l > 0) {
