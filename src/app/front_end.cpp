@@ -234,6 +234,12 @@ SourceData read_mesh_source(const FrontEndOptions& options,
     if (line.size() >= 2) open_lines.push_back(std::move(line));
   }
   SourceData source = outline_source(mesh, read.path, read.src_crs, "--src-crs");
+  for (const std::string& note : mesh.notes) source.warnings.push_back(note);
+  if (mesh.num_flux_boundaries > 0 && options.open_boundary_path.empty())
+    source.warnings.push_back(std::to_string(mesh.num_flux_boundaries) +
+                              " flux boundary(ies) of '" + read.path +
+                              "' (a river's inflow, among its land boundaries) are open "
+                              "boundaries of the new mesh");
   if (mesh.open_boundaries.empty() && !mesh.curve_groups.empty() &&
       options.open_boundary_path.empty()) {
     source.warnings.push_back(curve_groups_kind(mesh, true) + " " + curve_groups_text(mesh) +

@@ -32,6 +32,12 @@ struct ReadMesh {
   // TELEMAC .slf's (the .cli beside it): each its nodes in order (indices into points);
   // empty for the other formats, and for a file without them.
   std::vector<std::vector<int>> open_boundaries;
+  // Of those, a .14's (or .gr3's) flux boundaries (ADCIRC's IBTYPE 2, 12, 22, 32, 52: a
+  // river's inflow), listed among its land boundaries and read as open, after the open
+  // ones.
+  std::size_t num_flux_boundaries = 0;
+  // What the reader left out, for warnings (a .gr3's land section it could not read).
+  std::vector<std::string> notes;
   // Named lines of the boundary: a Gmsh .msh's physical groups of curves (each its tag,
   // its name from $PhysicalNames or empty, and its line elements) or an SMS .2dm's
   // nodestrings (each its number in the file from 1, the name after its last node or

@@ -41,6 +41,9 @@ TEST(ReadMesh, Gr3WithMixedElementsAndIdsOutOfOrder) {
              "1 = Number of land boundaries\r\n");
   const ReadMesh m = read_mesh(dir.file("hgrid.gr3"));
   EXPECT_EQ(m.open_boundaries, (std::vector<std::vector<int>>{{1, 4}}));
+  // The land section ends after its count: left, with a note.
+  ASSERT_EQ(m.notes.size(), 1u);
+  EXPECT_NE(m.notes[0].find("its land boundaries are not read"), std::string::npos);
   EXPECT_EQ(m.format, "gr3");
   ASSERT_EQ(m.points.size(), 5u);
   EXPECT_EQ(m.points[1].x, 10.0);  // the Fortran exponent
@@ -50,6 +53,21 @@ TEST(ReadMesh, Gr3WithMixedElementsAndIdsOutOfOrder) {
   ASSERT_EQ(m.triangles.size(), 2u);
   EXPECT_EQ(m.triangles[0], (std::array<int, 3>{1, 4, 2}));
   EXPECT_TRUE(m.crs.empty());
+}
+
+// ADCIRC's land boundaries: the flux one (IBTYPE 22, a river) open after the open ones,
+// the others (20, and a barrier of 3 with its height and coefficient) left as land.
+TEST(ReadMesh, Fort14FluxBoundariesAreOpen) {
+  TempDir dir;
+  write_file(dir.file("fort.14"),
+             "grid\n2 6\n1 0 0 5\n2 10 0 5\n3 20 0 5\n4 20 10 5\n5 10 10 5\n6 0 10 5\n"
+             "1 4 1 2 5 6\n2 4 2 3 4 5\n1 = NOPE\n2 = NETA\n2 = NVDLL\n3\n4\n"
+             "3 = NBOU\n7 = NVEL\n2 22 = river\n4\n5\n2 3 = barrier\n5 1.0 1.0\n6 1.0 1.0\n"
+             "3 20 = land\n6\n1\n2\n");
+  const ReadMesh m = read_mesh(dir.file("fort.14"));
+  EXPECT_TRUE(m.notes.empty());
+  EXPECT_EQ(m.num_flux_boundaries, 1u);
+  EXPECT_EQ(m.open_boundaries, (std::vector<std::vector<int>>{{2, 3}, {3, 4}}));
 }
 
 TEST(ReadMesh, TwoDmWithNodesAfterElements) {

@@ -798,6 +798,8 @@ TEST(MeshOutputs, ReadMeshReadsBackEveryFormat) {
     SCOPED_TRACE(name);
     const ReadMesh split = read_mesh(dir.file(name));
     EXPECT_EQ(split.format, std::string(name) == "m.slf" ? "slf" : "14");
+    EXPECT_TRUE(split.notes.empty());  // the .14's land section read (none of it flux)
+    EXPECT_EQ(split.num_flux_boundaries, 0u);
     EXPECT_TRUE(split.quads.empty());
     ASSERT_EQ(split.points.size(), f.mesh.points.size());
     for (std::size_t i = 0; i < split.points.size(); ++i)
