@@ -19,6 +19,7 @@ namespace {
 struct ProjectedLines {
   std::vector<std::vector<Point2>> lines;
   std::vector<double> sag_m;  // by line: the largest gap between a projected segment and its chord
+  std::vector<int> line_of;   // by line: the input line it comes from
   long failed_line = -1;      // the first line with a point that cannot be transformed
   std::size_t num_source_lines = 0;  // the lines read (read_projected_lines)
 };
@@ -60,10 +61,12 @@ ProjectedLines project_lines(const std::vector<std::vector<Point2>>& lines, cons
         out.lines.emplace_back(dense.begin() + i * kPieces, dense.begin() + (i + 1) * kPieces + 1);
         out.lines.push_back({dense[i * kPieces], dense[(i + 1) * kPieces]});
         out.sag_m.insert(out.sag_m.end(), 2, sags[i]);
+        out.line_of.insert(out.line_of.end(), 2, static_cast<int>(l));
       }
     } else {
       out.lines.push_back(std::move(dense));
       out.sag_m.push_back(*std::max_element(sags.begin(), sags.end()));
+      out.line_of.push_back(static_cast<int>(l));
     }
   }
   return out;
@@ -122,6 +125,7 @@ void add_domain_chords(FrontEndResult& result, const CrsInfo& source_crs,
   const PolylineIndex index(result.open_boundary_lines, result.open_boundary_slack_m);
   const CrsTransform to_source(meshing_crs, source_crs), from_source(source_crs, meshing_crs);
   std::vector<std::vector<Point2>> chords;
+  std::vector<int> groups;  // each chord's line's group
   auto visit = [&](const Ring& ring) {
     for (std::size_t i = 0; i < ring.size(); ++i) {
       const Point2 &a = ring[i], &b = ring[(i + 1) % ring.size()];
@@ -132,16 +136,21 @@ void add_domain_chords(FrontEndResult& result, const CrsInfo& source_crs,
       if (!to_source.transform(sa) || !to_source.transform(sb)) continue;
       if (source_crs.geographic) sb.x += 360.0 * std::round((sa.x - sb.x) / 360.0);
       Point2 middle{0.5 * (sa.x + sb.x), 0.5 * (sa.y + sb.y)};
-      if (from_source.transform(middle) && index.near(middle, tolerance)) chords.push_back({a, b});
+      if (!from_source.transform(middle)) continue;
+      const PolylineIndex::Nearest nearest = index.nearest(middle, tolerance);
+      if (nearest.line < 0) continue;
+      chords.push_back({a, b});
+      groups.push_back(result.open_boundary_line_group[nearest.line]);
     }
   };
   for (const Polygon& polygon : result.domain.polygons) {
     visit(polygon.outer);
     for (const Ring& hole : polygon.holes) visit(hole);
   }
-  for (auto& chord : chords) {
-    result.open_boundary_lines.push_back(std::move(chord));
+  for (std::size_t k = 0; k < chords.size(); ++k) {
+    result.open_boundary_lines.push_back(std::move(chords[k]));
     result.open_boundary_slack_m.push_back(0.0);
+    result.open_boundary_line_group.push_back(groups[k]);
   }
 }
 
@@ -358,6 +367,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     }
     s.open_boundary_num_lines = p.num_source_lines;
     result.open_boundary_lines = p.lines;
+    result.open_boundary_line_group = p.line_of;
     for (double sag : p.sag_m) result.open_boundary_slack_m.push_back(0.7 * sag);
     result.open_boundary_chord_share = 0.2;
   } else if (options.kind == DomainKind::water && source.bbox_ring) {
@@ -366,6 +376,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     const ProjectedLines p = project_lines({box}, source.crs, meshing_crs, false);
     if (p.failed_line < 0) {
       result.open_boundary_lines = p.lines;
+      result.open_boundary_line_group = p.line_of;
       result.open_boundary_tolerance_m =
           2.0 * p.sag_m[0];  // the simplification tolerance added below
     }

@@ -118,6 +118,10 @@ struct FrontEndResult {
   // for a water domain its bbox. Boundary parts lying on them are the open (sea)
   // boundary; the rest is land. Empty for a land domain without --open-boundary.
   std::vector<std::vector<Point2>> open_boundary_lines;
+  // By line: the line of --open-boundary (or of the mesh's open boundaries) it comes
+  // from, 0 for the bbox's or the area's ring: where two meet, the mesh's open boundary
+  // is two segments, one along each.
+  std::vector<int> open_boundary_line_group;
   // How far the domain's boundary may lie from those lines where it follows them: the
   // simplification tolerance plus an allowance for the gap between a projected segment
   // and its chord (the domain's vertices are joined by chords): for the bbox, twice the

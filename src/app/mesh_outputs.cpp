@@ -56,7 +56,8 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
     // --open-boundary; within the front end's tolerance, plus rounding) are open.
     data.boundary = extract_boundary(
         r.quads, PolylineIndex(front.open_boundary_lines, front.open_boundary_slack_m),
-        open_line_tolerance(front), front.open_boundary_chord_share);
+        open_line_tolerance(front), front.open_boundary_chord_share,
+        &front.open_boundary_line_group);
     written.num_open_edges = data.boundary.num_open_edges;
     written.num_land_edges = data.boundary.num_land_edges;
     if (!o.bathymetry.empty()) {

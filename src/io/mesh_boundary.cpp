@@ -11,7 +11,8 @@ namespace isoquad {
 const char* boundary_kind_name(BoundaryKind k) { return k == BoundaryKind::open ? "open" : "land"; }
 
 MeshBoundary extract_boundary(const QuadMesh& mesh, const PolylineIndex& open_lines,
-                              double tolerance_m, double chord_share) {
+                              double tolerance_m, double chord_share,
+                              const std::vector<int>* line_group) {
   // Directed edges of the counter-clockwise quads; a boundary edge has no twin.
   std::map<std::pair<int, int>, int> count;
   for (const auto& q : mesh.quads)
@@ -32,6 +33,8 @@ MeshBoundary extract_boundary(const QuadMesh& mesh, const PolylineIndex& open_li
       on_open[v] = open_lines.near(mesh.points[v], tolerance_m);
     }
   std::map<int, char> seen;
+  // By loop and edge: -1 for land, else the open edge's group.
+  std::vector<std::vector<int>> edge_group;
   for (const auto& [start, w] : next) {  // increasing vertex id: deterministic order
     (void)w;
     if (seen.count(start)) continue;
@@ -47,6 +50,7 @@ MeshBoundary extract_boundary(const QuadMesh& mesh, const PolylineIndex& open_li
     } while (v != start && !seen.count(v));
     if (v != start) throw Error(ErrorClass::internal, "write", "a boundary loop does not close");
     std::vector<BoundaryKind> kinds(loop.size(), BoundaryKind::land);
+    std::vector<int> groups(loop.size(), -1);
     for (std::size_t i = 0; i < loop.size(); ++i) {
       const int a = loop[i], c = loop[(i + 1) % loop.size()];
       const Point2 mid{0.5 * (mesh.points[a].x + mesh.points[c].x),
@@ -57,23 +61,36 @@ MeshBoundary extract_boundary(const QuadMesh& mesh, const PolylineIndex& open_li
       // length sin(a/2) / 2 from it (19% at 45 degrees).
       const double length = std::hypot(mesh.points[c].x - mesh.points[a].x,
                                        mesh.points[c].y - mesh.points[a].y);
-      if (on_open[a] && on_open[c] && open_lines.near(mid, tolerance_m + chord_share * length))
-        kinds[i] = BoundaryKind::open;
+      if (on_open[a] && on_open[c]) {
+        const PolylineIndex::Nearest nearest =
+            open_lines.nearest(mid, tolerance_m + chord_share * length);
+        if (nearest.line >= 0) {
+          kinds[i] = BoundaryKind::open;
+          const bool grouped =
+              line_group && static_cast<std::size_t>(nearest.line) < line_group->size();
+          groups[i] = grouped ? (*line_group)[nearest.line] : 0;
+        }
+      }
       ++(kinds[i] == BoundaryKind::open ? b.num_open_edges : b.num_land_edges);
     }
     b.loops.push_back(std::move(loop));
     b.edge_kind.push_back(std::move(kinds));
+    edge_group.push_back(std::move(groups));
   }
   for (std::size_t l = 0; l < b.loops.size(); ++l) {
     const auto& loop = b.loops[l];
     const auto& kinds = b.edge_kind[l];
+    const auto& groups = edge_group[l];  // a run ends where the group changes
     Ring ring;
     for (int v : loop) ring.push_back(mesh.points[v]);
     const bool island = signed_area(ring) < 0;
     const std::size_t n = loop.size();
     std::size_t first = n;  // an edge where the kind changes from the previous edge
     for (std::size_t i = 0; i < n; ++i)
-      if (kinds[i] != kinds[(i + n - 1) % n]) { first = i; break; }
+      if (groups[i] != groups[(i + n - 1) % n]) {
+        first = i;
+        break;
+      }
     if (first == n) {
       BoundarySegment s;
       s.nodes = loop;
@@ -91,7 +108,8 @@ MeshBoundary extract_boundary(const QuadMesh& mesh, const PolylineIndex& open_li
       s.island = island;
       s.loop = static_cast<int>(l);
       s.nodes.push_back(loop[i0]);
-      while (k < n && kinds[(first + k) % n] == s.kind) {
+      const int group = groups[i0];
+      while (k < n && groups[(first + k) % n] == group) {
         s.nodes.push_back(loop[(first + k + 1) % n]);
         ++k;
       }

@@ -41,7 +41,11 @@ struct MeshBoundary {
 // `chord_share` of the edge's length (1%: a chord of a curved side; more for a chord
 // across a corner of the lines). Without lines every edge is land. Throws
 // Error(internal) when the boundary is not a set of simple loops.
+// `line_group` (by line of open_lines; none: one group) cuts the open runs where the
+// line nearest their edges' midpoints changes group: two open boundaries that meet
+// (a river's and the sea's) stay two segments.
 MeshBoundary extract_boundary(const QuadMesh& mesh, const PolylineIndex& open_lines,
-                              double tolerance_m, double chord_share = 0.01);
+                              double tolerance_m, double chord_share = 0.01,
+                              const std::vector<int>* line_group = nullptr);
 
 }  // namespace isoquad

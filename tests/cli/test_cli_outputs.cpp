@@ -1518,6 +1518,34 @@ TEST(CliOutputs, AGmshGridMeshedAgainKeepsTheOpenBoundaryOfItsPhysicalGroups) {
   EXPECT_NE(r.err.find("neither a Gmsh .msh nor an SMS .2dm"), std::string::npos) << r.err;
 }
 
+// An ADCIRC grid whose first land boundary is a river's inflow (IBTYPE 22): meshed again,
+// it is an open boundary of its own, next to the sea's (two open lines that meet stay two
+// segments), with a warning.
+TEST(CliOutputs, AnAdcircRiverBoundaryStaysAnOpenBoundaryOfItsOwn) {
+  TempDir dir;
+  CliResult r = mesh_water_box(
+      dir, {"--dst-crs", "EPSG:32630", "--output-crs", "EPSG:32630", "-o", dir.file("grid.14")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::string text = read_file(dir.file("grid.14"));
+  const std::size_t at = text.find(" 20 = Number of nodes for land boundary 1");
+  ASSERT_NE(at, std::string::npos);
+  text.replace(at, 3, " 22");
+  write_file(dir.file("river.14"), text);
+  auto open_count = [&](const std::string& input) {
+    const CliResult m = run_cli({"mesh", input, "--src-crs", "EPSG:32630", "--size", "800", "-o",
+                                 dir.file("again.gr3"), "--overwrite"},
+                                dir);
+    EXPECT_EQ(m.exit_code, 0) << m.err;
+    return std::make_pair(parse_gr3(dir.file("again.gr3")).open.size(), m.err);
+  };
+  const auto [sea, sea_err] = open_count(dir.file("grid.14"));
+  const auto [river, river_err] = open_count(dir.file("river.14"));
+  EXPECT_GE(sea, 1u);
+  EXPECT_EQ(river, sea + 1);
+  EXPECT_EQ(sea_err.find("flux boundary"), std::string::npos) << sea_err;
+  EXPECT_NE(river_err.find("1 flux boundary(ies) of"), std::string::npos) << river_err;
+}
+
 // The quads alone as GeoJSON (longitudes and latitudes, RFC 7946) and FlatGeobuf (the
 // mesh's CRS), read with GDAL: the GeoPackage's quads, the same metrics by id, every
 // ring closed and counter-clockwise; the same bytes from a second run; and read back by
