@@ -188,21 +188,31 @@ std::vector<std::vector<Point2>> open_parts(const FrontEndResult& result) {
       const double t = static_cast<double>(k) / pieces[p].pieces;
       return Point2{a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)};
     };
-    auto open = [&](std::size_t p) { return near_end[p] && near_end[(p + m - 1) % m]; };
-    std::size_t start = 0;  // a piece not open, so that no run wraps round the start
-    while (start < m && open(start)) ++start;
-    if (start == m) {  // open all round
+    // Each piece's group: -1 when not open, else that of the line nearest its middle
+    // (open_boundary_line_group), so that a run ends where two lines meet.
+    std::vector<int> group(m, -1);
+    for (std::size_t p = 0; p < m; ++p) {
+      if (!near_end[p] || !near_end[(p + m - 1) % m]) continue;
+      const Point2 a = point(p, pieces[p].k - 1), b = point(p, pieces[p].k);
+      const int line = index.nearest({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}, tolerance).line;
+      const auto& groups = result.open_boundary_line_group;
+      group[p] = line >= 0 && static_cast<std::size_t>(line) < groups.size() ? groups[line] : 0;
+    }
+    std::size_t start = 0;  // a piece where the group changes: no run wraps round it
+    while (start < m && group[start] == group[(start + m - 1) % m]) ++start;
+    if (start == m) {  // one group all round
+      if (group[0] < 0) return;
       std::vector<Point2> whole(ring.begin(), ring.end());
       whole.push_back(ring.front());
       parts.push_back(std::move(whole));
       return;
     }
     std::vector<Point2> run;
-    for (std::size_t j = 1; j <= m; ++j) {
+    for (std::size_t j = 0; j < m; ++j) {
       const std::size_t p = (start + j) % m;
-      if (!open(p)) continue;
+      if (group[p] < 0) continue;
       if (run.empty()) run.push_back(point(p, pieces[p].k - 1));
-      const bool last = !open((p + 1) % m);
+      const bool last = group[(p + 1) % m] != group[p];
       if (pieces[p].k == pieces[p].pieces || last) run.push_back(point(p, pieces[p].k));
       if (last) parts.push_back(std::move(run)), run.clear();
     }
