@@ -1544,6 +1544,9 @@ TEST(CliOutputs, AnAdcircRiverBoundaryStaysAnOpenBoundaryOfItsOwn) {
   EXPECT_EQ(river, sea + 1);
   EXPECT_EQ(sea_err.find("flux boundary"), std::string::npos) << sea_err;
   EXPECT_NE(river_err.find("1 flux boundary(ies) of"), std::string::npos) << river_err;
+  // The domain's open parts, before meshing, cut alike.
+  EXPECT_NE(river_err.find("open parts:   " + std::to_string(river) + " run(s)"), std::string::npos)
+      << river_err;
 }
 
 // The quads alone as GeoJSON (longitudes and latitudes, RFC 7946) and FlatGeobuf (the
