@@ -203,12 +203,14 @@ long long need_count(Fields& f, const char* what, const LineReader& reader) {
   return n;
 }
 
-void read_gr3_flux_boundaries(LineReader& r, const NodeIds& ids, ReadMesh& mesh);
+bool read_gr3_boundaries(LineReader& r, const NodeIds& ids, const std::string& kind,
+                         const std::function<bool(long long)>& keep,
+                         std::vector<std::vector<int>>& out);
 
 // SCHISM's hgrid.gr3 / hgrid.ll and ADCIRC's fort.14: a title, "NE NP", NP lines
 // "id x y depth", NE lines "id k n1 .. nk"; then, when the file goes on, the open
 // boundaries: "NOPE", "NETA", and for each "n" and n lines of a node id; then the land
-// boundaries, of which only the flux ones are kept (read_gr3_flux_boundaries).
+// boundaries, of which only the flux ones are kept (read_gr3_boundaries).
 void read_gr3(LineReader& r, ReadMesh& mesh) {
   r.need("a title line");
   const std::string counts = r.need("the numbers of elements and nodes");
@@ -236,82 +238,71 @@ void read_gr3(LineReader& r, ReadMesh& mesh) {
     for (long long i = 0; i < kind; ++i) nodes.push_back(ids.at(e.integer("a node id"), r, id));
     add_element(mesh, nodes, r, id);
   }
-  std::string line;
-  while (r.next(line) && line.find_first_not_of(" \t") == std::string::npos) {
-  }
-  if (line.find_first_not_of(" \t") == std::string::npos) return;  // the end: no boundaries
-  Fields b(line, r);
-  const long long segments = need_count(b, "the number of open boundaries", r);
-  Fields total(r.need("the total number of open boundary nodes"), r);
-  need_count(total, "the total number of open boundary nodes", r);
-  for (long long k = 0; k < segments; ++k) {
-    const std::string what = "open boundary " + std::to_string(k + 1);
-    Fields c(r.need("the number of nodes of " + what), r);
-    const long long n = need_count(c, "the number of nodes of an open boundary", r);
-    std::vector<int> segment;
-    for (long long i = 0; i < n; ++i) {
-      Fields v(r.need("node " + std::to_string(i + 1) + " of " + what), r);
-      const long long id = v.integer("a node id");
-      const int index = ids.find(id);
-      if (index < 0)
-        r.fail(what + " has node " + std::to_string(id) + ", which is not among the file's nodes");
-      segment.push_back(index);
-    }
-    mesh.open_boundaries.push_back(std::move(segment));
-  }
-  // The land boundaries, when the file goes on: "NBOU", "NVEL", and for each "n IBTYPE"
-  // and n lines starting with a node id. ADCIRC's flux boundaries (IBTYPE 2, 12, 22, 32
-  // or 52: a river's inflow) are open boundaries of the new mesh too; the others (land,
-  // islands, barriers; SCHISM's 0 and 1) are the rest of the outline. The section is
-  // not needed otherwise: where it cannot be read, a note says so and it is left.
+  if (!read_gr3_boundaries(
+          r, ids, "open", [](long long) { return true; }, mesh.open_boundaries))
+    return;  // the end: no boundaries
+  // The land boundaries, when the file goes on. ADCIRC's flux boundaries (IBTYPE 2, 12,
+  // 22, 32 or 52: a river's inflow) are open boundaries of the new mesh too; the others
+  // (land, islands, barriers; SCHISM's 0 and 1) are the rest of the outline. The section
+  // is not needed otherwise: where it cannot be read, a note says so and it is left.
   const std::size_t num_open = mesh.open_boundaries.size();
   try {
-    read_gr3_flux_boundaries(r, ids, mesh);
+    read_gr3_boundaries(
+        r, ids, "land",
+        [](long long type) {
+          return type == 2 || type == 12 || type == 22 || type == 32 || type == 52;
+        },
+        mesh.open_boundaries);
+    mesh.num_flux_boundaries = mesh.open_boundaries.size() - num_open;
   } catch (const Error& e) {
     mesh.open_boundaries.resize(num_open);
-    mesh.num_flux_boundaries = 0;
     mesh.notes.push_back(e.message() +
                          ": its land boundaries are not read (a flux boundary "
                          "among them, a river's, would be land)");
   }
 }
 
-// The land boundaries of a .gr3 or .14 after its open ones (read_gr3), their flux
-// boundaries into mesh.open_boundaries.
-void read_gr3_flux_boundaries(LineReader& r, const NodeIds& ids, ReadMesh& mesh) {
+// A boundary section of a .gr3 or .14 (`kind`: "open" or "land"), when the file goes on:
+// "N", "the total", and for each boundary "n [type]" and n lines starting with a node
+// id. The boundaries whose type `keep` takes (0 when the line has none) go to `out` as
+// node lists. False at the end of the file.
+bool read_gr3_boundaries(LineReader& r, const NodeIds& ids, const std::string& kind,
+                         const std::function<bool(long long)>& keep,
+                         std::vector<std::vector<int>>& out) {
   std::string line;
   while (r.next(line) && line.find_first_not_of(" \t") == std::string::npos) {
   }
-  if (line.find_first_not_of(" \t") == std::string::npos) return;
-  Fields l(line, r);
-  const long long lands = need_count(l, "the number of land boundaries", r);
-  Fields land_total(r.need("the total number of land boundary nodes"), r);
-  need_count(land_total, "the total number of land boundary nodes", r);
-  for (long long k = 0; k < lands; ++k) {
-    const std::string what = "land boundary " + std::to_string(k + 1);
+  if (line.find_first_not_of(" \t") == std::string::npos) return false;
+  Fields f(line, r);
+  const std::string plural = "the number of " + kind + " boundaries";
+  const long long count = need_count(f, plural.c_str(), r);
+  const std::string total = "the total number of " + kind + " boundary nodes";
+  Fields t(r.need(total), r);
+  need_count(t, total.c_str(), r);
+  for (long long k = 0; k < count; ++k) {
+    const std::string what = kind + " boundary " + std::to_string(k + 1);
     Fields c(r.need("the number of nodes of " + what), r);
-    const long long n = need_count(c, "the number of nodes of a land boundary", r);
+    const std::string nodes = "the number of nodes of " + what;
+    const long long n = need_count(c, nodes.c_str(), r);
     long long type = 0;
     if (!c.at_end()) {
       const std::string word = c.word("the boundary's type");
       if (std::from_chars(word.data(), word.data() + word.size(), type).ec != std::errc()) type = 0;
     }
-    const bool flux = type == 2 || type == 12 || type == 22 || type == 32 || type == 52;
+    const bool kept = keep(type);
     std::vector<int> segment;
     for (long long i = 0; i < n; ++i) {
       Fields v(r.need("node " + std::to_string(i + 1) + " of " + what), r);
       const long long id = v.integer("a node id");
-      if (!flux) continue;
+      if (!kept) continue;
       const int index = ids.find(id);
       if (index < 0)
         r.fail(what + " has node " + std::to_string(id) + ", which is not among the file's nodes");
       segment.push_back(index);
     }
-    if (flux) {
-      mesh.open_boundaries.push_back(std::move(segment));
-      ++mesh.num_flux_boundaries;
-    }
+    if (kept) out.push_back(std::move(segment));
   }
+  return true;
 }
 
 // SMS's .2dm: cards ND (nodes), E3T and E4Q (elements), NS (nodestrings: node ids, the
