@@ -497,7 +497,8 @@ int main(int argc, char** argv) {
   CLI::App* domain_cmd = app.add_subcommand(
       "domain",
       "Read, select, project, repair and simplify polygons; write the planar domain (in the "
-      "meshing CRS) as a GeoPackage and print a summary.");
+      "meshing CRS) as a GeoPackage with its open parts (or .fgb, or .geojson in lon/lat) and "
+      "print a summary.");
   add_front_end_options(domain_cmd, domain_args);
   add_open_boundary_options(domain_cmd, domain_args.fe);
   domain_cmd->footer(kExitCodes);
@@ -520,7 +521,8 @@ int main(int argc, char** argv) {
       "mesh",
       "The main job: an isotropic all-quadrangle mesh of the domain that follows the sizing "
       "and cross fields, with a quality summary; outputs for GIS and ocean models (.gpkg, "
-      ".vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, .pli, .slf, .14), several in one run. Every quad "
+      ".vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, .pli, .slf, .14; the quads alone as .geojson "
+      "or .fgb), several in one run. Every quad "
       "written is strictly convex and none overlap: a tiling that leaves one otherwise is "
       "retried (up to 6 tilings, each with the sizes halved where the one before failed), "
       "and the run stops without writing when all fail.");
@@ -538,7 +540,8 @@ int main(int argc, char** argv) {
   CLI::App* quality_cmd = app.add_subcommand(
       "quality",
       "Measure a mesh made by another tool (Gmsh, SMS, OceanMesh2D...) or an earlier run "
-      "(--mesh: .gpkg, .gr3, .ll, .14, .2dm, .msh, .mesh, .nc, .slf) as `mesh` measures its "
+      "(--mesh: .gpkg, .geojson, .gr3, .ll, .14, .2dm, .msh, .mesh, .nc, .slf) as `mesh` "
+      "measures its "
       "own: angles, regularity, SCHISM's and D-Flow FM's checks, and its sizes and "
       "orientation against the fields that INPUT and the same options give (without INPUT: "
       "the mesh's own outline, in its CRS); the same summary and --report.");
