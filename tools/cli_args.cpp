@@ -73,7 +73,8 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
                           ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, "
                             ".pli, .slf, .14; the quads alone: .geojson, .fgb); repeat for "
                             "several"
-                          : "Output file (.gpkg)")
+                          : "Output file (domain: .gpkg, .fgb or .geojson; fields: .gpkg or "
+                            ".vtu)")
           ->expected(1)
           ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   if (!a.output_optional) output->required();
