@@ -1094,11 +1094,31 @@ std::string mesh_file_format(const std::string& path) {
 }
 
 bool is_mesh_file(const std::string& path) {
+  std::string format;
   try {
-    return mesh_file_format(path) != "polygons";
+    format = mesh_file_format(path);
   } catch (const Error&) {
     return false;
   }
+  if (format != "nc") return format != "polygons";
+  // A netCDF file is a mesh when it holds one (UGRID's 2D mesh topology, or a D-Flow FM
+  // net file's nodes); otherwise a grid, as GEBCO's and ETOPO's are, for GDAL to read as
+  // a raster. One that netCDF cannot open is left to the mesh reader's message.
+  int id = -1;
+  if (nc_open(path.c_str(), NC_NOWRITE, &id) != NC_NOERR) return true;
+  int num_vars = 0, var = -1;
+  nc_inq_nvars(id, &num_vars);
+  bool mesh = nc_inq_varid(id, "NetNode_x", &var) == NC_NOERR;
+  for (int v = 0; v < num_vars && !mesh; ++v) {
+    nc_type type;
+    std::size_t length = 0;
+    if (nc_inq_att(id, v, "cf_role", &type, &length) != NC_NOERR || type != NC_CHAR) continue;
+    std::string role(length, '\0');
+    if (nc_get_att_text(id, v, "cf_role", role.data()) == NC_NOERR)
+      mesh = role.rfind("mesh_topology", 0) == 0;
+  }
+  nc_close(id);
+  return mesh;
 }
 
 namespace {

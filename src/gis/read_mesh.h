@@ -58,7 +58,8 @@ std::string mesh_file_format(const std::string& path);
 
 // Whether the path names a mesh file of one of read_mesh's formats but the layers of
 // polygons (.gpkg, .shp, .geojson), which are read as vector data elsewhere: a mesh
-// given where a domain is wanted is read with read_mesh and its outline taken.
+// given where a domain is wanted is read with read_mesh and its outline taken. A netCDF
+// file is one when it holds a mesh (UGRID, a D-Flow FM net file), else a raster grid.
 bool is_mesh_file(const std::string& path);
 
 // Reads the mesh. Error(input) naming the file and the line for what it cannot read:

@@ -223,11 +223,21 @@ TEST(ReadMesh, DflowfmNetFileWithATriangleAndAQuad) {
   EXPECT_EQ(m.quads[0], (std::array<int, 4>{0, 1, 2, 3}));
   ASSERT_EQ(m.triangles.size(), 1u);
   EXPECT_EQ(m.triangles[0], (std::array<int, 3>{1, 4, 2}));
+  EXPECT_TRUE(is_mesh_file(path));
   // Not netCDF, or netCDF without a mesh.
   write_file(dir.file("text.nc"), "not netcdf\n");
   EXPECT_THROW(read_mesh(dir.file("text.nc")), Error);
+  EXPECT_TRUE(is_mesh_file(dir.file("text.nc")));  // for the mesh reader to say what is wrong
   ASSERT_EQ(nc_create(dir.file("empty.nc").c_str(), NC_CLOBBER, &nc), NC_NOERR);
   nc_close(nc);
+  // Where a mesh or a raster may be given (INPUT, --bathymetry), a netCDF file without a
+  // mesh is a grid for GDAL (GEBCO's), one with UGRID's mesh topology a mesh.
+  EXPECT_FALSE(is_mesh_file(dir.file("empty.nc")));
+  ASSERT_EQ(nc_create(dir.file("ugrid.nc").c_str(), NC_CLOBBER, &nc), NC_NOERR);
+  nc_def_var(nc, "mesh", NC_INT, 0, nullptr, &vc);
+  nc_put_att_text(nc, vc, "cf_role", 13, "mesh_topology");
+  nc_close(nc);
+  EXPECT_TRUE(is_mesh_file(dir.file("ugrid.nc")));
   try {
     read_mesh(dir.file("empty.nc"));
     ADD_FAILURE();
