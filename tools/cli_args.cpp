@@ -58,11 +58,13 @@ std::array<double, 4> parse_bbox(const std::string& text) {
 void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
   CLI::Option* input = cmd->add_option(
       "INPUT", a.input,
-      std::string("Input vector file (shapefile, GeoJSON, TopoJSON, GeoPackage...) of polygons, "
-                  "or of lines whose rings make them (a coastline drawn as lines; also "
-                  "Delft3D/D-Flow FM .ldb, .pol, .pli and Blue Kenue .i2s, with --src-crs), or a "
-                  "mesh whose outline is the domain (.gr3 or .ll with its open boundaries, .14, "
-                  ".2dm, .msh, .mesh, .nc, .slf)") +
+      std::string(
+          "Input vector file (shapefile, GeoJSON, TopoJSON, GeoPackage...) of polygons, "
+          "or of lines whose rings make them (a coastline drawn as lines; also "
+          "Delft3D/D-Flow FM .ldb, .pol, .pli and Blue Kenue .i2s, with --src-crs), or a "
+          "mesh whose outline is the domain (.gr3 or .ll with its open boundaries, .14, "
+          ".2dm, .msh, .mesh, .nc, .slf), or a raster (a DEM: GeoTIFF, netCDF...) whose cells "
+          "in [--zmin, --zmax] are the domain") +
           (a.input_optional ? "; leave it out to measure against the mesh's own outline" : ""));
   if (!a.input_optional) input->required();
   CLI::Option* output =
@@ -103,6 +105,15 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
                   "land: inside the polygons (clipped to --bbox or --clip); water: --bbox (or "
                   "--clip) minus the polygons")
       ->check(CLI::IsMember({"land", "water"}))
+      ->group("Selection");
+  cmd->add_option("--zmin", a.fe.read.zmin,
+                  "With a raster INPUT (a DEM): the domain is where its values are at least "
+                  "this (and at most --zmax)")
+      ->group("Selection");
+  cmd->add_option("--zmax", a.fe.read.zmax,
+                  "With a raster INPUT (a DEM): the domain is where its values are at most this "
+                  "(a sea of elevations: 0; a floodplain: 10), bounded by that contour, open "
+                  "where it reaches the raster's edge (or --bbox's, --clip's)")
       ->group("Selection");
   cmd->add_flag("--largest", a.fe.largest, "Keep only the largest component")->group("Selection");
   cmd->add_option("--src-crs", a.fe.read.src_crs,
@@ -507,6 +518,7 @@ void finish_front_end_args(CommonArgs& a) {
     throw Error(ErrorClass::usage, "options", "--open-boundary-layer needs --open-boundary");
   if (!a.bbox.empty()) a.fe.read.bbox = parse_bbox(a.bbox);
   a.fe.kind = a.domain_kind == "water" ? DomainKind::water : DomainKind::land;
+  a.fe.kind_given = !a.domain_kind.empty();
   if (a.simplify_m >= 0) a.fe.simplify_m = a.simplify_m;
   if (a.min_island_area_m2 >= 0) a.fe.min_island_area_m2 = a.min_island_area_m2;
   if (a.min_width_m >= 0) a.fe.min_width_m = a.min_width_m;

@@ -26,7 +26,7 @@ struct CommonArgs {
   bool output_optional = false;      // -o may be left out (`quality`)
   bool input_optional = false;       // INPUT may be left out (`quality`: the mesh's outline)
   std::string bbox;
-  std::string domain_kind = "land";
+  std::string domain_kind;  // empty: not given (land)
   double simplify_m = -1.0;
   double min_island_area_m2 = -1.0;
   double min_width_m = -1.0;

@@ -26,6 +26,7 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "gis/atomic_output.h"
+#include "gis/raster_domain.h"
 #include "gis/read_mesh.h"
 #include "gis/read_polygons.h"
 #include "gis/write_domain.h"
@@ -196,7 +197,8 @@ RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::stri
   else check_output_path(a.output, a.overwrite);
   const bool has_open_boundary =
       !a.fe.open_boundary_path.empty() ||
-      (a.fe.kind == DomainKind::water && (!a.bbox.empty() || !a.fe.clip_path.empty()));
+      (a.fe.kind == DomainKind::water && (!a.bbox.empty() || !a.fe.clip_path.empty())) ||
+      a.fe.read.zmin || a.fe.read.zmax;
   for (const MeshOutput& o : outputs)
     if (!tiling_only && !has_open_boundary && mesh_output_format(o) == MeshFormat::pli)
       throw Error(ErrorClass::usage, "options",
@@ -276,7 +278,7 @@ RegionOutcome run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
                                                        {!a.bbox.empty(), "--bbox"},
                                                        {!a.fe.read.bbox_crs.empty(), "--bbox-crs"},
                                                        {!a.fe.clip_path.empty(), "--clip"},
-                                                       {a.domain_kind != "land", "--domain"},
+                                                       {!a.domain_kind.empty(), "--domain"},
                                                        {!a.fe.read.src_crs.empty(), "--src-crs"}};
     for (const auto& [given, option] : selections)
       if (given)
@@ -377,6 +379,11 @@ std::vector<EachRegion> each_regions(const CommonArgs& a, const FieldArgs& f,
                 "'" + base.fe.read.path +
                     "' is a mesh, whose outline is the domain: --each selects from a vector "
                     "file's features");
+  if (is_raster_input(base.fe.read.path))
+    throw Error(ErrorClass::usage, "options",
+                "'" + base.fe.read.path +
+                    "' is a raster, whose cells in [--zmin, --zmax] are the domain: --each "
+                    "selects from a vector file's features");
   read_clip(base.fe, base.fe.read);  // the values of the features that reach the area
   const std::vector<SelectionValue> selected = selection_values(base.fe.read, field);
   if (selected.empty())

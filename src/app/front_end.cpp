@@ -9,6 +9,7 @@
 #include "domain/separate_rings.h"
 #include "gis/crs.h"
 #include "gis/mesh_outline.h"
+#include "gis/raster_domain.h"
 #include "gis/read_lines.h"
 #include "gis/read_mesh.h"
 
@@ -268,6 +269,22 @@ SourceData read_mesh_source(const FrontEndOptions& options,
   return source;
 }
 
+// A raster INPUT is read whole, or under --bbox or --clip: the vector selections have
+// nothing to select, and its domain is set by --zmin and --zmax.
+void check_raster_selection(const FrontEndOptions& options) {
+  const ReadParams& read = options.read;
+  const std::pair<bool, const char*> selections[] = {{!read.layer.empty(), "--layer"},
+                                                     {!read.where.empty(), "--where"},
+                                                     {options.kind_given, "--domain"}};
+  for (const auto& [given, option] : selections)
+    if (given)
+      throw Error(ErrorClass::usage, "read",
+                  "'" + read.path +
+                      "' is a raster, whose cells in [--zmin, --zmax] are the "
+                      "domain: " +
+                      option + " is for a vector file's polygons");
+}
+
 }  // namespace
 
 void read_clip(const FrontEndOptions& options, ReadParams& read) {
@@ -305,8 +322,16 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
         ErrorClass::usage, "options",
         "--open-groups names physical groups of a Gmsh .msh, or nodestrings of an SMS .2dm, "
         "given as INPUT");
+  const bool from_raster = !options.source && !from_mesh && is_raster_input(read.path);
+  if (from_raster) check_raster_selection(options);
+  if ((read.zmin || read.zmax) && !from_raster)
+    throw Error(ErrorClass::usage, "options",
+                "--zmin and --zmax pick the cells of a raster INPUT (a DEM): '" + read.path +
+                    "' is not one");
+  const DomainKind kind = from_raster ? DomainKind::water : options.kind;
   SourceData source = options.source ? *options.source
                       : from_mesh    ? read_mesh_source(options, mesh_open_lines)
+                      : from_raster  ? read_raster_domain(read)
                                      : read_polygons(read);
   s.layer_name = source.layer_name;
   s.source_crs_name = source.crs.name;
@@ -319,11 +344,12 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   s.num_rings_joined = source.num_rings_joined;
   s.num_lines_joined = source.num_lines_joined;
   s.num_points_removed = source.num_points_removed;
+  s.raster = source.raster;
   s.warnings = source.warnings;
 
   progress.report("select", 0.3);
   SelectParams sp;
-  sp.kind = options.kind;
+  sp.kind = kind;
   sp.repair = options.read.repair;
   sp.source_name = options.read.path;
   SelectResult selected = select_domain(source, sp);
@@ -380,7 +406,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     result.open_boundary_line_group = p.line_of;
     for (double sag : p.sag_m) result.open_boundary_slack_m.push_back(0.7 * sag);
     result.open_boundary_chord_share = 0.2;
-  } else if (options.kind == DomainKind::water && source.bbox_ring) {
+  } else if (kind == DomainKind::water && source.bbox_ring) {
     Ring box = *source.bbox_ring;
     box.push_back(box.front());
     const ProjectedLines p = project_lines({box}, source.crs, meshing_crs, false);
@@ -417,7 +443,9 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
 
   progress.report("simplify", 0.8);
   SimplifyParams simp;
-  simp.tolerance_m = options.simplify_m.value_or(h > 0 ? 0.25 * h : 0.0);
+  // A raster's contour steps from cell to cell: by default it is simplified by a cell.
+  simp.tolerance_m = options.simplify_m.value_or(
+      std::max(h > 0 ? 0.25 * h : 0.0, source.raster ? source.raster->cell_size_m : 0.0));
   if (simp.tolerance_m < 0) throw Error(ErrorClass::usage, "simplify", "--simplify must not be negative");
   s.simplify_m = simp.tolerance_m;
   // Parts of the boundary are kept as far apart as the tolerance (or as they were):

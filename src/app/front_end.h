@@ -28,6 +28,7 @@ struct FrontEndOptions {
   // project.dst_crs is empty.
   std::optional<SourceData> source;
   DomainKind kind = DomainKind::land;
+  bool kind_given = false;  // --domain given (a raster INPUT's domain is set by its range)
   bool largest = false;
   ProjectParams project;
   // The smallest target element size in metres when known (0: unknown). It sets the
@@ -107,6 +108,7 @@ struct DomainSummary {
   // --align: the file and its lines.
   std::string align_path;
   std::size_t align_num_lines = 0;
+  std::optional<SourceData::Raster> raster;  // a raster INPUT: what was read of it
   std::vector<std::string> warnings;
 };
 

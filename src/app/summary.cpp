@@ -19,9 +19,19 @@ std::string num(double v, int precision = 6) {
 
 std::string format_domain_summary(const DomainSummary& s) {
   std::ostringstream os;
-  os << "input:        " << s.input_path << " (layer '" << s.layer_name << "', " << s.num_features
-     << " feature(s), " << s.num_source_polygons << " polygon(s), CRS " << s.source_crs_name
-     << ")\n";
+  if (s.raster) {
+    const SourceData::Raster& r = *s.raster;
+    os << "input:        " << s.input_path << " (raster, " << s.layer_name << ", " << r.columns
+       << " x " << r.rows << " cells, CRS " << s.source_crs_name << ")\n";
+    os << "contour:      " << r.num_cells_in_range << " of the " << r.num_valid_cells
+       << " cells with a value in the area in [" << (r.zmin ? num(*r.zmin) : "-inf") << ", "
+       << (r.zmax ? num(*r.zmax) : "inf") << "] (values " << num(r.value_min) << " to "
+       << num(r.value_max) << "); " << s.num_source_polygons << " polygon(s) out of it\n";
+  } else {
+    os << "input:        " << s.input_path << " (layer '" << s.layer_name << "', " << s.num_features
+       << " feature(s), " << s.num_source_polygons << " polygon(s), CRS " << s.source_crs_name
+       << ")\n";
+  }
   os << "meshing CRS:  " << s.meshing_crs_name << (s.automatic_crs ? " (automatic)" : "") << "\n";
   if (!s.meshing_crs_proj.empty()) os << "              " << s.meshing_crs_proj << "\n";
   os << "domain:       " << s.num_components << " component(s), " << s.num_rings << " ring(s), "
@@ -104,6 +114,22 @@ void add_domain_summary(JsonWriter& j, const DomainSummary& s) {
       .value("num_repaired", s.num_repaired)
       .value("num_rings_closed", s.num_rings_closed)
       .value("num_points_removed", s.num_points_removed);
+  if (s.raster) {
+    const SourceData::Raster& r = *s.raster;
+    j.begin_object("raster");
+    j.value("columns", r.columns)
+        .value("rows", r.rows)
+        .value("read_columns", r.read_columns)
+        .value("read_rows", r.read_rows)
+        .value("cells_averaged", r.averaged);
+    if (r.zmin) j.value("zmin", *r.zmin);
+    if (r.zmax) j.value("zmax", *r.zmax);
+    j.value("num_valid_cells", r.num_valid_cells)
+        .value("num_cells_in_range", r.num_cells_in_range)
+        .value("value_min", r.value_min)
+        .value("value_max", r.value_max);
+    j.end_object();
+  }
   if (s.num_rings_from_lines)
     j.value("num_line_features", s.num_line_features)
         .value("num_rings_from_lines", s.num_rings_from_lines)

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <optional>
 #include <string>
 #include <vector>
@@ -29,6 +30,10 @@ struct ReadParams {
   // A --bbox selection (without --where) that matches no polygon gives no polygons and a
   // warning instead of an error: the water domain of open sea is the whole bbox.
   bool empty_bbox_selection_ok = false;
+  // A raster INPUT (read_raster_domain): the domain is where its values lie in
+  // [zmin, zmax]; at least one is set. A window of more cells is read averaged.
+  std::optional<double> zmin, zmax;
+  std::size_t max_raster_cells = 16u << 20;
 };
 
 // One polygon of one feature, in the source CRS. rings[0] is the outer ring, the rest
@@ -55,6 +60,18 @@ struct SourceData {
   std::size_t num_rings_from_lines = 0;  // rings the lines made
   std::size_t num_rings_joined = 0;      // of which made of two or more open lines
   std::size_t num_lines_joined = 0;      // the open lines in those
+  // A raster INPUT: what was read of it (read_raster_domain).
+  struct Raster {
+    int columns = 0, rows = 0;            // of the raster
+    int read_columns = 0, read_rows = 0;  // of the window read (after averaging)
+    int averaged = 1;                     // cells averaged along each side (1: none)
+    double cell_size_m = 0.0;             // the longer side of a cell read, in metres
+    std::optional<double> zmin, zmax;
+    std::size_t num_valid_cells = 0;          // with a value
+    std::size_t num_cells_in_range = 0;       // of which in [zmin, zmax]
+    double value_min = 0.0, value_max = 0.0;  // over the valid cells
+  };
+  std::optional<Raster> raster;
   std::vector<std::string> warnings;
 };
 

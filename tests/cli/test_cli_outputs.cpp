@@ -1731,6 +1731,71 @@ TEST(CliOutputs, ClipMeshesTheWaterOfADrawnArea) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("each_f1.gr3")));
 }
 
+// A DEM as INPUT: its cells at or below 0 m are the sea, bounded by the 0 m contour (an
+// island's coast) and by the cells without a value (land), open where the sea reaches
+// the raster's edge.
+TEST(CliOutputs, ADemBelowZeroIsTheSeaWithItsEdgeOpen) {
+  TempDir dir;
+  const double kPi = 3.14159265358979323846;
+  // 20 x 20 km in UTM 31N at 100 m; a cone-shaped island 6 km round; 2 x 2 km without a
+  // value in the north-west corner.
+  const std::string dem = write_geotiff(
+      dir.file("dem.tif"), 500000, 5000000, 100, 200, 200, 32631, [](double x, double y) {
+        if (x < 502000 && y > 4998000) return std::nan("");
+        return 0.01 * (6000 - std::hypot(x - 510000, y - 4990000));
+      });
+  CliResult r = run_cli({"mesh", dem, "--zmax", "0", "--dst-crs", "EPSG:32631", "--size", "800",
+                         "-o", dir.file("m.gr3")},
+                        dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("contour:      "), std::string::npos) << r.err;
+  const Gr3 g = parse_gr3(dir.file("m.gr3"));
+  ASSERT_GT(g.elements.size(), 300u);
+  auto on_edge = [](const std::array<double, 3>& n) {
+    return std::min({n[0] - 500000, 520000 - n[0], n[1] - 4980000, 5000000 - n[1]}) < 1e-3;
+  };
+  // One open segment round the raster's edge, but along the corner without values; the
+  // island and that corner's wall are land.
+  ASSERT_EQ(g.open.size(), 1u);
+  for (int n : g.open[0]) {
+    const auto& p = g.nodes[n - 1];
+    EXPECT_TRUE(on_edge(p)) << p[0] << " " << p[1];
+    EXPECT_FALSE(p[0] < 501900 && p[1] > 4998100) << p[0] << " " << p[1];
+  }
+  ASSERT_EQ(g.land.size(), 2u);
+  std::size_t coast_nodes = 0;
+  for (const auto& segment : g.land)
+    for (int n : segment) {
+      const auto& p = g.nodes[n - 1];
+      const double r = std::hypot(p[0] - 510000, p[1] - 4990000);
+      if (r < 7000) {
+        EXPECT_NEAR(r, 6000, 200);  // within the simplification's 200 m of the coast
+        ++coast_nodes;
+      }
+    }
+  EXPECT_GT(coast_nodes, 30u);
+  double mesh_area = 0.0;
+  for (const auto& e : g.elements)
+    for (std::size_t k = 0; k < e.size(); ++k) {
+      const auto &a = g.nodes[e[k] - 1], &b = g.nodes[e[(k + 1) % e.size()] - 1];
+      mesh_area += 0.5 * (a[0] * b[1] - b[0] * a[1]);
+    }
+  EXPECT_NEAR(mesh_area, 400e6 - kPi * 36e6 - 2050.0 * 2050.0, 0.01 * 400e6);
+
+  // What a raster INPUT refuses, and a vector INPUT with its options.
+  for (const std::vector<std::string>& args :
+       {std::vector<std::string>{"mesh", dem, "-o", dir.file("x.gpkg")},
+        {"mesh", dem, "--zmax", "0", "--domain", "water", "-o", dir.file("x.gpkg")},
+        {"mesh", dem, "--zmax", "0", "--each", "name", "-o", dir.file("{}.gpkg")},
+        {"mesh", water_input(dir), "--zmax", "0", "-o", dir.file("x.gpkg")}}) {
+    r = run_cli(args, dir);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+  }
+  r = run_cli({"mesh", dem, "--zmin", "100", "-o", dir.file("x.gpkg")}, dir);
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("has no cell in [100, inf]"), std::string::npos) << r.err;
+}
+
 // --time-step raises the sizes to what an explicit model needs at that step and Courant
 // number: fewer quads under it than without; every time step reported at --courant.
 TEST(CliOutputs, TimeStepRuleWidensTheQuadsInDeepWater) {

@@ -1,0 +1,355 @@
+#include "gis/raster_domain.h"
+
+#include <gdal_alg.h>
+#include <gdal_priv.h>
+#include <ogr_geometry.h>
+#include <ogrsf_frmts.h>
+
+#include <sys/stat.h>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <sstream>
+#include <vector>
+
+#include "core/error.h"
+#include "gis/gdal_env.h"
+#include "gis/read_mesh.h"
+#include "gis/rings_from_lines.h"
+
+namespace isoquad {
+
+namespace {
+
+// Points per side of the raster's extent ring, so that it bends as it should once
+// projected (as the bbox's).
+constexpr int kExtentPointsPerSide = 64;
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os.precision(10);
+  os << v;
+  return os.str();
+}
+
+std::string range_text(const std::optional<double>& zmin, const std::optional<double>& zmax) {
+  return "[" + (zmin ? fmt(*zmin) : std::string("-inf")) + ", " +
+         (zmax ? fmt(*zmax) : std::string("inf")) + "]";
+}
+
+// The open GDAL path of `path` as a raster, or empty when it is not one.
+std::string raster_open_path(const std::string& path) {
+  std::string problem;
+  return gdal_path(path, ArchiveContent::raster, problem);
+}
+
+// A ring as an OGR polygon (closed).
+OGRPolygon to_polygon(const Ring& ring) {
+  OGRLinearRing r;
+  for (const Point2& p : ring) r.addPoint(p.x, p.y);
+  r.closeRings();
+  OGRPolygon poly;
+  poly.addRing(&r);
+  return poly;
+}
+
+class RasterDomainReader {
+ public:
+  explicit RasterDomainReader(const ReadParams& p) : p_(p) {}
+
+  SourceData read() {
+    if (!p_.zmin && !p_.zmax)
+      fail(ErrorClass::usage,
+           "is a raster: give the values the domain covers, --zmax (a sea "
+           "below it) and/or --zmin");
+    if (p_.zmin && p_.zmax && !(*p_.zmin <= *p_.zmax))
+      throw Error(ErrorClass::usage, "read", "--zmin must not be greater than --zmax");
+    if ((p_.zmin && !std::isfinite(*p_.zmin)) || (p_.zmax && !std::isfinite(*p_.zmax)))
+      throw Error(ErrorClass::usage, "read", "--zmin and --zmax must be finite numbers");
+    open();
+    area_ring();
+    window();
+    read_values();
+    contours();
+    return std::move(out_);
+  }
+
+ private:
+  [[noreturn]] void fail(ErrorClass cls, const std::string& problem) const {
+    throw Error(cls, "read", "'" + p_.path + "' " + problem);
+  }
+
+  void open() {
+    ensure_gdal_registered();
+    struct stat st {};
+    if (p_.path.rfind("/vsi", 0) != 0 && stat(p_.path.c_str(), &st) != 0)
+      fail(ErrorClass::input, "does not exist");
+    const std::string open_path = raster_open_path(p_.path);
+    GdalErrorCapture capture;
+    ds_.reset(static_cast<GDALDataset*>(GDALOpenEx(
+        open_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+    if (!ds_)
+      fail(ErrorClass::input, "cannot be read as a raster (" + capture.last_message() + ")");
+    if (ds_->GetRasterCount() < 1) fail(ErrorClass::input, "has no raster band");
+    if (ds_->GetGeoTransform(gt_) != CE_None)
+      fail(ErrorClass::input, "has no georeferencing (geotransform)");
+    if (!GDALInvGeoTransform(gt_, inverse_)) fail(ErrorClass::input, "has a singular geotransform");
+    if (!p_.src_crs.empty()) {
+      out_.crs = parse_crs(p_.src_crs, "--src-crs");
+    } else if (const OGRSpatialReference* srs = ds_->GetSpatialRef()) {
+      out_.crs = crs_from_srs(*srs);
+    } else {
+      fail(ErrorClass::crs, "has no CRS: give it with --src-crs");
+    }
+    raster_.columns = ds_->GetRasterXSize();
+    raster_.rows = ds_->GetRasterYSize();
+    raster_.zmin = p_.zmin;
+    raster_.zmax = p_.zmax;
+    out_.layer_name = "band 1";
+  }
+
+  Point2 georef(double column, double row) const {
+    return {gt_[0] + column * gt_[1] + row * gt_[2], gt_[3] + column * gt_[4] + row * gt_[5]};
+  }
+
+  // The area read: the raster's extent (the cells' outer edges), or its part under
+  // --bbox or --clip.
+  void area_ring() {
+    const double w = raster_.columns, h = raster_.rows;
+    const Point2 corners[4] = {georef(0, 0), georef(w, 0), georef(w, h), georef(0, h)};
+    Ring extent;
+    for (int s = 0; s < 4; ++s)
+      for (int i = 0; i < kExtentPointsPerSide; ++i) {
+        const double t = static_cast<double>(i) / kExtentPointsPerSide;
+        const Point2 a = corners[s], b = corners[(s + 1) % 4];
+        extent.push_back({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
+      }
+    if (signed_area(extent) < 0) std::reverse(extent.begin(), extent.end());
+    if (!p_.bbox && !p_.clip) {
+      area_ = std::move(extent);
+      return;
+    }
+    Ring ring;
+    std::string what = p_.clip_name;
+    if (p_.clip) {
+      ring = *p_.clip;
+    } else {
+      const auto& b = *p_.bbox;
+      if (!(b[0] < b[2] && b[1] < b[3]))
+        throw Error(ErrorClass::usage, "read",
+                    "--bbox must be XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX");
+      ring = densified_box(b, kExtentPointsPerSide);
+      what = "--bbox " + fmt(b[0]) + "," + fmt(b[1]) + "," + fmt(b[2]) + "," + fmt(b[3]);
+    }
+    if (!p_.bbox_crs.empty()) {
+      const CrsInfo from = parse_crs(p_.bbox_crs, p_.clip ? "--clip" : "--bbox-crs");
+      if (CrsTransform(from, out_.crs).transform(ring) >= 0)
+        throw Error(ErrorClass::crs, "read",
+                    what + " cannot be transformed into the CRS of '" + p_.path + "'");
+    }
+    GdalErrorCapture capture;
+    const OGRPolygon area = to_polygon(ring), raster = to_polygon(extent);
+    std::unique_ptr<OGRGeometry> common(area.Intersection(&raster));
+    if (!common || common->IsEmpty()) fail(ErrorClass::input, "has no cell under " + what);
+    const OGRPolygon* poly = dynamic_cast<const OGRPolygon*>(common.get());
+    if (!poly || poly->getNumInteriorRings() > 0)
+      fail(ErrorClass::input, "and " + what +
+                                  " overlap in more than one piece: give an area "
+                                  "that the raster covers, or one that covers it");
+    const OGRLinearRing* r = poly->getExteriorRing();
+    for (int i = 0; i + 1 < r->getNumPoints(); ++i) area_.push_back({r->getX(i), r->getY(i)});
+    if (signed_area(area_) < 0) std::reverse(area_.begin(), area_.end());
+  }
+
+  // The cells under the area, and one more round them.
+  void window() {
+    double i_lo = INFINITY, i_hi = -INFINITY, j_lo = INFINITY, j_hi = -INFINITY;
+    for (const Point2& q : area_) {
+      const double i = inverse_[0] + q.x * inverse_[1] + q.y * inverse_[2];
+      const double j = inverse_[3] + q.x * inverse_[4] + q.y * inverse_[5];
+      i_lo = std::min(i_lo, i), i_hi = std::max(i_hi, i);
+      j_lo = std::min(j_lo, j), j_hi = std::max(j_hi, j);
+    }
+    auto clamp_to = [](double v, int size) {
+      return static_cast<int>(std::clamp(v, 0.0, static_cast<double>(size)));
+    };
+    const int i0 = clamp_to(std::floor(i_lo) - 1, raster_.columns);
+    const int i1 = clamp_to(std::ceil(i_hi) + 1, raster_.columns);
+    const int j0 = clamp_to(std::floor(j_lo) - 1, raster_.rows);
+    const int j1 = clamp_to(std::ceil(j_hi) + 1, raster_.rows);
+    window_ = {i0, j0, std::max(0, i1 - i0), std::max(0, j1 - j0)};
+    if (window_[2] == 0 || window_[3] == 0) fail(ErrorClass::input, "has no cell in the area");
+    const double cells = static_cast<double>(window_[2]) * window_[3];
+    const double limit = static_cast<double>(std::max<std::size_t>(p_.max_raster_cells, 1));
+    raster_.averaged = cells > limit ? static_cast<int>(std::ceil(std::sqrt(cells / limit))) : 1;
+    raster_.read_columns = (window_[2] + raster_.averaged - 1) / raster_.averaged;
+    raster_.read_rows = (window_[3] + raster_.averaged - 1) / raster_.averaged;
+    if (raster_.averaged > 1)
+      out_.warnings.push_back(
+          "'" + p_.path + "': " + std::to_string(window_[2]) + " x " + std::to_string(window_[3]) +
+          " cells in the area, read as " + std::to_string(raster_.read_columns) + " x " +
+          std::to_string(raster_.read_rows) + " (each the mean of " +
+          std::to_string(raster_.averaged) + " x " + std::to_string(raster_.averaged) +
+          "): the contour follows the coarser grid");
+    // The geotransform of the cells read.
+    const double sx = static_cast<double>(window_[2]) / raster_.read_columns;
+    const double sy = static_cast<double>(window_[3]) / raster_.read_rows;
+    const Point2 origin = georef(window_[0], window_[1]);
+    read_gt_[0] = origin.x, read_gt_[1] = gt_[1] * sx, read_gt_[2] = gt_[2] * sy;
+    read_gt_[3] = origin.y, read_gt_[4] = gt_[4] * sx, read_gt_[5] = gt_[5] * sy;
+    // A cell's sides in metres: in lon/lat, at the area's mean latitude.
+    double x_m = 1.0, y_m = 1.0;
+    if (out_.crs.geographic) {
+      double mean_lat = 0.0;
+      for (const Point2& q : area_) mean_lat += q.y / static_cast<double>(area_.size());
+      constexpr double kMetresPerDegree = 111195.0;  // on a sphere of 6,371 km
+      x_m = kMetresPerDegree * std::cos(mean_lat * 3.14159265358979323846 / 180.0);
+      y_m = kMetresPerDegree;
+    } else {
+      x_m = y_m = out_.crs.linear_unit_m;
+    }
+    raster_.cell_size_m = std::max(std::hypot(read_gt_[1] * x_m, read_gt_[4] * y_m),
+                                   std::hypot(read_gt_[2] * x_m, read_gt_[5] * y_m));
+  }
+
+  // g = how far a value lies out of [zmin, zmax] (positive out, at most -kInside in),
+  // on the cells read and a frame of cells round them inside the range, so that every
+  // contour closes; cells without a value are far out.
+  void read_values() {
+    GDALRasterBand* band = ds_->GetRasterBand(1);
+    int has = 0;
+    const double nodata = band->GetNoDataValue(&has);
+    const int w = raster_.read_columns, h = raster_.read_rows;
+    std::vector<double> values(static_cast<std::size_t>(w) * h);
+    GDALRasterIOExtraArg extra;
+    INIT_RASTERIO_EXTRA_ARG(extra);
+    extra.eResampleAlg = raster_.averaged > 1 ? GRIORA_Average : GRIORA_NearestNeighbour;
+    GdalErrorCapture capture;
+    if (band->RasterIO(GF_Read, window_[0], window_[1], window_[2], window_[3], values.data(), w, h,
+                       GDT_Float64, 0, 0, &extra) != CE_None)
+      fail(ErrorClass::input, "cannot be read (band 1: " + capture.last_message() + ")");
+    padded_w_ = w + 2;
+    padded_h_ = h + 2;
+    g_.assign(static_cast<std::size_t>(padded_w_) * padded_h_, -kInside);
+    raster_.value_min = INFINITY;
+    raster_.value_max = -INFINITY;
+    for (int j = 0; j < h; ++j)
+      for (int i = 0; i < w; ++i) {
+        const double v = values[static_cast<std::size_t>(j) * w + i];
+        double& g = g_[static_cast<std::size_t>(j + 1) * padded_w_ + i + 1];
+        if (!std::isfinite(v) || (has && v == nodata)) {
+          g = kNoValue;
+          continue;
+        }
+        ++raster_.num_valid_cells;
+        raster_.value_min = std::min(raster_.value_min, v);
+        raster_.value_max = std::max(raster_.value_max, v);
+        g = -std::numeric_limits<double>::infinity();
+        if (p_.zmax) g = std::max(g, v - *p_.zmax);
+        if (p_.zmin) g = std::max(g, *p_.zmin - v);
+        if (g <= 0.0) {
+          g = std::min(g, -kInside);
+          ++raster_.num_cells_in_range;
+        }
+      }
+    if (raster_.num_valid_cells == 0) fail(ErrorClass::input, "has no value in the area");
+    if (raster_.num_cells_in_range == 0)
+      fail(ErrorClass::input, "has no cell in " + range_text(p_.zmin, p_.zmax) +
+                                  " in the area (its values there: " + fmt(raster_.value_min) +
+                                  " to " + fmt(raster_.value_max) + ")");
+  }
+
+  // The contours of g = 0 as closed lines, nested into the polygons out of the range.
+  void contours() {
+    GdalErrorCapture capture;
+    GDALDriver* mem = GetGDALDriverManager()->GetDriverByName("MEM");
+    GDALDriver* memory = GetGDALDriverManager()->GetDriverByName("Memory");
+    if (!mem || !memory)
+      throw Error(ErrorClass::internal, "read", "GDAL's MEM and Memory drivers are missing");
+    GdalDataset grid(mem->Create("", padded_w_, padded_h_, 1, GDT_Float64, nullptr));
+    GdalDataset lines(memory->Create("", 0, 0, 0, GDT_Unknown, nullptr));
+    if (!grid || !lines)
+      throw Error(ErrorClass::internal, "read", "cannot create GDAL's in-memory data sets");
+    // One cell of the frame before the first cell read.
+    double frame_gt[6] = {read_gt_[0] - read_gt_[1] - read_gt_[2], read_gt_[1], read_gt_[2],
+                          read_gt_[3] - read_gt_[4] - read_gt_[5], read_gt_[4], read_gt_[5]};
+    grid->SetGeoTransform(frame_gt);
+    GDALRasterBand* band = grid->GetRasterBand(1);
+    if (band->RasterIO(GF_Write, 0, 0, padded_w_, padded_h_, g_.data(), padded_w_, padded_h_,
+                       GDT_Float64, 0, 0) != CE_None)
+      throw Error(ErrorClass::internal, "read", "cannot fill the in-memory grid");
+    OGRLayer* layer = lines->CreateLayer("contour", nullptr, wkbLineString, nullptr);
+    OGRFieldDefn id("id", OFTInteger), level("level", OFTReal);
+    if (!layer || layer->CreateField(&id) != OGRERR_NONE ||
+        layer->CreateField(&level) != OGRERR_NONE)
+      throw Error(ErrorClass::internal, "read", "cannot create the contours' layer");
+    const char* options[] = {"FIXED_LEVELS=0", "ID_FIELD=0", "ELEV_FIELD=1", nullptr};
+    if (GDALContourGenerateEx(GDALRasterBand::ToHandle(band), OGRLayer::ToHandle(layer),
+                              const_cast<char**>(options), nullptr, nullptr) != CE_None)
+      fail(ErrorClass::input, "cannot be contoured (" + capture.last_message() + ")");
+    std::vector<SourceLine> source_lines;
+    layer->ResetReading();
+    for (auto& feature : *layer) {
+      const OGRLineString* line = dynamic_cast<const OGRLineString*>(feature->GetGeometryRef());
+      if (!line) continue;
+      SourceLine s;
+      s.fid = feature->GetFID();
+      for (int i = 0; i < line->getNumPoints(); ++i)
+        s.points.push_back({line->getX(i), line->getY(i)});
+      source_lines.push_back(std::move(s));
+    }
+    LineRings rings;
+    try {
+      rings = rings_from_lines(source_lines, out_.crs.geographic ? "degrees" : "units");
+    } catch (const LinesError& e) {
+      throw Error(ErrorClass::internal, "read",
+                  "the contours of '" + p_.path + "' do not close: " + e.what());
+    }
+    out_.polygons = std::move(rings.polygons);
+    out_.num_features = out_.polygons.size();
+    out_.bbox_ring = std::move(area_);
+    out_.raster = raster_;
+  }
+
+  // In-range cells are at least this far inside (the contour of 0 never passes through
+  // a cell centre); cells without a value this far out.
+  static constexpr double kInside = 1e-6;
+  static constexpr double kNoValue = 1e30;
+
+  const ReadParams& p_;
+  SourceData out_;
+  SourceData::Raster raster_;
+  GdalDataset ds_;
+  double gt_[6] = {}, inverse_[6] = {}, read_gt_[6] = {};
+  Ring area_;
+  std::array<int, 4> window_{};
+  int padded_w_ = 0, padded_h_ = 0;
+  std::vector<double> g_;
+};
+
+}  // namespace
+
+bool is_raster_input(const std::string& path) {
+  if (path.empty() || is_mesh_file(path)) return false;
+  ensure_gdal_registered();
+  struct stat st {};
+  if (path.rfind("/vsi", 0) != 0 && stat(path.c_str(), &st) != 0) return false;
+  const std::string open_path = raster_open_path(path);
+  if (open_path.empty()) return false;
+  // The raster drivers first: they turn a vector file down by its header, where opening
+  // it as a vector could parse all of it (a GeoJSON).
+  GdalErrorCapture capture;
+  GdalDataset raster(static_cast<GDALDataset*>(
+      GDALOpenEx(open_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  if (!raster || raster->GetRasterCount() == 0) return false;
+  GdalDataset vector(static_cast<GDALDataset*>(
+      GDALOpenEx(open_path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  return !vector || vector->GetLayerCount() == 0;
+}
+
+SourceData read_raster_domain(const ReadParams& read) {
+  return RasterDomainReader(read).read();
+}
+
+}  // namespace isoquad

@@ -1,0 +1,190 @@
+// A domain from a raster's cells in [zmin, zmax] (gis/raster_domain.h): the polygons
+// out of the range, and the area read, checked against a DEM of known contours.
+#include "gis/raster_domain.h"
+
+#include <gdal_priv.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/error.h"
+#include "domain/select_domain.h"
+#include "gis/gdal_env.h"
+#include "support/test_support.h"
+#include "support/write_raster.h"
+
+using namespace isoquad;
+using namespace isoquad::test;
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+// 20 x 20 km in UTM 31N at 100 m: a cone-shaped island, the 0 m contour a circle of
+// 6 km round (510000, 4990000), sea round it; `nodata_cells` x `nodata_cells` cells
+// without a value in the north-west corner.
+std::string island_dem(const TempDir& dir, int nodata_cells = 0, int epsg = 32631) {
+  return write_geotiff(dir.file("dem.tif"), 500000, 5000000, 100, 200, 200, epsg,
+                       [=](double x, double y) {
+                         if (x < 500000 + 100 * nodata_cells && y > 5000000 - 100 * nodata_cells)
+                           return std::nan("");
+                         return 0.01 * (6000 - std::hypot(x - 510000, y - 4990000));
+                       });
+}
+
+ReadParams dem_params(const std::string& path) {
+  ReadParams p;
+  p.path = path;
+  p.zmax = 0.0;
+  return p;
+}
+
+double domain_area(const SourceData& source) {
+  SelectParams sp;
+  sp.kind = DomainKind::water;
+  double total = 0.0;
+  for (const Polygon& p : select_domain(source, sp).polygons) total += area(p);
+  return total;
+}
+
+ErrorClass error_of(const ReadParams& p) {
+  try {
+    read_raster_domain(p);
+  } catch (const Error& e) {
+    return e.error_class();
+  }
+  ADD_FAILURE() << "no error";
+  return ErrorClass::internal;
+}
+
+}  // namespace
+
+TEST(RasterDomain, TheSeaBelowZeroIsTheAreaMinusTheIsland) {
+  TempDir dir;
+  const SourceData sea = read_raster_domain(dem_params(island_dem(dir)));
+  ASSERT_TRUE(sea.raster.has_value());
+  EXPECT_EQ(sea.raster->columns, 200);
+  EXPECT_EQ(sea.raster->num_valid_cells, 40000u);
+  EXPECT_EQ(sea.raster->averaged, 1);
+  // The cells out of the island's circle, within a row of cells along it.
+  const double sea_cells = 40000 - kPi * 60 * 60;
+  EXPECT_NEAR(static_cast<double>(sea.raster->num_cells_in_range), sea_cells, 2 * kPi * 60);
+  // One polygon out of the range, the island, whose edge is the circle.
+  ASSERT_EQ(sea.polygons.size(), 1u);
+  ASSERT_EQ(sea.polygons[0].rings.size(), 1u);
+  EXPECT_NEAR(std::abs(signed_area(sea.polygons[0].rings[0])), kPi * 6000 * 6000,
+              0.002 * kPi * 6000 * 6000);
+  for (const Point2& p : sea.polygons[0].rings[0])
+    EXPECT_NEAR(std::hypot(p.x - 510000, p.y - 4990000), 6000, 15);
+  // The area read is the raster's extent, cells' outer edges included.
+  ASSERT_TRUE(sea.bbox_ring.has_value());
+  EXPECT_NEAR(std::abs(signed_area(*sea.bbox_ring)), 400e6, 1.0);
+  EXPECT_NEAR(domain_area(sea), 400e6 - kPi * 36e6, 0.002 * kPi * 36e6);
+
+  // Above zero: the island alone; the sea is the polygon out of the range, the island its
+  // hole.
+  ReadParams above = dem_params(dir.file("dem.tif"));
+  above.zmax.reset();
+  above.zmin = 0.0;
+  const SourceData land = read_raster_domain(above);
+  ASSERT_EQ(land.polygons.size(), 1u);
+  ASSERT_EQ(land.polygons[0].rings.size(), 2u);
+  EXPECT_NEAR(domain_area(land), kPi * 36e6, 0.002 * kPi * 36e6);
+  // A band: the sea from -20 to 0 m, a ring round the island 2 km wide.
+  ReadParams band = dem_params(dir.file("dem.tif"));
+  band.zmin = -20.0;
+  EXPECT_NEAR(domain_area(read_raster_domain(band)), kPi * (64e6 - 36e6), 0.004 * kPi * 28e6);
+}
+
+TEST(RasterDomain, CellsWithoutAValueAreOutside) {
+  TempDir dir;
+  const SourceData sea = read_raster_domain(dem_params(island_dem(dir, 20)));
+  EXPECT_EQ(sea.raster->num_valid_cells, 40000u - 400u);
+  ASSERT_EQ(sea.polygons.size(), 2u);
+  // The wall runs through the centres of the first cells with a value: 2,050 m square.
+  EXPECT_NEAR(domain_area(sea), 400e6 - kPi * 36e6 - 2050.0 * 2050.0, 0.002 * kPi * 36e6);
+}
+
+TEST(RasterDomain, ALargeWindowIsReadAveraged) {
+  TempDir dir;
+  ReadParams p = dem_params(island_dem(dir, 21));
+  p.max_raster_cells = 2500;
+  const SourceData sea = read_raster_domain(p);
+  EXPECT_EQ(sea.raster->averaged, 4);
+  EXPECT_EQ(sea.raster->read_columns, 50);
+  EXPECT_EQ(sea.warnings.size(), 1u);
+  // The average leaves the cells without a value out: no mean of -9999 and a depth.
+  EXPECT_GT(sea.raster->value_min, -82.0);
+  EXPECT_NEAR(domain_area(sea), 400e6 - kPi * 36e6 - 2100.0 * 2100.0, 0.03 * kPi * 36e6);
+}
+
+TEST(RasterDomain, UnderABboxInAnotherCrs) {
+  TempDir dir;
+  ReadParams p = dem_params(island_dem(dir));
+  // The raster's west half and more, in lon/lat (about 2.95 to 3.127 E).
+  p.bbox = std::array<double, 4>{2.9, 44.9, 3.127, 45.2};
+  p.bbox_crs = "EPSG:4326";
+  const SourceData half = read_raster_domain(p);
+  ASSERT_TRUE(half.bbox_ring.has_value());
+  const double box = std::abs(signed_area(*half.bbox_ring));
+  EXPECT_GT(box, 180e6);
+  EXPECT_LT(box, 220e6);
+  EXPECT_LT(half.raster->num_valid_cells, 40000u * 6 / 10);
+  EXPECT_NEAR(domain_area(half), box - kPi * 18e6, 0.05 * kPi * 18e6);
+  p.bbox = std::array<double, 4>{10, 50, 11, 51};
+  EXPECT_EQ(error_of(p), ErrorClass::input);
+}
+
+TEST(RasterDomain, ClearErrors) {
+  TempDir dir;
+  const std::string path = island_dem(dir);
+  ReadParams p = dem_params(path);
+  p.zmax.reset();
+  EXPECT_EQ(error_of(p), ErrorClass::usage);
+  p.zmin = 5.0;
+  p.zmax = 1.0;
+  EXPECT_EQ(error_of(p), ErrorClass::usage);
+  p.zmin = 100.0;
+  p.zmax = 200.0;
+  try {
+    read_raster_domain(p);
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::input);
+    EXPECT_NE(e.message().find("has no cell in [100, 200]"), std::string::npos) << e.message();
+  }
+  const std::string no_crs = write_geotiff(dir.file("nocrs.tif"), 0, 1000, 10, 10, 10, 0,
+                                           [](double, double) { return 1.0; });
+  EXPECT_EQ(error_of(dem_params(no_crs)), ErrorClass::crs);
+  ReadParams assigned = dem_params(no_crs);
+  assigned.src_crs = "EPSG:32631";
+  assigned.zmax = 2.0;
+  EXPECT_EQ(read_raster_domain(assigned).polygons.size(), 0u);
+  EXPECT_EQ(error_of(dem_params(dir.file("missing.tif"))), ErrorClass::input);
+}
+
+TEST(RasterDomain, WhichInputsAreRasters) {
+  TempDir dir;
+  EXPECT_TRUE(is_raster_input(island_dem(dir)));
+  // The same grid as netCDF (GEBCO's format): a raster, not a mesh, with the same cells.
+  {
+    GdalDataset tif(static_cast<GDALDataset*>(GDALOpen(dir.file("dem.tif").c_str(), GA_ReadOnly)));
+    GDALDriver* netcdf = GetGDALDriverManager()->GetDriverByName("netCDF");
+    ASSERT_NE(netcdf, nullptr);
+    GdalDataset nc(netcdf->CreateCopy(dir.file("dem.nc").c_str(), tif.get(), FALSE, nullptr,
+                                      nullptr, nullptr));
+    ASSERT_TRUE(nc);
+  }
+  EXPECT_TRUE(is_raster_input(dir.file("dem.nc")));
+  const SourceData from_nc = read_raster_domain(dem_params(dir.file("dem.nc")));
+  const SourceData from_tif = read_raster_domain(dem_params(dir.file("dem.tif")));
+  EXPECT_EQ(from_nc.raster->num_cells_in_range, from_tif.raster->num_cells_in_range);
+  EXPECT_NEAR(domain_area(from_nc), domain_area(from_tif), 1.0);
+  write_file(dir.file("p.geojson"),
+             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+             R"("geometry":{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}}]})");
+  EXPECT_FALSE(is_raster_input(dir.file("p.geojson")));
+  EXPECT_FALSE(is_raster_input(dir.file("missing.tif")));
+  write_file(dir.file("m.gr3"), "m\n1 3\n1 0 0 1\n2 1 0 1\n3 0 1 1\n1 3 1 2 3\n");
+  EXPECT_FALSE(is_raster_input(dir.file("m.gr3")));
+}
