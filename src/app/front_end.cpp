@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "core/error.h"
 #include "domain/separate_rings.h"
@@ -324,6 +325,9 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
         "given as INPUT");
   const bool from_raster = !options.source && !from_mesh && is_raster_input(read.path);
   if (from_raster) check_raster_selection(options);
+  if ((read.zmin || read.zmax) && !from_raster && !options.source &&
+      !std::filesystem::exists(read.path))
+    throw Error(ErrorClass::input, "read", "'" + read.path + "' does not exist");
   if ((read.zmin || read.zmax) && !from_raster)
     throw Error(ErrorClass::usage, "options",
                 "--zmin and --zmax pick the cells of a raster INPUT (a DEM): '" + read.path +

@@ -38,10 +38,12 @@ std::string range_text(const std::optional<double>& zmin, const std::optional<do
          (zmax ? fmt(*zmax) : std::string("inf")) + "]";
 }
 
-// The open GDAL path of `path` as a raster, or empty when it is not one.
+// The path for GDAL to open `path` with as a raster: an archive's grid inside it, else
+// the path itself (a file, or GDAL's syntax: NETCDF:"gebco.nc":elevation).
 std::string raster_open_path(const std::string& path) {
   std::string problem;
-  return gdal_path(path, ArchiveContent::raster, problem);
+  const std::string open_path = gdal_path(path, ArchiveContent::raster, problem);
+  return open_path.empty() ? path : open_path;
 }
 
 // A ring as an OGR polygon (closed).
@@ -82,16 +84,26 @@ class RasterDomainReader {
 
   void open() {
     ensure_gdal_registered();
-    struct stat st {};
-    if (p_.path.rfind("/vsi", 0) != 0 && stat(p_.path.c_str(), &st) != 0)
-      fail(ErrorClass::input, "does not exist");
     const std::string open_path = raster_open_path(p_.path);
     GdalErrorCapture capture;
     ds_.reset(static_cast<GDALDataset*>(GDALOpenEx(
         open_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+    struct stat st {};
+    if (!ds_ && stat(p_.path.c_str(), &st) != 0) fail(ErrorClass::input, "does not exist");
     if (!ds_)
       fail(ErrorClass::input, "cannot be read as a raster (" + capture.last_message() + ")");
-    if (ds_->GetRasterCount() < 1) fail(ErrorClass::input, "has no raster band");
+    if (ds_->GetRasterCount() < 1) {
+      // A netCDF file of several variables: GDAL names each grid as a data set of its own.
+      std::string grids;
+      if (char** sub = ds_->GetMetadata("SUBDATASETS"))
+        for (int k = 0; sub[k]; ++k) {
+          const std::string entry = sub[k];
+          const std::size_t eq = entry.find("_NAME=");
+          if (eq != std::string::npos) grids += (grids.empty() ? "" : ", ") + entry.substr(eq + 6);
+        }
+      fail(ErrorClass::input, grids.empty() ? std::string("has no raster band")
+                                            : "holds several grids: give one as INPUT, " + grids);
+    }
     if (ds_->GetGeoTransform(gt_) != CE_None)
       fail(ErrorClass::input, "has no georeferencing (geotransform)");
     if (!GDALInvGeoTransform(gt_, inverse_)) fail(ErrorClass::input, "has a singular geotransform");
@@ -333,16 +345,15 @@ class RasterDomainReader {
 bool is_raster_input(const std::string& path) {
   if (path.empty() || is_mesh_file(path)) return false;
   ensure_gdal_registered();
-  struct stat st {};
-  if (path.rfind("/vsi", 0) != 0 && stat(path.c_str(), &st) != 0) return false;
   const std::string open_path = raster_open_path(path);
-  if (open_path.empty()) return false;
   // The raster drivers first: they turn a vector file down by its header, where opening
   // it as a vector could parse all of it (a GeoJSON).
   GdalErrorCapture capture;
   GdalDataset raster(static_cast<GDALDataset*>(
       GDALOpenEx(open_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
-  if (!raster || raster->GetRasterCount() == 0) return false;
+  if (!raster) return false;
+  // A netCDF file of several grids has no band of its own, but subdatasets.
+  if (raster->GetRasterCount() == 0 && !raster->GetMetadata("SUBDATASETS")) return false;
   GdalDataset vector(static_cast<GDALDataset*>(
       GDALOpenEx(open_path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   return !vector || vector->GetLayerCount() == 0;

@@ -4,6 +4,7 @@
 
 #include <gdal_priv.h>
 #include <gtest/gtest.h>
+#include <netcdf.h>
 
 #include <cmath>
 
@@ -180,6 +181,25 @@ TEST(RasterDomain, WhichInputsAreRasters) {
   const SourceData from_tif = read_raster_domain(dem_params(dir.file("dem.tif")));
   EXPECT_EQ(from_nc.raster->num_cells_in_range, from_tif.raster->num_cells_in_range);
   EXPECT_NEAR(domain_area(from_nc), domain_area(from_tif), 1.0);
+  // A netCDF file of two grids: the message names each as GDAL opens it.
+  int nc = -1, dy = -1, dx = -1, v = -1;
+  ASSERT_EQ(nc_create(dir.file("two.nc").c_str(), NC_CLOBBER, &nc), NC_NOERR);
+  nc_def_dim(nc, "y", 4, &dy);
+  nc_def_dim(nc, "x", 5, &dx);
+  const int dims[2] = {dy, dx};
+  nc_def_var(nc, "elevation", NC_FLOAT, 2, dims, &v);
+  nc_def_var(nc, "tid", NC_FLOAT, 2, dims, &v);
+  nc_close(nc);
+  EXPECT_TRUE(is_raster_input(dir.file("two.nc")));
+  try {
+    read_raster_domain(dem_params(dir.file("two.nc")));
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::input);
+    EXPECT_NE(e.message().find("holds several grids: give one as INPUT, NETCDF:\""),
+              std::string::npos)
+        << e.message();
+  }
   write_file(dir.file("p.geojson"),
              R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
              R"("geometry":{"type":"Polygon","coordinates":[[[0,0],[1,0],[1,1],[0,0]]]}}]})");
