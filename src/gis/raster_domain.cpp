@@ -172,6 +172,12 @@ class RasterDomainReader {
     const OGRLinearRing* r = poly->getExteriorRing();
     for (int i = 0; i + 1 < r->getNumPoints(); ++i) area_.push_back({r->getX(i), r->getY(i)});
     if (signed_area(area_) < 0) std::reverse(area_.begin(), area_.end());
+    // An area reaching past the raster (or across a lon/lat grid's antimeridian, in the
+    // grid's own longitudes) is meshed where the raster is: say so.
+    const double share = std::abs(signed_area(area_)) / std::abs(signed_area(ring));
+    if (share < 0.999)
+      out_.warnings.push_back("'" + p_.path + "' covers " + fmt(std::round(1000 * share) / 10) +
+                              "% of " + what + ": the domain is the part it covers");
   }
 
   // The cells under the area, and one more round them.

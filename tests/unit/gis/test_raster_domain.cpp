@@ -132,6 +132,12 @@ TEST(RasterDomain, UnderABboxInAnotherCrs) {
   EXPECT_LT(box, 220e6);
   EXPECT_LT(half.raster->num_valid_cells, 40000u * 6 / 10);
   EXPECT_NEAR(domain_area(half), box - kPi * 18e6, 0.05 * kPi * 18e6);
+  ASSERT_EQ(half.warnings.size(), 1u);
+  EXPECT_NE(half.warnings[0].find("% of --bbox 2.9,44.9,3.127,45.2: the domain is the part"),
+            std::string::npos)
+      << half.warnings[0];
+  p.bbox = std::array<double, 4>{3.05, 45.0, 3.15, 45.1};  // inside: no warning
+  EXPECT_TRUE(read_raster_domain(p).warnings.empty());
   p.bbox = std::array<double, 4>{10, 50, 11, 51};
   EXPECT_EQ(error_of(p), ErrorClass::input);
 }
