@@ -132,7 +132,12 @@ double RasterField::sample(const Point2& p) const {
   // Pixel centres are at half-integer pixel coordinates.
   const double px = inverse_[0] + q.x * inverse_[1] + q.y * inverse_[2] - 0.5;
   const double py = inverse_[3] + q.x * inverse_[4] + q.y * inverse_[5] - 0.5;
-  if (!(px >= -0.5 && py >= -0.5 && px <= width_ - 0.5 && py <= height_ - 0.5)) return nan;
+  // Points on the raster's edge (a bbox that a download was cut to) come back from the
+  // meshing CRS a hair off it: within a hundredth of a pixel, they are on it.
+  constexpr double kEdgeSlack = 0.01;
+  if (!(px >= -0.5 - kEdgeSlack && py >= -0.5 - kEdgeSlack && px <= width_ - 0.5 + kEdgeSlack &&
+        py <= height_ - 0.5 + kEdgeSlack))
+    return nan;
   const int i0 = std::clamp(static_cast<int>(std::floor(px)), 0, std::max(0, width_ - 2));
   const int j0 = std::clamp(static_cast<int>(std::floor(py)), 0, std::max(0, height_ - 2));
   const int i1 = std::min(i0 + 1, width_ - 1), j1 = std::min(j0 + 1, height_ - 1);

@@ -97,3 +97,19 @@ TEST(RasterField, ReadsAZippedGridAsDownloaded) {
         << e.what();
   }
 }
+
+// A point on the raster's edge, come back from another CRS a hair off it, takes the edge's
+// value; farther out, none.
+TEST(RasterField, TheEdgeHoldsWithinAHundredthOfAPixel) {
+  TempDir dir;
+  // 10 x 10 pixels of 100 m in UTM 31N, value x / 100 at the pixel centres.
+  const std::string path = write_geotiff(dir.file("g.tif"), 500000, 5001000, 100, 10, 10, 32631,
+                                         [](double x, double) { return x / 100; });
+  const CrsInfo utm = parse_crs("EPSG:32631", "t");
+  const RasterField f(path, "--bathymetry", utm);
+  EXPECT_DOUBLE_EQ(f.sample({500000.0, 5000500.0}), 5000.5);        // on the west edge
+  EXPECT_DOUBLE_EQ(f.sample({499999.5, 5000500.0}), 5000.5);        // 0.005 pixel off it
+  EXPECT_TRUE(std::isnan(f.sample({499997.0, 5000500.0})));         // 0.03 pixel off
+  EXPECT_DOUBLE_EQ(f.sample({501000.4, 5000000.0 - 0.4}), 5009.5);  // the south-east corner
+  EXPECT_TRUE(std::isnan(f.sample({501003.0, 5000500.0})));
+}
