@@ -142,24 +142,8 @@ class RasterDomainReader {
       area_ = std::move(extent);
       return;
     }
-    Ring ring;
-    std::string what = p_.clip_name;
-    if (p_.clip) {
-      ring = *p_.clip;
-    } else {
-      const auto& b = *p_.bbox;
-      if (!(b[0] < b[2] && b[1] < b[3]))
-        throw Error(ErrorClass::usage, "read",
-                    "--bbox must be XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX");
-      ring = densified_box(b, kExtentPointsPerSide);
-      what = "--bbox " + fmt(b[0]) + "," + fmt(b[1]) + "," + fmt(b[2]) + "," + fmt(b[3]);
-    }
-    if (!p_.bbox_crs.empty()) {
-      const CrsInfo from = parse_crs(p_.bbox_crs, p_.clip ? "--clip" : "--bbox-crs");
-      if (CrsTransform(from, out_.crs).transform(ring) >= 0)
-        throw Error(ErrorClass::crs, "read",
-                    what + " cannot be transformed into the CRS of '" + p_.path + "'");
-    }
+    std::string what;
+    const Ring ring = selection_area(p_, out_.crs, what);
     GdalErrorCapture capture;
     const OGRPolygon area = to_polygon(ring), raster = to_polygon(extent);
     std::unique_ptr<OGRGeometry> common(area.Intersection(&raster));

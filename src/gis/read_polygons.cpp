@@ -143,28 +143,8 @@ class Reader {
   // lines that reach the bbox); otherwise it is read whole (polygons_from_lines).
   void apply_bbox(bool filter_lines) {
     if (!p_.bbox && !p_.clip) return;
-    Ring ring;
-    std::string what = p_.clip_name;
-    if (p_.clip) {
-      ring = *p_.clip;
-    } else {
-      const auto& b = *p_.bbox;
-      for (double v : b)
-        if (!std::isfinite(v)) fail(ErrorClass::usage, "--bbox has a value that is not finite");
-      if (!(b[0] < b[2] && b[1] < b[3]))
-        fail(ErrorClass::usage,
-             "--bbox must be XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX");
-      ring = densified_box(b, 64);
-      what = "--bbox " + fmt(b[0]) + "," + fmt(b[1]) + "," + fmt(b[2]) + "," + fmt(b[3]);
-    }
-    if (!p_.bbox_crs.empty()) {
-      CrsInfo bcrs = parse_crs(p_.bbox_crs, "--bbox-crs");
-      CrsTransform t(bcrs, out_.crs);
-      if (t.transform(ring) >= 0)
-        fail(ErrorClass::crs, (p_.clip ? what : std::string("--bbox")) +
-                                  " cannot be transformed from " + quote(bcrs.name) + " to " +
-                                  quote(out_.crs.name));
-    }
+    std::string what;
+    Ring ring = selection_area(p_, out_.crs, what);
     double xmin = 1e300, ymin = 1e300, xmax = -1e300, ymax = -1e300;
     for (const Point2& q : ring)
       xmin = std::min(xmin, q.x), xmax = std::max(xmax, q.x), ymin = std::min(ymin, q.y),
@@ -494,6 +474,34 @@ class Reader {
 };
 
 }  // namespace
+
+Ring selection_area(const ReadParams& p, const CrsInfo& crs, std::string& what) {
+  Ring ring;
+  what = p.clip_name;
+  if (p.clip) {
+    ring = *p.clip;
+  } else {
+    const auto& b = *p.bbox;
+    for (double v : b)
+      if (!std::isfinite(v))
+        throw Error(ErrorClass::usage, "read",
+                    quote(p.path) + ": --bbox has a value that is not finite");
+    if (!(b[0] < b[2] && b[1] < b[3]))
+      throw Error(
+          ErrorClass::usage, "read",
+          quote(p.path) + ": --bbox must be XMIN,YMIN,XMAX,YMAX with XMIN < XMAX and YMIN < YMAX");
+    ring = densified_box(b, 64);
+    what = "--bbox " + fmt(b[0]) + "," + fmt(b[1]) + "," + fmt(b[2]) + "," + fmt(b[3]);
+  }
+  if (!p.bbox_crs.empty()) {
+    const CrsInfo from = parse_crs(p.bbox_crs, "--bbox-crs");
+    if (CrsTransform(from, crs).transform(ring) >= 0)
+      throw Error(ErrorClass::crs, "read",
+                  quote(p.path) + ": " + (p.clip ? what : std::string("--bbox")) +
+                      " cannot be transformed from " + quote(from.name) + " to " + quote(crs.name));
+  }
+  return ring;
+}
 
 Ring densified_box(const std::array<double, 4>& b, int per_side) {
   Ring ring;

@@ -94,6 +94,12 @@ struct SelectionValue {
 // Error(usage) for no such attribute (listing those there are).
 std::vector<SelectionValue> selection_values(const ReadParams& params, const std::string& field);
 
+// The area --clip (p.clip) or --bbox (p.bbox, one of them set) selects, as a ring in
+// `crs` (from p.bbox_crs when given); `what` names it in messages ("--bbox 1,2,3,4").
+// Throws Error(usage) for a bbox that is not one, Error(crs) when it cannot be
+// transformed.
+Ring selection_area(const ReadParams& p, const CrsInfo& crs, std::string& what);
+
 // The bbox rectangle as a ring with `per_side` points per side, so that it bends
 // correctly when projected.
 Ring densified_box(const std::array<double, 4>& bbox, int per_side);
