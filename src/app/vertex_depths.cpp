@@ -33,7 +33,8 @@ VertexDepths vertex_depths(const RasterStack& rasters, const QuadMesh& mesh,
     throw Error(ErrorClass::input, "bathymetry",
                 rasters.paths_text() +
                     ": no vertex of the mesh lies where it has a depth (check its extent, its CRS "
-                    "and its nodata value)");
+                    "and its nodata value)" +
+                    rasters.crs_hints());
   if (queue.size() < n) {
     std::vector<std::size_t> start(n + 1, 0);
     for (const auto& q : mesh.quads)

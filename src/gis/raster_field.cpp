@@ -3,10 +3,11 @@
 #include <gdal_priv.h>
 #include <ogr_spatialref.h>
 
+#include <sys/stat.h>
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <sys/stat.h>
+#include <sstream>
 
 #include "core/error.h"
 #include "gis/gdal_env.h"
@@ -69,6 +70,16 @@ RasterField::RasterField(const std::string& path, const std::string& what, const
     to_raster_ = std::make_unique<CrsTransform>(query_crs, raster_crs);
   }
   window_ = {0, 0, width_, height_};
+  double gt[6];
+  ds->GetGeoTransform(gt);
+  for (const auto& [i, j] :
+       {std::pair<int, int>{0, 0}, {width_, 0}, {0, height_}, {width_, height_}}) {
+    const double x = gt[0] + i * gt[1] + j * gt[2], y = gt[3] + i * gt[4] + j * gt[5];
+    extent_ = (i == 0 && j == 0)
+                  ? std::array<double, 4>{x, y, x, y}
+                  : std::array<double, 4>{std::min(extent_[0], x), std::min(extent_[1], y),
+                                          std::max(extent_[2], x), std::max(extent_[3], y)};
+  }
   if (extent) {
     // The pixels under a 33 x 33 lattice over the extent (its edges and inside: a pole or
     // a bend of the transform inside it counts), and round them as many as the lattice's
@@ -125,6 +136,21 @@ RasterField::RasterField(const std::string& path, const std::string& what, const
 
 RasterField::~RasterField() = default;
 
+std::string RasterField::crs_hint() const {
+  if (to_raster_) return "";
+  std::ostringstream os;
+  os.precision(8);
+  os << "'" << path_ << "' has no CRS, so it is read in the meshing CRS";
+  const bool lonlat = extent_[0] >= -360 && extent_[2] <= 360 && extent_[1] >= -90.5 &&
+                      extent_[3] <= 90.5 && extent_[2] - extent_[0] <= 361;
+  if (lonlat)
+    os << ", but its extent (" << extent_[0] << " to " << extent_[2] << ", " << extent_[1] << " to "
+       << extent_[3]
+       << ") looks like longitudes and latitudes: give it its CRS (gdal_translate -a_srs "
+          "EPSG:4326 IN OUT.tif)";
+  return os.str();
+}
+
 double RasterField::sample(const Point2& p) const {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   Point2 q = p;
@@ -173,6 +199,15 @@ double RasterStack::sample(const Point2& p) const {
     if (!std::isnan(v)) return sources_[i].elevation ? -v : v;
   }
   return std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string RasterStack::crs_hints() const {
+  std::string text;
+  for (const auto& r : rasters_) {
+    const std::string hint = r->crs_hint();
+    if (!hint.empty()) text += "; " + hint;
+  }
+  return text;
 }
 
 std::string RasterStack::paths_text() const {

@@ -20,6 +20,9 @@ class PointField {
  public:
   virtual ~PointField() = default;
   virtual double sample(const Point2& p) const = 0;
+  // Why no point may have found a value, when the field can tell (a raster without a
+  // CRS whose extent looks like longitudes and latitudes); empty otherwise.
+  virtual std::string crs_hint() const { return ""; }
 };
 
 class RasterField : public PointField {
@@ -39,6 +42,7 @@ class RasterField : public PointField {
   // Bilinear value at p (query CRS); NaN outside the raster or where a neighbouring
   // pixel is nodata.
   double sample(const Point2& p) const override;
+  std::string crs_hint() const override;
 
   const std::string& path() const { return path_; }
   int width() const { return width_; }
@@ -55,6 +59,7 @@ class RasterField : public PointField {
   bool has_nodata_ = false;
   double nodata_ = 0.0;
   std::unique_ptr<CrsTransform> to_raster_;
+  std::array<double, 4> extent_{};  // xmin, ymin, xmax, ymax of the whole raster, its units
 };
 
 // A raster of depths (metres, positive down: --bathymetry) or of elevations (positive
@@ -89,6 +94,8 @@ class RasterStack {
   std::size_t size() const { return rasters_.size(); }
   // --bathymetry 'a.tif', --elevation 'b.tif' (for messages).
   std::string paths_text() const;
+  // The rasters' crs_hint()s, for a message that none gave a value.
+  std::string crs_hints() const;
 
  private:
   std::vector<std::unique_ptr<PointField>> rasters_;

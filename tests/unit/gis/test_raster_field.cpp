@@ -113,3 +113,23 @@ TEST(RasterField, TheEdgeHoldsWithinAHundredthOfAPixel) {
   EXPECT_DOUBLE_EQ(f.sample({501000.4, 5000000.0 - 0.4}), 5009.5);  // the south-east corner
   EXPECT_TRUE(std::isnan(f.sample({501003.0, 5000500.0})));
 }
+
+// A raster without a CRS is read in the query CRS; when its extent looks like longitudes
+// and latitudes, the hint for "no vertex has a depth" says so.
+TEST(RasterField, AGridWithoutACrsInLongitudesIsNamed) {
+  TempDir dir;
+  const CrsInfo local = parse_crs("+proj=sterea +lat_0=40.5 +lon_0=3.6 +datum=WGS84 +units=m", "t");
+  const std::string lonlat = write_geotiff(dir.file("ll.tif"), 3.0, 41.0, 0.02, 60, 50, 0,
+                                           [](double, double) { return 10.0; });
+  const RasterField no_crs(lonlat, "--bathymetry", local);
+  EXPECT_NE(no_crs.crs_hint().find("looks like longitudes and latitudes"), std::string::npos)
+      << no_crs.crs_hint();
+  const std::string metres = write_geotiff(dir.file("m.tif"), 500000, 5001000, 100, 10, 10, 0,
+                                           [](double, double) { return 10.0; });
+  const RasterField in_metres(metres, "--bathymetry", local);
+  EXPECT_NE(in_metres.crs_hint().find("has no CRS"), std::string::npos);
+  EXPECT_EQ(in_metres.crs_hint().find("longitudes"), std::string::npos);
+  const std::string with_crs = write_geotiff(dir.file("w.tif"), 3.0, 41.0, 0.02, 60, 50, 4326,
+                                             [](double, double) { return 10.0; });
+  EXPECT_EQ(RasterField(with_crs, "--bathymetry", local).crs_hint(), "");
+}
