@@ -112,7 +112,16 @@ class RasterDomainReader {
     } else if (const OGRSpatialReference* srs = ds_->GetSpatialRef()) {
       out_.crs = crs_from_srs(*srs);
     } else {
-      fail(ErrorClass::crs, "has no CRS: give it with --src-crs");
+      // Its corners: longitudes and latitudes are the usual reason (a CF grid without
+      // its grid mapping).
+      const int w = ds_->GetRasterXSize(), h = ds_->GetRasterYSize();
+      bool lonlat = true;
+      for (const Point2& c : {georef(0, 0), georef(w, 0), georef(0, h), georef(w, h)})
+        lonlat = lonlat && c.x >= -360 && c.x <= 360 && c.y >= -90.5 && c.y <= 90.5;
+      fail(ErrorClass::crs, std::string("has no CRS: give it with --src-crs") +
+                                (lonlat ? " (its corners look like longitudes and latitudes: "
+                                          "--src-crs EPSG:4326)"
+                                        : ""));
     }
     raster_.columns = ds_->GetRasterXSize();
     raster_.rows = ds_->GetRasterYSize();

@@ -163,6 +163,17 @@ TEST(RasterDomain, ClearErrors) {
   const std::string no_crs = write_geotiff(dir.file("nocrs.tif"), 0, 1000, 10, 10, 10, 0,
                                            [](double, double) { return 1.0; });
   EXPECT_EQ(error_of(dem_params(no_crs)), ErrorClass::crs);
+  const std::string lonlat = write_geotiff(dir.file("ll.tif"), 3, 41, 0.02, 60, 50, 0,
+                                           [](double, double) { return -1.0; });
+  try {
+    read_raster_domain(dem_params(lonlat));
+    ADD_FAILURE();
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::crs);
+    EXPECT_NE(e.message().find("look like longitudes and latitudes: --src-crs EPSG:4326"),
+              std::string::npos)
+        << e.message();
+  }
   ReadParams assigned = dem_params(no_crs);
   assigned.src_crs = "EPSG:32631";
   assigned.zmax = 2.0;
