@@ -290,6 +290,7 @@ class RasterDomainReader {
     if (band->RasterIO(GF_Write, 0, 0, padded_w_, padded_h_, g_.data(), padded_w_, padded_h_,
                        GDT_Float64, 0, 0) != CE_None)
       throw Error(ErrorClass::internal, "read", "cannot fill the in-memory grid");
+    std::vector<double>().swap(g_);  // the grid holds it now
     OGRLayer* layer = lines->CreateLayer("contour", nullptr, wkbLineString, nullptr);
     OGRFieldDefn id("id", OFTInteger), level("level", OFTReal);
     if (!layer || layer->CreateField(&id) != OGRERR_NONE ||
