@@ -136,6 +136,20 @@ std::vector<std::string> mesh_job_warnings(const MeshResult& r, const MeshJobOut
         "(positive up, as GEBCO's) is given with --elevation, one of depths (positive down) "
         "with --bathymetry",
         depths->num_dry, r.quads.points.size()));
+  // A DEM as INPUT gives the domain, not the depths: a model grid written without them
+  // is flat.
+  const auto& raster_input = r.fields.front.summary.raster;
+  if (raster_input && outputs.bathymetry.empty())
+    for (MeshFormat f : {MeshFormat::gr3, MeshFormat::fort14, MeshFormat::sms2dm, MeshFormat::mike,
+                         MeshFormat::slf, MeshFormat::nc})
+      if (const MeshOutput* o = first_output(outputs, f)) {
+        warnings.push_back(
+            o->path + ": no depths (the DEM INPUT bounds the domain; give it as --elevation '" +
+            r.fields.front.summary.input_path +
+            "' too, or as --bathymetry when its values are depths, positive down, for its "
+            "depths at the vertices)");
+        break;
+      }
   // --embed on lines the rows of quads cannot follow (winding or bending within a few
   // quads): say so, with what helps.
   const EmbedStats& e = r.embed;

@@ -1749,6 +1749,10 @@ TEST(CliOutputs, ADemBelowZeroIsTheSeaWithItsEdgeOpen) {
                         dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("contour:      "), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("m.gr3: no depths (the DEM INPUT bounds the domain; give it as "
+                       "--elevation"),
+            std::string::npos)
+      << r.err;
   const Gr3 g = parse_gr3(dir.file("m.gr3"));
   ASSERT_GT(g.elements.size(), 300u);
   auto on_edge = [](const std::array<double, 3>& n) {
