@@ -225,8 +225,10 @@ class RasterDomainReader {
   }
 
   // g = how far a value lies out of [zmin, zmax] (positive out, at most -kInside in),
-  // on the cells read and a frame of cells round them inside the range, so that every
-  // contour closes; cells without a value are far out.
+  // on the cells read and a frame two cells wide round them: the first ring repeats the
+  // nearest cell read, so that a contour that reaches the edge goes on straight across
+  // it, and the second is in the range, so that every contour closes beyond the edge
+  // (the area read cuts them there). Cells without a value are far out.
   void read_values() {
     GDALRasterBand* band = ds_->GetRasterBand(1);
     int has = 0;
@@ -240,15 +242,15 @@ class RasterDomainReader {
     if (band->RasterIO(GF_Read, window_[0], window_[1], window_[2], window_[3], values.data(), w, h,
                        GDT_Float64, 0, 0, &extra) != CE_None)
       fail(ErrorClass::input, "cannot be read (band 1: " + capture.last_message() + ")");
-    padded_w_ = w + 2;
-    padded_h_ = h + 2;
+    padded_w_ = w + 2 * kFrame;
+    padded_h_ = h + 2 * kFrame;
     g_.assign(static_cast<std::size_t>(padded_w_) * padded_h_, -kInside);
     raster_.value_min = INFINITY;
     raster_.value_max = -INFINITY;
     for (int j = 0; j < h; ++j)
       for (int i = 0; i < w; ++i) {
         const double v = values[static_cast<std::size_t>(j) * w + i];
-        double& g = g_[static_cast<std::size_t>(j + 1) * padded_w_ + i + 1];
+        double& g = g_[static_cast<std::size_t>(j + kFrame) * padded_w_ + i + kFrame];
         if (!std::isfinite(v) || (has && v == nodata)) {
           g = kNoValue;
           continue;
@@ -263,6 +265,14 @@ class RasterDomainReader {
           g = std::min(g, -kInside);
           ++raster_.num_cells_in_range;
         }
+      }
+    for (int j = 1; j + 1 < padded_h_; ++j)
+      for (int i = 1; i + 1 < padded_w_; ++i) {
+        if (i >= kFrame && i < w + kFrame && j >= kFrame && j < h + kFrame) continue;
+        const int ci = std::clamp(i, kFrame, w + kFrame - 1),
+                  cj = std::clamp(j, kFrame, h + kFrame - 1);
+        g_[static_cast<std::size_t>(j) * padded_w_ + i] =
+            g_[static_cast<std::size_t>(cj) * padded_w_ + ci];
       }
     if (raster_.num_valid_cells == 0) fail(ErrorClass::input, "has no value in the area");
     if (raster_.num_cells_in_range == 0)
@@ -282,9 +292,10 @@ class RasterDomainReader {
     GdalDataset lines(memory->Create("", 0, 0, 0, GDT_Unknown, nullptr));
     if (!grid || !lines)
       throw Error(ErrorClass::internal, "read", "cannot create GDAL's in-memory data sets");
-    // One cell of the frame before the first cell read.
-    double frame_gt[6] = {read_gt_[0] - read_gt_[1] - read_gt_[2], read_gt_[1], read_gt_[2],
-                          read_gt_[3] - read_gt_[4] - read_gt_[5], read_gt_[4], read_gt_[5]};
+    // The frame's cells before the first cell read.
+    double frame_gt[6] = {
+        read_gt_[0] - kFrame * (read_gt_[1] + read_gt_[2]), read_gt_[1], read_gt_[2],
+        read_gt_[3] - kFrame * (read_gt_[4] + read_gt_[5]), read_gt_[4], read_gt_[5]};
     grid->SetGeoTransform(frame_gt);
     GDALRasterBand* band = grid->GetRasterBand(1);
     if (band->RasterIO(GF_Write, 0, 0, padded_w_, padded_h_, g_.data(), padded_w_, padded_h_,
@@ -328,6 +339,7 @@ class RasterDomainReader {
   // a cell centre); cells without a value this far out.
   static constexpr double kInside = 1e-6;
   static constexpr double kNoValue = 1e30;
+  static constexpr int kFrame = 2;  // cells round the cells read
 
   const ReadParams& p_;
   SourceData out_;
