@@ -8,6 +8,7 @@
 
 #include <cmath>
 
+#include "app/front_end.h"
 #include "core/error.h"
 #include "domain/select_domain.h"
 #include "gis/gdal_env.h"
@@ -224,4 +225,21 @@ TEST(RasterDomain, WhichInputsAreRasters) {
   EXPECT_FALSE(is_raster_input(dir.file("missing.tif")));
   write_file(dir.file("m.gr3"), "m\n1 3\n1 0 0 1\n2 1 0 1\n3 0 1 1\n1 3 1 2 3\n");
   EXPECT_FALSE(is_raster_input(dir.file("m.gr3")));
+}
+
+// Through the front end: a band of depths that reaches the raster's edge only between its
+// corners is one annulus, with no piece at the corners to merge, and its boundary is
+// open nowhere (it stays inside the raster).
+TEST(RasterDomain, ABandOfDepthsThroughTheFrontEnd) {
+  TempDir dir;
+  FrontEndOptions o;
+  o.read = dem_params(island_dem(dir));
+  o.read.zmin = -20.0;
+  o.read.zmax = -5.0;
+  const FrontEndResult r = build_planar_domain(o);
+  EXPECT_TRUE(r.summary.warnings.empty()) << r.summary.warnings.front();
+  ASSERT_EQ(r.domain.polygons.size(), 1u);
+  EXPECT_EQ(r.domain.polygons[0].holes.size(), 1u);
+  EXPECT_NEAR(area(r.domain), kPi * (64e6 - 42.25e6), 0.02 * kPi * 21.75e6);
+  EXPECT_EQ(r.summary.num_open_parts, 0u);
 }
