@@ -435,6 +435,9 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   progress.report("clean", 0.7);
   double h = options.target_size_m;
   if (h <= 0 && options.target_size_for_area) h = options.target_size_for_area(area(result.domain));
+  // A raster knows nothing smaller than its cells: islands, holes and notches under a
+  // cell are its noise, cleaned as such.
+  if (source.raster) h = std::max(h, source.raster->cell_size_m);
   s.target_size_m = h;
   CleanParams cp;
   cp.largest = options.largest;
@@ -448,8 +451,9 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   progress.report("simplify", 0.8);
   SimplifyParams simp;
   // A raster's contour steps from cell to cell: by default it is simplified by a cell.
-  simp.tolerance_m = options.simplify_m.value_or(
-      std::max(h > 0 ? 0.25 * h : 0.0, source.raster ? source.raster->cell_size_m : 0.0));
+  simp.tolerance_m = options.simplify_m.value_or(source.raster ? source.raster->cell_size_m
+                                                 : h > 0       ? 0.25 * h
+                                                               : 0.0);
   if (simp.tolerance_m < 0) throw Error(ErrorClass::usage, "simplify", "--simplify must not be negative");
   s.simplify_m = simp.tolerance_m;
   // Parts of the boundary are kept as far apart as the tolerance (or as they were):

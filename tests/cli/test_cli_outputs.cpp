@@ -1798,6 +1798,14 @@ TEST(CliOutputs, ADemBelowZeroIsTheSeaWithItsEdgeOpen) {
   r = run_cli({"mesh", dem, "--zmin", "100", "-o", dir.file("x.gpkg")}, dir);
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.err.find("has no cell in [100, inf]"), std::string::npos) << r.err;
+  // A sea of one cell is smaller than the DEM can tell: dropped as an island under a
+  // cell's area, not meshed in quads of centimetres.
+  const std::string one = write_geotiff(
+      dir.file("one.tif"), 500000, 5000000, 100, 20, 20, 32631,
+      [](double x, double y) { return std::hypot(x - 501050, y - 4998950) < 10 ? -1.0 : 10.0; });
+  r = run_cli({"mesh", one, "--zmax", "0", "-o", dir.file("x.gpkg")}, dir);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("nothing is left to mesh"), std::string::npos) << r.err;
 }
 
 // --time-step raises the sizes to what an explicit model needs at that step and Courant
