@@ -231,8 +231,10 @@ class RasterDomainReader {
   // (the area read cuts them there). Cells without a value are far out.
   void read_values() {
     GDALRasterBand* band = ds_->GetRasterBand(1);
-    int has = 0;
+    int has = 0, has_scale = 0, has_offset = 0;
     const double nodata = band->GetNoDataValue(&has);
+    // Packed values (a netCDF variable's scale_factor and add_offset): in their units.
+    const double scale = band->GetScale(&has_scale), offset = band->GetOffset(&has_offset);
     const int w = raster_.read_columns, h = raster_.read_rows;
     std::vector<double> values(static_cast<std::size_t>(w) * h);
     GDALRasterIOExtraArg extra;
@@ -249,12 +251,13 @@ class RasterDomainReader {
     raster_.value_max = -INFINITY;
     for (int j = 0; j < h; ++j)
       for (int i = 0; i < w; ++i) {
-        const double v = values[static_cast<std::size_t>(j) * w + i];
+        const double raw = values[static_cast<std::size_t>(j) * w + i];
         double& g = g_[static_cast<std::size_t>(j + kFrame) * padded_w_ + i + kFrame];
-        if (!std::isfinite(v) || (has && v == nodata)) {
+        if (!std::isfinite(raw) || (has && raw == nodata)) {
           g = kNoValue;
           continue;
         }
+        const double v = raw * (has_scale ? scale : 1.0) + (has_offset ? offset : 0.0);
         ++raster_.num_valid_cells;
         raster_.value_min = std::min(raster_.value_min, v);
         raster_.value_max = std::max(raster_.value_max, v);

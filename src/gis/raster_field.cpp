@@ -132,6 +132,16 @@ RasterField::RasterField(const std::string& path, const std::string& what, const
       band->RasterIO(GF_Read, window_[0], window_[1], window_[2], window_[3], values_.data(),
                      window_[2], window_[3], GDT_Float32, 0, 0) != CE_None)
     raster_error(what, path, "cannot read band 1 (" + capture.last_message() + ")");
+  // Packed values (a netCDF variable's scale_factor and add_offset): in their units.
+  int has_scale = 0, has_offset = 0;
+  const double scale = band->GetScale(&has_scale), offset = band->GetOffset(&has_offset);
+  if ((has_scale && scale != 1.0) || (has_offset && offset != 0.0))
+    for (float& v : values_) {
+      if ((has_nodata_ && v == static_cast<float>(nodata_)) || std::isnan(v))
+        v = std::numeric_limits<float>::quiet_NaN();
+      else
+        v = static_cast<float>(v * (has_scale ? scale : 1.0) + (has_offset ? offset : 0.0));
+    }
 }
 
 RasterField::~RasterField() = default;
@@ -159,8 +169,10 @@ double RasterField::sample(const Point2& p) const {
   const double px = inverse_[0] + q.x * inverse_[1] + q.y * inverse_[2] - 0.5;
   const double py = inverse_[3] + q.x * inverse_[4] + q.y * inverse_[5] - 0.5;
   // Points on the raster's edge (a bbox that a download was cut to) come back from the
-  // meshing CRS a hair off it: within a hundredth of a pixel, they are on it.
-  constexpr double kEdgeSlack = 0.01;
+  // meshing CRS a little off it: a chord of a bbox's side that the simplification kept
+  // whole lies up to its sagitta (170 m on a side of 100 km at 40 degrees) outside. Within
+  // half a pixel of the edge, a point takes the edge's value.
+  constexpr double kEdgeSlack = 0.5;
   if (!(px >= -0.5 - kEdgeSlack && py >= -0.5 - kEdgeSlack && px <= width_ - 0.5 + kEdgeSlack &&
         py <= height_ - 0.5 + kEdgeSlack))
     return nan;

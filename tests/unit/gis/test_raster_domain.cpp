@@ -7,6 +7,8 @@
 #include <netcdf.h>
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "app/front_end.h"
 #include "core/error.h"
@@ -141,6 +143,31 @@ TEST(RasterDomain, UnderABboxInAnotherCrs) {
   EXPECT_TRUE(read_raster_domain(p).warnings.empty());
   p.bbox = std::array<double, 4>{10, 50, 11, 51};
   EXPECT_EQ(error_of(p), ErrorClass::input);
+}
+
+// Packed values (scale and offset) are contoured in their units.
+TEST(RasterDomain, PackedValuesAreContouredUnpacked) {
+  TempDir dir;
+  const std::string path = dir.file("packed.tif");
+  {
+    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
+    GdalDataset ds(drv->Create(path.c_str(), 10, 10, 1, GDT_Int16, nullptr));
+    double gt[6] = {500000, 100, 0, 5001000, 0, -100};
+    ds->SetGeoTransform(gt);
+    OGRSpatialReference srs;
+    srs.importFromEPSG(32631);
+    ds->SetSpatialRef(&srs);
+    GDALRasterBand* band = ds->GetRasterBand(1);
+    band->SetScale(0.1);
+    band->SetOffset(-100.0);
+    std::vector<std::int16_t> raw(100, 500);              // -50 m: sea
+    for (int j = 0; j < 10; ++j) raw[j * 10 + 9] = 1200;  // +20 m: the east column is land
+    ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, 10, 10, raw.data(), 10, 10, GDT_Int16, 0, 0), CE_None);
+  }
+  const SourceData sea = read_raster_domain(dem_params(path));
+  EXPECT_DOUBLE_EQ(sea.raster->value_min, -50.0);
+  EXPECT_DOUBLE_EQ(sea.raster->value_max, 20.0);
+  EXPECT_EQ(sea.raster->num_cells_in_range, 90u);
 }
 
 TEST(RasterDomain, ClearErrors) {

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <vector>
 
 #include "core/error.h"
 #include "gis/crs.h"
@@ -98,9 +100,9 @@ TEST(RasterField, ReadsAZippedGridAsDownloaded) {
   }
 }
 
-// A point on the raster's edge, come back from another CRS a hair off it, takes the edge's
-// value; farther out, none.
-TEST(RasterField, TheEdgeHoldsWithinAHundredthOfAPixel) {
+// A point on the raster's edge, come back from another CRS a little off it, takes the
+// edge's value; beyond half a pixel, none.
+TEST(RasterField, TheEdgeHoldsWithinHalfAPixel) {
   TempDir dir;
   // 10 x 10 pixels of 100 m in UTM 31N, value x / 100 at the pixel centres.
   const std::string path = write_geotiff(dir.file("g.tif"), 500000, 5001000, 100, 10, 10, 32631,
@@ -109,9 +111,10 @@ TEST(RasterField, TheEdgeHoldsWithinAHundredthOfAPixel) {
   const RasterField f(path, "--bathymetry", utm);
   EXPECT_DOUBLE_EQ(f.sample({500000.0, 5000500.0}), 5000.5);        // on the west edge
   EXPECT_DOUBLE_EQ(f.sample({499999.5, 5000500.0}), 5000.5);        // 0.005 pixel off it
-  EXPECT_TRUE(std::isnan(f.sample({499997.0, 5000500.0})));         // 0.03 pixel off
-  EXPECT_DOUBLE_EQ(f.sample({501000.4, 5000000.0 - 0.4}), 5009.5);  // the south-east corner
-  EXPECT_TRUE(std::isnan(f.sample({501003.0, 5000500.0})));
+  EXPECT_DOUBLE_EQ(f.sample({499960.0, 5000500.0}), 5000.5);        // 0.4 pixel off
+  EXPECT_TRUE(std::isnan(f.sample({499940.0, 5000500.0})));         // 0.6 pixel off
+  EXPECT_DOUBLE_EQ(f.sample({501040.0, 5000000.0 - 40}), 5009.5);   // the south-east corner
+  EXPECT_TRUE(std::isnan(f.sample({501060.0, 5000500.0})));
 }
 
 // A raster without a CRS is read in the query CRS; when its extent looks like longitudes
@@ -132,4 +135,30 @@ TEST(RasterField, AGridWithoutACrsInLongitudesIsNamed) {
   const std::string with_crs = write_geotiff(dir.file("w.tif"), 3.0, 41.0, 0.02, 60, 50, 4326,
                                              [](double, double) { return 10.0; });
   EXPECT_EQ(RasterField(with_crs, "--bathymetry", local).crs_hint(), "");
+}
+
+// Packed values (a netCDF variable's scale_factor and add_offset, GDAL's band scale and
+// offset) are read in their units, nodata left out.
+TEST(RasterField, PackedValuesAreUnpacked) {
+  TempDir dir;
+  const std::string path = dir.file("packed.tif");
+  {
+    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
+    GdalDataset ds(drv->Create(path.c_str(), 4, 4, 1, GDT_Int16, nullptr));
+    double gt[6] = {500000, 100, 0, 5000400, 0, -100};
+    ds->SetGeoTransform(gt);
+    OGRSpatialReference srs;
+    srs.importFromEPSG(32631);
+    ds->SetSpatialRef(&srs);
+    GDALRasterBand* band = ds->GetRasterBand(1);
+    band->SetScale(0.1);
+    band->SetOffset(-100.0);
+    band->SetNoDataValue(-32768);
+    std::vector<std::int16_t> raw(16, 500);  // -50 m
+    raw[0] = -32768;
+    ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, 4, 4, raw.data(), 4, 4, GDT_Int16, 0, 0), CE_None);
+  }
+  const RasterField f(path, "--elevation", parse_crs("EPSG:32631", "t"));
+  EXPECT_NEAR(f.sample({500250.0, 5000150.0}), -50.0, 1e-4);
+  EXPECT_TRUE(std::isnan(f.sample({500050.0, 5000350.0})));  // next to the cell without a value
 }
