@@ -1238,15 +1238,18 @@ TEST(CliOutputs, VerticesOutsideTheBathymetryTakeTheNearestDepth) {
              "assert np.allclose(gr3[:, 1], d['mesh_node_x'][:], atol=1e-6)\n",
              {dir.file("m.nc"), dir.file("hgrid.gr3")});
   const Gr3 ll = parse_gr3(dir.file("hgrid.ll"));
-  // The depths where the raster has them (it ends at 4.5 W: past its last pixel centre
-  // the values are its edge's), the set every vertex's depth must come from.
+  // The depths where the raster has them (it ends at 4.5 W: past its last pixel centre,
+  // and up to half a pixel past its edge, the values are its edge's), the set every
+  // vertex's depth must come from.
   std::vector<double> sampled;
   std::size_t filled = 0;
   for (const auto& n : ll.nodes) {
     if (n[0] < -4.505) {
       EXPECT_NEAR(n[2], depth_at(n[0], n[1]), 0.01);
+    } else if (n[0] <= -4.495) {
+      EXPECT_NEAR(n[2], depth_at(-4.505, n[1]), 0.01);
     }
-    if (n[0] <= -4.5) {
+    if (n[0] <= -4.495) {
       sampled.push_back(n[2]);
     } else {
       ++filled;

@@ -150,6 +150,7 @@ TEST(RasterDomain, PackedValuesAreContouredUnpacked) {
   TempDir dir;
   const std::string path = dir.file("packed.tif");
   {
+    ensure_gdal_registered();
     GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
     GdalDataset ds(drv->Create(path.c_str(), 10, 10, 1, GDT_Int16, nullptr));
     double gt[6] = {500000, 100, 0, 5001000, 0, -100};

@@ -143,6 +143,7 @@ TEST(RasterField, PackedValuesAreUnpacked) {
   TempDir dir;
   const std::string path = dir.file("packed.tif");
   {
+    ensure_gdal_registered();
     GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
     GdalDataset ds(drv->Create(path.c_str(), 4, 4, 1, GDT_Int16, nullptr));
     double gt[6] = {500000, 100, 0, 5000400, 0, -100};
