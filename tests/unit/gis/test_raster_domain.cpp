@@ -148,23 +148,10 @@ TEST(RasterDomain, UnderABboxInAnotherCrs) {
 // Packed values (scale and offset) are contoured in their units.
 TEST(RasterDomain, PackedValuesAreContouredUnpacked) {
   TempDir dir;
-  const std::string path = dir.file("packed.tif");
-  {
-    ensure_gdal_registered();
-    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
-    GdalDataset ds(drv->Create(path.c_str(), 10, 10, 1, GDT_Int16, nullptr));
-    double gt[6] = {500000, 100, 0, 5001000, 0, -100};
-    ds->SetGeoTransform(gt);
-    OGRSpatialReference srs;
-    srs.importFromEPSG(32631);
-    ds->SetSpatialRef(&srs);
-    GDALRasterBand* band = ds->GetRasterBand(1);
-    band->SetScale(0.1);
-    band->SetOffset(-100.0);
-    std::vector<std::int16_t> raw(100, 500);              // -50 m: sea
-    for (int j = 0; j < 10; ++j) raw[j * 10 + 9] = 1200;  // +20 m: the east column is land
-    ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, 10, 10, raw.data(), 10, 10, GDT_Int16, 0, 0), CE_None);
-  }
+  std::vector<std::int16_t> raw(100, 500);              // -50 m: sea
+  for (int j = 0; j < 10; ++j) raw[j * 10 + 9] = 1200;  // +20 m: the east column is land
+  const std::string path =
+      write_packed_geotiff(dir.file("packed.tif"), 500000, 5001000, 100, 10, 10, raw);
   const SourceData sea = read_raster_domain(dem_params(path));
   EXPECT_DOUBLE_EQ(sea.raster->value_min, -50.0);
   EXPECT_DOUBLE_EQ(sea.raster->value_max, 20.0);

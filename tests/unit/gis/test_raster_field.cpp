@@ -141,24 +141,10 @@ TEST(RasterField, AGridWithoutACrsInLongitudesIsNamed) {
 // offset) are read in their units, nodata left out.
 TEST(RasterField, PackedValuesAreUnpacked) {
   TempDir dir;
-  const std::string path = dir.file("packed.tif");
-  {
-    ensure_gdal_registered();
-    GDALDriver* drv = GetGDALDriverManager()->GetDriverByName("GTiff");
-    GdalDataset ds(drv->Create(path.c_str(), 4, 4, 1, GDT_Int16, nullptr));
-    double gt[6] = {500000, 100, 0, 5000400, 0, -100};
-    ds->SetGeoTransform(gt);
-    OGRSpatialReference srs;
-    srs.importFromEPSG(32631);
-    ds->SetSpatialRef(&srs);
-    GDALRasterBand* band = ds->GetRasterBand(1);
-    band->SetScale(0.1);
-    band->SetOffset(-100.0);
-    band->SetNoDataValue(-32768);
-    std::vector<std::int16_t> raw(16, 500);  // -50 m
-    raw[0] = -32768;
-    ASSERT_EQ(band->RasterIO(GF_Write, 0, 0, 4, 4, raw.data(), 4, 4, GDT_Int16, 0, 0), CE_None);
-  }
+  std::vector<std::int16_t> raw(16, 500);  // -50 m
+  raw[0] = -32768;
+  const std::string path =
+      write_packed_geotiff(dir.file("packed.tif"), 500000, 5000400, 100, 4, 4, raw);
   const RasterField f(path, "--elevation", parse_crs("EPSG:32631", "t"));
   EXPECT_NEAR(f.sample({500250.0, 5000150.0}), -50.0, 1e-4);
   EXPECT_TRUE(std::isnan(f.sample({500050.0, 5000350.0})));  // next to the cell without a value
