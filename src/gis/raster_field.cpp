@@ -65,13 +65,20 @@ RasterField::RasterField(const std::string& path, const std::string& what, const
   width_ = ds->GetRasterXSize();
   height_ = ds->GetRasterYSize();
   const OGRSpatialReference* srs = ds->GetSpatialRef();
-  if (srs) {
-    CrsInfo raster_crs = crs_from_srs(*srs);
-    to_raster_ = std::make_unique<CrsTransform>(query_crs, raster_crs);
-  }
-  window_ = {0, 0, width_, height_};
   double gt[6];
   ds->GetGeoTransform(gt);
+  if (srs) {
+    const CrsInfo raster_crs = crs_from_srs(*srs);
+    to_raster_ = std::make_unique<CrsTransform>(query_crs, raster_crs);
+    // Longitudes: a point east of the antimeridian comes back from PROJ at -179, which a
+    // grid drawn from 0 to 360 holds at 181; a grid round the whole globe holds its
+    // columns' neighbours across its seam.
+    if (raster_crs.geographic && gt[2] == 0 && gt[4] == 0) {
+      lon_turn_px_ = 360.0 * inverse_[1];
+      global_ = std::abs(std::abs(lon_turn_px_) - width_) <= 0.5;
+    }
+  }
+  window_ = {0, 0, width_, height_};
   for (const auto& [i, j] :
        {std::pair<int, int>{0, 0}, {width_, 0}, {0, height_}, {width_, height_}}) {
     const double x = gt[0] + i * gt[1] + j * gt[2], y = gt[3] + i * gt[4] + j * gt[5];
@@ -83,16 +90,21 @@ RasterField::RasterField(const std::string& path, const std::string& what, const
   if (extent) {
     // The pixels under a 33 x 33 lattice over the extent (its edges and inside: a pole or
     // a bend of the transform inside it counts), and round them as many as the lattice's
-    // cells span (a point between lattice points is within a cell of one) plus two.
+    // cells span (a point between lattice points is within a cell of one) plus two. On a
+    // global grid the lattice's longitudes are taken the short way round from its first
+    // point, and the window may run past the grid's seam.
     constexpr int kSteps = 32;
     std::vector<std::array<double, 2>> pixel((kSteps + 1) * (kSteps + 1), {NAN, NAN});
+    double reference = global_ ? NAN : 0.5 * width_;
     for (int a = 0; a <= kSteps; ++a)
       for (int b = 0; b <= kSteps; ++b) {
         Point2 q{(*extent)[0] + ((*extent)[2] - (*extent)[0]) * a / kSteps,
                  (*extent)[1] + ((*extent)[3] - (*extent)[1]) * b / kSteps};
         if (to_raster_ && !to_raster_->transform(q)) continue;
-        pixel[a * (kSteps + 1) + b] = {inverse_[0] + q.x * inverse_[1] + q.y * inverse_[2],
-                                       inverse_[3] + q.x * inverse_[4] + q.y * inverse_[5]};
+        double px = inverse_[0] + q.x * inverse_[1] + q.y * inverse_[2];
+        if (std::isnan(reference)) reference = px;
+        px = nearest_turn(px, reference);
+        pixel[a * (kSteps + 1) + b] = {px, inverse_[3] + q.x * inverse_[4] + q.y * inverse_[5]};
       }
     double i_lo = INFINITY, j_lo = INFINITY, i_hi = -INFINITY, j_hi = -INFINITY;
     double span_i = 0, span_j = 0;  // a lattice cell's width and height, in pixels
@@ -114,8 +126,17 @@ RasterField::RasterField(const std::string& path, const std::string& what, const
     };
     if (i_lo <= i_hi && j_lo <= j_hi) {
       const double margin_i = std::ceil(span_i) + 2, margin_j = std::ceil(span_j) + 2;
-      const int i0 = clamp_to(std::floor(i_lo) - margin_i, width_);
-      const int i1 = clamp_to(std::ceil(i_hi) + margin_i, width_);
+      int i0 = clamp_to(std::floor(i_lo) - margin_i, width_);
+      int i1 = clamp_to(std::ceil(i_hi) + margin_i, width_);
+      if (global_) {
+        const double lo = std::floor(i_lo) - margin_i, hi = std::ceil(i_hi) + margin_i;
+        if (hi - lo >= width_) {
+          i0 = 0, i1 = width_;
+        } else {  // the window's first column within the grid, the columns past its seam
+          i0 = static_cast<int>(lo) - static_cast<int>(std::floor(lo / width_)) * width_;
+          i1 = i0 + static_cast<int>(hi - lo);
+        }
+      }
       const int j0 = clamp_to(std::floor(j_lo) - margin_j, height_);
       const int j1 = clamp_to(std::ceil(j_hi) + margin_j, height_);
       window_ = {i0, j0, std::max(0, i1 - i0), std::max(0, j1 - j0)};
@@ -128,10 +149,17 @@ RasterField::RasterField(const std::string& path, const std::string& what, const
   nodata_ = band->GetNoDataValue(&ok);
   has_nodata_ = ok != 0;
   values_.resize(static_cast<std::size_t>(window_[2]) * window_[3]);
-  if (!values_.empty() &&
-      band->RasterIO(GF_Read, window_[0], window_[1], window_[2], window_[3], values_.data(),
-                     window_[2], window_[3], GDT_Float32, 0, 0) != CE_None)
-    raster_error(what, path, "cannot read band 1 (" + capture.last_message() + ")");
+  // A window past a global grid's seam is read in two parts, the columns from its first
+  // to the grid's last, then from the grid's first on.
+  for (int first = window_[0]; first < window_[0] + window_[2] && !values_.empty();) {
+    const int column = first % width_,
+              columns = std::min(window_[0] + window_[2] - first, width_ - column);
+    if (band->RasterIO(GF_Read, column, window_[1], columns, window_[3],
+                       values_.data() + (first - window_[0]), columns, window_[3], GDT_Float32,
+                       sizeof(float), static_cast<GSpacing>(sizeof(float)) * window_[2]) != CE_None)
+      raster_error(what, path, "cannot read band 1 (" + capture.last_message() + ")");
+    first += columns;
+  }
   // Packed values (a netCDF variable's scale_factor and add_offset): in their units.
   int has_scale = 0, has_offset = 0;
   const double scale = band->GetScale(&has_scale), offset = band->GetOffset(&has_offset);
@@ -161,27 +189,38 @@ std::string RasterField::crs_hint() const {
   return os.str();
 }
 
+double RasterField::nearest_turn(double px, double reference) const {
+  if (lon_turn_px_ == 0 || std::isnan(reference)) return px;
+  return px + lon_turn_px_ * std::round((reference - px) / lon_turn_px_);
+}
+
 double RasterField::sample(const Point2& p) const {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   Point2 q = p;
   if (to_raster_ && !to_raster_->transform(q)) return nan;
-  // Pixel centres are at half-integer pixel coordinates.
-  const double px = inverse_[0] + q.x * inverse_[1] + q.y * inverse_[2] - 0.5;
+  // Pixel centres are at half-integer pixel coordinates. A longitude is taken the turn
+  // nearest the raster's columns (a global grid's are found past its seam, below).
+  double px = inverse_[0] + q.x * inverse_[1] + q.y * inverse_[2] - 0.5;
+  if (!global_) px = nearest_turn(px, 0.5 * width_);
   const double py = inverse_[3] + q.x * inverse_[4] + q.y * inverse_[5] - 0.5;
   // Points on the raster's edge (a bbox that a download was cut to) come back from the
   // meshing CRS a little off it: a chord of a bbox's side that the simplification kept
   // whole lies up to its sagitta (170 m on a side of 100 km at 40 degrees) outside. Within
-  // half a pixel of the edge, a point takes the edge's value.
+  // half a pixel of the edge, a point takes the edge's value. A global grid's columns
+  // have no edge: its last one's neighbour is its first.
   constexpr double kEdgeSlack = 0.5;
-  if (!(px >= -0.5 - kEdgeSlack && py >= -0.5 - kEdgeSlack && px <= width_ - 0.5 + kEdgeSlack &&
-        py <= height_ - 0.5 + kEdgeSlack))
+  if (!((global_ || (px >= -0.5 - kEdgeSlack && px <= width_ - 0.5 + kEdgeSlack)) &&
+        py >= -0.5 - kEdgeSlack && py <= height_ - 0.5 + kEdgeSlack))
     return nan;
-  const int i0 = std::clamp(static_cast<int>(std::floor(px)), 0, std::max(0, width_ - 2));
+  const int i0 = global_ ? static_cast<int>(std::floor(px))
+                         : std::clamp(static_cast<int>(std::floor(px)), 0, std::max(0, width_ - 2));
   const int j0 = std::clamp(static_cast<int>(std::floor(py)), 0, std::max(0, height_ - 2));
-  const int i1 = std::min(i0 + 1, width_ - 1), j1 = std::min(j0 + 1, height_ - 1);
+  const int i1 = global_ ? i0 + 1 : std::min(i0 + 1, width_ - 1);
+  const int j1 = std::min(j0 + 1, height_ - 1);
   const double tx = std::clamp(px - i0, 0.0, 1.0), ty = std::clamp(py - j0, 0.0, 1.0);
   auto at = [&](int i, int j) {
     i -= window_[0];
+    if (global_) i = ((i % width_) + width_) % width_;  // the column's place past the seam
     j -= window_[1];
     if (i < 0 || j < 0 || i >= window_[2] || j >= window_[3]) return nan;  // not read
     const double v = values_[static_cast<std::size_t>(j) * window_[2] + i];

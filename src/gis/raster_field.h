@@ -47,7 +47,8 @@ class RasterField : public PointField {
   const std::string& path() const { return path_; }
   int width() const { return width_; }
   int height() const { return height_; }
-  // The pixels read: {first column, first row, columns, rows}.
+  // The pixels read: {first column, first row, columns, rows}; on a grid round the
+  // globe the columns may run past its last into its first.
   const std::array<int, 4>& window() const { return window_; }
 
  private:
@@ -60,6 +61,12 @@ class RasterField : public PointField {
   double nodata_ = 0.0;
   std::unique_ptr<CrsTransform> to_raster_;
   std::array<double, 4> extent_{};  // xmin, ymin, xmax, ymax of the whole raster, its units
+  // A geographic raster's 360 degrees of longitude in pixels (signed; 0 otherwise), and
+  // whether its columns go round the globe.
+  double lon_turn_px_ = 0.0;
+  bool global_ = false;
+  // `px` moved by whole turns of longitude to the nearest `reference` (pixel columns).
+  double nearest_turn(double px, double reference) const;
 };
 
 // A raster of depths (metres, positive down: --bathymetry) or of elevations (positive

@@ -67,7 +67,50 @@ TEST(RasterField, UnderAnExtentOnlyThatPartIsRead) {
   EXPECT_LT(compare_under(path, arctic, {-1490000, -1510000, 1510000, 1490000}), 0.2);
   // Across the antimeridian (Fiji): both ends of the grid.
   const CrsInfo fiji = parse_crs("+proj=sterea +lat_0=-17.5 +lon_0=179 +datum=WGS84 +units=m", "t");
-  EXPECT_LE(compare_under(path, fiji, {-300000, -300000, 300000, 300000}), 1.0);
+  EXPECT_LT(compare_under(path, fiji, {-300000, -300000, 300000, 300000}), 0.01);
+}
+
+// Round the antimeridian, a world grid drawn from -180 to 180 and the same drawn from 0 to
+// 360 give the same values, and so does a regional grid from 170 to 190 degrees east;
+// between a global grid's last column and its first, values are interpolated across
+// its seam.
+TEST(RasterField, LongitudesGoRoundTheAntimeridian) {
+  TempDir dir;
+  auto value = [](double lon, double lat) { return 100 * std::sin(lon * M_PI / 180) + 1000 * lat; };
+  const std::string west = write_geotiff(dir.file("w.tif"), -180, 90, 0.5, 720, 360, 4326, value);
+  const std::string east = write_geotiff(dir.file("e.tif"), 0, 90, 0.5, 720, 360, 4326, value);
+  const std::string fiji_grid = write_geotiff(dir.file("f.tif"), 170, -5, 0.5, 40, 50, 4326, value);
+  const CrsInfo fiji = parse_crs("+proj=sterea +lat_0=-17.5 +lon_0=179 +datum=WGS84 +units=m", "t");
+  const std::array<double, 4> extent{-300000, -300000, 300000, 300000};
+  const RasterField a(west, "--bathymetry", fiji, extent), b(east, "--bathymetry", fiji, extent),
+      c(fiji_grid, "--bathymetry", fiji);
+  int compared = 0;
+  for (int i = 0; i <= 60; ++i)
+    for (int j = 0; j <= 60; ++j) {
+      const Point2 p{extent[0] + 10000.0 * i, extent[1] + 10000.0 * j};
+      const double va = a.sample(p);
+      ASSERT_FALSE(std::isnan(va)) << p.x << " " << p.y;
+      EXPECT_NEAR(b.sample(p), va, 1e-6) << p.x << " " << p.y;
+      EXPECT_NEAR(c.sample(p), va, 1e-6) << p.x << " " << p.y;
+      ++compared;
+    }
+  EXPECT_EQ(compared, 61 * 61);
+  // Each global grid's window is a few hundred columns of 720, past the seam for the
+  // grid drawn from -180.
+  for (const RasterField* f : {&a, &b}) {
+    EXPECT_LT(f->window()[2], 100);
+    EXPECT_LT(f->window()[3], 100);
+  }
+  EXPECT_GT(a.window()[0] + a.window()[2], 720);
+  // On the antimeridian at a row of pixel centres (latitude -17.25): halfway between the
+  // columns centred at 179.75 and -179.75.
+  const CrsInfo lonlat = parse_crs("EPSG:4326", "t");
+  const RasterField whole(west, "--bathymetry", lonlat);
+  const double seam = 0.5 * (value(179.75, -17.25) + value(-179.75, -17.25));
+  EXPECT_NEAR(whole.sample({180.0, -17.25}), seam, 1e-3);
+  EXPECT_NEAR(whole.sample({-180.0, -17.25}), seam, 1e-3);
+  EXPECT_NEAR(whole.sample({539.875, -17.25}),
+              0.75 * value(179.75, -17.25) + 0.25 * value(-179.75, -17.25), 1e-3);
 }
 
 // GEBCO's and EMODnet's grids come zipped, beside their licence texts: read as they are.
