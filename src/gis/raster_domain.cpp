@@ -125,6 +125,10 @@ class RasterDomainReader {
     }
     raster_.columns = ds_->GetRasterXSize();
     raster_.rows = ds_->GetRasterYSize();
+    // A lon/lat grid whose columns go round the globe: an area across its seam (the
+    // antimeridian of a grid from -180 to 180) reads the columns on both sides.
+    global_ = out_.crs.geographic && gt_[2] == 0 && gt_[4] == 0 &&
+              std::abs(360.0 / std::abs(gt_[1]) - raster_.columns) <= 0.5;
     raster_.zmin = p_.zmin;
     raster_.zmax = p_.zmax;
     out_.layer_name = "band 1";
@@ -137,25 +141,27 @@ class RasterDomainReader {
   // The area read: the raster's extent (the cells' outer edges), or its part under
   // --bbox or --clip.
   void area_ring() {
-    const double w = raster_.columns, h = raster_.rows;
-    const Point2 corners[4] = {georef(0, 0), georef(w, 0), georef(w, h), georef(0, h)};
-    Ring extent;
-    for (int s = 0; s < 4; ++s)
-      for (int i = 0; i < kExtentPointsPerSide; ++i) {
-        const double t = static_cast<double>(i) / kExtentPointsPerSide;
-        const Point2 a = corners[s], b = corners[(s + 1) % 4];
-        extent.push_back({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
-      }
-    if (signed_area(extent) < 0) std::reverse(extent.begin(), extent.end());
     if (!p_.bbox && !p_.clip) {
-      area_ = std::move(extent);
+      area_ = extent_ring(0, raster_.columns);
       return;
     }
     std::string what;
     const Ring ring = selection_area(p_, out_.crs, what);
     GdalErrorCapture capture;
-    const OGRPolygon area = to_polygon(ring), raster = to_polygon(extent);
-    std::unique_ptr<OGRGeometry> common(area.Intersection(&raster));
+    // A global grid's columns repeat every turn; the area meets another lon/lat grid
+    // at the turn of its longitudes that overlaps it most (-178 on a grid from 0 to 360
+    // is 182).
+    const int w = raster_.columns;
+    const OGRPolygon raster = to_polygon(global_ ? extent_ring(-w, 2 * w) : extent_ring(0, w));
+    std::unique_ptr<OGRGeometry> common;
+    for (double turn : out_.crs.geographic && !global_ ? std::vector<double>{0, -360, 360}
+                                                       : std::vector<double>{0}) {
+      Ring shifted = ring;
+      for (Point2& q : shifted) q.x += turn;
+      std::unique_ptr<OGRGeometry> part(to_polygon(shifted).Intersection(&raster));
+      if (part && !part->IsEmpty() && (!common || area_of(*part) > area_of(*common)))
+        common = std::move(part);
+    }
     if (!common || common->IsEmpty()) fail(ErrorClass::input, "has no cell under " + what);
     const OGRPolygon* poly = dynamic_cast<const OGRPolygon*>(common.get());
     if (!poly || poly->getNumInteriorRings() > 0)
@@ -173,7 +179,30 @@ class RasterDomainReader {
                               "% of " + what + ": the domain is the part it covers");
   }
 
-  // The cells under the area, and one more round them.
+  // The raster's extent (the cells' outer edges) from column `first` to column `last`
+  // (beyond the grid's columns: the turns of longitude before or after them).
+  Ring extent_ring(int first, int last) const {
+    const double h = raster_.rows;
+    const Point2 corners[4] = {georef(first, 0), georef(last, 0), georef(last, h),
+                               georef(first, h)};
+    Ring extent;
+    for (int s = 0; s < 4; ++s)
+      for (int i = 0; i < kExtentPointsPerSide; ++i) {
+        const double t = static_cast<double>(i) / kExtentPointsPerSide;
+        const Point2 a = corners[s], b = corners[(s + 1) % 4];
+        extent.push_back({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
+      }
+    if (signed_area(extent) < 0) std::reverse(extent.begin(), extent.end());
+    return extent;
+  }
+
+  static double area_of(const OGRGeometry& g) {
+    const auto* surface = dynamic_cast<const OGRSurface*>(&g);
+    return surface ? surface->get_Area() : 0.0;
+  }
+
+  // The cells under the area, and one more round them. On a grid round the globe the
+  // columns may run past its last into its first (or before its first from its last).
   void window() {
     double i_lo = INFINITY, i_hi = -INFINITY, j_lo = INFINITY, j_hi = -INFINITY;
     for (const Point2& q : area_) {
@@ -185,8 +214,11 @@ class RasterDomainReader {
     auto clamp_to = [](double v, int size) {
       return static_cast<int>(std::clamp(v, 0.0, static_cast<double>(size)));
     };
-    const int i0 = clamp_to(std::floor(i_lo) - 1, raster_.columns);
-    const int i1 = clamp_to(std::ceil(i_hi) + 1, raster_.columns);
+    const int w = raster_.columns;
+    int i0 = clamp_to(std::floor(i_lo) - 1, w);
+    int i1 = clamp_to(std::ceil(i_hi) + 1, w);
+    if (global_ && std::ceil(i_hi) - std::floor(i_lo) + 2 < w)
+      i0 = static_cast<int>(std::floor(i_lo)) - 1, i1 = static_cast<int>(std::ceil(i_hi)) + 1;
     const int j0 = clamp_to(std::floor(j_lo) - 1, raster_.rows);
     const int j1 = clamp_to(std::ceil(j_hi) + 1, raster_.rows);
     window_ = {i0, j0, std::max(0, i1 - i0), std::max(0, j1 - j0)};
@@ -194,6 +226,13 @@ class RasterDomainReader {
     const double cells = static_cast<double>(window_[2]) * window_[3];
     const double limit = static_cast<double>(std::max<std::size_t>(p_.max_raster_cells, 1));
     raster_.averaged = cells > limit ? static_cast<int>(std::ceil(std::sqrt(cells / limit))) : 1;
+    // Across the seam, the columns up to it are whole blocks of the averaging: the
+    // window starts a few columns further west.
+    const int seam = (i0 >= 0 ? (i0 / w + 1) * w : -((-i0) / w) * w) - i0;
+    if (seam < window_[2]) {
+      const int more = (raster_.averaged - seam % raster_.averaged) % raster_.averaged;
+      window_[0] -= more, window_[2] += more;
+    }
     raster_.read_columns = (window_[2] + raster_.averaged - 1) / raster_.averaged;
     raster_.read_rows = (window_[3] + raster_.averaged - 1) / raster_.averaged;
     if (raster_.averaged > 1)
@@ -241,9 +280,21 @@ class RasterDomainReader {
     INIT_RASTERIO_EXTRA_ARG(extra);
     extra.eResampleAlg = raster_.averaged > 1 ? GRIORA_Average : GRIORA_NearestNeighbour;
     GdalErrorCapture capture;
-    if (band->RasterIO(GF_Read, window_[0], window_[1], window_[2], window_[3], values.data(), w, h,
-                       GDT_Float64, 0, 0, &extra) != CE_None)
-      fail(ErrorClass::input, "cannot be read (band 1: " + capture.last_message() + ")");
+    // A window across a global grid's seam is read in two parts, each whole blocks of the
+    // averaging but the last.
+    const int turn = raster_.columns;
+    for (int first = window_[0]; first < window_[0] + window_[2];) {
+      const int column = ((first % turn) + turn) % turn;
+      const int columns = std::min(window_[0] + window_[2] - first, turn - column);
+      const int offset = (first - window_[0]) / raster_.averaged;
+      const int out_columns =
+          first + columns == window_[0] + window_[2] ? w - offset : columns / raster_.averaged;
+      if (band->RasterIO(GF_Read, column, window_[1], columns, window_[3], values.data() + offset,
+                         out_columns, h, GDT_Float64, sizeof(double),
+                         static_cast<GSpacing>(sizeof(double)) * w, &extra) != CE_None)
+        fail(ErrorClass::input, "cannot be read (band 1: " + capture.last_message() + ")");
+      first += columns;
+    }
     padded_w_ = w + 2 * kFrame;
     padded_h_ = h + 2 * kFrame;
     g_.assign(static_cast<std::size_t>(padded_w_) * padded_h_, -kInside);
@@ -351,6 +402,7 @@ class RasterDomainReader {
   double gt_[6] = {}, inverse_[6] = {}, read_gt_[6] = {};
   Ring area_;
   std::array<int, 4> window_{};
+  bool global_ = false;  // a lon/lat grid whose columns go round the globe
   int padded_w_ = 0, padded_h_ = 0;
   std::vector<double> g_;
 };

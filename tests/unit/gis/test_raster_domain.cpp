@@ -128,6 +128,49 @@ TEST(RasterDomain, ALargeWindowIsReadAveraged) {
   EXPECT_NEAR(domain_area(sea), 400e6 - kPi * 36e6 - 2100.0 * 2100.0, 0.03 * kPi * 36e6);
 }
 
+// A lon/lat grid round the globe, read under a bbox across its seam: the island on the
+// antimeridian whole, in the bbox's longitudes, whether the grid runs from -180 or from
+// 0, read cell by cell or averaged.
+TEST(RasterDomain, AGlobalGridIsReadAcrossItsSeam) {
+  TempDir dir;
+  // 0.1-degree cells from 10 to 25 S; an island of radius 0.5 degrees round (180, -17).
+  auto island = [](double lon, double lat) {
+    const double dlon = std::remainder(lon - 180.0, 360.0);
+    return 1000 * (0.5 - std::hypot(dlon, lat + 17));
+  };
+  const std::string west =
+      write_geotiff(dir.file("w.tif"), -180, -10, 0.1, 3600, 150, 4326, island);
+  const std::string east = write_geotiff(dir.file("e.tif"), 0, -10, 0.1, 3600, 150, 4326, island);
+  auto read = [](const std::string& path, const std::array<double, 4>& bbox, std::size_t cells) {
+    ReadParams p = dem_params(path);
+    p.bbox = bbox;
+    p.max_raster_cells = cells;
+    return read_raster_domain(p);
+  };
+  const std::array<double, 4> across{178, -19, 182, -15};
+  for (const auto& [path, cells] : {std::pair<std::string, std::size_t>{west, 1u << 20},
+                                    {east, 1u << 20},
+                                    {west, 1000},
+                                    {east, 1000}}) {
+    SCOPED_TRACE(path + " " + std::to_string(cells));
+    const SourceData sea = read(path, across, cells);
+    EXPECT_TRUE(sea.warnings.size() == (cells < 5000 ? 1u : 0u));
+    ASSERT_TRUE(sea.bbox_ring.has_value());
+    EXPECT_NEAR(std::abs(signed_area(*sea.bbox_ring)), 16.0, 1e-9);
+    ASSERT_EQ(sea.polygons.size(), 1u);
+    ASSERT_EQ(sea.polygons[0].rings.size(), 1u);
+    const double tolerance = cells < 5000 ? 0.2 : 0.02;  // averaged: cells of 0.2 degrees
+    EXPECT_NEAR(std::abs(signed_area(sea.polygons[0].rings[0])), kPi * 0.25, 10 * tolerance * 0.5);
+    for (const Point2& q : sea.polygons[0].rings[0])
+      EXPECT_NEAR(std::hypot(q.x - 180, q.y + 17), 0.5, tolerance);
+  }
+  // West of -180 on the grid from 0: the island in the bbox's longitudes.
+  const SourceData sea = read(east, {-182, -19, -178, -15}, 1u << 20);
+  ASSERT_EQ(sea.polygons.size(), 1u);
+  for (const Point2& q : sea.polygons[0].rings[0])
+    EXPECT_NEAR(std::hypot(q.x + 180, q.y + 17), 0.5, 0.02);
+}
+
 TEST(RasterDomain, UnderABboxInAnotherCrs) {
   TempDir dir;
   ReadParams p = dem_params(island_dem(dir));
