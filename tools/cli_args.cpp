@@ -189,7 +189,9 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
       ->group(g);
   cmd->add_option("--size-expr", f.sizing.expression,
                   "Size as an expression in x and y (metres, meshing CRS), e.g. "
-                  "\"0.01*(2+sin(6*x*pi-pi/2))\"")
+                  "\"0.01*(2+sin(6*x*pi-pi/2))\", and d, the depth in metres (positive down, "
+                  "from --bathymetry or --elevation; the expression holds where they give one), "
+                  "e.g. \"d < 20 ? 500 : min(5000, 25*d)\"")
       ->group(g);
   cmd->add_option("--size-raster", f.sizing.raster_path, "GDAL raster of sizes in metres, any CRS")
       ->group(g);

@@ -206,12 +206,10 @@ RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::stri
                       "': a .pli holds the open boundary, and this domain has none: give "
                       "--open-boundary FILE, or --domain water with --bbox or --clip");
   // --bathymetry alone gives the depths of the outputs; with a wavelength, slope or time
-  // step rule it also sets the sizing.
+  // step rule, or a --size-expr in d, it also sets the sizing.
   finish_depth_options(a, f);
   const std::vector<DepthRaster> bathymetry = f.sizing.bathymetry;
-  if (!bathymetry.empty() && !f.sizing.wavelength_period_s && !f.sizing.slope_factor &&
-      !f.sizing.time_step_s)
-    f.sizing.bathymetry.clear();
+  if (!sizing_reads_depths(f.sizing)) f.sizing.bathymetry.clear();
   if (!f.plot_path.empty()) check_output_path(f.plot_path, a.overwrite);
   check_report_path(a);
   if (tiling_only && f.plot_path.empty() && a.report_path.empty())
@@ -288,11 +286,11 @@ RegionOutcome run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
                         "(its CRS: --mesh-crs)");
   }
   finish_depth_options(a, f);
-  if (!f.sizing.bathymetry.empty() && !f.sizing.wavelength_period_s && !f.sizing.slope_factor &&
-      !f.sizing.time_step_s)
+  if (!f.sizing.bathymetry.empty() && !sizing_reads_depths(f.sizing))
     throw Error(ErrorClass::usage, "options",
                 "quality reads depths for the sizes alone: --bathymetry or --elevation needs "
-                "--wavelength-period, --slope-factor or --time-step, as the mesh was made with");
+                "--wavelength-period, --slope-factor, --time-step or a --size-expr in d, as the "
+                "mesh was made with");
   QualityJobOptions options;
   options.fields = fields_options(a, f);
   options.mesh_path = q.mesh_path;

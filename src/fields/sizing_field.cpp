@@ -22,14 +22,45 @@ namespace isoquad {
 
 struct SizingOracle::Expression {
   mu::Parser parser;
-  double x = 0.0, y = 0.0;
+  double x = 0.0, y = 0.0, d = 0.0;
   std::string text;
+  bool uses_depth = false;
+
+  // Parses `text` now, so that a bad expression fails before any work. Throws
+  // mu::Parser::exception_type.
+  void parse(const std::string& expression) {
+    text = expression;
+    parser.DefineVar("x", &x);
+    parser.DefineVar("y", &y);
+    parser.DefineVar("d", &d);
+    parser.DefineConst("pi", M_PI);
+    parser.DefineConst("e", M_E);
+    parser.SetExpr(expression);
+    uses_depth = parser.GetUsedVar().count("d") > 0;
+    parser.Eval();
+  }
 };
 
 bool has_explicit_source(const SizingParams& p) {
   return p.constant_m || !p.expression.empty() || !p.raster_path.empty() ||
          !p.size_mesh_path.empty() ||
          (!p.bathymetry.empty() && (p.wavelength_period_s > 0 || p.slope_factor > 0));
+}
+
+bool expression_uses_depth(const std::string& expression) {
+  if (expression.empty()) return false;
+  try {
+    SizingOracle::Expression e;
+    e.parse(expression);
+    return e.uses_depth;
+  } catch (const mu::Parser::exception_type&) {
+    return false;  // the oracle reports it
+  }
+}
+
+bool sizing_reads_depths(const SizingParams& p) {
+  return p.wavelength_period_s > 0 || p.slope_factor > 0 || p.time_step_s > 0 ||
+         expression_uses_depth(p.expression);
 }
 
 SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : params_(params) {
@@ -63,20 +94,16 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
   if (params.constant_m) summary_.sources.push_back("constant " + std::to_string(*params.constant_m) + " m");
   if (!params.expression.empty()) {
     expression_ = std::make_unique<Expression>();
-    Expression& e = *expression_;
-    e.text = params.expression;
     try {
-      e.parser.DefineVar("x", &e.x);
-      e.parser.DefineVar("y", &e.y);
-      e.parser.DefineConst("pi", M_PI);
-      e.parser.DefineConst("e", M_E);
-      e.parser.SetExpr(params.expression);
-      e.parser.Eval();  // parses now, so that a bad expression fails before any work
+      expression_->parse(params.expression);
     } catch (const mu::Parser::exception_type& ex) {
       throw Error(ErrorClass::usage, "sizing",
                   "--size-expr '" + params.expression + "': " + ex.GetMsg() +
-                      " (variables: x, y in metres; constants: pi, e)");
+                      " (variables: x, y in metres, d the depth in metres; constants: pi, e)");
     }
+    if (expression_->uses_depth && params.bathymetry.empty())
+      usage("--size-expr '" + params.expression +
+            "' uses d, the depth: give --bathymetry or --elevation");
     summary_.sources.push_back("expression " + params.expression);
   }
   if (!params.raster_path.empty()) {
@@ -98,10 +125,10 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
   summary_.time_step_s = params.time_step_s;
   summary_.courant = params.courant;
   if (!params.bathymetry.empty()) {
-    if (params.wavelength_period_s <= 0 && params.slope_factor <= 0 && params.time_step_s <= 0)
+    if (!sizing_reads_depths(params))
       usage(
-          "--bathymetry needs --wavelength-period with --cells-per-wavelength, --slope-factor or "
-          "--time-step");
+          "--bathymetry needs --wavelength-period with --cells-per-wavelength, --slope-factor, "
+          "--time-step or a --size-expr in d");
     if (params.wavelength_period_s > 0 && params.cells_per_wavelength <= 0)
       usage("--wavelength-period needs --cells-per-wavelength");
     bathymetry_ = std::make_unique<RasterStack>(params.bathymetry, crs, extent);
@@ -170,9 +197,12 @@ double SizingOracle::operator()(const Point2& p) const {
   double h = std::numeric_limits<double>::infinity();
   if (params_.constant_m) h = std::min(h, *params_.constant_m);
   if (automatic_) h = std::min(h, (*automatic_)(p));
-  if (expression_) {
+  const double raw = depth_at(p);
+  // An expression in the depth holds where a raster gives one.
+  if (expression_ && !(expression_->uses_depth && std::isnan(raw))) {
     expression_->x = p.x;
     expression_->y = p.y;
+    expression_->d = raw;
     double v = 0.0;
     try {
       v = expression_->parser.Eval();
@@ -182,7 +212,9 @@ double SizingOracle::operator()(const Point2& p) const {
     if (!(v > 0) || !std::isfinite(v))
       throw Error(ErrorClass::usage, "sizing",
                   "--size-expr '" + expression_->text + "' gives " + std::to_string(v) + " at " +
-                      format_point(p) + "; sizes must be positive");
+                      format_point(p) +
+                      (expression_->uses_depth ? " (d = " + std::to_string(raw) + ")" : "") +
+                      "; sizes must be positive");
     h = std::min(h, v);
   }
   if (raster_) {
@@ -199,7 +231,6 @@ double SizingOracle::operator()(const Point2& p) const {
     const double v = mesh_sizes_->sample(p);
     if (v > 0) h = std::min(h, v);
   }
-  const double raw = depth_at(p);
   if (bathymetry_) {
     if (!std::isnan(raw)) {
       const double d = std::max(params_.min_depth_m, raw);

@@ -42,7 +42,9 @@ struct SizingParams {
   // Sources; `automatic` is the boundary's local feature size (feature_size.h).
   bool automatic = true;
   std::optional<double> constant_m;  // --size
-  std::string expression;            // --size-expr, in x and y (metres, meshing CRS)
+  // --size-expr, in x and y (metres, meshing CRS) and d, the depth (metres, positive down,
+  // from `bathymetry`); where no raster gives a depth, an expression in d does not apply.
+  std::string expression;
   std::string raster_path;           // --size-raster: sizes in metres, any GDAL raster
   // --size-mesh: the sizes of a mesh's elements (MeshNodeField::Values::element_sizes: a
   // model's grid, to mesh again at its resolution), in its CRS, else size_mesh_crs
@@ -80,6 +82,12 @@ struct SizingParams {
 // --bathymetry with the wavelength or slope rule (the time step rule only bounds sizes).
 // Without one, the sizing is automatic.
 bool has_explicit_source(const SizingParams& params);
+// Whether the sizes read depths (--bathymetry, --elevation): the wavelength, slope or time
+// step rule, or an expression in d.
+bool sizing_reads_depths(const SizingParams& params);
+// Whether --size-expr uses d, the depth (false for one that does not parse: the oracle
+// reports that).
+bool expression_uses_depth(const std::string& expression);
 
 // The resolved parameters and what the summary reports.
 struct SizingSummary {
@@ -119,6 +127,7 @@ class SizingOracle {
   bool is_uniform() const;
 
  private:
+  friend bool expression_uses_depth(const std::string& expression);
   struct Expression;
   double hmin_ = 0.0, hmax_ = 1e300;
   double gradation_ = 1.0;

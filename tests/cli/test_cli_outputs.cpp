@@ -1866,6 +1866,44 @@ TEST(CliOutputs, TimeStepRuleWidensTheQuadsInDeepWater) {
   }
 }
 
+// --size-expr in d, the depth: quads of 300 m where the water is shallower than 200 m,
+// up to --hmax (800 m) deeper; without depths, the expression is refused.
+TEST(CliOutputs, AnExpressionInTheDepthSizesTheShallowWater) {
+  TempDir dir;
+  const std::string dem = bathymetry(dir);  // 130 to 330 m deep over the box
+  CliResult r = mesh_box(dir, {"--hmax", "800", "--bathymetry", dem, "--size-expr",
+                               "d < 200 ? 300 : 1e9", "-o", dir.file("m.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("expression d < 200 ? 300 : 1e9 + bathymetry "), std::string::npos) << r.err;
+  const Gr3 g = parse_gr3(dir.file("m.gr3"));
+  std::vector<double> shallow, deep;  // sqrt(area) of the quads by their mean depth
+  for (const std::vector<int>& e : g.elements) {
+    double a = 0.0, depth = 0.0;
+    for (std::size_t k = 0; k < e.size(); ++k) {
+      const auto& p = g.nodes[e[k] - 1];
+      const auto& q = g.nodes[e[(k + 1) % e.size()] - 1];
+      a += 0.5 * (p[0] * q[1] - q[0] * p[1]);
+      depth += p[2] / static_cast<double>(e.size());
+    }
+    if (depth < 180) shallow.push_back(std::sqrt(a));
+    if (depth > 280) deep.push_back(std::sqrt(a));
+  }
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  ASSERT_GT(shallow.size(), 50u);
+  ASSERT_GT(deep.size(), 10u);
+  EXPECT_NEAR(median(shallow), 300, 45);  // 302 when measured
+  EXPECT_GT(median(deep), 600);           // 877
+  r = mesh_box(dir,
+               {"--hmax", "800", "--size-expr", "d < 200 ? 300 : 1e9", "-o", dir.file("x.gr3")});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("uses d, the depth: give --bathymetry or --elevation"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("x.gr3")));
+}
+
 TEST(CliOutputs, GoldenToolStartsACaseThatChecksAndCatchesAChange) {
   // tools/golden.py init: a user's own regression case from an isoquad mesh command
   // line; `check` passes on it, and fails once an expected value is off.

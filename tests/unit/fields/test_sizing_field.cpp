@@ -448,6 +448,54 @@ TEST(SizingField, WavelengthAndSlopeRulesFollowTheDepths) {
   EXPECT_NE(std::string(e.what()).find("--wavelength-period"), std::string::npos) << e.what();
 }
 
+// --size-expr in d, the depth: sizes by depth bands (OceanMesh2D's limits by depth),
+// holding where a raster gives a depth; other places keep their other sources.
+TEST(SizingField, AnExpressionInTheDepthHoldsWhereARasterGivesOne) {
+  TempDir dir;
+  const Domain d = rectangle(2000, 1000);
+  // Depths 10 + x / 100 over the west half (x < 1000) only.
+  const std::string west = write_tif(dir.file("west.tif"), 0, 1000, 50, 20, 20,
+                                     [](double x, double) { return 10 + x / 100; });
+  SizingParams p;
+  p.automatic = false;
+  p.bathymetry = {{west}};
+  p.expression = "d < 12 ? 50 : 5 * d";
+  p.hmax_m = 300;
+  EXPECT_TRUE(expression_uses_depth(p.expression));
+  EXPECT_TRUE(sizing_reads_depths(p));
+  SizingOracle oracle(d, p);
+  EXPECT_NEAR(oracle({100, 500}), 50, 1e-9);        // 11 m deep
+  EXPECT_NEAR(oracle({500, 500}), 5 * 15.0, 1e-6);  // 15 m deep
+  EXPECT_NEAR(oracle({1500, 500}), 300, 1e-9);      // no depth: hmax
+  // With x too, and another source beside it: the minimum where both hold.
+  p.expression = "d + x / 10";
+  p.constant_m = 100;
+  SizingOracle both(d, p);
+  EXPECT_NEAR(both({200, 500}), 12 + 20, 1e-6);
+  EXPECT_NEAR(both({1500, 500}), 100, 1e-9);
+
+  // Errors: d without depths; depths that no rule or expression reads; a size under 0,
+  // with the depth that gave it.
+  SizingParams no_depths;
+  no_depths.automatic = false;
+  no_depths.expression = "2 * d";
+  Error e = error_of([&] { SizingOracle o(d, no_depths); });
+  EXPECT_EQ(e.error_class(), ErrorClass::usage);
+  EXPECT_NE(std::string(e.what()).find("--bathymetry"), std::string::npos) << e.what();
+  SizingParams unread = p;
+  unread.expression = "x + 10";
+  EXPECT_FALSE(expression_uses_depth(unread.expression));
+  EXPECT_FALSE(sizing_reads_depths(unread));
+  e = error_of([&] { SizingOracle o(d, unread); });
+  EXPECT_NE(std::string(e.what()).find("--size-expr in d"), std::string::npos) << e.what();
+  SizingParams negative = p;
+  negative.expression = "18 - d";
+  SizingOracle o(d, negative);
+  e = error_of([&] { o({900, 500}); });
+  EXPECT_NE(std::string(e.what()).find("(d = 19"), std::string::npos) << e.what();
+  EXPECT_FALSE(expression_uses_depth("d *"));  // does not parse: the oracle says so
+}
+
 TEST(SizingField, TimeStepRuleRaisesSizesToItsFloorOverEverySourceButLocalOnes) {
   TempDir dir;
   // 20 km x 10 km, depths from 5 m (x = 0) to 2005 m (x = 20 km); automatic sizes of
