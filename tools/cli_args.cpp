@@ -507,6 +507,12 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                 "triangles, as SCHISM's manual asks (its "
                 "fix_bad_quads); the other outputs keep every quad")
       ->group("Output");
+  cmd->add_flag("--depth-average", m.depth_average,
+                "Each vertex's depth as the mean of the raster's cells within a square as wide "
+                "as the mean side of its quads (OceanMesh2D's cell averaging: no aliasing of a "
+                "grid much finer than the mesh), where the raster has two or more cells across "
+                "it; its bilinear value elsewhere")
+      ->group("Output");
 }
 
 void finish_front_end_args(CommonArgs& a) {

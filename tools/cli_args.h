@@ -59,6 +59,7 @@ struct MeshArgs {
   std::string msh_groups = "kind";
   std::string output_crs;
   bool schism_split = false;
+  bool depth_average = false;  // --depth-average
   std::string stop_after;  // empty: the whole job
   std::string conform_rule = "lattice";
   std::string init = "front";

@@ -209,6 +209,9 @@ RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::stri
   // step rule, or a --size-expr in d, it also sets the sizing.
   finish_depth_options(a, f);
   const std::vector<DepthRaster> bathymetry = f.sizing.bathymetry;
+  if (m.depth_average && bathymetry.empty())
+    throw Error(ErrorClass::usage, "options",
+                "--depth-average needs depths: --bathymetry or --elevation");
   if (!sizing_reads_depths(f.sizing)) f.sizing.bathymetry.clear();
   if (!f.plot_path.empty()) check_output_path(f.plot_path, a.overwrite);
   check_report_path(a);
@@ -224,6 +227,7 @@ RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::stri
   job.write = write_options;
   job.bathymetry = bathymetry;
   job.min_depth_m = f.min_depth_m;
+  job.depth_average = m.depth_average;
   job.courant = f.sizing.courant;
   job.time_step_s = f.sizing.time_step_s;
   job.plot_path = f.plot_path;

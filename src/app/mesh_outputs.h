@@ -24,6 +24,7 @@ struct MeshJobOutputs {
   // vertices' depths (vertex_depths()). Empty: none (unknown depths).
   std::vector<DepthRaster> bathymetry;
   std::optional<double> min_depth_m;  // --min-depth: shallower depths are raised to it
+  bool depth_average = false;         // --depth-average: vertex_depths(..., average)
   double courant = 1.0;               // --courant: the time steps are at this Courant number
   double time_step_s = 0.0;           // --time-step: the quads' time steps are counted against it
   std::string plot_path;     // PNG: the mesh, or the tiling when it stopped early

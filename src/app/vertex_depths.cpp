@@ -13,17 +13,30 @@
 namespace isoquad {
 
 VertexDepths vertex_depths(const RasterStack& rasters, const QuadMesh& mesh,
-                           std::optional<double> min_depth_m) {
+                           std::optional<double> min_depth_m, bool average) {
   const std::size_t n = mesh.points.size();
   VertexDepths out;
   out.depth.assign(n, 0.0);
+  out.averaged = average;
+  // Half the mean length of the quads' sides at each vertex (each quad's two counted).
+  std::vector<double> half_side(n, 0.0);
+  if (average) {
+    std::vector<int> sides(n, 0);
+    for (const auto& q : mesh.quads)
+      for (int i = 0; i < 4; ++i) {
+        const double l = distance(mesh.points[q[i]], mesh.points[q[(i + 1) % 4]]);
+        for (int v : {q[i], q[(i + 1) % 4]}) half_side[v] += 0.5 * l, ++sides[v];
+      }
+    for (std::size_t v = 0; v < n; ++v)
+      if (sides[v] > 0) half_side[v] /= sides[v];
+  }
   // Dijkstra from every vertex with a value, over the quads' sides: a vertex without one
   // takes the depth of the first vertex with one to reach it (ties to the lower id).
   std::vector<double> reach(n, INFINITY);
   using Entry = std::pair<double, std::size_t>;
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
   for (std::size_t v = 0; v < n; ++v) {
-    const double d = rasters.sample(mesh.points[v]);
+    const double d = rasters.mean_over(mesh.points[v], half_side[v]);
     if (std::isnan(d)) continue;
     out.depth[v] = d;
     reach[v] = 0.0;

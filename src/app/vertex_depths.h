@@ -32,14 +32,17 @@ struct VertexDepths {
   double max_fill_distance_m = 0.0;  // the longest path from one to the vertex it took
   std::size_t num_raised = 0;        // depths raised to min_depth_m
   std::size_t num_dry = 0;           // vertices at depth 0 or above (before min_depth_m)
+  bool averaged = false;             // means over squares round the vertices
   double min_m = 0.0, max_m = 0.0;   // the range of the depths written
   TimeSteps time_steps;              // courant_time_steps() of the depths written
 };
 
-// Throws Error(input) when no vertex has a value in any of the rasters (an extent or CRS
-// that misses the domain).
+// With `average`, each vertex's depth is the rasters' mean over the square round it as wide
+// as the mean length of its quads' sides at it (RasterStack::mean_over: a raster's
+// bilinear value where it is not finer than that). Throws Error(input) when no vertex
+// has a value in any of the rasters (an extent or CRS that misses the domain).
 VertexDepths vertex_depths(const RasterStack& rasters, const QuadMesh& mesh,
-                           std::optional<double> min_depth_m);
+                           std::optional<double> min_depth_m, bool average = false);
 
 // `depth`: #P, as written. `target_s` > 0: count the wet quads whose time step is under it.
 TimeSteps courant_time_steps(const QuadMesh& mesh, const std::vector<double>& depth,

@@ -194,15 +194,32 @@ double RasterField::nearest_turn(double px, double reference) const {
   return px + lon_turn_px_ * std::round((reference - px) / lon_turn_px_);
 }
 
+bool RasterField::to_pixel(const Point2& p, double& px, double& py) const {
+  Point2 q = p;
+  if (to_raster_ && !to_raster_->transform(q)) return false;
+  // Pixel centres are at half-integer pixel coordinates; these are shifted by half a
+  // pixel, so that centres are at integers. A longitude is taken the turn nearest the
+  // raster's columns (a global grid's are found past its seam, in cell()).
+  px = inverse_[0] + q.x * inverse_[1] + q.y * inverse_[2] - 0.5;
+  if (!global_) px = nearest_turn(px, 0.5 * width_);
+  py = inverse_[3] + q.x * inverse_[4] + q.y * inverse_[5] - 0.5;
+  return true;
+}
+
+double RasterField::cell(int i, int j) const {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  i -= window_[0];
+  if (global_) i = ((i % width_) + width_) % width_;  // the column's place past the seam
+  j -= window_[1];
+  if (i < 0 || j < 0 || i >= window_[2] || j >= window_[3]) return nan;  // not read
+  const double v = values_[static_cast<std::size_t>(j) * window_[2] + i];
+  return (has_nodata_ && v == static_cast<float>(nodata_)) || std::isnan(v) ? nan : v;
+}
+
 double RasterField::sample(const Point2& p) const {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  Point2 q = p;
-  if (to_raster_ && !to_raster_->transform(q)) return nan;
-  // Pixel centres are at half-integer pixel coordinates. A longitude is taken the turn
-  // nearest the raster's columns (a global grid's are found past its seam, below).
-  double px = inverse_[0] + q.x * inverse_[1] + q.y * inverse_[2] - 0.5;
-  if (!global_) px = nearest_turn(px, 0.5 * width_);
-  const double py = inverse_[3] + q.x * inverse_[4] + q.y * inverse_[5] - 0.5;
+  double px = 0.0, py = 0.0;
+  if (!to_pixel(p, px, py)) return nan;
   // Points on the raster's edge (a bbox that a download was cut to) come back from the
   // meshing CRS a little off it: a chord of a bbox's side that the simplification kept
   // whole lies up to its sagitta (170 m on a side of 100 km at 40 degrees) outside. Within
@@ -218,16 +235,40 @@ double RasterField::sample(const Point2& p) const {
   const int i1 = global_ ? i0 + 1 : std::min(i0 + 1, width_ - 1);
   const int j1 = std::min(j0 + 1, height_ - 1);
   const double tx = std::clamp(px - i0, 0.0, 1.0), ty = std::clamp(py - j0, 0.0, 1.0);
-  auto at = [&](int i, int j) {
-    i -= window_[0];
-    if (global_) i = ((i % width_) + width_) % width_;  // the column's place past the seam
-    j -= window_[1];
-    if (i < 0 || j < 0 || i >= window_[2] || j >= window_[3]) return nan;  // not read
-    const double v = values_[static_cast<std::size_t>(j) * window_[2] + i];
-    return (has_nodata_ && v == static_cast<float>(nodata_)) || std::isnan(v) ? nan : v;
-  };
-  return (1 - ty) * ((1 - tx) * at(i0, j0) + tx * at(i1, j0)) +
-         ty * ((1 - tx) * at(i0, j1) + tx * at(i1, j1));
+  return (1 - ty) * ((1 - tx) * cell(i0, j0) + tx * cell(i1, j0)) +
+         ty * ((1 - tx) * cell(i0, j1) + tx * cell(i1, j1));
+}
+
+double RasterField::mean_over(const Point2& p, double half_width) const {
+  // Only where the point has a value, as sample() gives it: a point off this raster
+  // whose square reaches it is left to the next raster (or to its neighbours).
+  const double at_p = sample(p);
+  double cx = 0.0, cy = 0.0;
+  if (std::isnan(at_p) || !to_pixel(p, cx, cy)) return at_p;
+  // The square's corners in pixels; the cells whose centres lie in their bounding box.
+  double lo_x = INFINITY, lo_y = INFINITY, hi_x = -INFINITY, hi_y = -INFINITY;
+  for (const auto& [sx, sy] : {std::pair<int, int>{-1, -1}, {1, -1}, {1, 1}, {-1, 1}}) {
+    double px = 0.0, py = 0.0;
+    if (!to_pixel({p.x + sx * half_width, p.y + sy * half_width}, px, py)) return at_p;
+    px = nearest_turn(px, cx);  // a global grid's box across its seam stays whole
+    lo_x = std::min(lo_x, px), hi_x = std::max(hi_x, px);
+    lo_y = std::min(lo_y, py), hi_y = std::max(hi_y, py);
+  }
+  const int i0 = static_cast<int>(std::ceil(lo_x)), i1 = static_cast<int>(std::floor(hi_x));
+  const int j0 = std::max(0, static_cast<int>(std::ceil(lo_y)));
+  const int j1 = std::min(height_ - 1, static_cast<int>(std::floor(hi_y)));
+  // A raster no finer than the square: its bilinear value.
+  if (i1 - i0 < 1 || j1 - j0 < 1) return at_p;
+  double sum = 0.0;
+  std::size_t count = 0;
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      const double v = cell(i, j);
+      if (std::isnan(v)) continue;
+      sum += v;
+      ++count;
+    }
+  return count > 0 ? sum / static_cast<double>(count) : std::numeric_limits<double>::quiet_NaN();
 }
 
 RasterStack::RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo& query_crs,
@@ -245,8 +286,13 @@ RasterStack::RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo&
 RasterStack::~RasterStack() = default;
 
 double RasterStack::sample(const Point2& p) const {
+  return mean_over(p, 0.0);
+}
+
+double RasterStack::mean_over(const Point2& p, double half_width) const {
   for (std::size_t i = 0; i < rasters_.size(); ++i) {
-    const double v = rasters_[i]->sample(p);
+    const double v =
+        half_width > 0 ? rasters_[i]->mean_over(p, half_width) : rasters_[i]->sample(p);
     if (!std::isnan(v)) return sources_[i].elevation ? -v : v;
   }
   return std::numeric_limits<double>::quiet_NaN();

@@ -20,6 +20,9 @@ class PointField {
  public:
   virtual ~PointField() = default;
   virtual double sample(const Point2& p) const = 0;
+  // The mean value over the square of half-width `half_width` round p (query CRS
+  // units), where the field is finer than that square; else sample(p). NaN: none.
+  virtual double mean_over(const Point2& p, double /*half_width*/) const { return sample(p); }
   // Why no point may have found a value, when the field can tell (a raster without a
   // CRS whose extent looks like longitudes and latitudes); empty otherwise.
   virtual std::string crs_hint() const { return ""; }
@@ -42,6 +45,10 @@ class RasterField : public PointField {
   // Bilinear value at p (query CRS); NaN outside the raster or where a neighbouring
   // pixel is nodata.
   double sample(const Point2& p) const override;
+  // The mean of the cells with a value whose centres lie in the square (in the raster's
+  // pixels, the bounding box of its corners), where sample(p) is not NaN; sample(p)
+  // when the square spans fewer than two cells' centres either way.
+  double mean_over(const Point2& p, double half_width) const override;
   std::string crs_hint() const override;
 
   const std::string& path() const { return path_; }
@@ -67,6 +74,12 @@ class RasterField : public PointField {
   bool global_ = false;
   // `px` moved by whole turns of longitude to the nearest `reference` (pixel columns).
   double nearest_turn(double px, double reference) const;
+  // p (query CRS) in pixels, cell centres at integers; false when it cannot be
+  // transformed.
+  bool to_pixel(const Point2& p, double& px, double& py) const;
+  // The value of cell (i, j) (a global grid's columns taken round its seam); NaN where
+  // it has none or was not read.
+  double cell(int i, int j) const;
 };
 
 // A raster of depths (metres, positive down: --bathymetry) or of elevations (positive
@@ -97,6 +110,9 @@ class RasterStack {
 
   // The first raster's depth at p that is not NaN; NaN where none has one.
   double sample(const Point2& p) const;
+  // The same with each raster's mean over the square of half-width `half_width` round p
+  // (PointField::mean_over); 0: sample(p).
+  double mean_over(const Point2& p, double half_width) const;
 
   std::size_t size() const { return rasters_.size(); }
   // --bathymetry 'a.tif', --elevation 'b.tif' (for messages).

@@ -1904,6 +1904,37 @@ TEST(CliOutputs, AnExpressionInTheDepthSizesTheShallowWater) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("x.gr3")));
 }
 
+// --depth-average: the depths as means over squares round the vertices, said in the
+// summary and the report; on a grid of depths linear in lon/lat, within half a cell's
+// slope of the bilinear ones (a cell of 0.001 degrees: 1 m). Without depths, refused.
+TEST(CliOutputs, DepthAverageIsSaidAndStaysNearALinearGrid) {
+  TempDir dir;
+  // The depths of bathymetry() in cells ten times finer (0.001 degrees): about 10 across
+  // a square of 800 m.
+  const std::string dem =
+      write_geotiff(dir.file("fine.tif"), -4.7, 48.45, 0.001, 400, 350, 4326, depth_at);
+  CliResult plain = mesh_box(dir, {"--hmax", "800", "--bathymetry", dem, "-o", dir.file("p.gr3")});
+  ASSERT_EQ(plain.exit_code, 0) << plain.err;
+  CliResult mean = mesh_box(dir, {"--hmax", "800", "--bathymetry", dem, "--depth-average", "-o",
+                                  dir.file("m.gr3"), "--report", dir.file("m.json")});
+  ASSERT_EQ(mean.exit_code, 0) << mean.err;
+  EXPECT_NE(mean.err.find("(each a mean over a square as wide as the vertex's quads)"),
+            std::string::npos)
+      << mean.err;
+  EXPECT_NE(read_file(dir.file("m.json")).find("\"averaged\": true"), std::string::npos);
+  const Gr3 p = parse_gr3(dir.file("p.gr3")), m = parse_gr3(dir.file("m.gr3"));
+  ASSERT_EQ(p.nodes.size(), m.nodes.size());
+  double largest = 0.0;
+  for (std::size_t v = 0; v < p.nodes.size(); ++v)
+    largest = std::max(largest, std::abs(p.nodes[v][2] - m.nodes[v][2]));
+  EXPECT_GT(largest, 0.0);
+  EXPECT_LT(largest, 1.0);
+  const CliResult bad =
+      mesh_box(dir, {"--hmax", "800", "--depth-average", "-o", dir.file("x.gr3")});
+  EXPECT_EQ(bad.exit_code, 2) << bad.err;
+  EXPECT_NE(bad.err.find("--depth-average needs depths"), std::string::npos) << bad.err;
+}
+
 TEST(CliOutputs, GoldenToolStartsACaseThatChecksAndCatchesAChange) {
   // tools/golden.py init: a user's own regression case from an isoquad mesh command
   // line; `check` passes on it, and fails once an expected value is off.

@@ -77,6 +77,39 @@ TEST(VertexDepths, TheFirstRasterWithADepthGivesIt) {
 
 // Elevations (positive up, as GEBCO's) are read as depths, in the same priority list;
 // the dry vertices are counted.
+// --depth-average: a grid ten times finer than the quads, waves of 30 m over a slope,
+// read as each vertex's mean over a square as wide as its quads (100 m): within the
+// waves' leftover of a tenth, where the bilinear samples are off by a quarter of them
+// or more.
+TEST(VertexDepths, AveragedDepthsAreMeansOverEachVertexsSquare) {
+  TempDir dir;
+  const QuadMesh m = grid();
+  auto truth = [](double y) { return 50 + y / 100; };
+  const std::string fine = write_geotiff(
+      dir.file("fine.tif"), -100, 600, 10, 120, 70, 0,
+      [&](double x, double y) { return truth(y) + 10 * std::cos(2 * M_PI * x / 30); });
+  const RasterStack stack({{fine}}, kNoCrs);
+  const VertexDepths sampled = vertex_depths(stack, m, std::nullopt);
+  const VertexDepths averaged = vertex_depths(stack, m, std::nullopt, true);
+  EXPECT_FALSE(sampled.averaged);
+  EXPECT_TRUE(averaged.averaged);
+  double worst_sampled = 0.0, worst_averaged = 0.0;
+  for (std::size_t v = 0; v < m.points.size(); ++v) {
+    const double t = truth(m.points[v].y);
+    worst_sampled = std::max(worst_sampled, std::abs(sampled.depth[v] - t));
+    worst_averaged = std::max(worst_averaged, std::abs(averaged.depth[v] - t));
+  }
+  EXPECT_GE(worst_sampled, 2.5 - 1e-4);
+  EXPECT_LE(worst_averaged, 1.0 + 1e-4);
+  // A raster of cells wider than the squares gives its bilinear values.
+  const RasterStack coarse({{whole(dir)}}, kNoCrs);
+  QuadMesh small;
+  small.points = {{100, 100}, {130, 100}, {130, 130}, {100, 130}};
+  small.quads = {{0, 1, 2, 3}};
+  const VertexDepths c = vertex_depths(coarse, small, std::nullopt, true);
+  for (std::size_t v = 0; v < 4; ++v) EXPECT_NEAR(c.depth[v], coarse.sample(small.points[v]), 1e-9);
+}
+
 TEST(VertexDepths, ElevationRastersAreReadAsDepths) {
   TempDir dir;
   const QuadMesh m = grid();

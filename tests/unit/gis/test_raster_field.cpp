@@ -113,6 +113,30 @@ TEST(RasterField, LongitudesGoRoundTheAntimeridian) {
               0.75 * value(179.75, -17.25) + 0.25 * value(-179.75, -17.25), 1e-3);
 }
 
+// The mean over a square: the cells with a value whose centres lie in it, where the point
+// has a value; the bilinear value when the square spans fewer than two cells' centres.
+TEST(RasterField, TheMeanOverASquareCountsTheCellsWithAValue) {
+  TempDir dir;
+  // 10 x 10 cells of 100 m in UTM 31N, value the column (0 to 9); the cells of columns
+  // 0 and 1 in rows 0 to 4 without a value.
+  const std::string path =
+      write_geotiff(dir.file("g.tif"), 500000, 5001000, 100, 10, 10, 32631, [](double x, double y) {
+        const double column = std::floor((x - 500000) / 100);
+        return column < 2 && y > 5000500 ? std::nan("") : column;
+      });
+  const RasterField f(path, "--bathymetry", parse_crs("EPSG:32631", "t"));
+  // Columns 4 to 7, rows 5 to 8 (centres 450 to 750 m east, 150 to 450 m north).
+  EXPECT_NEAR(f.mean_over({500600, 5000300}, 160), 5.5, 1e-9);
+  // Columns 1 to 3 over rows 4 to 6: the cell without a value (column 1, row 4) left out.
+  EXPECT_NEAR(f.mean_over({500250, 5000450}, 160), (2 + 3 + 2 * (1 + 2 + 3)) / 8.0, 1e-9);
+  // A point without a value (next to cells without one, as sample() gives it): none.
+  EXPECT_TRUE(std::isnan(f.mean_over({500200, 5000500}, 160)));
+  EXPECT_TRUE(std::isnan(f.mean_over({500100, 5000800}, 60)));
+  // Fewer than two centres either way: the bilinear value.
+  EXPECT_DOUBLE_EQ(f.mean_over({500520, 5000300}, 40), f.sample({500520, 5000300}));
+  EXPECT_DOUBLE_EQ(f.mean_over({500520, 5000300}, 0), f.sample({500520, 5000300}));
+}
+
 // GEBCO's and EMODnet's grids come zipped, beside their licence texts: read as they are.
 TEST(RasterField, ReadsAZippedGridAsDownloaded) {
   TempDir dir;
