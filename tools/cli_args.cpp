@@ -189,7 +189,8 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
       ->group(g);
   cmd->add_option("--size-expr", f.sizing.expression,
                   "Size as an expression in x and y (metres, meshing CRS), e.g. "
-                  "\"0.01*(2+sin(6*x*pi-pi/2))\", and d, the depth in metres (positive down, "
+                  "\"0.01*(2+sin(6*x*pi-pi/2))\", lon and lat (degrees), e.g. \"lat > 48.3 ? "
+                  "500 : 2000\", and d, the depth in metres (positive down, "
                   "from --bathymetry or --elevation; the expression holds where they give one), "
                   "e.g. \"d < 20 ? 500 : min(5000, 25*d)\"")
       ->group(g);

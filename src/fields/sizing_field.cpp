@@ -22,9 +22,10 @@ namespace isoquad {
 
 struct SizingOracle::Expression {
   mu::Parser parser;
-  double x = 0.0, y = 0.0, d = 0.0;
+  double x = 0.0, y = 0.0, d = 0.0, lon = 0.0, lat = 0.0;
   std::string text;
   bool uses_depth = false;
+  std::unique_ptr<CrsTransform> to_lonlat;  // when it uses lon or lat
 
   // Parses `text` now, so that a bad expression fails before any work. Throws
   // mu::Parser::exception_type.
@@ -33,11 +34,17 @@ struct SizingOracle::Expression {
     parser.DefineVar("x", &x);
     parser.DefineVar("y", &y);
     parser.DefineVar("d", &d);
+    parser.DefineVar("lon", &lon);
+    parser.DefineVar("lat", &lat);
     parser.DefineConst("pi", M_PI);
     parser.DefineConst("e", M_E);
     parser.SetExpr(expression);
     uses_depth = parser.GetUsedVar().count("d") > 0;
     parser.Eval();
+  }
+
+  bool uses_lonlat() const {
+    return parser.GetUsedVar().count("lon") > 0 || parser.GetUsedVar().count("lat") > 0;
   }
 };
 
@@ -99,8 +106,11 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
     } catch (const mu::Parser::exception_type& ex) {
       throw Error(ErrorClass::usage, "sizing",
                   "--size-expr '" + params.expression + "': " + ex.GetMsg() +
-                      " (variables: x, y in metres, d the depth in metres; constants: pi, e)");
+                      " (variables: x, y in metres, lon, lat in degrees, d the depth in metres; "
+                      "constants: pi, e)");
     }
+    if (expression_->uses_lonlat())
+      expression_->to_lonlat = std::make_unique<CrsTransform>(crs, geographic_base(crs));
     if (expression_->uses_depth && params.bathymetry.empty())
       usage("--size-expr '" + params.expression +
             "' uses d, the depth: give --bathymetry or --elevation");
@@ -203,6 +213,14 @@ double SizingOracle::operator()(const Point2& p) const {
     expression_->x = p.x;
     expression_->y = p.y;
     expression_->d = raw;
+    if (expression_->to_lonlat) {
+      Point2 q = p;
+      if (!expression_->to_lonlat->transform(q))
+        throw Error(ErrorClass::crs, "sizing",
+                    "--size-expr: " + format_point(p) + " has no longitude and latitude");
+      expression_->lon = q.x;
+      expression_->lat = q.y;
+    }
     double v = 0.0;
     try {
       v = expression_->parser.Eval();

@@ -42,8 +42,9 @@ struct SizingParams {
   // Sources; `automatic` is the boundary's local feature size (feature_size.h).
   bool automatic = true;
   std::optional<double> constant_m;  // --size
-  // --size-expr, in x and y (metres, meshing CRS) and d, the depth (metres, positive down,
-  // from `bathymetry`); where no raster gives a depth, an expression in d does not apply.
+  // --size-expr, in x and y (metres, meshing CRS), lon and lat (degrees, on the meshing
+  // CRS's datum) and d, the depth (metres, positive down, from `bathymetry`); where no
+  // raster gives a depth, an expression in d does not apply.
   std::string expression;
   std::string raster_path;           // --size-raster: sizes in metres, any GDAL raster
   // --size-mesh: the sizes of a mesh's elements (MeshNodeField::Values::element_sizes: a

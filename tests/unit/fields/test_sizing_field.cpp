@@ -218,6 +218,19 @@ TEST(SizingField, AutomaticSizingIsLipschitzAndBounded) {
   EXPECT_DOUBLE_EQ(oracle({5000, 8000}), 2000.0);
 }
 
+// lon and lat in --size-expr: degrees on the meshing CRS's datum (the rectangle is in
+// Web Mercator from the origin: lon = x / R in degrees, lat near 0).
+TEST(SizingField, AnExpressionInLongitudeAndLatitude) {
+  const Domain d = rectangle(2000, 1000);
+  SizingParams p;
+  p.automatic = false;
+  p.expression = "1000 + 1e5 * lon + 1e5 * lat";
+  SizingOracle oracle(d, p);
+  constexpr double kDegrees = 180 / M_PI / 6378137.0;  // per metre at the equator
+  for (const Point2 q : {Point2{500, 0}, Point2{1500, 800}})
+    EXPECT_NEAR(oracle(q), 1000 + 1e5 * kDegrees * (q.x + q.y), 1e-3) << q.x << " " << q.y;
+}
+
 TEST(SizingField, RasterIsSampledBilinearly) {
   TempDir dir;
   // 100 m pixels from (0, 1000) down to (2000, 0).
