@@ -514,6 +514,17 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                 "grid much finer than the mesh), where the raster has two or more cells across "
                 "it; its bilinear value elsewhere")
       ->group("Output");
+  cmd->add_option("--zones", m.zones.path,
+                  "Vector file (any format, with a CRS) of polygons whose attribute --zones-field "
+                  "numbers them (1 or more): each quad takes the number of the first that holds "
+                  "its centroid (0: none), as a .2dm's material and a cell value of .gpkg, .vtu, "
+                  ".vtk and .nc (friction or vegetation classes, a model's regions)")
+      ->group("Output");
+  cmd->add_option("--zones-field", m.zones.field,
+                  "Attribute of --zones holding the numbers (default: zone)")
+      ->group("Output");
+  cmd->add_option("--zones-layer", m.zones.layer, "Layer of --zones to read (default: its first)")
+      ->group("Output");
 }
 
 void finish_front_end_args(CommonArgs& a) {

@@ -12,6 +12,7 @@
 #include "app/fields_job.h"
 #include "app/front_end.h"
 #include "app/mesh_job.h"
+#include "app/quad_zones.h"
 #include "io/write_mesh.h"
 
 namespace isoquad::cli {
@@ -60,6 +61,7 @@ struct MeshArgs {
   std::string output_crs;
   bool schism_split = false;
   bool depth_average = false;  // --depth-average
+  ZonesSource zones;           // --zones, --zones-layer, --zones-field
   std::string stop_after;  // empty: the whole job
   std::string conform_rule = "lattice";
   std::string init = "front";

@@ -29,6 +29,7 @@
 #include "gis/raster_domain.h"
 #include "gis/read_mesh.h"
 #include "gis/read_polygons.h"
+#include "gis/read_size_features.h"
 #include "gis/write_domain.h"
 #include "io/mesh_boundary.h"
 #include "io/write_fields.h"
@@ -212,6 +213,10 @@ RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::stri
   if (m.depth_average && bathymetry.empty())
     throw Error(ErrorClass::usage, "options",
                 "--depth-average needs depths: --bathymetry or --elevation");
+  // The zones' file is read before the meshing, so that a bad one stops the run early.
+  if (m.zones.given())
+    read_size_features(m.zones.path, m.zones.layer, m.zones.field, "--zones", "",
+                       FeatureValue::zone);
   if (!sizing_reads_depths(f.sizing)) f.sizing.bathymetry.clear();
   if (!f.plot_path.empty()) check_output_path(f.plot_path, a.overwrite);
   check_report_path(a);
@@ -228,6 +233,7 @@ RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::stri
   job.bathymetry = bathymetry;
   job.min_depth_m = f.min_depth_m;
   job.depth_average = m.depth_average;
+  job.zones = m.zones;
   job.courant = f.sizing.courant;
   job.time_step_s = f.sizing.time_step_s;
   job.plot_path = f.plot_path;

@@ -1,5 +1,6 @@
 #include "app/mesh_job.h"
 
+#include "app/quad_zones.h"
 #include "app/vertex_depths.h"
 
 #include <cmath>
@@ -265,7 +266,8 @@ std::string format_mesh_summary(const MeshResult& r) {
 }
 
 std::string mesh_report_json(const MeshResult& r, const std::string& command_line,
-                             const MeshBoundary* boundary, const VertexDepths* depths) {
+                             const MeshBoundary* boundary, const VertexDepths* depths,
+                             const QuadZones* zones) {
   JsonWriter j;
   j.begin_object();
   add_report_header(j, command_line);
@@ -352,6 +354,13 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
           .value("num_wet_quads", depths->time_steps.num_wet)
           .value("num_under_time_step", depths->time_steps.num_under_target)
           .end_object();
+    if (zones) {
+      j.begin_object("zones").value("num_polygons", zones->num_polygons);
+      j.begin_array("quads_per_zone");
+      for (const auto& [zone, count] : zones->counts)
+        j.begin_object().value("zone", zone).value("num_quads", count).end_object();
+      j.end_array().end_object();
+    }
     j.begin_object("smoothing")
         .value("tiling_attempts", r.attempts)
         .array("tiling_variants", r.tiling_variants)

@@ -16,6 +16,8 @@
 
 namespace isoquad {
 
+struct QuadZones;
+
 struct VertexDepths;
 
 struct MeshOptions {
@@ -68,9 +70,10 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress = Pro
 std::string format_mesh_summary(const MeshResult& r);
 // The JSON report; with `boundary` (extract_boundary() of the quads, as the outputs
 // have it), its open and land edges and segments too; with `depths`, how the vertices'
-// depths were made.
+// depths were made; with `zones`, the quads in each zone.
 std::string mesh_report_json(const MeshResult& r, const std::string& command_line,
                              const MeshBoundary* boundary = nullptr,
-                             const VertexDepths* depths = nullptr);
+                             const VertexDepths* depths = nullptr,
+                             const QuadZones* zones = nullptr);
 
 }  // namespace isoquad

@@ -69,6 +69,11 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
       data.depth = std::move(written.depths->depth);
       data.time_step_s = std::move(written.depths->time_steps.per_quad_s);
     }
+    if (o.zones.given()) {
+      written.zones =
+          quad_zones(o.zones, CrsInfo{front.domain.crs_wkt, front.domain.crs_name}, r.quads);
+      data.zone = std::move(written.zones->zone);
+    }
     for (const EmbeddedPath& path : r.embedded) {
       data.embedded.push_back(path.vertices);
       data.embedded_line.push_back(front.align_line_of[path.line]);  // the file's line
@@ -98,7 +103,8 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
   }
   if (!o.report_path.empty()) {
     std::string json = mesh_report_json(r, o.command_line, r.has_quads ? &data.boundary : nullptr,
-                                        written.depths ? &*written.depths : nullptr);
+                                        written.depths ? &*written.depths : nullptr,
+                                        written.zones ? &*written.zones : nullptr);
     if (o.report_path == kStdoutPath)
       written.report = std::move(json);
     else
@@ -123,6 +129,10 @@ std::vector<std::string> mesh_job_warnings(const MeshResult& r, const MeshJobOut
                                            const MeshJobWritten& written,
                                            double max_orthogonality) {
   std::vector<std::string> warnings;
+  if (written.zones && written.zones->counts.count(0))
+    warnings.push_back(printf_string(
+        "%zu of the %zu quads lie in no polygon of %s: their zone is 0 (a .2dm's material 0)",
+        written.zones->counts.at(0), r.quads.quads.size(), outputs.zones.path.c_str()));
   const std::optional<VertexDepths>& depths = written.depths;
   if (depths && depths->num_filled)
     warnings.push_back(printf_string(
@@ -196,6 +206,14 @@ std::string format_written_summary(const MeshResult& r, const MeshJobOutputs& ou
         text += printf_string(
             "SCHISM split: %zu quads failing its checks written as two triangles each in %s\n",
             r.quality.schism_failures, o.path.c_str());
+  }
+  if (const std::optional<QuadZones>& zones = written.zones) {
+    text += printf_string("zones:        %zu polygon(s) of %s:", zones->num_polygons,
+                          outputs.zones.path.c_str());
+    for (const auto& [zone, count] : zones->counts)
+      text += zone == 0 ? printf_string(" %zu quads in none;", count)
+                        : printf_string(" %lld: %zu quads;", zone, count);
+    text.back() = '\n';
   }
   if (const std::optional<VertexDepths>& depths = written.depths) {
     text += printf_string("depths:       %.6g .. %.6g m", depths->min_m, depths->max_m);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "app/mesh_job.h"
+#include "app/quad_zones.h"
 #include "app/vertex_depths.h"
 #include "io/write_mesh.h"
 
@@ -25,6 +26,7 @@ struct MeshJobOutputs {
   std::vector<DepthRaster> bathymetry;
   std::optional<double> min_depth_m;  // --min-depth: shallower depths are raised to it
   bool depth_average = false;         // --depth-average: vertex_depths(..., average)
+  ZonesSource zones;                  // --zones: each quad's zone (quad_zones())
   double courant = 1.0;               // --courant: the time steps are at this Courant number
   double time_step_s = 0.0;           // --time-step: the quads' time steps are counted against it
   std::string plot_path;     // PNG: the mesh, or the tiling when it stopped early
@@ -36,6 +38,7 @@ struct MeshJobOutputs {
 struct MeshJobWritten {
   std::size_t num_open_edges = 0, num_land_edges = 0;  // extract_boundary()
   std::optional<VertexDepths> depths;  // with the bathymetry (the depths themselves moved out)
+  std::optional<QuadZones> zones;      // with --zones (the quads' zones moved out)
   std::vector<std::string> files;     // the mesh files written
   std::string report;  // the JSON report when its path is kStdoutPath (printed once all is written)
 };

@@ -50,7 +50,8 @@ bool add_geometry(const OGRGeometry& g, SizeFeature& f) {
 
 SizeFeatures read_size_features(const std::string& path, const std::string& layer_name,
                                 const std::string& field, const std::string& what,
-                                const std::string& width_field) {
+                                const std::string& width_field, FeatureValue kind) {
+  const bool zones = kind == FeatureValue::zone;
   GdalDataset ds = open_vector_dataset(path, what);
   auto fail = [&](ErrorClass cls, const std::string& why) {
     throw Error(cls, what, "'" + path + "': " + why);
@@ -76,7 +77,7 @@ SizeFeatures read_size_features(const std::string& path, const std::string& laye
                                   ")");
     return index;
   };
-  const int index = attribute(field, "sizes");
+  const int index = attribute(field, zones ? "zones" : "sizes");
   const int width_index = width_field.empty() ? -1 : attribute(width_field, "widths");
   // The attribute's number; NaN when it is not set, not a number or not finite.
   auto number = [](OGRFeature& feature, int i, const char*& text) {
@@ -92,11 +93,15 @@ SizeFeatures read_size_features(const std::string& path, const std::string& laye
     const std::string name = "feature " + std::to_string(feature->GetFID());
     SizeFeature f;
     f.fid = feature->GetFID();
-    if (!add_geometry(*g, f))
-      fail(ErrorClass::input, name + " is a " + OGRGeometryTypeToName(g->getGeometryType()) +
-                                  "; sizes go on points, lines and polygons");
+    if (!add_geometry(*g, f) || (zones && (!f.lines.empty() || !f.points.empty())))
+      fail(ErrorClass::input,
+           name + " is a " + OGRGeometryTypeToName(g->getGeometryType()) +
+               (zones ? "; zones are polygons" : "; sizes go on points, lines and polygons"));
     const char* text = nullptr;
     f.size_m = number(*feature, index, text);
+    if (zones && !(f.size_m >= 1 && f.size_m == std::floor(f.size_m) && f.size_m < 1e9))
+      fail(ErrorClass::input,
+           name + " has " + field + " '" + text + "'; zones are whole numbers, 1 or more");
     if (!(f.size_m > 0))
       fail(ErrorClass::input,
            name + " has " + field + " '" + text + "'; sizes are positive numbers of metres");

@@ -1,5 +1,6 @@
 // Vector features that ask for smaller sizes (--refine): polygons, lines and points
-// from any OGR vector source, each with its size in metres in a numeric attribute.
+// from any OGR vector source, each with its size in metres in a numeric attribute; or
+// polygons with a zone number each (--zones).
 #pragma once
 
 #include <string>
@@ -11,7 +12,7 @@
 namespace isoquad {
 
 struct SizeFeature {
-  double size_m = 0.0;
+  double size_m = 0.0;   // or the zone's number (FeatureValue::zone)
   double width_m = 0.0;  // the size holds within width_m / 2 of the feature
   long long fid = 0;
   // In the source CRS. Rings of polygons (closed: the first point repeated), inside by
@@ -35,8 +36,12 @@ struct SizeFeatures {
 // coordinate that is not finite, no feature (each naming the file and feature),
 // Error(usage) for no such layer or field (listing those there are), Error(crs) for a
 // layer without a CRS. `what` names the option in messages.
+// With FeatureValue::zone the features are polygons and the values whole numbers, 1 or
+// more (Error(input) otherwise).
+enum class FeatureValue { size, zone };
 SizeFeatures read_size_features(const std::string& path, const std::string& layer,
                                 const std::string& field, const std::string& what,
-                                const std::string& width_field = "");
+                                const std::string& width_field = "",
+                                FeatureValue kind = FeatureValue::size);
 
 }  // namespace isoquad

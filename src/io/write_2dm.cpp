@@ -1,9 +1,9 @@
 // SMS generic 2D mesh (.2dm), read by SMS, QGIS (MDAL) and the models that take SMS
-// meshes: quads as E4Q cards (material 1), nodes as ND cards with z the elevation
-// (minus the depth; 0 when unknown), then one nodestring (NS cards, ten nodes a card, the
-// last negative) per boundary segment: the open segments first, then the land ones,
-// each running with the domain on its left, as in hgrid.gr3. A closed segment (an island
-// or a whole loop) repeats its first node at its end.
+// meshes: quads as E4Q cards (material 1, or each quad's zone: --zones), nodes as ND cards with z
+// the elevation (minus the depth; 0 when unknown), then one nodestring (NS cards, ten nodes a card,
+// the last negative) per boundary segment: the open segments first, then the land ones, each
+// running with the domain on its left, as in hgrid.gr3. A closed segment (an island or a whole
+// loop) repeats its first node at its end.
 #include <fstream>
 #include <iomanip>
 
@@ -36,7 +36,7 @@ void write_2dm_file(const MeshView& v, const std::string& path, const std::strin
   for (std::size_t e = 0; e < m.quads.size(); ++e) {
     const auto& q = m.quads[e];
     f << "E4Q " << e + 1 << " " << q[0] + 1 << " " << q[1] + 1 << " " << q[2] + 1 << " " << q[3] + 1
-      << " 1\n";
+      << " " << (v.data->zone.empty() ? 1 : static_cast<long long>(v.data->zone[e])) << "\n";
   }
   f << std::fixed;
   for (std::size_t i = 0; i < v.points.size(); ++i)

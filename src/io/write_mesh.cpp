@@ -47,6 +47,8 @@ void write_quads_layer(const MeshView& v, VectorWriter& w) {
                                    {"orthogonality", FieldType::real}};
   const bool time_steps = !v.data->time_step_s.empty();
   if (time_steps) qfields.push_back({"time_step_s", FieldType::real});  // NaN: NULL (dry)
+  const bool zones = !v.data->zone.empty();
+  if (zones) qfields.push_back({"zone", FieldType::integer});
   w.begin_layer("quads", GeometryKind::polygon, qfields);
   for (std::size_t i = 0; i < m.quads.size(); ++i) {
     const auto& t = m.quads[i];
@@ -61,6 +63,7 @@ void write_quads_layer(const MeshView& v, VectorWriter& w) {
                                       FieldValue::integer(irregular),
                                       FieldValue::real(q.orthogonality[i])};
     if (time_steps) values.push_back(FieldValue::real(v.data->time_step_s[i]));
+    if (zones) values.push_back(FieldValue::integer(static_cast<long long>(v.data->zone[i])));
     w.add_polygon(std::vector<Point2>{pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]]}, values);
   }
 }
@@ -207,6 +210,7 @@ void write_vtu_mesh(const MeshView& mv, const std::string& path) {
                  {"eta", q.eta},
                  {"orthogonality", q.orthogonality}};
   if (!mv.data->time_step_s.empty()) v.cell_data.push_back({"time_step_s", mv.data->time_step_s});
+  if (!mv.data->zone.empty()) v.cell_data.push_back({"zone", mv.data->zone});
   write_vtu(v, path, true);
 }
 

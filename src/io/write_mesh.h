@@ -69,6 +69,8 @@ struct MeshOutputData {
   std::vector<double> depth;   // #P metres, positive down; empty: unknown (written as 0)
   // #Q the time step at a gravity-wave Courant number of 1 (NaN: dry); empty: unknown.
   std::vector<double> time_step_s;
+  // #Q each quad's zone (--zones; 0: in none); empty: none given.
+  std::vector<double> zone;
   // Paths of edges on lines (--embed; vertex ids), each with the index of its line in
   // the file: the GeoPackage's layer `embedded`.
   std::vector<std::vector<int>> embedded;

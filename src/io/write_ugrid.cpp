@@ -209,6 +209,7 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
                                     {"orthogonality", &q.orthogonality, "1"}};
   // The time step at a gravity-wave Courant number of 1 (NaN where dry).
   if (!v.data->time_step_s.empty()) face_vars.push_back({"time_step_s", &v.data->time_step_s, "s"});
+  if (!v.data->zone.empty()) face_vars.push_back({"zone", &v.data->zone, "1"});
   for (FaceVar& fv : face_vars) {
     fv.id = nc.var(fv.name, NC_DOUBLE, {df});
     nc.text(fv.id, "mesh", "mesh");

@@ -29,6 +29,7 @@ void write_vtk_legacy_file(const MeshView& v, const std::string& path, const std
       {"eta", &q.eta},
       {"orthogonality", &q.orthogonality}};
   if (!v.data->time_step_s.empty()) cell.push_back({"time_step_s", &v.data->time_step_s});
+  if (!v.data->zone.empty()) cell.push_back({"zone", &v.data->zone});
   for (const auto& [name, values] : cell) {
     f << "SCALARS " << name << " double 1\nLOOKUP_TABLE default\n";
     for (double x : *values) f << x << "\n";

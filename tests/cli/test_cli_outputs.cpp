@@ -1935,6 +1935,51 @@ TEST(CliOutputs, DepthAverageIsSaidAndStaysNearALinearGrid) {
   EXPECT_NE(bad.err.find("--depth-average needs depths"), std::string::npos) << bad.err;
 }
 
+// --zones: each quad's zone in the GeoPackage's quads and as the .2dm's material, the
+// summary's count and a warning for the quads in none; a bad file stops the run before
+// the meshing, with nothing written.
+TEST(CliOutputs, ZonesAreTheQuadsMaterials) {
+  TempDir dir;
+  write_file(dir.file("zones.geojson"),
+             "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\","
+             "\"properties\":{\"class\":7},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":"
+             "[[[-4.7,48.1],[-4.5,48.1],[-4.5,48.4],[-4.7,48.4],[-4.7,48.1]]]}}]}");
+  CliResult r = mesh_box_800(dir, {"--zones", dir.file("zones.geojson"), "--zones-field", "class",
+                                   "-o", dir.file("m.gpkg"), "-o", dir.file("m.2dm")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::size_t in_zone = 0, in_none = 0;
+  GDALDataset* ds = open_vector(dir.file("m.gpkg"));
+  ASSERT_NE(ds, nullptr);
+  for (auto& f : *ds->GetLayerByName("quads")) {
+    const int zone = f->GetFieldAsInteger("zone");
+    EXPECT_TRUE(zone == 0 || zone == 7) << zone;
+    ++(zone == 7 ? in_zone : in_none);
+  }
+  GDALClose(ds);
+  EXPECT_GT(in_zone, 20u);
+  EXPECT_GT(in_none, 20u);
+  std::size_t materials_7 = 0;
+  std::istringstream lines(read_file(dir.file("m.2dm")));
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("E4Q ", 0) == 0 && line.size() > 2 && line.substr(line.size() - 2) == " 7")
+      ++materials_7;
+  EXPECT_EQ(materials_7, in_zone);
+  EXPECT_NE(r.err.find("zones:        1 polygon(s) of " + dir.file("zones.geojson") + ": " +
+                       std::to_string(in_none) + " quads in none; 7: " + std::to_string(in_zone) +
+                       " quads"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("lie in no polygon of"), std::string::npos) << r.err;
+  // The default attribute, zone, is not in the file.
+  r = mesh_box_800(dir, {"--zones", dir.file("zones.geojson"), "-o", dir.file("x.gpkg")});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("has no attribute 'zone' for the zones (attributes: class)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("quads:"), std::string::npos) << r.err;  // stopped before the meshing
+  EXPECT_FALSE(std::filesystem::exists(dir.file("x.gpkg")));
+}
+
 TEST(CliOutputs, GoldenToolStartsACaseThatChecksAndCatchesAChange) {
   // tools/golden.py init: a user's own regression case from an isoquad mesh command
   // line; `check` passes on it, and fails once an expected value is off.
