@@ -8,6 +8,7 @@
 #include <functional>
 #include <limits>
 #include <set>
+#include <string>
 
 #include "core/error.h"
 #include "fields/feature_size.h"
@@ -55,6 +56,14 @@ void expect_lipschitz(const BackgroundMesh& mesh, const SizingField& f, double k
       ++checked;
     }
   EXPECT_GT(checked, 0u);
+}
+
+// Sizes from --size-expr alone.
+SizingParams expression_sizes(const std::string& expression) {
+  SizingParams p;
+  p.automatic = false;
+  p.expression = expression;
+  return p;
 }
 
 Error error_of(const std::function<void()>& fn) {
@@ -107,9 +116,7 @@ TEST(SizingField, OnlyAConstantSizeAloneIsUniform) {
 // gradation leaves it unchanged.
 TEST(SizingField, ExpressionIsReproducedAtVertices) {
   const Domain d = rectangle(1, 1);
-  SizingParams p;
-  p.automatic = false;
-  p.expression = "0.01*(2+sin(6*x*pi-pi/2))";
+  const SizingParams p = expression_sizes("0.01*(2+sin(6*x*pi-pi/2))");
   SizingOracle oracle(d, p);
   const BackgroundMesh mesh = mesh_for(d, oracle);
   const SizingField f = sample_sizing_field(mesh, oracle, p.gradation);
@@ -222,10 +229,7 @@ TEST(SizingField, AutomaticSizingIsLipschitzAndBounded) {
 // Web Mercator from the origin: lon = x / R in degrees, lat near 0).
 TEST(SizingField, AnExpressionInLongitudeAndLatitude) {
   const Domain d = rectangle(2000, 1000);
-  SizingParams p;
-  p.automatic = false;
-  p.expression = "1000 + 1e5 * lon + 1e5 * lat";
-  SizingOracle oracle(d, p);
+  SizingOracle oracle(d, expression_sizes("1000 + 1e5 * lon + 1e5 * lat"));
   constexpr double kDegrees = 180 / M_PI / 6378137.0;  // per metre at the equator
   for (const Point2 q : {Point2{500, 0}, Point2{1500, 800}})
     EXPECT_NEAR(oracle(q), 1000 + 1e5 * kDegrees * (q.x + q.y), 1e-3) << q.x << " " << q.y;
