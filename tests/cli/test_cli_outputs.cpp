@@ -1944,9 +1944,14 @@ TEST(CliOutputs, ZonesAreTheQuadsMaterials) {
              "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\","
              "\"properties\":{\"class\":7},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":"
              "[[[-4.7,48.1],[-4.5,48.1],[-4.5,48.4],[-4.7,48.4],[-4.7,48.1]]]}}]}");
-  CliResult r = mesh_box_800(dir, {"--zones", dir.file("zones.geojson"), "--zones-field", "class",
-                                   "-o", dir.file("m.gpkg"), "-o", dir.file("m.2dm")});
+  CliResult r =
+      mesh_box_800(dir, {"--zones", dir.file("zones.geojson"), "--zones-field", "class", "-o",
+                         dir.file("m.gpkg"), "-o", dir.file("m.2dm"), "-o", dir.file("m.msh")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  ASSERT_EQ(mesh_box_800(dir, {"--zones", dir.file("zones.geojson"), "--zones-field", "class",
+                               "--msh-version", "2.2", "-o", dir.file("m22.msh")})
+                .exit_code,
+            0);
   std::size_t in_zone = 0, in_none = 0;
   GDALDataset* ds = open_vector(dir.file("m.gpkg"));
   ASSERT_NE(ds, nullptr);
@@ -1970,6 +1975,24 @@ TEST(CliOutputs, ZonesAreTheQuadsMaterials) {
             std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("lie in no polygon of"), std::string::npos) << r.err;
+  // Gmsh's files, read by meshio: the quads of zone 7 in the physical group of tag 7
+  // named zone_7, the others in no_zone (8); MSH 4.1 and 2.2 alike.
+  const std::string groups =
+      python_check(dir,
+                   "import sys, collections, meshio\n"
+                   "for path in sys.argv[1:]:\n"
+                   "    m = meshio.read(path)\n"
+                   "    c = collections.Counter()\n"
+                   "    for b, t in zip(m.cells, m.cell_data['gmsh:physical']):\n"
+                   "        if b.type == 'quad': c.update(t.tolist())\n"
+                   "    print(sorted(c.items()), sorted(m.field_data))\n",
+                   {dir.file("m.msh"), dir.file("m22.msh")});
+  const std::string expected = "[(7, " + std::to_string(in_zone) + "), (8, " +
+                               std::to_string(in_none) +
+                               ")] ['land', 'no_zone', 'open', 'zone_7']\n";
+  const std::size_t first = groups.find(expected);  // meshio prints blank lines too
+  EXPECT_NE(first, std::string::npos) << groups;
+  EXPECT_NE(groups.find(expected, first + 1), std::string::npos) << groups;
   // The default attribute, zone, is not in the file.
   r = mesh_box_800(dir, {"--zones", dir.file("zones.geojson"), "-o", dir.file("x.gpkg")});
   EXPECT_EQ(r.exit_code, 2) << r.err;
