@@ -517,8 +517,9 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
   cmd->add_option("--zones", m.zones.path,
                   "Vector file (any format, with a CRS) of polygons whose attribute --zones-field "
                   "numbers them (1 or more): each quad takes the number of the first that holds "
-                  "its centroid (0: none), as a .2dm's material and a cell value of .gpkg, .vtu, "
-                  ".vtk and .nc (friction or vegetation classes, a model's regions)")
+                  "its centroid (0: none), as a .2dm's material, a .msh's physical group (zone_N) "
+                  "and a cell value of .gpkg, .geojson, .fgb, .vtu, .vtk and .nc (friction or "
+                  "vegetation classes, a model's regions)")
       ->group("Output");
   cmd->add_option("--zones-field", m.zones.field,
                   "Attribute of --zones holding the numbers (default: zone)")
