@@ -514,12 +514,14 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                 "grid much finer than the mesh), where the raster has two or more cells across "
                 "it; its bilinear value elsewhere")
       ->group("Output");
-  cmd->add_option("--zones", m.zones.path,
-                  "Vector file (any format, with a CRS) of polygons whose attribute --zones-field "
-                  "numbers them (1 or more): each quad takes the number of the first that holds "
-                  "its centroid (0: none), as a .2dm's material, a .msh's physical group (zone_N) "
-                  "and a cell value of .gpkg, .geojson, .fgb, .vtu, .vtk and .nc (friction or "
-                  "vegetation classes, a model's regions)")
+  cmd->add_option(
+         "--zones", m.zones.path,
+         "Vector file (any format, with a CRS) of polygons whose attribute --zones-field "
+         "numbers them (1 or more): each quad takes the number of the first that holds "
+         "its centroid (0: none), as a .2dm's material, SCHISM's hgrid.prop beside a .gr3, "
+         "a .msh's physical group (zone_N) "
+         "and a cell value of .gpkg, .geojson, .fgb, .vtu, .vtk and .nc (friction or "
+         "vegetation classes, a model's regions)")
       ->group("Output");
   cmd->add_option("--zones-field", m.zones.field,
                   "Attribute of --zones holding the numbers (default: zone)")
@@ -609,6 +611,7 @@ std::vector<MeshOutput> mesh_outputs(const CommonArgs& a, const MeshArgs& m) {
     o.path = a.outputs[i];
     o.format = formats.empty() ? "" : formats.size() == 1 ? formats[0] : formats[i];
     o.overwrite = a.overwrite;
+    o.zones = m.zones.given();
     outs.push_back(o);
   }
   return outs;

@@ -24,6 +24,10 @@ void write_msh_file(const MeshView& v, const std::string& path, const std::strin
                     const std::string& version, bool open_per_segment);
 // `points`: the mesh's or their lon/lat (EPSG:4326, hgrid.ll). `schism_split`: the quads
 // that fail SCHISM's checks as two triangles each (MeshWriteOptions).
+// SCHISM's element property file (.prop) of hgrid.gr3's elements: "element zone" lines,
+// the two triangles of a quad split as hgrid.gr3 splits it both with its zone.
+void write_prop_file(const MeshView& v, const std::string& path, const std::string& what,
+                     bool schism_split);
 void write_gr3_file(const MeshView& v, const std::vector<Point2>& points, const std::string& path,
                     const std::string& what, bool schism_split);
 void write_vtk_legacy_file(const MeshView& v, const std::string& path, const std::string& what);

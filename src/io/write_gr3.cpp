@@ -10,17 +10,41 @@
 
 namespace isoquad {
 
+namespace {
+
+// The quads that --schism-split writes as two triangles, decided on the mesh as meshed
+// (metres), so that hgrid.gr3, hgrid.ll and hgrid.prop have the same elements.
+std::vector<char> split_quads(const QuadMesh& m, bool schism_split, std::size_t& num_split) {
+  std::vector<char> split(m.quads.size(), 0);
+  num_split = 0;
+  if (schism_split)
+    for (std::size_t q = 0; q < m.quads.size(); ++q)
+      num_split += split[q] = fails_schism_checks(m, static_cast<int>(q));
+  return split;
+}
+
+}  // namespace
+
+void write_prop_file(const MeshView& v, const std::string& path, const std::string& what,
+                     bool schism_split) {
+  const QuadMesh& m = *v.data->mesh;
+  std::size_t num_split = 0;
+  const std::vector<char> split = split_quads(m, schism_split, num_split);
+  OutputFile f(path, what);
+  std::size_t e = 0;
+  for (std::size_t q = 0; q < m.quads.size(); ++q)
+    for (int k = 0; k < (split[q] ? 2 : 1); ++k)
+      std::fprintf(f.get(), "%zu %lld\n", ++e, static_cast<long long>(v.data->zone[q]));
+  f.close();
+}
+
 void write_gr3_file(const MeshView& v, const std::vector<Point2>& points, const std::string& path,
                     const std::string& what, bool schism_split) {
   const QuadMesh& m = *v.data->mesh;
   const auto& depth = v.data->depth;
   const int nq = static_cast<int>(m.quads.size());
-  // Decided on the mesh as meshed (metres), so that hgrid.gr3 and hgrid.ll have the same
-  // elements.
-  std::vector<char> split(nq, 0);
   std::size_t num_split = 0;
-  if (schism_split)
-    for (int q = 0; q < nq; ++q) num_split += split[q] = fails_schism_checks(m, q);
+  const std::vector<char> split = split_quads(m, schism_split, num_split);
   OutputFile f(path, what);
   std::FILE* raw = f.get();
   const char* xy = v.geographic ? "%zu %.10f %.10f %.6f\n" : "%zu %.6f %.6f %.6f\n";

@@ -253,6 +253,8 @@ MeshFormat mesh_output_format(const MeshOutput& out) {
 
 std::vector<std::string> mesh_output_files(const MeshOutput& out) {
   const MeshFormat f = mesh_output_format(out);
+  if (f == MeshFormat::gr3 && out.zones)
+    return {out.path, companion(out.path, ".ll"), companion(out.path, ".prop")};
   if (f == MeshFormat::gr3) return {out.path, companion(out.path, ".ll")};
   if (f == MeshFormat::slf) return {out.path, companion(out.path, ".cli")};
   return {out.path};
@@ -388,6 +390,11 @@ std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
         const std::string ll_path = companion(o.path, ".ll");
         write_gr3_file(ll, ll.points, set.add(ll_path, o.overwrite), ll_path, options.schism_split);
         files.push_back(ll_path);
+        if (o.zones && !data.zone.empty()) {
+          const std::string prop = companion(o.path, ".prop");
+          write_prop_file(native, set.add(prop, o.overwrite), prop, options.schism_split);
+          files.push_back(prop);
+        }
         break;
       }
       case MeshFormat::slf: {

@@ -58,6 +58,8 @@ struct MeshOutput {
   std::string format;  // gpkg, vtu, vtk, msh, gr3, nc, 2dm, mesh, pli, slf, 14, geojson,
                        // fgb; empty: by the path's extension
   bool overwrite = false;
+  // With --zones: a .gr3 also writes its .prop (each SCHISM element's zone).
+  bool zones = false;
 };
 
 // What is written besides the mesh itself.

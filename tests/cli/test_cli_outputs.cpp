@@ -1944,23 +1944,35 @@ TEST(CliOutputs, ZonesAreTheQuadsMaterials) {
              "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\","
              "\"properties\":{\"class\":7},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":"
              "[[[-4.7,48.1],[-4.5,48.1],[-4.5,48.4],[-4.7,48.4],[-4.7,48.1]]]}}]}");
-  CliResult r =
-      mesh_box_800(dir, {"--zones", dir.file("zones.geojson"), "--zones-field", "class", "-o",
-                         dir.file("m.gpkg"), "-o", dir.file("m.2dm"), "-o", dir.file("m.msh")});
+  CliResult r = mesh_box_800(dir, {"--zones", dir.file("zones.geojson"), "--zones-field", "class",
+                                   "-o", dir.file("m.gpkg"), "-o", dir.file("m.2dm"), "-o",
+                                   dir.file("m.msh"), "-o", dir.file("m.gr3")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ASSERT_EQ(mesh_box_800(dir, {"--zones", dir.file("zones.geojson"), "--zones-field", "class",
                                "--msh-version", "2.2", "-o", dir.file("m22.msh")})
                 .exit_code,
             0);
   std::size_t in_zone = 0, in_none = 0;
+  std::map<int, int> zone_of;  // by the quad's id
   GDALDataset* ds = open_vector(dir.file("m.gpkg"));
   ASSERT_NE(ds, nullptr);
   for (auto& f : *ds->GetLayerByName("quads")) {
     const int zone = f->GetFieldAsInteger("zone");
     EXPECT_TRUE(zone == 0 || zone == 7) << zone;
     ++(zone == 7 ? in_zone : in_none);
+    zone_of[f->GetFieldAsInteger("id")] = zone;
   }
   GDALClose(ds);
+  // SCHISM's hgrid.prop: each of hgrid.gr3's elements (the quads, in order) with its zone.
+  const Gr3 g = parse_gr3(dir.file("m.gr3"));
+  std::istringstream prop(read_file(dir.file("m.prop")));
+  std::size_t element = 0;
+  for (long long e = 0, z = 0; prop >> e >> z; ++element) {
+    EXPECT_EQ(e, static_cast<long long>(element + 1));
+    EXPECT_EQ(z, zone_of[static_cast<int>(element)]) << e;
+  }
+  EXPECT_EQ(element, g.elements.size());
+  EXPECT_EQ(element, zone_of.size());
   EXPECT_GT(in_zone, 20u);
   EXPECT_GT(in_none, 20u);
   std::size_t materials_7 = 0;
