@@ -1,5 +1,6 @@
 #include "cli_args.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -9,8 +10,10 @@
 
 #include "app/mesh_outputs.h"
 #include "core/error.h"
+#include "gis/crs.h"
 #include "gis/raster_field.h"
 #include "gis/read_mesh.h"
+#include "gis/sample_field.h"
 
 namespace isoquad::cli {
 
@@ -234,11 +237,21 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
                        "sizing. Repeat it (or --elevation) for several, in priority order (a "
                        "survey, then a regional grid, then GEBCO): at each point the first with a "
                        "depth gives it. A mesh gives its nodes' values: .gr3, .ll, .14 depths; "
-                       ".2dm, .mesh, .nc, .slf bed levels, for --elevation")
+                       ".2dm, .mesh, .nc, .slf bed levels, for --elevation. Scattered samples "
+                       "(soundings: an .xyz of x y value lines, or a layer of points with Z or "
+                       "--depth-field) give values linear between them, up to their outline")
         ->trigger_on_parse()
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeLast)
         ->group(g);
+  cmd->add_option("--depth-field", f.depth_field,
+                  "Attribute holding the values of points given as --bathymetry or --elevation "
+                  "(default: their Z)")
+      ->group(g);
+  cmd->add_option("--depth-crs", f.depth_crs,
+                  "CRS of --bathymetry and --elevation files that do not say theirs (an .xyz, a "
+                  ".gr3, .14 or .2dm; default: --src-crs)")
+      ->group(g);
   cmd->add_option("--min-depth", f.min_depth_m,
                   "Depths shallower than this (metres, positive down) are written as it; the "
                   "wavelength, slope and time step rules count depths under max(1, this) as that")
@@ -585,10 +598,18 @@ FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {
 // The depth rasters can be read, and the options that need depths have them; a mesh
 // among them without a CRS of its own is in --src-crs, when given.
 void finish_depth_options(const CommonArgs& a, FieldArgs& f) {
+  if (!f.depth_crs.empty()) parse_crs(f.depth_crs, "--depth-crs");
   for (DepthRaster& r : f.sizing.bathymetry) {
-    r.mesh_crs = a.fe.read.src_crs;
-    check_raster(r.path, r.option());
+    r.crs_if_none = f.depth_crs.empty() ? a.fe.read.src_crs : f.depth_crs;
+    r.field = f.depth_field;
+    check_depth_source(r);
   }
+  if (!f.depth_field.empty() &&
+      std::none_of(f.sizing.bathymetry.begin(), f.sizing.bathymetry.end(),
+                   [](const DepthRaster& r) { return is_sample_file(r.path); }))
+    throw Error(ErrorClass::usage, "options",
+                "--depth-field names the attribute of points given as --bathymetry or "
+                "--elevation; none is");
   if (!f.sizing.bathymetry.empty()) return;
   auto needs = [](const char* option) {
     throw Error(ErrorClass::usage, "options",

@@ -49,6 +49,8 @@ struct FieldArgs {
   double background_factor = 0.25;
   double max_quads = FieldsOptions{}.max_quads;
   std::optional<double> min_depth_m;  // --min-depth
+  std::string depth_field;            // --depth-field: samples' values in this attribute
+  std::string depth_crs;              // --depth-crs: of depth files without a CRS
   std::string plot_path;
 };
 

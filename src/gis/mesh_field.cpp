@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "core/error.h"
 #include "gis/read_mesh.h"
@@ -78,6 +79,16 @@ MeshNodeField::MeshNodeField(const std::string& path, const std::string& what,
       triangles_.push_back({q[1], q[3], q[0]});
     }
   }
+  index_triangles();
+}
+
+MeshNodeField::MeshNodeField(std::vector<Point2> points, std::vector<double> values,
+                             std::vector<std::array<int, 3>> triangles)
+    : points_(std::move(points)), values_(std::move(values)), triangles_(std::move(triangles)) {
+  index_triangles();
+}
+
+void MeshNodeField::index_triangles() {
   const std::array<double, 4> box = bounding_box(points_);
   const double width = std::max(box[2] - box[0], 1e-9), height = std::max(box[3] - box[1], 1e-9);
   // About one triangle a cell.

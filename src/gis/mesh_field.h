@@ -28,11 +28,16 @@ class MeshNodeField : public PointField {
   // cannot be used.
   MeshNodeField(const std::string& path, const std::string& what, const CrsInfo& query_crs,
                 const std::string& crs_if_none = "", Values values = Values::nodes);
+  // A triangulation's node values (scattered samples' Delaunay triangles), its points
+  // already in the query CRS.
+  MeshNodeField(std::vector<Point2> points, std::vector<double> values,
+                std::vector<std::array<int, 3>> triangles);
   double sample(const Point2& p) const override;
   // The largest node value.
   double max_value() const;
 
  private:
+  void index_triangles();       // the grid below, from points_ and triangles_
   std::vector<Point2> points_;  // in the query CRS
   std::vector<double> values_;
   std::vector<std::array<int, 3>> triangles_;

@@ -13,6 +13,7 @@
 #include "gis/gdal_env.h"
 #include "gis/mesh_field.h"
 #include "gis/read_mesh.h"
+#include "gis/sample_field.h"
 
 namespace isoquad {
 
@@ -37,11 +38,14 @@ std::unique_ptr<GDALDataset> open_raster(const std::string& path, const std::str
   GdalErrorCapture capture;
   std::unique_ptr<GDALDataset> ds(static_cast<GDALDataset*>(
       GDALOpenEx(open_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
-  if (!ds)
-    fail(capture.last_message().empty()
-             ? "cannot read as a raster (a mesh to read depths from is a .gr3, .ll, .14, .2dm "
-               "or .mesh)"
-             : "cannot read as a raster (" + capture.last_message() + ")");
+  if (!ds) {
+    const bool depths = what == "--bathymetry" || what == "--elevation";
+    fail("cannot read as a raster" +
+         (capture.last_message().empty() ? std::string() : " (" + capture.last_message() + ")") +
+         (depths ? "; nor as a mesh (.gr3, .ll, .14, .2dm, .mesh, .msh, .slf, .nc) or as samples "
+                   "(an .xyz, or a layer of points)"
+                 : ""));
+  }
   if (ds->GetRasterCount() < 1) fail("has no raster band");
   double gt[6];
   if (ds->GetGeoTransform(gt) != CE_None) fail("has no georeferencing (geotransform)");
@@ -55,6 +59,12 @@ void check_raster(const std::string& path, const std::string& what) {
   if (is_mesh_file(path)) return check_mesh_field(path, what);
   double inverse[6];
   open_raster(path, what, inverse);
+}
+
+void check_depth_source(const DepthRaster& source) {
+  if (!is_mesh_file(source.path) && is_sample_file(source.path))
+    return check_sample_file(source.path, source.option(), source.crs_if_none, source.field);
+  check_raster(source.path, source.option());
 }
 
 RasterField::RasterField(const std::string& path, const std::string& what, const CrsInfo& query_crs,
@@ -277,7 +287,10 @@ RasterStack::RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo&
   for (const DepthRaster& r : rasters) {
     if (is_mesh_file(r.path))
       rasters_.push_back(
-          std::make_unique<MeshNodeField>(r.path, r.option(), query_crs, r.mesh_crs));
+          std::make_unique<MeshNodeField>(r.path, r.option(), query_crs, r.crs_if_none));
+    else if (is_sample_file(r.path))
+      rasters_.push_back(
+          std::make_unique<SampleField>(r.path, r.option(), query_crs, r.crs_if_none, r.field));
     else
       rasters_.push_back(std::make_unique<RasterField>(r.path, r.option(), query_crs, extent));
   }

@@ -90,16 +90,21 @@ struct DepthRaster {
       : path(std::move(path_)), elevation(elevation_) {}
   std::string path;
   bool elevation = false;
-  // The CRS of a mesh file that does not say its own (a .gr3, .14, .2dm: --src-crs);
-  // empty: the query CRS, as for a raster without one.
-  std::string mesh_crs;
+  // The CRS of a file that does not say its own (--depth-crs, else --src-crs): a mesh (a
+  // .gr3, .14, .2dm; empty: the query CRS, as for a raster without one) or samples (an
+  // .xyz; empty: an error).
+  std::string crs_if_none;
+  // The attribute of a vector layer of samples that holds their values (--depth-field;
+  // empty: the points' Z); grids and meshes ignore it.
+  std::string field;
   const char* option() const { return elevation ? "--elevation" : "--bathymetry"; }
 };
 
 // Depth rasters in priority order (a harbour survey, then a regional grid, then a global
 // one): at a point, the first with a value there gives it. A mesh file among them
-// (is_mesh_file: a model's hgrid.gr3) gives its nodes' values (MeshNodeField). Throws as
-// RasterField and MeshNodeField.
+// (is_mesh_file: a model's hgrid.gr3) gives its nodes' values (MeshNodeField), scattered
+// samples (is_sample_file: soundings) their triangles' (SampleField). Throws as
+// RasterField, MeshNodeField and SampleField.
 class RasterStack {
  public:
   RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo& query_crs,
@@ -129,5 +134,7 @@ class RasterStack {
 // as MeshNodeField would): the errors (Error input) before a long job rather than after
 // it.
 void check_raster(const std::string& path, const std::string& what);
+// The same for a depth source of RasterStack, samples included (check_sample_file).
+void check_depth_source(const DepthRaster& source);
 
 }  // namespace isoquad

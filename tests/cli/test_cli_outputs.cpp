@@ -1935,6 +1935,46 @@ TEST(CliOutputs, DepthAverageIsSaidAndStaysNearALinearGrid) {
   EXPECT_NE(bad.err.find("--depth-average needs depths"), std::string::npos) << bad.err;
 }
 
+// Soundings as --bathymetry: an .xyz of scattered samples in lon/lat (--depth-crs) gives
+// the depths linear between them; without a CRS, or with --depth-field and no points, the
+// run stops before meshing.
+TEST(CliOutputs, SoundingsGiveTheDepthsBetweenThem) {
+  TempDir dir;
+  std::string text = "lon lat depth\n";
+  unsigned state = 7;
+  auto next = [&state] {
+    state = state * 1103515245u + 12345u;
+    return static_cast<double>((state >> 8) & 0xffff) / 65535.0;
+  };
+  auto add = [&text](double lon, double lat) {
+    text += std::to_string(lon) + " " + std::to_string(lat) + " " +
+            std::to_string(depth_at(lon, lat)) + "\n";
+  };
+  for (int i = 0; i < 3000; ++i) add(-4.62 + 0.24 * next(), 48.18 + 0.19 * next());
+  for (const auto& [lon, lat] :
+       {std::pair{-4.62, 48.18}, {-4.38, 48.18}, {-4.38, 48.37}, {-4.62, 48.37}})
+    add(lon, lat);
+  write_file(dir.file("soundings.xyz"), text);
+  CliResult r = mesh_box_800(dir, {"--bathymetry", dir.file("soundings.xyz"), "--depth-crs",
+                                   "EPSG:4326", "-o", dir.file("s.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(without_schism_warning(r.err).find("warning"), std::string::npos) << r.err;
+  const Gr3 g = parse_gr3(dir.file("s.ll"));
+  ASSERT_GT(g.nodes.size(), 50u);
+  for (const auto& n : g.nodes)
+    EXPECT_NEAR(n[2], depth_at(n[0], n[1]), 0.05) << n[0] << " " << n[1];
+
+  r = mesh_box_800(dir, {"--bathymetry", dir.file("soundings.xyz"), "-o", dir.file("t.gr3")});
+  EXPECT_EQ(r.exit_code, 4) << r.err;
+  EXPECT_NE(r.err.find("give it with --depth-crs"), std::string::npos) << r.err;
+  r = mesh_box_800(
+      dir, {"--bathymetry", bathymetry(dir), "--depth-field", "z", "-o", dir.file("u.gr3")});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--depth-field names the attribute of points"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("t.gr3")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("u.gr3")));
+}
+
 // --zones: each quad's zone in the GeoPackage's quads and as the .2dm's material, the
 // summary's count and a warning for the quads in none; a bad file stops the run before
 // the meshing, with nothing written.

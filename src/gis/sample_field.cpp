@@ -1,0 +1,355 @@
+// CGAL's Delaunay triangulation of the samples; everything else on flat arrays.
+#include "gis/sample_field.h"
+
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
+
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <numeric>
+#include <optional>
+#include <utility>
+
+#include "core/error.h"
+#include "core/text.h"
+#include "gis/gdal_env.h"
+#include "gis/mesh_field.h"
+
+namespace isoquad {
+
+namespace {
+
+const char* const kStage = "raster";
+
+[[noreturn]] void fail(ErrorClass cls, const std::string& what, const std::string& path,
+                       const std::string& problem) {
+  throw Error(cls, kStage, what + " '" + path + "': " + problem);
+}
+
+bool is_xyz(const std::string& path) {
+  return ends_with(lower_case(path), ".xyz");
+}
+
+bool opens_as_raster(const std::string& path) {
+  ensure_gdal_registered();
+  std::string problem;
+  const std::string open_path = gdal_path(path, ArchiveContent::raster, problem);
+  if (open_path.empty()) return false;
+  GdalErrorCapture capture;
+  GdalDataset ds(static_cast<GDALDataset*>(
+      GDALOpenEx(open_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  return ds && ds->GetRasterCount() > 0;
+}
+
+bool is_point_type(OGRwkbGeometryType type) {
+  const OGRwkbGeometryType flat = wkbFlatten(type);
+  return flat == wkbPoint || flat == wkbMultiPoint;
+}
+
+// The first layer of points (by its declared type, or its first geometry's when the
+// type is not declared), or null.
+OGRLayer* point_layer(GDALDataset& ds) {
+  for (int i = 0; i < ds.GetLayerCount(); ++i) {
+    OGRLayer* layer = ds.GetLayer(i);
+    const OGRwkbGeometryType type = layer->GetGeomType();
+    if (is_point_type(type)) return layer;
+    if (wkbFlatten(type) != wkbUnknown) continue;
+    layer->ResetReading();
+    std::unique_ptr<OGRFeature> first(layer->GetNextFeature());
+    layer->ResetReading();
+    if (first && first->GetGeometryRef() &&
+        is_point_type(first->GetGeometryRef()->getGeometryType()))
+      return layer;
+  }
+  return nullptr;
+}
+
+// The samples as read, in the file's CRS (`crs`: its text, empty when it has none).
+struct RawSamples {
+  std::vector<Point2> points;
+  std::vector<double> values;
+  std::string crs;
+};
+
+// The numbers of one line of an .xyz (up to the first three), or how many it had.
+int parse_xyz_line(const std::string& line, double out[3]) {
+  int n = 0;
+  const char* p = line.data();
+  const char* end = p + line.size();
+  auto separator = [](char c) {
+    return c == ' ' || c == '\t' || c == ',' || c == ';' || c == '\r';
+  };
+  while (p < end && n < 3) {
+    while (p < end && separator(*p)) ++p;
+    if (p == end) break;
+    if (*p == '+') ++p;  // from_chars takes no plus sign
+    const auto [next, ec] = std::from_chars(p, end, out[n]);
+    if (ec != std::errc() || (next < end && !separator(*next))) return -1;
+    p = next;
+    ++n;
+  }
+  return n;
+}
+
+bool is_comment(const std::string& line) {
+  const std::size_t i = line.find_first_not_of(" \t\r");
+  if (i == std::string::npos) return true;  // blank
+  const char c = line[i];
+  return c == '#' || c == '*' || c == '%' || c == '!' ||
+         (c == '/' && i + 1 < line.size() && line[i + 1] == '/');
+}
+
+// `max_samples`: stop after that many (the check before a long job).
+RawSamples read_xyz(const std::string& path, const std::string& what, std::size_t max_samples) {
+  std::ifstream in(path);
+  if (!in) fail(ErrorClass::input, what, path, "cannot be opened");
+  RawSamples out;
+  std::string line;
+  std::size_t number = 0;
+  bool header_allowed = true;
+  while (out.points.size() < max_samples && std::getline(in, line)) {
+    ++number;
+    if (is_comment(line)) continue;
+    double v[3];
+    const int n = parse_xyz_line(line, v);
+    if (n < 3) {
+      if (header_allowed) {  // column names before the first sample
+        header_allowed = false;
+        continue;
+      }
+      fail(ErrorClass::input, what, path,
+           "line " + std::to_string(number) + " is not a sample (x y value): '" +
+               line.substr(0, 80) + "'");
+    }
+    header_allowed = false;
+    if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2])) continue;
+    out.points.push_back({v[0], v[1]});
+    out.values.push_back(v[2]);
+  }
+  if (in.bad()) fail(ErrorClass::input, what, path, "cannot be read");
+  return out;
+}
+
+RawSamples read_points(const std::string& path, const std::string& what, const std::string& field,
+                       std::size_t max_samples) {
+  GdalDataset ds = open_vector_dataset(path, what);
+  OGRLayer* layer = point_layer(*ds);
+  if (!layer)
+    fail(ErrorClass::input, what, path,
+         "holds no raster GDAL reads and no layer of points (layers: " + layer_names(*ds) + ")");
+  RawSamples out;
+  if (const OGRSpatialReference* srs = layer->GetSpatialRef()) out.crs = crs_from_srs(*srs).wkt;
+  const std::string name = layer->GetName();
+  int index = -1;
+  if (!field.empty()) {
+    index = layer->GetLayerDefn()->GetFieldIndex(field.c_str());
+    if (index < 0)
+      fail(ErrorClass::usage, what, path,
+           "layer '" + name + "' has no attribute '" + field +
+               "' (--depth-field; attributes: " + field_names(*layer) + ")");
+  }
+  layer->ResetReading();
+  for (auto& feature : *layer) {
+    if (out.points.size() >= max_samples) break;
+    const OGRGeometry* g = feature->GetGeometryRef();
+    if (!g || g->IsEmpty()) continue;
+    const std::string where = "layer '" + name + "', feature " + std::to_string(feature->GetFID());
+    if (!is_point_type(g->getGeometryType()))
+      fail(ErrorClass::input, what, path,
+           where + " is a " + OGRGeometryTypeToName(g->getGeometryType()) + "; samples are points");
+    double value = NAN;
+    if (index >= 0) {
+      if (!feature->IsFieldSetAndNotNull(index)) continue;
+      const char* text = feature->GetFieldAsString(index);
+      char* end = nullptr;
+      value = std::strtod(text, &end);
+      if (end == text || *end)
+        fail(ErrorClass::input, what, path,
+             where + " has " + field + " '" + text + "', not a number");
+    } else if (!OGR_GT_HasZ(g->getGeometryType())) {
+      fail(ErrorClass::usage, what, path,
+           "layer '" + name +
+               "' holds points without Z: name the attribute of their values with "
+               "--depth-field (attributes: " +
+               field_names(*layer) + ")");
+    }
+    auto add = [&](const OGRPoint& p) {
+      const double v = index >= 0 ? value : p.getZ();
+      if (!std::isfinite(p.getX()) || !std::isfinite(p.getY()) || !std::isfinite(v)) return;
+      out.points.push_back({p.getX(), p.getY()});
+      out.values.push_back(v);
+    };
+    if (wkbFlatten(g->getGeometryType()) == wkbPoint)
+      add(*g->toPoint());
+    else
+      for (const OGRPoint* p : *g->toMultiPoint()) add(*p);
+  }
+  return out;
+}
+
+RawSamples read_samples(const std::string& path, const std::string& what, const std::string& field,
+                        std::size_t max_samples = std::numeric_limits<std::size_t>::max()) {
+  if (is_xyz(path)) {
+    if (!field.empty())
+      fail(ErrorClass::usage, what, path,
+           "--depth-field names an attribute of points; an .xyz's values are its third column");
+    return read_xyz(path, what, max_samples);
+  }
+  return read_points(path, what, field, max_samples);
+}
+
+// The CRS the samples are in: the file's, else crs_if_none. Error(crs) without either.
+CrsInfo samples_crs(const RawSamples& raw, const std::string& path, const std::string& what,
+                    const std::string& crs_if_none) {
+  if (!raw.crs.empty()) return parse_crs(raw.crs, what + " '" + path + "' (its CRS)");
+  if (crs_if_none.empty())
+    fail(ErrorClass::crs, what, path,
+         "does not say its CRS (an .xyz never does): give it with --depth-crs (or --src-crs)");
+  return parse_crs(crs_if_none, "--depth-crs");
+}
+
+using K = CGAL::Exact_predicates_inexact_constructions_kernel;
+using Vb = CGAL::Triangulation_vertex_base_with_info_2<int, K>;
+using Tds = CGAL::Triangulation_data_structure_2<Vb>;
+using Delaunay = CGAL::Delaunay_triangulation_2<K, Tds>;
+
+// The Delaunay triangles of distinct points (counter-clockwise); empty when they are all
+// on one line.
+std::vector<std::array<int, 3>> delaunay_triangles(const std::vector<Point2>& points) {
+  std::vector<std::pair<K::Point_2, int>> input;
+  input.reserve(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i)
+    input.emplace_back(K::Point_2(points[i].x, points[i].y), static_cast<int>(i));
+  Delaunay dt;
+  dt.insert(input.begin(), input.end());
+  std::vector<std::array<int, 3>> triangles;
+  if (dt.dimension() < 2) return triangles;
+  triangles.reserve(dt.number_of_faces());
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f)
+    triangles.push_back({f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()});
+  // CGAL's face order follows its memory; sorted, the same on every run.
+  std::sort(triangles.begin(), triangles.end());
+  return triangles;
+}
+
+}  // namespace
+
+bool is_sample_file(const std::string& path) {
+  if (opens_as_raster(path)) return false;
+  if (is_xyz(path)) return true;
+  ensure_gdal_registered();
+  std::string problem;
+  const std::string open_path = gdal_path(path, ArchiveContent::vector, problem);
+  if (open_path.empty()) return false;
+  GdalErrorCapture capture;
+  GdalDataset ds(static_cast<GDALDataset*>(
+      GDALOpenEx(open_path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  return ds && point_layer(*ds) != nullptr;
+}
+
+void check_sample_file(const std::string& path, const std::string& what,
+                       const std::string& crs_if_none, const std::string& field) {
+  const RawSamples raw = read_samples(path, what, field, 1000);
+  if (raw.points.empty()) fail(ErrorClass::input, what, path, "holds no sample");
+  samples_crs(raw, path, what, crs_if_none);
+}
+
+SampleField::SampleField(const std::string& path, const std::string& what, const CrsInfo& query_crs,
+                         const std::string& crs_if_none, const std::string& field) {
+  RawSamples raw = read_samples(path, what, field);
+  const CrsTransform transform(samples_crs(raw, path, what, crs_if_none), query_crs);
+  const long failed = transform.transform(raw.points);
+  if (failed >= 0)
+    fail(ErrorClass::crs, what, path,
+         "sample " + std::to_string(failed + 1) + " " + format_point(raw.points[failed]) +
+             " cannot be transformed into the meshing CRS");
+  // Samples at the same point (a survey's repeated soundings) merged into their mean, in
+  // the order of their coordinates.
+  std::vector<std::size_t> order(raw.points.size());
+  std::iota(order.begin(), order.end(), 0);
+  auto less = [&](std::size_t a, std::size_t b) {
+    const Point2 &p = raw.points[a], &q = raw.points[b];
+    return p.x != q.x ? p.x < q.x : p.y != q.y ? p.y < q.y : a < b;
+  };
+  std::sort(order.begin(), order.end(), less);
+  for (std::size_t i = 0; i < order.size();) {
+    std::size_t j = i;
+    double sum = 0.0;
+    while (j < order.size() && raw.points[order[j]] == raw.points[order[i]])
+      sum += raw.values[order[j++]];
+    points_.push_back(raw.points[order[i]]);
+    values_.push_back(sum / static_cast<double>(j - i));
+    i = j;
+  }
+  std::vector<std::array<int, 3>> triangles = delaunay_triangles(points_);
+  if (triangles.empty())
+    fail(ErrorClass::input, what, path,
+         std::to_string(points_.size()) +
+             " distinct sample(s): a surface through them needs three or more not all on one "
+             "line");
+  triangles_ = std::make_unique<MeshNodeField>(points_, values_, std::move(triangles));
+
+  const std::array<double, 4> box = bounding_box(points_);
+  const double width = std::max(box[2] - box[0], 1e-9), height = std::max(box[3] - box[1], 1e-9);
+  cell_ = std::sqrt(width * height / static_cast<double>(points_.size()));
+  cell_ = std::max({cell_, width / 4096, height / 4096});
+  x0_ = box[0];
+  y0_ = box[1];
+  nx_ = std::max(1, static_cast<int>(std::ceil(width / cell_)));
+  ny_ = std::max(1, static_cast<int>(std::ceil(height / cell_)));
+  auto cell_of = [&](const Point2& p) {
+    const int i = std::clamp(static_cast<int>((p.x - x0_) / cell_), 0, nx_ - 1);
+    const int j = std::clamp(static_cast<int>((p.y - y0_) / cell_), 0, ny_ - 1);
+    return static_cast<std::size_t>(j) * nx_ + i;
+  };
+  cell_start_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
+  for (const Point2& p : points_) ++cell_start_[cell_of(p) + 1];
+  std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
+  std::vector<int> next(cell_start_.begin(), cell_start_.end() - 1);
+  cell_points_.assign(points_.size(), 0);
+  for (int k = 0; k < static_cast<int>(points_.size()); ++k)
+    cell_points_[next[cell_of(points_[k])]++] = k;
+}
+
+SampleField::~SampleField() = default;
+
+double SampleField::sample(const Point2& p) const {
+  return triangles_->sample(p);
+}
+
+double SampleField::mean_over(const Point2& p, double half_width) const {
+  const double at_p = sample(p);
+  if (std::isnan(at_p) || !(half_width > 0)) return at_p;
+  const double fx0 = std::floor((p.x - half_width - x0_) / cell_),
+               fx1 = std::floor((p.x + half_width - x0_) / cell_),
+               fy0 = std::floor((p.y - half_width - y0_) / cell_),
+               fy1 = std::floor((p.y + half_width - y0_) / cell_);
+  if (fx1 < 0 || fy1 < 0 || fx0 >= nx_ || fy0 >= ny_) return at_p;
+  const int i0 = static_cast<int>(std::max(fx0, 0.0)),
+            i1 = static_cast<int>(std::min(fx1, nx_ - 1.0));
+  const int j0 = static_cast<int>(std::max(fy0, 0.0)),
+            j1 = static_cast<int>(std::min(fy1, ny_ - 1.0));
+  double sum = 0.0;
+  int count = 0;
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      const std::size_t c = static_cast<std::size_t>(j) * nx_ + i;
+      for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
+        const Point2& q = points_[cell_points_[k]];
+        if (std::abs(q.x - p.x) <= half_width && std::abs(q.y - p.y) <= half_width) {
+          sum += values_[cell_points_[k]];
+          ++count;
+        }
+      }
+    }
+  return count >= kMinAveraged ? sum / count : at_p;
+}
+
+}  // namespace isoquad
