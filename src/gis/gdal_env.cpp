@@ -131,7 +131,8 @@ std::string gdal_path(const std::string& path, ArchiveContent content, std::stri
   return "";
 }
 
-GdalDataset open_vector_dataset(const std::string& path, const std::string& stage) {
+GdalDataset open_vector_dataset(const std::string& path, const std::string& stage,
+                                const std::vector<std::string>& open_options) {
   ensure_gdal_registered();
   auto fail = [&](const std::string& what) {
     throw Error(ErrorClass::input, stage, "'" + path + "': " + what);
@@ -147,8 +148,11 @@ GdalDataset open_vector_dataset(const std::string& path, const std::string& stag
   const std::string open_path = gdal_path(path, ArchiveContent::vector, problem);
   if (open_path.empty()) fail(problem);
   GdalErrorCapture capture;
-  GdalDataset ds(static_cast<GDALDataset*>(
-      GDALOpenEx(open_path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  std::vector<const char*> options;
+  for (const std::string& o : open_options) options.push_back(o.c_str());
+  options.push_back(nullptr);
+  GdalDataset ds(static_cast<GDALDataset*>(GDALOpenEx(
+      open_path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, options.data(), nullptr)));
   if (!ds) {
     const std::string why = capture.last_message();
     fail("cannot read as a vector data set" +

@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 class GDALDataset;
 class OGRLayer;
@@ -34,7 +35,9 @@ using GdalDataset = std::unique_ptr<GDALDataset, GdalDatasetCloser>;
 // one file) is read through GDAL's virtual file systems, as downloads come (Natural
 // Earth's ne_10m_land.zip): its top level as one data set, or else the one vector file
 // it holds; several are named in the error, to pick one as /vsizip/FILE.zip/MEMBER.
-GdalDataset open_vector_dataset(const std::string& path, const std::string& stage);
+// `open_options`: the driver's (NAME=VALUE), as ogr2ogr's -oo.
+GdalDataset open_vector_dataset(const std::string& path, const std::string& stage,
+                                const std::vector<std::string>& open_options = {});
 
 enum class ArchiveContent { vector, raster };
 // The path for GDAL to open `path` with: itself, unless it names an archive (see

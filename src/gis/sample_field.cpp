@@ -37,6 +37,14 @@ bool is_xyz(const std::string& path) {
   return ends_with(lower_case(path), ".xyz");
 }
 
+// A CSV's points from its columns named as coordinates are (GDAL's CSV driver makes no
+// geometry otherwise); other files open as they are.
+std::vector<std::string> open_options(const std::string& path) {
+  if (!ends_with(lower_case(path), ".csv")) return {};
+  return {"X_POSSIBLE_NAMES=x,lon,long,longitude,easting,east",
+          "Y_POSSIBLE_NAMES=y,lat,latitude,northing,north", "AUTODETECT_TYPE=YES"};
+}
+
 bool opens_as_raster(const std::string& path) {
   ensure_gdal_registered();
   std::string problem;
@@ -139,7 +147,7 @@ RawSamples read_xyz(const std::string& path, const std::string& what, std::size_
 
 RawSamples read_points(const std::string& path, const std::string& what, const std::string& field,
                        std::size_t max_samples) {
-  GdalDataset ds = open_vector_dataset(path, what);
+  GdalDataset ds = open_vector_dataset(path, what, open_options(path));
   OGRLayer* layer = point_layer(*ds);
   if (!layer)
     fail(ErrorClass::input, what, path,
@@ -211,7 +219,7 @@ CrsInfo samples_crs(const RawSamples& raw, const std::string& path, const std::s
   if (!raw.crs.empty()) return parse_crs(raw.crs, what + " '" + path + "' (its CRS)");
   if (crs_if_none.empty())
     fail(ErrorClass::crs, what, path,
-         "does not say its CRS (an .xyz never does): give it with --depth-crs (or --src-crs)");
+         "does not say its CRS: give it with --depth-crs (or --src-crs)");
   return parse_crs(crs_if_none, "--depth-crs");
 }
 
@@ -244,14 +252,12 @@ std::vector<std::array<int, 3>> delaunay_triangles(const std::vector<Point2>& po
 bool is_sample_file(const std::string& path) {
   if (opens_as_raster(path)) return false;
   if (is_xyz(path)) return true;
-  ensure_gdal_registered();
-  std::string problem;
-  const std::string open_path = gdal_path(path, ArchiveContent::vector, problem);
-  if (open_path.empty()) return false;
-  GdalErrorCapture capture;
-  GdalDataset ds(static_cast<GDALDataset*>(
-      GDALOpenEx(open_path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
-  return ds && point_layer(*ds) != nullptr;
+  try {
+    GdalErrorCapture capture;
+    return point_layer(*open_vector_dataset(path, "read", open_options(path))) != nullptr;
+  } catch (const Error&) {
+    return false;  // not a vector data set: left to the raster reader's message
+  }
 }
 
 void check_sample_file(const std::string& path, const std::string& what,

@@ -26,7 +26,9 @@ bool is_sample_file(const std::string& path);
 // or semicolons (more columns are ignored); blank lines, lines starting with #, *, %, !
 // or //, and a header line before the first sample are skipped. A vector layer (the
 // first with points) gives each point's Z, or with `field` that attribute (points where
-// it is not set are skipped). Points are read in the file's CRS, else `crs_if_none`.
+// it is not set are skipped); a CSV's points are its columns named x, lon, longitude,
+// easting or east and y, lat, latitude, northing or north (any case). Points are read in
+// the file's CRS, else `crs_if_none`.
 class SampleField : public PointField {
  public:
   // `what` names the option in messages (e.g. "--bathymetry"). Throws Error(input) for a

@@ -1,8 +1,8 @@
 // SampleField: scattered samples (soundings) as a depth source. A linear function is
 // reproduced between the samples and NaN far off their outline; an .xyz's separators,
 // comments and header; duplicates averaged; GeoJSON points with Z or an attribute,
-// transformed from lon/lat; the mean over a square where the samples are dense; the
-// errors (no CRS, a bad line, collinear samples, no values); RasterStack's order with a
+// transformed from lon/lat, and a CSV's columns; the mean over a square where the samples are
+// dense; the errors (no CRS, a bad line, collinear samples, no values); RasterStack's order with a
 // raster, and a gridded .xyz left to GDAL as a raster.
 #include <gtest/gtest.h>
 
@@ -152,6 +152,25 @@ TEST(SampleField, PointsWithZOrAnAttributeFromLonLat) {
   // Polygons are no samples: left to the raster reader and its message.
   write_file(dir.file("p.geojson"), geojson_polygons({"[[[0,0],[1,0],[1,1],[0,0]]]"}));
   EXPECT_FALSE(is_sample_file(dir.file("p.geojson")));
+}
+
+// A CSV's columns named as coordinates (any case) give the points, --depth-field their
+// values; the CSV has no CRS.
+TEST(SampleField, ACsvsCoordinateColumns) {
+  TempDir dir;
+  write_file(dir.file("s.csv"),
+             "Easting,Northing,Depth,Date\n0,0,5,2020\n1000,0,6,2020\n0,1000,7,2021\n"
+             "1000,1000,8,2021\n200,700,6.6,2021\n");  // on a plane, not a grid
+  ASSERT_TRUE(is_sample_file(dir.file("s.csv")));
+  const std::string e =
+      error_of([&] { check_sample_file(dir.file("s.csv"), "--bathymetry", "EPSG:32631", ""); },
+               ErrorClass::usage);
+  EXPECT_NE(e.find("(attributes: Easting, Northing, Depth, Date)"), std::string::npos) << e;
+  error_of([&] { check_sample_file(dir.file("s.csv"), "--bathymetry", "", "Depth"); },
+           ErrorClass::crs);
+  const SampleField f(dir.file("s.csv"), "--bathymetry", utm(), "EPSG:32631", "Depth");
+  EXPECT_NEAR(f.sample({1000, 0}), 6, 1e-9);
+  EXPECT_NEAR(f.sample({500, 500}), 6.5, 1e-9);
 }
 
 TEST(SampleField, MeanOverTheSquareWhereTheSamplesAreDense) {
