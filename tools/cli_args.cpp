@@ -525,7 +525,8 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                 "Each vertex's depth as the mean of the raster's cells within a square as wide "
                 "as the mean side of its quads (OceanMesh2D's cell averaging: no aliasing of a "
                 "grid much finer than the mesh), where the raster has two or more cells across "
-                "it; its bilinear value elsewhere")
+                "it (a mesh's nodes or soundings: four or more in it); its bilinear value "
+                "elsewhere")
       ->group("Output");
   cmd->add_option(
          "--zones", m.zones.path,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 #include <utility>
 
 #include "core/error.h"
@@ -128,6 +129,46 @@ void MeshNodeField::index_triangles() {
       for (int i = r[0]; i <= r[2]; ++i)
         cell_triangles_[count[static_cast<std::size_t>(j) * nx_ + i]++] = k;
   }
+  auto cell_of = [&](const Point2& p) {
+    const int i = std::clamp(static_cast<int>((p.x - x0_) / cell_), 0, nx_ - 1);
+    const int j = std::clamp(static_cast<int>((p.y - y0_) / cell_), 0, ny_ - 1);
+    return static_cast<std::size_t>(j) * nx_ + i;
+  };
+  node_start_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
+  for (const Point2& p : points_) ++node_start_[cell_of(p) + 1];
+  std::partial_sum(node_start_.begin(), node_start_.end(), node_start_.begin());
+  std::vector<int> next(node_start_.begin(), node_start_.end() - 1);
+  cell_nodes_.assign(points_.size(), 0);
+  for (int v = 0; v < static_cast<int>(points_.size()); ++v)
+    cell_nodes_[next[cell_of(points_[v])]++] = v;
+}
+
+double MeshNodeField::mean_over(const Point2& p, double half_width) const {
+  const double at_p = sample(p);
+  if (std::isnan(at_p) || !(half_width > 0)) return at_p;
+  const double fx0 = std::floor((p.x - half_width - x0_) / cell_),
+               fx1 = std::floor((p.x + half_width - x0_) / cell_),
+               fy0 = std::floor((p.y - half_width - y0_) / cell_),
+               fy1 = std::floor((p.y + half_width - y0_) / cell_);
+  if (fx1 < 0 || fy1 < 0 || fx0 >= nx_ || fy0 >= ny_) return at_p;
+  const int i0 = static_cast<int>(std::max(fx0, 0.0)),
+            i1 = static_cast<int>(std::min(fx1, nx_ - 1.0));
+  const int j0 = static_cast<int>(std::max(fy0, 0.0)),
+            j1 = static_cast<int>(std::min(fy1, ny_ - 1.0));
+  double sum = 0.0;
+  int count = 0;
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i) {
+      const std::size_t c = static_cast<std::size_t>(j) * nx_ + i;
+      for (int k = node_start_[c]; k < node_start_[c + 1]; ++k) {
+        const Point2& q = points_[cell_nodes_[k]];
+        if (std::abs(q.x - p.x) <= half_width && std::abs(q.y - p.y) <= half_width) {
+          sum += values_[cell_nodes_[k]];
+          ++count;
+        }
+      }
+    }
+  return count >= kMinAveraged ? sum / count : at_p;
 }
 
 double MeshNodeField::max_value() const {

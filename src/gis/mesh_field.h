@@ -33,6 +33,11 @@ class MeshNodeField : public PointField {
   MeshNodeField(std::vector<Point2> points, std::vector<double> values,
                 std::vector<std::array<int, 3>> triangles);
   double sample(const Point2& p) const override;
+  // The mean of the node values in the square where it holds at least kMinAveraged nodes
+  // (nodes finer than the square, as a raster's two cells across it) and p is on the
+  // mesh; else sample(p).
+  double mean_over(const Point2& p, double half_width) const override;
+  static constexpr int kMinAveraged = 4;
   // The largest node value.
   double max_value() const;
 
@@ -46,6 +51,8 @@ class MeshNodeField : public PointField {
   double x0_ = 0, y0_ = 0, cell_ = 1;
   int nx_ = 0, ny_ = 0;
   std::vector<int> cell_start_, cell_triangles_;
+  // The same grid's nodes, as ranges of cell_nodes_.
+  std::vector<int> node_start_, cell_nodes_;
 };
 
 // Reads the mesh as MeshNodeField would, for its errors before a long job.

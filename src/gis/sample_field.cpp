@@ -278,6 +278,8 @@ SampleField::SampleField(const std::string& path, const std::string& what, const
              " cannot be transformed into the meshing CRS");
   // Samples at the same point (a survey's repeated soundings) merged into their mean, in
   // the order of their coordinates.
+  std::vector<Point2> points;
+  std::vector<double> values;
   std::vector<std::size_t> order(raw.points.size());
   std::iota(order.begin(), order.end(), 0);
   auto less = [&](std::size_t a, std::size_t b) {
@@ -290,38 +292,19 @@ SampleField::SampleField(const std::string& path, const std::string& what, const
     double sum = 0.0;
     while (j < order.size() && raw.points[order[j]] == raw.points[order[i]])
       sum += raw.values[order[j++]];
-    points_.push_back(raw.points[order[i]]);
-    values_.push_back(sum / static_cast<double>(j - i));
+    points.push_back(raw.points[order[i]]);
+    values.push_back(sum / static_cast<double>(j - i));
     i = j;
   }
-  std::vector<std::array<int, 3>> triangles = delaunay_triangles(points_);
+  std::vector<std::array<int, 3>> triangles = delaunay_triangles(points);
   if (triangles.empty())
     fail(ErrorClass::input, what, path,
-         std::to_string(points_.size()) +
+         std::to_string(points.size()) +
              " distinct sample(s): a surface through them needs three or more not all on one "
              "line");
-  triangles_ = std::make_unique<MeshNodeField>(points_, values_, std::move(triangles));
-
-  const std::array<double, 4> box = bounding_box(points_);
-  const double width = std::max(box[2] - box[0], 1e-9), height = std::max(box[3] - box[1], 1e-9);
-  cell_ = std::sqrt(width * height / static_cast<double>(points_.size()));
-  cell_ = std::max({cell_, width / 4096, height / 4096});
-  x0_ = box[0];
-  y0_ = box[1];
-  nx_ = std::max(1, static_cast<int>(std::ceil(width / cell_)));
-  ny_ = std::max(1, static_cast<int>(std::ceil(height / cell_)));
-  auto cell_of = [&](const Point2& p) {
-    const int i = std::clamp(static_cast<int>((p.x - x0_) / cell_), 0, nx_ - 1);
-    const int j = std::clamp(static_cast<int>((p.y - y0_) / cell_), 0, ny_ - 1);
-    return static_cast<std::size_t>(j) * nx_ + i;
-  };
-  cell_start_.assign(static_cast<std::size_t>(nx_) * ny_ + 1, 0);
-  for (const Point2& p : points_) ++cell_start_[cell_of(p) + 1];
-  std::partial_sum(cell_start_.begin(), cell_start_.end(), cell_start_.begin());
-  std::vector<int> next(cell_start_.begin(), cell_start_.end() - 1);
-  cell_points_.assign(points_.size(), 0);
-  for (int k = 0; k < static_cast<int>(points_.size()); ++k)
-    cell_points_[next[cell_of(points_[k])]++] = k;
+  size_ = points.size();
+  triangles_ =
+      std::make_unique<MeshNodeField>(std::move(points), std::move(values), std::move(triangles));
 }
 
 SampleField::~SampleField() = default;
@@ -331,31 +314,7 @@ double SampleField::sample(const Point2& p) const {
 }
 
 double SampleField::mean_over(const Point2& p, double half_width) const {
-  const double at_p = sample(p);
-  if (std::isnan(at_p) || !(half_width > 0)) return at_p;
-  const double fx0 = std::floor((p.x - half_width - x0_) / cell_),
-               fx1 = std::floor((p.x + half_width - x0_) / cell_),
-               fy0 = std::floor((p.y - half_width - y0_) / cell_),
-               fy1 = std::floor((p.y + half_width - y0_) / cell_);
-  if (fx1 < 0 || fy1 < 0 || fx0 >= nx_ || fy0 >= ny_) return at_p;
-  const int i0 = static_cast<int>(std::max(fx0, 0.0)),
-            i1 = static_cast<int>(std::min(fx1, nx_ - 1.0));
-  const int j0 = static_cast<int>(std::max(fy0, 0.0)),
-            j1 = static_cast<int>(std::min(fy1, ny_ - 1.0));
-  double sum = 0.0;
-  int count = 0;
-  for (int j = j0; j <= j1; ++j)
-    for (int i = i0; i <= i1; ++i) {
-      const std::size_t c = static_cast<std::size_t>(j) * nx_ + i;
-      for (int k = cell_start_[c]; k < cell_start_[c + 1]; ++k) {
-        const Point2& q = points_[cell_points_[k]];
-        if (std::abs(q.x - p.x) <= half_width && std::abs(q.y - p.y) <= half_width) {
-          sum += values_[cell_points_[k]];
-          ++count;
-        }
-      }
-    }
-  return count >= kMinAveraged ? sum / count : at_p;
+  return triangles_->mean_over(p, half_width);
 }
 
 }  // namespace isoquad

@@ -42,22 +42,13 @@ class SampleField : public PointField {
   SampleField& operator=(const SampleField&) = delete;
 
   double sample(const Point2& p) const override;
-  // The mean of the samples in the square where it holds at least kMinAveraged of them
-  // (the samples finer than the square, as a raster's two cells across it) and p is on
-  // the triangles; else sample(p).
+  // MeshNodeField::mean_over on the samples.
   double mean_over(const Point2& p, double half_width) const override;
-  std::size_t size() const { return points_.size(); }
-
-  static constexpr int kMinAveraged = 4;
+  std::size_t size() const { return size_; }  // distinct samples
 
  private:
-  std::vector<Point2> points_;  // in the query CRS, duplicates merged
-  std::vector<double> values_;
-  std::unique_ptr<MeshNodeField> triangles_;
-  // A grid of the samples for mean_over: each cell's samples, as ranges of cell_points_.
-  double x0_ = 0, y0_ = 0, cell_ = 1;
-  int nx_ = 1, ny_ = 1;
-  std::vector<int> cell_start_, cell_points_;
+  std::size_t size_ = 0;
+  std::unique_ptr<MeshNodeField> triangles_;  // in the query CRS
 };
 
 // Opens the samples as SampleField would (the file, its points and `field`, its CRS)

@@ -1,7 +1,8 @@
 // MeshNodeField: a mesh's node values read as a depth source. A linear function on the
 // nodes is sampled exactly inside (quads cut in two, a triangle beside them), at the
 // nearest boundary point just outside, NaN far off; a .ll is transformed from lon/lat;
-// RasterStack takes a mesh among its rasters; a mesh without values is refused.
+// RasterStack takes a mesh among its rasters; a mesh without values is refused; the mean
+// of the nodes in a square (--depth-average).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -101,4 +102,32 @@ TEST(MeshNodeField, ElementSizesAreTheNodesMeanSides) {
   EXPECT_NEAR(f.sample({300, 50}), slant, 1e-9);                   // the triangle's tip
   EXPECT_NEAR(f.sample({200, 0}), (100 + 100 + slant) / 3, 1e-9);  // three sides
   EXPECT_NEAR(f.max_value(), slant, 1e-9);
+}
+
+// --depth-average on a finer grid: the mean of its nodes in the square, where it holds
+// four or more; the value between them where it holds fewer.
+TEST(MeshNodeField, MeanOverTheSquareOfAFinerGrid) {
+  TempDir dir;
+  // 21 x 21 nodes 10 m apart, 4 and 6 in a checkerboard (a grid of 5 m with noise).
+  const int n = 21;
+  std::string text =
+      "fine\n" + std::to_string((n - 1) * (n - 1)) + " " + std::to_string(n * n) + "\n";
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i)
+      text += std::to_string(j * n + i + 1) + " " + std::to_string(10 * i) + " " +
+              std::to_string(10 * j) + " " + ((i + j) % 2 ? "4" : "6") + "\n";
+  int e = 0;
+  for (int j = 0; j + 1 < n; ++j)
+    for (int i = 0; i + 1 < n; ++i) {
+      const int a = j * n + i + 1;
+      text += std::to_string(++e) + " 4 " + std::to_string(a) + " " + std::to_string(a + 1) + " " +
+              std::to_string(a + n + 1) + " " + std::to_string(a + n) + "\n";
+    }
+  write_file(dir.file("fine.gr3"), text);
+  const MeshNodeField f(dir.file("fine.gr3"), "--bathymetry", parse_crs("EPSG:32631", "test"));
+  EXPECT_NEAR(f.sample({100, 100}), 6, 1e-12);
+  EXPECT_NEAR(f.mean_over({100, 100}, 50), 5.0, 0.01);                   // 121 nodes, 61 of 6
+  EXPECT_NEAR(f.mean_over({102, 100}, 6), f.sample({102, 100}), 1e-12);  // one node
+  EXPECT_NEAR(f.mean_over({102, 100}, 0), f.sample({102, 100}), 1e-12);
+  EXPECT_TRUE(std::isnan(f.mean_over({-500, 100}, 50)));
 }
