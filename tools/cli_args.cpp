@@ -195,7 +195,8 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
                   "\"0.01*(2+sin(6*x*pi-pi/2))\", lon and lat (degrees), e.g. \"lat > 48.3 ? "
                   "500 : 2000\", and d, the depth in metres (positive down, "
                   "from --bathymetry or --elevation; the expression holds where they give one), "
-                  "e.g. \"d < 20 ? 500 : min(5000, 25*d)\"")
+                  "e.g. \"d < 20 ? 500 : min(5000, 25*d)\", and c, the distance to the coast in "
+                  "metres (the boundary but its open parts), e.g. \"500 + 0.1*c\"")
       ->group(g);
   cmd->add_option("--size-raster", f.sizing.raster_path, "GDAL raster of sizes in metres, any CRS")
       ->group(g);

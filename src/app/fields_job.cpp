@@ -70,7 +70,10 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
                           std::optional<BackgroundMesh>& coarse, StageClock& timer,
                           const Progress& progress) {
   progress.report("sizing", 0.0);
-  SizingOracle oracle(domain, options.sizing);
+  SizingParams sizing = options.sizing;
+  sizing.open_parts = r.front.open_boundary_parts;  // for --size-expr's c
+  if (!r.front.open_boundary_lines.empty()) sizing.open_tolerance_m = open_line_tolerance(r.front);
+  SizingOracle oracle(domain, sizing);
   r.sizing = oracle.summary();
   double smallest = std::numeric_limits<double>::infinity();
   const double estimate = estimate_num_quads(domain, [&oracle, &smallest](const Point2& p) {

@@ -7,6 +7,7 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -48,7 +49,7 @@ struct Site {
 // which CGAL's Apollonius graph (negative weights, |w| = h/K) did not survive: with
 // K < 1 its nearest-site queries returned sites of the far bank of a channel, and
 // non-negative weights made its construction quadratic.
-struct BoundaryFeatureSize::Impl {
+struct SiteGrid {
   std::vector<Site> sites;
   double gradation = 1.0;
   double x0 = 0, y0 = 0, cell = 1;
@@ -61,9 +62,12 @@ struct BoundaryFeatureSize::Impl {
     return s.h + gradation * std::sqrt(dx * dx + dy * dy);
   }
 
-  void build(double min_cell) {
+  // The grid covers the sites and `box` ({xmin, ymin, xmax, ymax}; queries outside take
+  // the nearest cell's sites).
+  void build(double min_cell, const std::array<double, 4>* box = nullptr) {
     double x1 = -std::numeric_limits<double>::infinity(), y1 = x1;
     x0 = y0 = std::numeric_limits<double>::infinity();
+    if (box) x0 = (*box)[0], y0 = (*box)[1], x1 = (*box)[2], y1 = (*box)[3];
     for (const Site& s : sites) {
       x0 = std::min(x0, s.x), y0 = std::min(y0, s.y);
       x1 = std::max(x1, s.x), y1 = std::max(y1, s.y);
@@ -120,7 +124,7 @@ struct BoundaryFeatureSize::Impl {
 };
 
 BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSizeParams& params)
-    : impl_(std::make_unique<Impl>()) {
+    : impl_(std::make_unique<SiteGrid>()) {
   if (!(params.lambda_m > 0) || !(params.gradation > 0) || !(params.cells_across > 0) ||
       !std::isfinite(params.max_size_m))
     throw Error(ErrorClass::internal, "sizing",
@@ -250,7 +254,7 @@ BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSize
     impl_->build(0.5 * params.lambda_m);
     return;
   }
-  narrow_ = std::make_unique<Impl>();
+  narrow_ = std::make_unique<SiteGrid>();
   narrow_->sites = std::move(narrow_sites);
   narrow_->gradation = params.gradation;
   // The two grids are independent: built at once on two threads.
@@ -268,6 +272,39 @@ double BoundaryFeatureSize::narrow(const Point2& x) const {
 
 std::size_t BoundaryFeatureSize::num_narrow_sites() const {
   return narrow_ ? narrow_->sites.size() : 0;
+}
+
+CoastDistance::CoastDistance(const Domain& domain, const PolylineIndex& open,
+                             double open_tolerance_m, double spacing_m)
+    : grid_(std::make_unique<SiteGrid>()) {
+  if (!(spacing_m > 0))
+    throw Error(ErrorClass::internal, "sizing", "the coast's samples need a positive spacing");
+  grid_->gradation = 1.0;
+  auto on_open = [&](const Point2& p) { return !open.empty() && open.near(p, open_tolerance_m); };
+  for (const Polygon& polygon : domain.polygons) {
+    std::vector<const Ring*> rings{&polygon.outer};
+    for (const Ring& h : polygon.holes) rings.push_back(&h);
+    for (const Ring* r : rings)
+      for (std::size_t i = 0; i < r->size(); ++i) {
+        const Point2 a = (*r)[i], b = (*r)[(i + 1) % r->size()];
+        const Point2 middle{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
+        if (on_open(a) && on_open(b) && on_open(middle)) continue;  // the open sea
+        const int n = std::max(1, static_cast<int>(std::ceil(distance(a, b) / spacing_m)));
+        for (int k = 0; k <= n; ++k) {
+          const double t = static_cast<double>(k) / n;
+          grid_->sites.push_back({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), 0.0});
+        }
+      }
+  }
+  num_samples_ = grid_->sites.size();
+  const std::array<double, 4> box = bounding_box(domain);
+  if (num_samples_ > 0) grid_->build(spacing_m, &box);
+}
+
+CoastDistance::~CoastDistance() = default;
+
+double CoastDistance::operator()(const Point2& x) const {
+  return num_samples_ > 0 ? (*grid_)(x.x, x.y) : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace isoquad

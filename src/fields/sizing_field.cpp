@@ -22,9 +22,10 @@ namespace isoquad {
 
 struct SizingOracle::Expression {
   mu::Parser parser;
-  double x = 0.0, y = 0.0, d = 0.0, lon = 0.0, lat = 0.0;
+  double x = 0.0, y = 0.0, d = 0.0, lon = 0.0, lat = 0.0, c = 0.0;
   std::string text;
   bool uses_depth = false;
+  bool uses_coast = false;
   std::unique_ptr<CrsTransform> to_lonlat;  // when it uses lon or lat
 
   // Parses `text` now, so that a bad expression fails before any work. Throws
@@ -36,10 +37,12 @@ struct SizingOracle::Expression {
     parser.DefineVar("d", &d);
     parser.DefineVar("lon", &lon);
     parser.DefineVar("lat", &lat);
+    parser.DefineVar("c", &c);
     parser.DefineConst("pi", M_PI);
     parser.DefineConst("e", M_E);
     parser.SetExpr(expression);
     uses_depth = parser.GetUsedVar().count("d") > 0;
+    uses_coast = parser.GetUsedVar().count("c") > 0;
     parser.Eval();
   }
 
@@ -106,11 +109,23 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
     } catch (const mu::Parser::exception_type& ex) {
       throw Error(ErrorClass::usage, "sizing",
                   "--size-expr '" + params.expression + "': " + ex.GetMsg() +
-                      " (variables: x, y in metres, lon, lat in degrees, d the depth in metres; "
-                      "constants: pi, e)");
+                      " (variables: x, y in metres, lon, lat in degrees, d the depth and c the "
+                      "distance to the coast in metres; constants: pi, e)");
     }
     if (expression_->uses_lonlat())
       expression_->to_lonlat = std::make_unique<CrsTransform>(crs, geographic_base(crs));
+    if (expression_->uses_coast) {
+      // Samples a quarter of hmin apart, or (without hmin) 20,000 along the boundary; at
+      // most 400,000.
+      const double length = perimeter(domain);
+      const double spacing =
+          std::max(hmin_ > 0 ? 0.25 * hmin_ : length / 20000.0, length / 400000.0);
+      coast_ = std::make_unique<CoastDistance>(domain, PolylineIndex(params.open_parts),
+                                               params.open_tolerance_m, spacing);
+      if (coast_->empty())
+        usage("--size-expr '" + params.expression +
+              "' uses c, the distance to the coast, and the domain's boundary is open all round");
+    }
     if (expression_->uses_depth && params.bathymetry.empty())
       usage("--size-expr '" + params.expression +
             "' uses d, the depth: give --bathymetry or --elevation");
@@ -213,6 +228,7 @@ double SizingOracle::operator()(const Point2& p) const {
     expression_->x = p.x;
     expression_->y = p.y;
     expression_->d = raw;
+    if (coast_) expression_->c = (*coast_)(p);
     if (expression_->to_lonlat) {
       Point2 q = p;
       if (!expression_->to_lonlat->transform(q))
@@ -232,6 +248,7 @@ double SizingOracle::operator()(const Point2& p) const {
                   "--size-expr '" + expression_->text + "' gives " + std::to_string(v) + " at " +
                       format_point(p) +
                       (expression_->uses_depth ? " (d = " + std::to_string(raw) + ")" : "") +
+                      (coast_ ? " (c = " + std::to_string(expression_->c) + ")" : "") +
                       "; sizes must be positive");
     h = std::min(h, v);
   }

@@ -19,6 +19,7 @@ namespace isoquad {
 
 struct BackgroundMesh;
 class BoundaryFeatureSize;
+class CoastDistance;
 class FeatureSizes;
 
 constexpr double kGravity = 9.81;  // m/s2 (the wavelength rule, the time steps of the outputs)
@@ -43,9 +44,14 @@ struct SizingParams {
   bool automatic = true;
   std::optional<double> constant_m;  // --size
   // --size-expr, in x and y (metres, meshing CRS), lon and lat (degrees, on the meshing
-  // CRS's datum) and d, the depth (metres, positive down, from `bathymetry`); where no
-  // raster gives a depth, an expression in d does not apply.
+  // CRS's datum), d, the depth (metres, positive down, from `bathymetry`; where no raster
+  // gives a depth, an expression in d does not apply) and c, the distance to the coast
+  // (metres: to the domain's boundary but its open parts, CoastDistance).
   std::string expression;
+  // The domain's open boundary (FrontEndResult::open_boundary_parts) and the tolerance
+  // within which a boundary edge lies on it: c is measured to the rest of the boundary.
+  std::vector<std::vector<Point2>> open_parts;
+  double open_tolerance_m = 0.0;
   std::string raster_path;           // --size-raster: sizes in metres, any GDAL raster
   // --size-mesh: the sizes of a mesh's elements (MeshNodeField::Values::element_sizes: a
   // model's grid, to mesh again at its resolution), in its CRS, else size_mesh_crs
@@ -140,6 +146,7 @@ class SizingOracle {
   std::unique_ptr<MeshNodeField> mesh_sizes_;
   std::unique_ptr<RasterStack> bathymetry_;
   std::unique_ptr<FeatureSizes> features_;
+  std::unique_ptr<CoastDistance> coast_;  // an expression in c
   double gradient_step_m_ = 1.0;
   double depth_at(const Point2& x) const;                 // NaN: none
   double raw_time_step_floor(double depth) const;         // 0 for NaN

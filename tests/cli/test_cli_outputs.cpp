@@ -1904,6 +1904,52 @@ TEST(CliOutputs, AnExpressionInTheDepthSizesTheShallowWater) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("x.gr3")));
 }
 
+// --size-expr in c, the distance to the coast (OceanMesh2D's 'dis'): quads of 300 m at
+// the land, growing offshore, large again along the open sea boundary away from the land
+// (it is no coast); a water box with no land in it is refused.
+TEST(CliOutputs, AnExpressionInTheDistanceToTheCoast) {
+  TempDir dir;
+  CliResult r =
+      mesh_box(dir, {"--hmax", "2000", "--size-expr", "300 + 0.3 * c", "-o", dir.file("m.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 g = parse_gr3(dir.file("m.gr3"));
+  auto nearest = [&g](const std::vector<std::vector<int>>& lists, double x, double y) {
+    double best = 1e300;
+    for (const auto& list : lists)
+      for (int n : list)
+        best = std::min(best, std::hypot(g.nodes[n - 1][0] - x, g.nodes[n - 1][1] - y));
+    return best;
+  };
+  std::vector<double> at_land, open_sea;  // sqrt(area) of the quads
+  for (const std::vector<int>& e : g.elements) {
+    double a = 0.0, x = 0.0, y = 0.0;
+    for (std::size_t k = 0; k < e.size(); ++k) {
+      const auto& p = g.nodes[e[k] - 1];
+      const auto& q = g.nodes[e[(k + 1) % e.size()] - 1];
+      a += 0.5 * (p[0] * q[1] - q[0] * p[1]);
+      x += p[0] / static_cast<double>(e.size());
+      y += p[1] / static_cast<double>(e.size());
+    }
+    const double land = nearest(g.land, x, y), open = nearest(g.open, x, y);
+    if (land < 400) at_land.push_back(std::sqrt(a));
+    if (open < 1500 && land > 4000) open_sea.push_back(std::sqrt(a));
+  }
+  auto median = [](std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+    return v[v.size() / 2];
+  };
+  ASSERT_GT(at_land.size(), 50u);
+  ASSERT_GT(open_sea.size(), 5u);
+  EXPECT_LT(median(at_land), 450);
+  EXPECT_GT(median(open_sea), 1200);
+  r = run_cli({"mesh", water_input(dir), "--domain", "water", "--bbox", "-4.51,48.26,-4.46,48.3",
+               "--size-expr", "300 + 0.3 * c", "-o", dir.file("x.gr3")},
+              dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("uses c, the distance to the coast"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("x.gr3")));
+}
+
 // --depth-average: the depths as means over squares round the vertices, said in the
 // summary and the report; on a grid of depths linear in lon/lat, within half a cell's
 // slope of the bilinear ones (a cell of 0.001 degrees: 1 m). Without depths, refused.

@@ -235,6 +235,32 @@ TEST(SizingField, AnExpressionInLongitudeAndLatitude) {
     EXPECT_NEAR(oracle(q), 1000 + 1e5 * kDegrees * (q.x + q.y), 1e-3) << q.x << " " << q.y;
 }
 
+// c in --size-expr: the distance to the coast, the boundary but its open parts (here
+// the rectangle's west side, the sea's), as OceanMesh2D's 'dis' grows sizes offshore.
+TEST(SizingField, AnExpressionInTheDistanceToTheCoast) {
+  const Domain d = rectangle(10000, 4000);
+  SizingParams p = expression_sizes("100 + 0.5 * c");
+  p.hmin_m = 100;  // the coast sampled every 25 m
+  p.open_parts = {{{0, 4000}, {0, 0}}};
+  p.open_tolerance_m = 1;
+  SizingOracle oracle(d, p);
+  // Nearest the south side, the north side, the east side; the west side is open sea.
+  for (const auto& [q, c] : {std::pair{Point2{300, 1000}, 1000.0},
+                             {Point2{5000, 3500}, 500.0},
+                             {Point2{9000, 2000}, 1000.0},
+                             {Point2{50, 2000}, 2000.0},
+                             {Point2{2500, 0}, 0.0}})
+    EXPECT_NEAR(oracle(q), 100 + 0.5 * c, 0.5 * 12.5 + 1e-9) << q.x << " " << q.y;
+  // Without open parts the west side is coast too.
+  SizingOracle closed(d, expression_sizes("100 + 0.5 * c"));
+  EXPECT_NEAR(closed({50, 2000}), 100 + 0.5 * 50, 1.0);
+  // Open all round: no coast to measure from.
+  p.open_parts = {{{0, 0}, {10000, 0}, {10000, 4000}, {0, 4000}, {0, 0}}};
+  const Error e = error_of([&] { SizingOracle o(d, p); });
+  EXPECT_EQ(e.error_class(), ErrorClass::usage);
+  EXPECT_NE(std::string(e.what()).find("open all round"), std::string::npos) << e.what();
+}
+
 TEST(SizingField, RasterIsSampledBilinearly) {
   TempDir dir;
   // 100 m pixels from (0, 1000) down to (2000, 0).
