@@ -1866,6 +1866,15 @@ TEST(CliOutputs, TimeStepRuleWidensTheQuadsInDeepWater) {
   }
 }
 
+namespace {
+
+double median(std::vector<double> v) {
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+}  // namespace
+
 // --size-expr in d, the depth: quads of 300 m where the water is shallower than 200 m,
 // up to --hmax (800 m) deeper; without depths, the expression is refused.
 TEST(CliOutputs, AnExpressionInTheDepthSizesTheShallowWater) {
@@ -1888,10 +1897,6 @@ TEST(CliOutputs, AnExpressionInTheDepthSizesTheShallowWater) {
     if (depth < 180) shallow.push_back(std::sqrt(a));
     if (depth > 280) deep.push_back(std::sqrt(a));
   }
-  auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  };
   ASSERT_GT(shallow.size(), 50u);
   ASSERT_GT(deep.size(), 10u);
   EXPECT_NEAR(median(shallow), 300, 45);  // 302 when measured
@@ -1934,10 +1939,6 @@ TEST(CliOutputs, AnExpressionInTheDistanceToTheCoast) {
     if (land < 400) at_land.push_back(std::sqrt(a));
     if (open < 1500 && land > 4000) open_sea.push_back(std::sqrt(a));
   }
-  auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-    return v[v.size() / 2];
-  };
   ASSERT_GT(at_land.size(), 50u);
   ASSERT_GT(open_sea.size(), 5u);
   EXPECT_LT(median(at_land), 450);
