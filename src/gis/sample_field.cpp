@@ -296,6 +296,8 @@ SampleField::SampleField(const std::string& path, const std::string& what, const
     values.push_back(sum / static_cast<double>(j - i));
     i = j;
   }
+  raw = RawSamples();  // freed before the triangulation, the peak of a large survey
+  std::vector<std::size_t>().swap(order);
   std::vector<std::array<int, 3>> triangles = delaunay_triangles(points);
   if (triangles.empty())
     fail(ErrorClass::input, what, path,
