@@ -21,6 +21,7 @@
 #include "core/text.h"
 #include "gis/gdal_env.h"
 #include "gis/mesh_field.h"
+#include "gis/read_points.h"
 
 namespace isoquad {
 
@@ -37,14 +38,6 @@ bool is_xyz(const std::string& path) {
   return ends_with(lower_case(path), ".xyz");
 }
 
-// A CSV's points from its columns named as coordinates are (GDAL's CSV driver makes no
-// geometry otherwise); other files open as they are.
-std::vector<std::string> open_options(const std::string& path) {
-  if (!ends_with(lower_case(path), ".csv")) return {};
-  return {"X_POSSIBLE_NAMES=x,lon,long,longitude,easting,east",
-          "Y_POSSIBLE_NAMES=y,lat,latitude,northing,north", "AUTODETECT_TYPE=YES"};
-}
-
 bool opens_as_raster(const std::string& path) {
   ensure_gdal_registered();
   std::string problem;
@@ -54,29 +47,6 @@ bool opens_as_raster(const std::string& path) {
   GdalDataset ds(static_cast<GDALDataset*>(
       GDALOpenEx(open_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   return ds && ds->GetRasterCount() > 0;
-}
-
-bool is_point_type(OGRwkbGeometryType type) {
-  const OGRwkbGeometryType flat = wkbFlatten(type);
-  return flat == wkbPoint || flat == wkbMultiPoint;
-}
-
-// The first layer of points (by its declared type, or its first geometry's when the
-// type is not declared), or null.
-OGRLayer* point_layer(GDALDataset& ds) {
-  for (int i = 0; i < ds.GetLayerCount(); ++i) {
-    OGRLayer* layer = ds.GetLayer(i);
-    const OGRwkbGeometryType type = layer->GetGeomType();
-    if (is_point_type(type)) return layer;
-    if (wkbFlatten(type) != wkbUnknown) continue;
-    layer->ResetReading();
-    std::unique_ptr<OGRFeature> first(layer->GetNextFeature());
-    layer->ResetReading();
-    if (first && first->GetGeometryRef() &&
-        is_point_type(first->GetGeometryRef()->getGeometryType()))
-      return layer;
-  }
-  return nullptr;
 }
 
 // The samples as read, in the file's CRS (`crs`: its text, empty when it has none).
@@ -147,59 +117,8 @@ RawSamples read_xyz(const std::string& path, const std::string& what, std::size_
 
 RawSamples read_points(const std::string& path, const std::string& what, const std::string& field,
                        std::size_t max_samples) {
-  GdalDataset ds = open_vector_dataset(path, what, open_options(path));
-  OGRLayer* layer = point_layer(*ds);
-  if (!layer)
-    fail(ErrorClass::input, what, path,
-         "holds no raster GDAL reads and no layer of points (layers: " + layer_names(*ds) + ")");
-  RawSamples out;
-  if (const OGRSpatialReference* srs = layer->GetSpatialRef()) out.crs = crs_from_srs(*srs).wkt;
-  const std::string name = layer->GetName();
-  int index = -1;
-  if (!field.empty()) {
-    index = layer->GetLayerDefn()->GetFieldIndex(field.c_str());
-    if (index < 0)
-      fail(ErrorClass::usage, what, path,
-           "layer '" + name + "' has no attribute '" + field +
-               "' (--depth-field; attributes: " + field_names(*layer) + ")");
-  }
-  layer->ResetReading();
-  for (auto& feature : *layer) {
-    if (out.points.size() >= max_samples) break;
-    const OGRGeometry* g = feature->GetGeometryRef();
-    if (!g || g->IsEmpty()) continue;
-    const std::string where = "layer '" + name + "', feature " + std::to_string(feature->GetFID());
-    if (!is_point_type(g->getGeometryType()))
-      fail(ErrorClass::input, what, path,
-           where + " is a " + OGRGeometryTypeToName(g->getGeometryType()) + "; samples are points");
-    double value = NAN;
-    if (index >= 0) {
-      if (!feature->IsFieldSetAndNotNull(index)) continue;
-      const char* text = feature->GetFieldAsString(index);
-      char* end = nullptr;
-      value = std::strtod(text, &end);
-      if (end == text || *end)
-        fail(ErrorClass::input, what, path,
-             where + " has " + field + " '" + text + "', not a number");
-    } else if (!OGR_GT_HasZ(g->getGeometryType())) {
-      fail(ErrorClass::usage, what, path,
-           "layer '" + name +
-               "' holds points without Z: name the attribute of their values with "
-               "--depth-field (attributes: " +
-               field_names(*layer) + ")");
-    }
-    auto add = [&](const OGRPoint& p) {
-      const double v = index >= 0 ? value : p.getZ();
-      if (!std::isfinite(p.getX()) || !std::isfinite(p.getY()) || !std::isfinite(v)) return;
-      out.points.push_back({p.getX(), p.getY()});
-      out.values.push_back(v);
-    };
-    if (wkbFlatten(g->getGeometryType()) == wkbPoint)
-      add(*g->toPoint());
-    else
-      for (const OGRPoint* p : *g->toMultiPoint()) add(*p);
-  }
-  return out;
+  PointLayer layer = read_point_layer(path, what, true, field, "--depth-field", max_samples);
+  return {std::move(layer.points), std::move(layer.values), std::move(layer.crs)};
 }
 
 RawSamples read_samples(const std::string& path, const std::string& what, const std::string& field,
@@ -252,12 +171,7 @@ std::vector<std::array<int, 3>> delaunay_triangles(const std::vector<Point2>& po
 bool is_sample_file(const std::string& path) {
   if (opens_as_raster(path)) return false;
   if (is_xyz(path)) return true;
-  try {
-    GdalErrorCapture capture;
-    return point_layer(*open_vector_dataset(path, "read", open_options(path))) != nullptr;
-  } catch (const Error&) {
-    return false;  // not a vector data set: left to the raster reader's message
-  }
+  return has_point_layer(path);  // else left to the raster reader's message
 }
 
 void check_sample_file(const std::string& path, const std::string& what,

@@ -1,0 +1,37 @@
+// Points read from any OGR vector source: soundings (SampleField), the points of
+// --embed-points.
+#pragma once
+
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/geometry.h"
+
+namespace isoquad {
+
+struct PointLayer {
+  std::vector<Point2> points;  // in the layer's CRS
+  std::vector<double> values;  // with values: each point's
+  std::string crs;             // WKT; empty when the layer has none
+  std::string layer_name;
+};
+
+// Whether `path` opens as a vector data set with a layer of points (read_point_layer).
+bool has_point_layer(const std::string& path);
+
+// The points (and multi-points) of the first layer of points in `path`: any GDAL vector
+// data set, a CSV's points from its columns named x, lon, longitude, easting or east and
+// y, lat, latitude, northing or north (any case). With `with_values`, each point's value:
+// the attribute `field` (points where it is not set are skipped), else the point's Z.
+// Points with a coordinate or value that is not finite are skipped; at most max_points
+// are read. `what` names the option in messages. Throws Error(input) for a file that
+// cannot be read, no layer of points, another geometry or a value that is not a number;
+// Error(usage) for a missing `field`, or points without Z and no `field` (naming the
+// layer's attributes and `field_option`).
+PointLayer read_point_layer(const std::string& path, const std::string& what, bool with_values,
+                            const std::string& field = "", const std::string& field_option = "",
+                            std::size_t max_points = std::numeric_limits<std::size_t>::max());
+
+}  // namespace isoquad
