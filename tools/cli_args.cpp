@@ -389,6 +389,13 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                 "onto the line (breaklines, dyke crests, thin dams), every quad kept convex; the "
                 "summary says how much of the lines the edges cover")
       ->group("Cross field");
+  cmd->add_option("--embed-points", m.embed_points,
+                  "Vector file of points (its first layer of points; a CSV with x and y, lon "
+                  "and lat, or easting and northing columns) the mesh gets vertices at: "
+                  "stations, a river's source; each point takes the nearest interior vertex, "
+                  "moved onto it with every quad kept convex (the summary's `points:` line). In "
+                  "the file's CRS, else the INPUT's")
+      ->group("Cross field");
   const char* g = "Tiling (paper, sections 2.2 to 2.5)";
   cmd->add_option("--init", m.init,
                   "How tiles start: front (default; seeds one tile apart along the cross field, "
@@ -645,6 +652,7 @@ MeshOptions mesh_options(const CommonArgs& a, const FieldArgs& f, const MeshArgs
   options.fields = fields_options(a, f);
   if (options.embed_lines && f.align_path.empty())
     throw Error(ErrorClass::usage, "options", "--embed needs --align: the lines to embed");
+  options.fields.front.embed_points_path = m.embed_points;
   options.subdivide.corner_angle_deg = options.tiling.graph.corner_angle_deg;
   options.tiling.conform_rule =
       m.conform_rule == "longest-away"      ? ConformShiftRule::longest_away_from_corner

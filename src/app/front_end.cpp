@@ -13,6 +13,7 @@
 #include "gis/raster_domain.h"
 #include "gis/read_lines.h"
 #include "gis/read_mesh.h"
+#include "gis/read_points.h"
 
 namespace isoquad {
 
@@ -432,6 +433,23 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
                   result.align_lines, result.align_line_of);
   }
 
+  if (!options.embed_points_path.empty()) {
+    const std::string& path = options.embed_points_path;
+    s.embed_points_path = path;
+    PointLayer layer = read_point_layer(path, "--embed-points", false);
+    if (layer.points.empty())
+      throw Error(ErrorClass::input, "read", "--embed-points '" + path + "': holds no point");
+    const CrsInfo from =
+        layer.crs.empty() ? source.crs : parse_crs(layer.crs, "'" + path + "' (its CRS)");
+    const long failed = CrsTransform(from, meshing_crs).transform(layer.points);
+    if (failed >= 0)
+      throw Error(ErrorClass::crs, "read",
+                  "--embed-points '" + path + "': point " + std::to_string(failed + 1) +
+                      " cannot be transformed into the meshing CRS");
+    s.embed_points_read = layer.points.size();
+    result.embed_points = std::move(layer.points);
+  }
+
   progress.report("clean", 0.7);
   double h = options.target_size_m;
   if (h <= 0 && options.target_size_for_area) h = options.target_size_for_area(area(result.domain));
@@ -570,6 +588,23 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   s.num_open_parts = result.open_boundary_parts.size();
   for (const auto& part : result.open_boundary_parts)
     s.open_parts_length_m += polyline_length(part);
+  if (!s.embed_points_path.empty()) {
+    std::vector<Point2> inside;
+    for (std::size_t k = 0; k < result.embed_points.size(); ++k)
+      if (domain_contains(result.domain, result.embed_points[k])) {
+        inside.push_back(result.embed_points[k]);
+        result.embed_point_number.push_back(static_cast<int>(k + 1));
+      }
+    s.embed_points_inside = inside.size();
+    const std::string outside = std::to_string(s.embed_points_read - inside.size()) + " of the " +
+                                std::to_string(s.embed_points_read) + " points of '" +
+                                s.embed_points_path + "' lie outside the domain";
+    if (inside.empty() && !options.align_optional)
+      throw Error(ErrorClass::input, "read", "--embed-points: " + outside);
+    if (inside.size() < s.embed_points_read)
+      s.warnings.push_back("--embed-points: " + outside + ": they get no vertex");
+    result.embed_points = std::move(inside);
+  }
   s.num_components = result.domain.polygons.size();
   s.num_holes = num_holes(result.domain);
   s.num_rings = s.num_components + s.num_holes;

@@ -59,8 +59,12 @@ struct FrontEndOptions {
   std::string align_path;
   std::string align_layer;  // empty: its first layer of lines, or its first layer
   // Whether a domain that none of the lines reaches is meshed (with a warning) rather
-  // than stopped: --each, where one file of lines serves many regions.
+  // than stopped: --each, where one file of lines serves many regions. The same for
+  // --embed-points.
   bool align_optional = false;
+  // A vector file of points (its first layer of points) that the mesh gets vertices at
+  // (--embed-points); in its CRS, else the INPUT's.
+  std::string embed_points_path;
 };
 
 // What the front end did, for the summary and the report.
@@ -108,6 +112,10 @@ struct DomainSummary {
   // --align: the file and its lines.
   std::string align_path;
   std::size_t align_num_lines = 0;
+  // --embed-points: the file, its points, and how many lie inside the domain.
+  std::string embed_points_path;
+  std::size_t embed_points_read = 0;
+  std::size_t embed_points_inside = 0;
   std::optional<SourceData::Raster> raster;  // a raster INPUT: what was read of it
   std::vector<std::string> warnings;
 };
@@ -142,6 +150,10 @@ struct FrontEndResult {
   // its line in the file.
   std::vector<std::vector<Point2>> align_lines;
   std::vector<int> align_line_of;
+  // The points of --embed-points inside the domain, in the meshing CRS, in the file's
+  // order, and the number of each in the file (from 1).
+  std::vector<Point2> embed_points;
+  std::vector<int> embed_point_number;
   // The domain's boundary where it is open, before meshing: runs of its edges whose
   // ends and middle lie on open_boundary_lines (within open_line_tolerance), each run a
   // polyline in the meshing CRS, the domain on its left; empty without open lines.

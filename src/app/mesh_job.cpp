@@ -11,6 +11,7 @@
 #include "app/summary.h"
 #include "core/error.h"
 #include "core/json_writer.h"
+#include "core/text.h"
 #include "mesh/boundary_corners.h"
 #include "mesh/locate.h"
 
@@ -163,10 +164,13 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
     progress.report("retry: " + problem, 0.3);
   }
   StageClock clock(r.fields.times);
-  if (options.embed_lines && !r.fields.front.align_lines.empty()) {
+  const bool lines = options.embed_lines && !r.fields.front.align_lines.empty();
+  if (lines || !r.fields.front.embed_points.empty()) {
     progress.report("embed", 0.96);
-    r.embed = embed_lines(r.fields.mesh, r.quads, r.fields.front.align_lines, options.embed,
-                          options.smooth, &r.fields.cross, &r.fields.size, &r.embedded);
+    r.embed = embed_lines(r.fields.mesh, r.quads,
+                          lines ? r.fields.front.align_lines : std::vector<std::vector<Point2>>(),
+                          options.embed, options.smooth, &r.fields.cross, &r.fields.size,
+                          &r.embedded, r.fields.front.embed_points, &r.embedded_points);
     clock.lap("embedding");
   }
   progress.report("quality", 0.97);
@@ -234,6 +238,19 @@ std::string format_mesh_summary(const MeshResult& r) {
                "glued to them\n");
   os << format_quad_shape_lines(q);
   if (r.fields.num_aligned_vertices > 0) os << format_align_line(q);
+  if (!r.fields.front.summary.embed_points_path.empty()) {
+    const EmbedStats& e = r.embed;
+    std::snprintf(buf, sizeof buf,
+                  "points:       %zu of the %zu points inside the domain on a vertex%s\n",
+                  e.num_points_on, r.fields.front.embed_points.size(),
+                  e.num_points_on < r.fields.front.embed_points.size()
+                      ? printf_string(" (the others' vertices up to %.3g m off: the quads between "
+                                      "would leave [30, 150] degrees)",
+                                      e.max_point_off_m)
+                            .c_str()
+                      : "");
+    os << buf;
+  }
   if (r.embed.requested && r.embed.line_length_m == 0) {
     os << "embedded:     no line lies farther than half a quad from the boundary (where the "
           "boundary's row of quads holds it)\n";
@@ -325,6 +342,10 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
           .value("embed_line_length_m", r.embed.line_length_m)
           .value("embed_covered_length_m", r.embed.covered_length_m)
           .value("embed_max_chord_off_m", r.embed.max_chord_off_m);
+    if (!r.fields.front.summary.embed_points_path.empty())
+      j.value("embed_points_inside", r.fields.front.embed_points.size())
+          .value("embed_points_on_vertex", r.embed.num_points_on)
+          .value("embed_points_max_off_m", r.embed.max_point_off_m);
     j.end_object();
     if (boundary) {
       std::size_t open = 0, land = 0;

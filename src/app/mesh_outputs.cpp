@@ -74,6 +74,12 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
           quad_zones(o.zones, CrsInfo{front.domain.crs_wkt, front.domain.crs_name}, r.quads);
       data.zone = std::move(written.zones->zone);
     }
+    if (!front.summary.embed_points_path.empty()) {
+      data.vertex_point.assign(r.quads.points.size(), 0);
+      for (std::size_t k = 0; k < r.embedded_points.size(); ++k)
+        if (r.embedded_points[k] >= 0)
+          data.vertex_point[r.embedded_points[k]] = front.embed_point_number[k];
+    }
     for (const EmbeddedPath& path : r.embedded) {
       data.embedded.push_back(path.vertices);
       data.embedded_line.push_back(front.align_line_of[path.line]);  // the file's line

@@ -57,6 +57,9 @@ double area(const Polygon& polygon);
 double area(const Domain& domain);
 double perimeter(const Polygon& polygon);
 double perimeter(const Domain& domain);
+// Whether p lies inside the domain (even-odd over every ring: in a polygon, not in its
+// holes); a point on the boundary may go either way.
+bool domain_contains(const Domain& domain, const Point2& p);
 std::size_t num_vertices(const Polygon& polygon);
 std::size_t num_vertices(const Domain& domain);
 std::size_t num_holes(const Domain& domain);

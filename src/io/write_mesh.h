@@ -73,6 +73,9 @@ struct MeshOutputData {
   std::vector<double> time_step_s;
   // #Q each quad's zone (--zones; 0: in none); empty: none given.
   std::vector<double> zone;
+  // #P with --embed-points: the number (from 1, in its file) of the point each vertex was
+  // moved onto, 0 for none: the GeoPackage's vertices' `point`. Empty: none given.
+  std::vector<int> vertex_point;
   // Paths of edges on lines (--embed; vertex ids), each with the index of its line in
   // the file: the GeoPackage's layer `embedded`.
   std::vector<std::vector<int>> embedded;

@@ -244,9 +244,10 @@ std::vector<int> path_along(const QuadMesh& m, const QuadTopology& t, const Poly
 EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
                        const std::vector<std::vector<Point2>>& lines, const EmbedParams& embed,
                        const SmoothParams& params, const CrossField* cross, const SizingField* size,
-                       std::vector<EmbeddedPath>* paths) {
+                       std::vector<EmbeddedPath>* paths, const std::vector<Point2>& points,
+                       std::vector<int>* point_vertices) {
   EmbedStats stats;
-  stats.requested = true;
+  stats.requested = !lines.empty();
   if (paths) paths->clear();
   std::vector<Run> runs = runs_inside(bg, lines, size, embed.coast_share);
   const QuadTopology t = quad_topology(m);
@@ -379,6 +380,24 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     found_run.push_back(r);
   }
 
+  // The points, each to the nearest interior vertex not held yet.
+  std::vector<int> on_point;
+  for (const Point2& p : points) {
+    int best = -1;
+    double best_d = kInf;
+    for (int v = 0; v < nv; ++v) {
+      if (t.neighbours[v].empty() || m.chain[v] >= 0 || m.fixed[v] || held[v]) continue;
+      const double d = distance(m.points[v], p);
+      if (d < best_d) best_d = d, best = v;
+    }
+    on_point.push_back(best);
+    if (best < 0) continue;
+    target[best] = p;
+    held[best] = 1;
+    order.push_back(best);
+    ++stats.num_points;
+  }
+
   // Onto the lines, a round at a time; the vertices next to the paths make room. No move
   // (theirs or the sweeps') makes a quad's corner leave [30, 150] degrees, or one already
   // outside go farther (EmbedParams::min_turn_sine).
@@ -388,6 +407,12 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   for (int v : order)
     for (int w : t.neighbours[v])
       if (!held[w]) room[w] = 1;
+  // A point's vertex may have to move across most of a quad: two rings make room.
+  for (int v : on_point)
+    if (v >= 0)
+      for (int w : t.neighbours[v])
+        for (int u : t.neighbours[w])
+          if (!held[u]) room[u] = 1;
   std::vector<char> done(nv, 0);
   for (int round = 0; round < embed.rounds; ++round) {
     bool all = true;
@@ -450,6 +475,13 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   if (paths)
     for (std::size_t k = 0; k < found.size(); ++k)
       paths->push_back({runs[found_run[k]].line, std::move(found[k])});
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    if (on_point[k] < 0) continue;
+    const double d = distance(m.points[on_point[k]], points[k]);
+    if (d <= embed.on_line_m) ++stats.num_points_on;
+    stats.max_point_off_m = std::max(stats.max_point_off_m, d);
+  }
+  if (point_vertices) *point_vertices = on_point;
   return stats;
 }
 

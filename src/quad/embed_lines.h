@@ -71,6 +71,11 @@ struct EmbedStats {
   double max_chord_off_m = 0.0;
   // Runs too short for a path (both ends nearest one vertex) or with no path near them.
   std::size_t num_skipped = 0;
+  // --embed-points: the points given a vertex, those it reached (within on_line_m), and
+  // the farthest one stayed from its point.
+  std::size_t num_points = 0;
+  std::size_t num_points_on = 0;
+  double max_point_off_m = 0.0;
 };
 
 // A path of edges on a line: its vertex ids, and the index of its line in `lines`.
@@ -82,10 +87,15 @@ struct EmbeddedPath {
 // Moves, for each line's runs inside the mesh, a path of edges onto the line; every quad
 // stays convex (EmbedParams::min_turn_sine), and a boundary vertex moves only where a
 // path ends next to the coast that its line meets: along the coast, to that point,
-// between its boundary neighbours. `paths` gets each run's path.
+// between its boundary neighbours. `paths` gets each run's path. Each of `points` (inside
+// the domain) takes the nearest interior vertex that no path holds, moved onto it the
+// same way, as Gmsh's embedded points (a station, a river's source); `point_vertices`
+// gets their ids (-1: none left).
 EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
                        const std::vector<std::vector<Point2>>& lines, const EmbedParams& embed,
                        const SmoothParams& params, const CrossField* cross, const SizingField* size,
-                       std::vector<EmbeddedPath>* paths = nullptr);
+                       std::vector<EmbeddedPath>* paths = nullptr,
+                       const std::vector<Point2>& points = {},
+                       std::vector<int>* point_vertices = nullptr);
 
 }  // namespace isoquad

@@ -1951,6 +1951,49 @@ TEST(CliOutputs, AnExpressionInTheDistanceToTheCoast) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("x.gr3")));
 }
 
+// --embed-points: a station in the water gets a vertex exactly there (hgrid.ll's node at
+// its longitude and latitude), one on the land a warning; none inside stops the run.
+TEST(CliOutputs, EmbeddedPointsGetVertices) {
+  TempDir dir;
+  write_file(
+      dir.file("stations.geojson"),
+      R"({"type":"FeatureCollection","features":[)"
+      R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.5123,48.3217]}},)"
+      R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.4071,48.2345]}},)"
+      R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.38,48.27]}}]})");
+  CliResult r =
+      mesh_box_800(dir, {"--embed-points", dir.file("stations.geojson"), "-o", dir.file("s.gr3"),
+                         "-o", dir.file("s.gpkg"), "--report", dir.file("s.json")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("points:       2 of the 2 points inside the domain on a vertex"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("warning: --embed-points: 1 of the 3 points of"), std::string::npos)
+      << r.err;
+  EXPECT_NE(read_file(dir.file("s.json")).find("\"embed_points_on_vertex\": 2"), std::string::npos);
+  const Gr3 g = parse_gr3(dir.file("s.ll"));
+  for (const auto& [lon, lat] : {std::pair{-4.5123, 48.3217}, {-4.4071, 48.2345}}) {
+    double nearest = 1e300;
+    for (const auto& n : g.nodes) nearest = std::min(nearest, std::hypot(n[0] - lon, n[1] - lat));
+    EXPECT_LT(nearest, 1e-6) << lon << " " << lat;  // the .ll's 7 decimals
+  }
+  // The GeoPackage's vertices name their points by number in the file.
+  std::multiset<long long> numbers;
+  GDALDataset* ds = open_vector(dir.file("s.gpkg"));
+  ASSERT_NE(ds, nullptr);
+  for (auto& f : *ds->GetLayerByName("vertices"))
+    if (f->GetFieldAsInteger64("point") != 0) numbers.insert(f->GetFieldAsInteger64("point"));
+  GDALClose(ds);
+  EXPECT_EQ(numbers, (std::multiset<long long>{1, 2}));
+  write_file(dir.file("onland.geojson"),
+             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+             R"("geometry":{"type":"Point","coordinates":[-4.38,48.27]}}]})");
+  r = mesh_box_800(dir, {"--embed-points", dir.file("onland.geojson"), "-o", dir.file("t.gr3")});
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("1 of the 1 points of"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("t.gr3")));
+}
+
 // --depth-average: the depths as means over squares round the vertices, said in the
 // summary and the report; on a grid of depths linear in lon/lat, within half a cell's
 // slope of the bilinear ones (a cell of 0.001 degrees: 1 m). Without depths, refused.

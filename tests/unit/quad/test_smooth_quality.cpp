@@ -1054,6 +1054,42 @@ TEST(EmbedLines, ALineOutsideTheDomainMovesNothing) {
   EXPECT_EQ(m.points, before.points);
 }
 
+// --embed-points: each point takes the nearest interior vertex not taken (a point next
+// to the boundary an interior one), moved onto it; every quad stays convex and the mesh
+// keeps its vertices and quads. Of two points 6 m apart in quads of 100 m the second
+// gets another vertex, which stops where the quads between would leave [30, 150]
+// degrees.
+TEST(EmbedLines, PointsTakeTheirNearestInteriorVertices) {
+  const BackgroundMesh bg = square_background();
+  QuadMesh m = grid();
+  const QuadMesh before = m;
+  const std::vector<Point2> points = {{333, 471}, {612, 655}, {615, 660}, {150, 850}, {20, 520}};
+  std::vector<int> vertices;
+  const SmoothParams params;
+  const EmbedStats st =
+      embed_lines(bg, m, {}, EmbedParams(), params, nullptr, nullptr, nullptr, points, &vertices);
+  EXPECT_FALSE(st.requested);  // no line
+  EXPECT_EQ(st.num_points, points.size());
+  EXPECT_EQ(st.num_points_on, points.size() - 1);
+  ASSERT_EQ(vertices.size(), points.size());
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    ASSERT_GE(vertices[k], 0);
+    EXPECT_LT(m.chain[vertices[k]], 0) << k;
+    if (k != 2) {
+      EXPECT_EQ(m.points[vertices[k]], points[k]) << k;
+    }
+    for (std::size_t j = 0; j < k; ++j) EXPECT_NE(vertices[j], vertices[k]);
+  }
+  const double off = distance(m.points[vertices[2]], points[2]);
+  EXPECT_GT(off, 1.0);
+  EXPECT_LT(off, 0.5 * kSide / kN);
+  EXPECT_DOUBLE_EQ(st.max_point_off_m, off);
+  EXPECT_EQ(m.quads, before.quads);
+  EXPECT_EQ(m.points.size(), before.points.size());
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
+    EXPECT_GT(quad_convexity(m, q), params.min_convexity) << q;
+}
+
 // D-Flow FM's links over quads and triangles: a unit square with a right triangle on its
 // right side and another above. The square's centre is its middle; a triangle's its
 // circumcentre (the middle of its hypotenuse), so the links run along the shared side's
