@@ -6,7 +6,6 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <gdal_priv.h>
-#include <ogrsf_frmts.h>
 
 #include <algorithm>
 #include <charconv>
@@ -14,7 +13,6 @@
 #include <fstream>
 #include <limits>
 #include <numeric>
-#include <optional>
 #include <utility>
 
 #include "core/error.h"
@@ -123,12 +121,9 @@ RawSamples read_points(const std::string& path, const std::string& what, const s
 
 RawSamples read_samples(const std::string& path, const std::string& what, const std::string& field,
                         std::size_t max_samples = std::numeric_limits<std::size_t>::max()) {
-  if (is_xyz(path)) {
-    if (!field.empty())
-      fail(ErrorClass::usage, what, path,
-           "--depth-field names an attribute of points; an .xyz's values are its third column");
-    return read_xyz(path, what, max_samples);
-  }
+  // An .xyz's values are its third column, whatever --depth-field names for the points
+  // of other files.
+  if (is_xyz(path)) return read_xyz(path, what, max_samples);
   return read_points(path, what, field, max_samples);
 }
 
