@@ -7,7 +7,6 @@
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <limits>
 
@@ -49,7 +48,7 @@ struct Site {
 // which CGAL's Apollonius graph (negative weights, |w| = h/K) did not survive: with
 // K < 1 its nearest-site queries returned sites of the far bank of a channel, and
 // non-negative weights made its construction quadratic.
-struct SiteGrid {
+struct BoundaryFeatureSize::Impl {
   std::vector<Site> sites;
   double gradation = 1.0;
   double x0 = 0, y0 = 0, cell = 1;
@@ -62,12 +61,9 @@ struct SiteGrid {
     return s.h + gradation * std::sqrt(dx * dx + dy * dy);
   }
 
-  // The grid covers the sites and `box` ({xmin, ymin, xmax, ymax}; queries outside take
-  // the nearest cell's sites).
-  void build(double min_cell, const std::array<double, 4>* box = nullptr) {
+  void build(double min_cell) {
     double x1 = -std::numeric_limits<double>::infinity(), y1 = x1;
     x0 = y0 = std::numeric_limits<double>::infinity();
-    if (box) x0 = (*box)[0], y0 = (*box)[1], x1 = (*box)[2], y1 = (*box)[3];
     for (const Site& s : sites) {
       x0 = std::min(x0, s.x), y0 = std::min(y0, s.y);
       x1 = std::max(x1, s.x), y1 = std::max(y1, s.y);
@@ -124,7 +120,7 @@ struct SiteGrid {
 };
 
 BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSizeParams& params)
-    : impl_(std::make_unique<SiteGrid>()) {
+    : impl_(std::make_unique<Impl>()) {
   if (!(params.lambda_m > 0) || !(params.gradation > 0) || !(params.cells_across > 0) ||
       !std::isfinite(params.max_size_m))
     throw Error(ErrorClass::internal, "sizing",
@@ -254,7 +250,7 @@ BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSize
     impl_->build(0.5 * params.lambda_m);
     return;
   }
-  narrow_ = std::make_unique<SiteGrid>();
+  narrow_ = std::make_unique<Impl>();
   narrow_->sites = std::move(narrow_sites);
   narrow_->gradation = params.gradation;
   // The two grids are independent: built at once on two threads.
@@ -274,13 +270,17 @@ std::size_t BoundaryFeatureSize::num_narrow_sites() const {
   return narrow_ ? narrow_->sites.size() : 0;
 }
 
+struct CoastDistance::Tree {
+  MedialTree tree;  // the coast's samples
+};
+
 CoastDistance::CoastDistance(const Domain& domain, const PolylineIndex& open,
                              double open_tolerance_m, double spacing_m)
-    : grid_(std::make_unique<SiteGrid>()) {
+    : tree_(std::make_unique<Tree>()) {
   if (!(spacing_m > 0))
     throw Error(ErrorClass::internal, "sizing", "the coast's samples need a positive spacing");
-  grid_->gradation = 1.0;
   auto on_open = [&](const Point2& p) { return !open.empty() && open.near(p, open_tolerance_m); };
+  std::vector<K::Point_2> samples;
   for (const Polygon& polygon : domain.polygons) {
     std::vector<const Ring*> rings{&polygon.outer};
     for (const Ring& h : polygon.holes) rings.push_back(&h);
@@ -292,19 +292,22 @@ CoastDistance::CoastDistance(const Domain& domain, const PolylineIndex& open,
         const int n = std::max(1, static_cast<int>(std::ceil(distance(a, b) / spacing_m)));
         for (int k = 0; k <= n; ++k) {
           const double t = static_cast<double>(k) / n;
-          grid_->sites.push_back({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), 0.0});
+          samples.emplace_back(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
         }
       }
   }
-  num_samples_ = grid_->sites.size();
-  const std::array<double, 4> box = bounding_box(domain);
-  if (num_samples_ > 0) grid_->build(spacing_m, &box);
+  num_samples_ = samples.size();
+  if (samples.empty()) return;
+  tree_->tree.insert(samples.begin(), samples.end());
+  tree_->tree.build();  // now, not at the first query
 }
 
 CoastDistance::~CoastDistance() = default;
 
 double CoastDistance::operator()(const Point2& x) const {
-  return num_samples_ > 0 ? (*grid_)(x.x, x.y) : std::numeric_limits<double>::infinity();
+  if (num_samples_ == 0) return std::numeric_limits<double>::infinity();
+  MedialSearch search(tree_->tree, K::Point_2(x.x, x.y), 1);
+  return std::sqrt(search.begin()->second);
 }
 
 }  // namespace isoquad

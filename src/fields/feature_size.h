@@ -18,9 +18,6 @@
 
 namespace isoquad {
 
-// min_i(h_i + K |x - p_i|) over sites p_i through a grid of nearest sites (the .cpp).
-struct SiteGrid;
-
 struct FeatureSizeParams {
   double lambda_m = 0.0;          // medial-axis filter radius (> 0)
   double sample_spacing_m = 0.0;  // boundary resampling; 0: lambda / 2
@@ -56,8 +53,9 @@ class BoundaryFeatureSize {
   const std::vector<double>& sample_size_m() const { return size_; }
 
  private:
-  std::unique_ptr<SiteGrid> impl_;
-  std::unique_ptr<SiteGrid> narrow_;
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::unique_ptr<Impl> narrow_;
   std::vector<Point2> samples_;
   std::vector<double> lfs_;
   std::vector<double> size_;
@@ -66,9 +64,8 @@ class BoundaryFeatureSize {
 // The distance in metres to the domain's coast: its boundary but the parts that lie on
 // `open` (the open sea boundary's runs, within open_tolerance_m), as OceanMesh2D's
 // distance function ('dis') measures it; --size-expr's c. The coast is sampled every
-// spacing_m (and at each vertex) and the nearest sample found through the sizes' grid
-// of sites (h_i 0, K 1): within about spacing_m / 2 of the true distance. +inf without
-// a coast.
+// spacing_m (and at each vertex) and the nearest sample found by a kd-tree: within
+// spacing_m / 2 of the true distance. +inf without a coast.
 class CoastDistance {
  public:
   CoastDistance(const Domain& domain, const PolylineIndex& open, double open_tolerance_m,
@@ -81,7 +78,8 @@ class CoastDistance {
   bool empty() const { return num_samples_ == 0; }
 
  private:
-  std::unique_ptr<SiteGrid> grid_;
+  struct Tree;
+  std::unique_ptr<Tree> tree_;
   std::size_t num_samples_ = 0;
 };
 
