@@ -240,15 +240,26 @@ std::string format_mesh_summary(const MeshResult& r) {
   if (r.fields.num_aligned_vertices > 0) os << format_align_line(q);
   if (!r.fields.front.summary.embed_points_path.empty()) {
     const EmbedStats& e = r.embed;
+    const FrontEndResult& front = r.fields.front;
+    // The numbers (in the file) of the first points left off their vertex.
+    std::string off;
+    std::size_t num_off = 0;
+    for (std::size_t k = 0; k < r.embedded_points.size(); ++k) {
+      const int v = r.embedded_points[k];
+      if (v >= 0 && distance(r.quads.points[v], front.embed_points[k]) <= EmbedParams().on_line_m)
+        continue;
+      if (++num_off <= 5)
+        off += (num_off > 1 ? ", " : "") + std::to_string(front.embed_point_number[k]);
+    }
+    if (num_off > 5) off += "...";
     std::snprintf(buf, sizeof buf,
                   "points:       %zu of the %zu points inside the domain on a vertex%s\n",
-                  e.num_points_on, r.fields.front.embed_points.size(),
-                  e.num_points_on < r.fields.front.embed_points.size()
-                      ? printf_string(" (the others' vertices up to %.3g m off: the quads between "
-                                      "would leave [30, 150] degrees)",
-                                      e.max_point_off_m)
-                            .c_str()
-                      : "");
+                  e.num_points_on, front.embed_points.size(),
+                  num_off > 0 ? printf_string(" (the others' vertices up to %.3g m off: points %s; "
+                                              "the quads between would leave [30, 150] degrees)",
+                                              e.max_point_off_m, off.c_str())
+                                    .c_str()
+                              : "");
     os << buf;
   }
   if (r.embed.requested && r.embed.line_length_m == 0) {
