@@ -252,14 +252,15 @@ std::string format_mesh_summary(const MeshResult& r) {
         off += (num_off > 1 ? ", " : "") + std::to_string(front.embed_point_number[k]);
     }
     if (num_off > 5) off += "...";
-    std::snprintf(buf, sizeof buf,
-                  "points:       %zu of the %zu points inside the domain on a vertex%s\n",
-                  e.num_points_on, front.embed_points.size(),
-                  num_off > 0 ? printf_string(" (the others' vertices up to %.3g m off: points %s; "
-                                              "the quads between would leave [30, 150] degrees)",
-                                              e.max_point_off_m, off.c_str())
-                                    .c_str()
-                              : "");
+    std::snprintf(
+        buf, sizeof buf, "points:       %zu of the %zu points inside the domain on a vertex%s\n",
+        e.num_points_on, front.embed_points.size(),
+        num_off > 0
+            ? printf_string(" (the others' vertices up to %.3g m off: %s %s; "
+                            "the quads between would leave [30, 150] degrees)",
+                            e.max_point_off_m, num_off > 1 ? "points" : "point", off.c_str())
+                  .c_str()
+            : "");
     os << buf;
   }
   if (r.embed.requested && r.embed.line_length_m == 0) {
