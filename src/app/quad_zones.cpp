@@ -14,12 +14,7 @@ namespace {
 // Whether p is inside the rings (closed), by the even-odd rule over all of them.
 bool inside(const std::vector<std::vector<Point2>>& rings, const Point2& p) {
   bool in = false;
-  for (const auto& r : rings)
-    for (std::size_t i = 0; i + 1 < r.size(); ++i) {
-      const Point2 &a = r[i], &b = r[i + 1];
-      if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
-        in = !in;
-    }
+  for (const auto& r : rings) in ^= crosses_odd(r, p);
   return in;
 }
 

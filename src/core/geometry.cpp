@@ -67,18 +67,21 @@ double area(const Domain& domain) {
   return a;
 }
 
+bool crosses_odd(const std::vector<Point2>& ring, const Point2& p) {
+  bool odd = false;
+  for (std::size_t i = 0, n = ring.size(); i < n; ++i) {
+    const Point2 &a = ring[i], &b = ring[(i + 1) % n];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
+      odd = !odd;
+  }
+  return odd;
+}
+
 bool domain_contains(const Domain& domain, const Point2& p) {
   bool in = false;
-  auto cross = [&](const Ring& ring) {
-    for (std::size_t i = 0, n = ring.size(); i < n; ++i) {
-      const Point2 &a = ring[i], &b = ring[(i + 1) % n];
-      if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
-        in = !in;
-    }
-  };
   for (const Polygon& polygon : domain.polygons) {
-    cross(polygon.outer);
-    for (const Ring& hole : polygon.holes) cross(hole);
+    in ^= crosses_odd(polygon.outer, p);
+    for (const Ring& hole : polygon.holes) in ^= crosses_odd(hole, p);
   }
   return in;
 }

@@ -57,6 +57,10 @@ double area(const Polygon& polygon);
 double area(const Domain& domain);
 double perimeter(const Polygon& polygon);
 double perimeter(const Domain& domain);
+// Whether a ray from p towards +x crosses the ring's sides an odd number of times (its
+// last point joined to its first; a ring that repeats its first point alike): the
+// even-odd rule, p inside when the count over all the rings that bound an area is odd.
+bool crosses_odd(const std::vector<Point2>& ring, const Point2& p);
 // Whether p lies inside the domain (even-odd over every ring: in a polygon, not in its
 // holes); a point on the boundary may go either way.
 bool domain_contains(const Domain& domain, const Point2& p);
