@@ -392,9 +392,10 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
   cmd->add_option("--embed-points", m.embed_points,
                   "Vector file of points (its first layer of points; a CSV with x and y, lon "
                   "and lat, or easting and northing columns) the mesh gets vertices at: "
-                  "stations, a river's source; each point takes the nearest interior vertex, "
-                  "moved onto it with every quad kept convex (the summary's `points:` line). In "
-                  "the file's CRS, else the INPUT's")
+                  "stations, a river's source; each point takes a nearest interior vertex, "
+                  "moved onto it with every quad kept convex (the summary's `points:` line); "
+                  "one nearer the coast than a fifth of a quad, or on the land within a quad of "
+                  "it, a vertex on the coast beside it. In the file's CRS, else the INPUT's")
       ->group("Cross field");
   const char* g = "Tiling (paper, sections 2.2 to 2.5)";
   cmd->add_option("--init", m.init,

@@ -7,6 +7,7 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "domain/separate_rings.h"
 #include "gis/crs.h"
 #include "gis/mesh_outline.h"
@@ -589,21 +590,29 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   for (const auto& part : result.open_boundary_parts)
     s.open_parts_length_m += polyline_length(part);
   if (!s.embed_points_path.empty()) {
-    std::vector<Point2> inside;
-    for (std::size_t k = 0; k < result.embed_points.size(); ++k)
-      if (domain_contains(result.domain, result.embed_points[k])) {
-        inside.push_back(result.embed_points[k]);
-        result.embed_point_number.push_back(static_cast<int>(k + 1));
-      }
-    s.embed_points_inside = inside.size();
-    const std::string outside = std::to_string(s.embed_points_read - inside.size()) + " of the " +
-                                std::to_string(s.embed_points_read) + " points of '" +
-                                s.embed_points_path + "' lie outside the domain";
-    if (inside.empty() && !options.align_optional)
+    // Inside the domain, or outside it within the target size of its boundary: the
+    // meshing puts those near the coast on it (EmbedParams::point_coast_share).
+    std::vector<Point2> kept;
+    for (std::size_t k = 0; k < result.embed_points.size(); ++k) {
+      const Point2& p = result.embed_points[k];
+      const bool inside = domain_contains(result.domain, p);
+      if (!inside &&
+          !(s.target_size_m > 0 && distance_to_boundary(result.domain, p) <= s.target_size_m))
+        continue;
+      kept.push_back(p);
+      result.embed_point_number.push_back(static_cast<int>(k + 1));
+      if (inside) ++s.embed_points_inside;
+    }
+    const std::size_t far = s.embed_points_read - kept.size();
+    const std::string outside =
+        std::to_string(far) + " of the " + std::to_string(s.embed_points_read) + " points of '" +
+        s.embed_points_path + "' lie outside the domain" +
+        (s.target_size_m > 0 ? printf_string(", farther than %.0f m from it", s.target_size_m)
+                             : std::string());
+    if (kept.empty() && !options.align_optional)
       throw Error(ErrorClass::input, "read", "--embed-points: " + outside);
-    if (inside.size() < s.embed_points_read)
-      s.warnings.push_back("--embed-points: " + outside + ": they get no vertex");
-    result.embed_points = std::move(inside);
+    if (far > 0) s.warnings.push_back("--embed-points: " + outside + ": they get no vertex");
+    result.embed_points = std::move(kept);
   }
   s.num_components = result.domain.polygons.size();
   s.num_holes = num_holes(result.domain);

@@ -112,7 +112,8 @@ struct DomainSummary {
   // --align: the file and its lines.
   std::string align_path;
   std::size_t align_num_lines = 0;
-  // --embed-points: the file, its points, and how many lie inside the domain.
+  // --embed-points: the file, its points, and how many lie inside the domain (the others
+  // kept lie outside it within target_size_m of its boundary).
   std::string embed_points_path;
   std::size_t embed_points_read = 0;
   std::size_t embed_points_inside = 0;
@@ -150,8 +151,9 @@ struct FrontEndResult {
   // its line in the file.
   std::vector<std::vector<Point2>> align_lines;
   std::vector<int> align_line_of;
-  // The points of --embed-points inside the domain, in the meshing CRS, in the file's
-  // order, and the number of each in the file (from 1).
+  // The points of --embed-points inside the domain or outside it within the target size
+  // of its boundary, in the meshing CRS, in the file's order, and the number of each in
+  // the file (from 1).
   std::vector<Point2> embed_points;
   std::vector<int> embed_point_number;
   // The domain's boundary where it is open, before meshing: runs of its edges whose

@@ -245,23 +245,27 @@ std::string format_mesh_summary(const MeshResult& r) {
     std::string off;
     std::size_t num_off = 0;
     for (std::size_t k = 0; k < r.embedded_points.size(); ++k) {
-      const int v = r.embedded_points[k];
-      if (v >= 0 && distance(r.quads.points[v], front.embed_points[k]) <= EmbedParams().on_line_m)
+      const EmbeddedPoint& p = r.embedded_points[k];
+      if (p.vertex < 0 || distance(r.quads.points[p.vertex], p.target) <= EmbedParams().on_line_m)
         continue;
       if (++num_off <= 5)
         off += (num_off > 1 ? ", " : "") + std::to_string(front.embed_point_number[k]);
     }
     if (num_off > 5) off += "...";
-    std::snprintf(
-        buf, sizeof buf, "points:       %zu of the %zu points inside the domain on a vertex%s\n",
-        e.num_points_on, front.embed_points.size(),
-        num_off > 0
-            ? printf_string(" (the others' vertices up to %.3g m off: %s %s; "
-                            "the quads between would leave [30, 150] degrees)",
-                            e.max_point_off_m, num_off > 1 ? "points" : "point", off.c_str())
-                  .c_str()
-            : "");
-    os << buf;
+    os << printf_string("points:       %zu of the %zu points in or next to the domain on a vertex",
+                        e.num_points_on, front.embed_points.size());
+    if (e.num_points_coast > 0)
+      os << printf_string(", %zu at the coast's point nearest them (up to %.3g m away)",
+                          e.num_points_coast, e.max_coast_distance_m);
+    if (num_off > 0)
+      os << printf_string(
+          " (the others' vertices up to %.3g m off: %s %s; the quads between would leave [30, "
+          "150] degrees)",
+          e.max_point_off_m, num_off > 1 ? "points" : "point", off.c_str());
+    if (e.num_points_outside > 0)
+      os << printf_string("; %zu outside the domain, not next to the coast, get none",
+                          e.num_points_outside);
+    os << "\n";
   }
   if (r.embed.requested && r.embed.line_length_m == 0) {
     os << "embedded:     no line lies farther than half a quad from the boundary (where the "
@@ -355,9 +359,13 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
           .value("embed_covered_length_m", r.embed.covered_length_m)
           .value("embed_max_chord_off_m", r.embed.max_chord_off_m);
     if (!r.fields.front.summary.embed_points_path.empty())
-      j.value("embed_points_inside", r.fields.front.embed_points.size())
+      j.value("embed_points_read", r.fields.front.summary.embed_points_read)
+          .value("embed_points_inside", r.fields.front.summary.embed_points_inside)
+          .value("embed_points_with_vertex", r.embed.num_points)
           .value("embed_points_on_vertex", r.embed.num_points_on)
-          .value("embed_points_max_off_m", r.embed.max_point_off_m);
+          .value("embed_points_max_off_m", r.embed.max_point_off_m)
+          .value("embed_points_on_coast", r.embed.num_points_coast)
+          .value("embed_points_coast_max_m", r.embed.max_coast_distance_m);
     j.end_object();
     if (boundary) {
       std::size_t open = 0, land = 0;

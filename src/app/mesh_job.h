@@ -50,8 +50,8 @@ struct MeshResult {
   SmoothStats smooth;
   EmbedStats embed;                        // with MeshOptions::embed_lines
   std::vector<EmbeddedPath> embedded;      // the paths of edges on the lines
-  // --embed-points: the vertex of each of the front end's embed_points (-1: none).
-  std::vector<int> embedded_points;
+  // --embed-points: the vertex of each of the front end's embed_points, and its target.
+  std::vector<EmbeddedPoint> embedded_points;
   int attempts = 0;                        // tiling attempts made (see MeshOptions)
   std::vector<int> tiling_variants;        // the tiling variant of each attempt (build_mesh)
   std::vector<std::string> retry_reasons;  // why each earlier attempt was discarded

@@ -64,6 +64,8 @@ bool crosses_odd(const std::vector<Point2>& ring, const Point2& p);
 // Whether p lies inside the domain (even-odd over every ring: in a polygon, not in its
 // holes); a point on the boundary may go either way.
 bool domain_contains(const Domain& domain, const Point2& p);
+// The distance from p to the domain's boundary (its nearest ring; infinity without one).
+double distance_to_boundary(const Domain& domain, const Point2& p);
 std::size_t num_vertices(const Polygon& polygon);
 std::size_t num_vertices(const Domain& domain);
 std::size_t num_holes(const Domain& domain);

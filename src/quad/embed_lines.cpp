@@ -145,6 +145,77 @@ bool ray_meets_boundary(const BackgroundMesh& bg, const Point2& from, const Poin
   return found;
 }
 
+// The nearest point of the domain's boundary to p: its chain, the point and its arc
+// length along the chain; returns its distance (infinity without chains).
+double nearest_on_boundary(const BackgroundMesh& bg, const Point2& p, int& chain, Point2& at,
+                           double& arc) {
+  double best = kInf;
+  for (std::size_t c = 0; c < bg.chains.size(); ++c) {
+    const BoundaryChain& ch = bg.chains[c];
+    const std::size_t n = ch.vertices.size();
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point2 &a = bg.points[ch.vertices[i]], &b = bg.points[ch.vertices[(i + 1) % n]];
+      const Point2 q = nearest_on_segment(p, a, b);
+      const double d = distance(p, q);
+      if (d >= best) continue;
+      best = d;
+      chain = static_cast<int>(c);
+      at = q;
+      arc = ch.arc_length_m[i] + distance(a, q);
+    }
+  }
+  return best;
+}
+
+// The boundary vertex of `chain` that a point of the coast (x, at `arc` along it) takes:
+// one already there (a corner too), else the nearest along the chain, not a corner,
+// that can slide there between its boundary neighbours; not one `held`. -1: none.
+int coast_vertex(const BackgroundMesh& bg, const QuadMesh& m, const QuadTopology& t,
+                 const std::vector<char>& held, int chain, const Point2& x, double arc,
+                 double on_m) {
+  const double length = bg.chains[chain].length_m;
+  int best = -1;
+  double best_d = kInf;
+  for (int v = 0; v < static_cast<int>(m.points.size()); ++v) {
+    if (m.chain[v] != chain || held[v] || t.neighbours[v].empty()) continue;
+    if (distance(m.points[v], x) <= on_m) return v;
+    const auto& bn = t.boundary_neighbours[v];
+    if (m.fixed[v] || bn[0] < 0 || bn[1] < 0 || m.chain[bn[0]] != chain ||
+        m.chain[bn[1]] != chain ||
+        arc_delta(arc, m.arc_m[bn[0]], length) * arc_delta(arc, m.arc_m[bn[1]], length) >= 0)
+      continue;
+    const double d = std::abs(arc_delta(m.arc_m[v], arc, length));
+    if (d < best_d) best_d = d, best = v;
+  }
+  return best;
+}
+
+// The `count` interior vertices nearest p that are not `held`, nearest first, with their
+// distances.
+std::vector<std::pair<double, int>> nearest_free(const QuadMesh& m, const QuadTopology& t,
+                                                 const std::vector<char>& held, const Point2& p,
+                                                 std::size_t count) {
+  std::vector<std::pair<double, int>> best;
+  for (int v = 0; v < static_cast<int>(m.points.size()); ++v) {
+    if (t.neighbours[v].empty() || m.chain[v] >= 0 || m.fixed[v] || held[v]) continue;
+    const std::pair<double, int> c{distance(m.points[v], p), v};
+    if (best.size() == count && !(c < best.back())) continue;
+    best.insert(std::upper_bound(best.begin(), best.end(), c), c);
+    if (best.size() > count) best.pop_back();
+  }
+  return best;
+}
+
+// The mean length of boundary vertex v's boundary edges (its longest edge without two).
+double boundary_edge_length(const QuadMesh& m, const QuadTopology& t, int v) {
+  const auto& bn = t.boundary_neighbours[v];
+  if (bn[0] >= 0 && bn[1] >= 0)
+    return 0.5 * (distance(m.points[v], m.points[bn[0]]) + distance(m.points[v], m.points[bn[1]]));
+  double longest = 0;
+  for (int w : t.neighbours[v]) longest = std::max(longest, distance(m.points[v], m.points[w]));
+  return longest;
+}
+
 // Whether u, v, w are consecutive corners of one quad.
 bool same_quad_corner(const QuadMesh& m, const QuadTopology& t, int u, int v, int w) {
   for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) {
@@ -245,7 +316,7 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
                        const std::vector<std::vector<Point2>>& lines, const EmbedParams& embed,
                        const SmoothParams& params, const CrossField* cross, const SizingField* size,
                        std::vector<EmbeddedPath>* paths, const std::vector<Point2>& points,
-                       std::vector<int>* point_vertices) {
+                       std::vector<EmbeddedPoint>* point_vertices) {
   EmbedStats stats;
   stats.requested = !lines.empty();
   if (paths) paths->clear();
@@ -380,23 +451,66 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     found_run.push_back(r);
   }
 
-  // The points, each to the nearest interior vertex not held yet.
-  std::vector<int> on_point;
-  for (const Point2& p : points) {
-    int best = -1;
-    double best_d = kInf;
-    for (int v = 0; v < nv; ++v) {
-      if (t.neighbours[v].empty() || m.chain[v] >= 0 || m.fixed[v] || held[v]) continue;
-      const double d = distance(m.points[v], p);
-      if (d < best_d) best_d = d, best = v;
+  // The points: near the coast, to the coast's point nearest them by a boundary vertex;
+  // else inside the domain, to themselves by the nearest interior vertex not held yet.
+  std::vector<EmbeddedPoint> on_point(points.size());
+  std::vector<std::vector<Point2>> rings;  // the domain's rings, for points outside it
+  if (!points.empty())
+    for (const BoundaryChain& ch : bg.chains) {
+      rings.emplace_back();
+      for (int v : ch.vertices) rings.back().push_back(bg.points[v]);
     }
-    on_point.push_back(best);
-    if (best < 0) continue;
-    target[best] = p;
-    held[best] = 1;
-    order.push_back(best);
-    ++stats.num_points;
+  constexpr std::size_t kCandidates = 4;
+  std::vector<std::tuple<double, std::size_t, int>> pairs;  // (distance, point, vertex)
+  std::vector<char> wants(points.size(), 0);                // inside, not at the coast
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Point2& p = points[k];
+    EmbeddedPoint& e = on_point[k];
+    int chain = -1;
+    Point2 x;
+    double arc = 0;
+    const double off = nearest_on_boundary(bg, p, chain, x, arc);
+    bool inside = false;
+    for (const auto& ring : rings) inside ^= crosses_odd(ring, p);
+    const int b = chain >= 0 ? coast_vertex(bg, m, t, held, chain, x, arc, embed.on_line_m) : -1;
+    const double share = inside ? embed.point_coast_share : embed.point_land_share;
+    if (b >= 0 && off <= share * boundary_edge_length(m, t, b)) {
+      e = {b, true, x};
+      if (distance(m.points[b], x) > embed.on_line_m) {
+        target[b] = x;
+        target_arc[b] = arc;
+        order.push_back(b);
+      }
+      held[b] = 1;
+      ++stats.num_points;
+      continue;
+    }
+    if (!inside) {
+      ++stats.num_points_outside;
+      continue;
+    }
+    e.target = p;
+    wants[k] = 1;
+    for (const auto& [d, v] : nearest_free(m, t, held, p, kCandidates)) pairs.emplace_back(d, k, v);
   }
+  // The points inside, each to one of its nearest free interior vertices, nearest pairs
+  // first: taken point by point, two points in one quad could send the second to a far
+  // vertex while a nearer one stayed free.
+  std::sort(pairs.begin(), pairs.end());
+  auto take = [&](std::size_t k, int v) {
+    on_point[k].vertex = v;
+    target[v] = points[k];
+    held[v] = 1;
+    order.push_back(v);
+    ++stats.num_points;
+  };
+  for (const auto& [d, k, v] : pairs)
+    if (on_point[k].vertex < 0 && !held[v]) take(k, v);
+  for (std::size_t k = 0; k < points.size(); ++k)  // all its candidates taken by others
+    if (wants[k] && on_point[k].vertex < 0) {
+      const auto next = nearest_free(m, t, held, points[k], 1);
+      if (!next.empty()) take(k, next[0].second);
+    }
 
   // Onto the lines, a round at a time; the vertices next to the paths make room. No move
   // (theirs or the sweeps') makes a quad's corner leave [30, 150] degrees, or one already
@@ -408,11 +522,33 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     for (int w : t.neighbours[v])
       if (!held[w]) room[w] = 1;
   // A point's vertex may have to move across most of a quad: two rings make room.
-  for (int v : on_point)
-    if (v >= 0)
-      for (int w : t.neighbours[v])
+  for (const EmbeddedPoint& e : on_point)
+    if (e.vertex >= 0)
+      for (int w : t.neighbours[e.vertex])
         for (int u : t.neighbours[w])
           if (!held[u]) room[u] = 1;
+  // The points' neighbours dragged along first, those two quads round by a quarter of
+  // the way, then those one quad round by half: the quads round the point shift
+  // instead of folding round its vertex.
+  for (const double share : {0.33, 0.67})
+    for (const EmbeddedPoint& e : on_point) {
+      if (e.vertex < 0 || e.coast) continue;
+      const Point2 from = m.points[e.vertex];
+      const Point2 d{share * (e.target.x - from.x), share * (e.target.y - from.y)};
+      std::vector<int> ring;
+      for (int w : t.neighbours[e.vertex])
+        if (share > 0.5)
+          ring.push_back(w);
+        else
+          for (int u : t.neighbours[w])
+            if (u != e.vertex) ring.push_back(u);
+      std::sort(ring.begin(), ring.end());
+      ring.erase(std::unique(ring.begin(), ring.end()), ring.end());
+      for (int w : ring)
+        if (!held[w] && m.chain[w] < 0 && !m.fixed[w])
+          try_move(m, t, w, {m.points[w].x + d.x, m.points[w].y + d.y}, m.arc_m[w],
+                   sweep.min_convexity);
+    }
   std::vector<char> done(nv, 0);
   for (int round = 0; round < embed.rounds; ++round) {
     bool all = true;
@@ -476,10 +612,15 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     for (std::size_t k = 0; k < found.size(); ++k)
       paths->push_back({runs[found_run[k]].line, std::move(found[k])});
   for (std::size_t k = 0; k < points.size(); ++k) {
-    if (on_point[k] < 0) continue;
-    const double d = distance(m.points[on_point[k]], points[k]);
+    const EmbeddedPoint& e = on_point[k];
+    if (e.vertex < 0) continue;
+    const double d = distance(m.points[e.vertex], e.target);
     if (d <= embed.on_line_m) ++stats.num_points_on;
     stats.max_point_off_m = std::max(stats.max_point_off_m, d);
+    if (!e.coast) continue;
+    ++stats.num_points_coast;
+    stats.max_coast_distance_m =
+        std::max(stats.max_coast_distance_m, distance(points[k], e.target));
   }
   if (point_vertices) *point_vertices = on_point;
   return stats;

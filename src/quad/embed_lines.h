@@ -51,6 +51,23 @@ struct EmbedParams {
   // chord: the 5 km sine at 2 km quads departs by up to 4%; a line zigzagging within a
   // quad, by more than the edge's length).
   double max_chord_share = 0.1;
+  // --embed-points: a point inside the domain within this share of the boundary's edges
+  // (those of the boundary vertex nearest where it would go) from its boundary gets a
+  // boundary vertex, slid along the coast to the boundary's point nearest it: a tide
+  // gauge on the shore. An interior vertex there would leave a quad thinner than
+  // SCHISM's aspect ratio of 5 between it and the coast.
+  double point_coast_share = 0.2;
+  // The same for a point outside the domain within this share of the boundary's edges
+  // from it (a station a little inland of a coast drawn coarser than the real one);
+  // farther, it gets no vertex.
+  double point_land_share = 1.0;
+};
+
+// A point of --embed-points and its vertex.
+struct EmbeddedPoint {
+  int vertex = -1;     // -1: none (outside the domain and not near it, or no vertex left)
+  bool coast = false;  // a boundary vertex, for a point near the coast
+  Point2 target;       // where the vertex goes: the point, or the coast's point nearest it
 };
 
 struct EmbedStats {
@@ -71,11 +88,16 @@ struct EmbedStats {
   double max_chord_off_m = 0.0;
   // Runs too short for a path (both ends nearest one vertex) or with no path near them.
   std::size_t num_skipped = 0;
-  // --embed-points: the points given a vertex, those it reached (within on_line_m), and
-  // the farthest one stayed from its point.
+  // --embed-points: the points given a vertex, those it reached (within on_line_m of
+  // its target), and the farthest one stayed from its target; of them, those given a
+  // boundary vertex (EmbedParams::point_coast_share) and the farthest such point from
+  // its target on the coast; and the points outside the domain not near it (no vertex).
   std::size_t num_points = 0;
   std::size_t num_points_on = 0;
   double max_point_off_m = 0.0;
+  std::size_t num_points_coast = 0;
+  double max_coast_distance_m = 0.0;
+  std::size_t num_points_outside = 0;
 };
 
 // A path of edges on a line: its vertex ids, and the index of its line in `lines`.
@@ -87,15 +109,17 @@ struct EmbeddedPath {
 // Moves, for each line's runs inside the mesh, a path of edges onto the line; every quad
 // stays convex (EmbedParams::min_turn_sine), and a boundary vertex moves only where a
 // path ends next to the coast that its line meets: along the coast, to that point,
-// between its boundary neighbours. `paths` gets each run's path. Each of `points` (inside
-// the domain) takes the nearest interior vertex that no path holds, moved onto it the
-// same way, as Gmsh's embedded points (a station, a river's source); `point_vertices`
-// gets their ids (-1: none left).
+// between its boundary neighbours. `paths` gets each run's path. Each of `points` takes
+// the nearest interior vertex that no path holds, moved onto it the same way, as Gmsh's
+// embedded points (a station, a river's source), or, near the coast
+// (EmbedParams::point_coast_share), the boundary vertex nearest the coast's point
+// nearest it, slid there; a point outside the domain and not near it gets none.
+// `point_vertices` gets what each point got.
 EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
                        const std::vector<std::vector<Point2>>& lines, const EmbedParams& embed,
                        const SmoothParams& params, const CrossField* cross, const SizingField* size,
                        std::vector<EmbeddedPath>* paths = nullptr,
                        const std::vector<Point2>& points = {},
-                       std::vector<int>* point_vertices = nullptr);
+                       std::vector<EmbeddedPoint>* point_vertices = nullptr);
 
 }  // namespace isoquad

@@ -1952,7 +1952,9 @@ TEST(CliOutputs, AnExpressionInTheDistanceToTheCoast) {
 }
 
 // --embed-points: a station in the water gets a vertex exactly there (hgrid.ll's node at
-// its longitude and latitude), one on the land a warning; none inside stops the run.
+// its longitude and latitude), one on the land a warning; none inside stops the run. A
+// station 150 m inland of the coast (the land's west side, lon 4.45 W) and one 100 m
+// offshore, in quads of 800 m, get a node on the coast beside them.
 TEST(CliOutputs, EmbeddedPointsGetVertices) {
   TempDir dir;
   write_file(
@@ -1960,22 +1962,29 @@ TEST(CliOutputs, EmbeddedPointsGetVertices) {
       R"({"type":"FeatureCollection","features":[)"
       R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.5123,48.3217]}},)"
       R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.4071,48.2345]}},)"
-      R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.38,48.27]}}]})");
+      R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.38,48.27]}},)"
+      R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.44798,48.275]}},)"
+      R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.45135,48.26]}}]})");
   CliResult r =
       mesh_box_800(dir, {"--embed-points", dir.file("stations.geojson"), "-o", dir.file("s.gr3"),
                          "-o", dir.file("s.gpkg"), "--report", dir.file("s.json")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.err.find("points:       2 of the 2 points inside the domain on a vertex"),
+  EXPECT_NE(r.err.find("points:       4 of the 4 points in or next to the domain on a vertex, 2 at "
+                       "the coast's point nearest them (up to 1"),
             std::string::npos)
       << r.err;
-  EXPECT_NE(r.err.find("warning: --embed-points: 1 of the 3 points of"), std::string::npos)
+  EXPECT_NE(r.err.find("warning: --embed-points: 1 of the 5 points of"), std::string::npos)
       << r.err;
-  EXPECT_NE(read_file(dir.file("s.json")).find("\"embed_points_on_vertex\": 2"), std::string::npos);
+  const std::string report = read_file(dir.file("s.json"));
+  EXPECT_NE(report.find("\"embed_points_on_vertex\": 4"), std::string::npos);
+  EXPECT_NE(report.find("\"embed_points_on_coast\": 2"), std::string::npos);
   const Gr3 g = parse_gr3(dir.file("s.ll"));
-  for (const auto& [lon, lat] : {std::pair{-4.5123, 48.3217}, {-4.4071, 48.2345}}) {
+  for (const auto& [lon, lat] :
+       {std::pair{-4.5123, 48.3217}, {-4.4071, 48.2345}, {-4.45, 48.275}, {-4.45, 48.26}}) {
     double nearest = 1e300;
     for (const auto& n : g.nodes) nearest = std::min(nearest, std::hypot(n[0] - lon, n[1] - lat));
-    EXPECT_LT(nearest, 1e-6) << lon << " " << lat;  // the .ll's 7 decimals
+    // The .ll's 7 decimals; on the coast, where the projected side is nearest (2 m).
+    EXPECT_LT(nearest, lon == -4.45 ? 2e-5 : 1e-6) << lon << " " << lat;
   }
   // The GeoPackage's vertices name their points by number in the file.
   std::multiset<long long> numbers;
@@ -1984,7 +1993,7 @@ TEST(CliOutputs, EmbeddedPointsGetVertices) {
   for (auto& f : *ds->GetLayerByName("vertices"))
     if (f->GetFieldAsInteger64("point") != 0) numbers.insert(f->GetFieldAsInteger64("point"));
   GDALClose(ds);
-  EXPECT_EQ(numbers, (std::multiset<long long>{1, 2}));
+  EXPECT_EQ(numbers, (std::multiset<long long>{1, 2, 4, 5}));
   write_file(dir.file("onland.geojson"),
              R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
              R"("geometry":{"type":"Point","coordinates":[-4.38,48.27]}}]})");

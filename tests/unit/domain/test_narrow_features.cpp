@@ -28,24 +28,6 @@ Domain one_polygon(Ring outer, std::vector<Ring> holes = {}) {
   return d;
 }
 
-// Distance from p to the nearest boundary segment of the domain.
-double distance_to_boundary(const Domain& d, const Point2& p) {
-  double best = 1e300;
-  auto ring = [&](const Ring& r) {
-    for (std::size_t i = 0; i < r.size(); ++i) {
-      const Point2 &a = r[i], &b = r[(i + 1) % r.size()];
-      const double dx = b.x - a.x, dy = b.y - a.y, l2 = dx * dx + dy * dy;
-      const double t = std::clamp(((p.x - a.x) * dx + (p.y - a.y) * dy) / l2, 0.0, 1.0);
-      best = std::min(best, std::hypot(a.x + t * dx - p.x, a.y + t * dy - p.y));
-    }
-  };
-  for (const Polygon& poly : d.polygons) {
-    ring(poly.outer);
-    for (const Ring& h : poly.holes) ring(h);
-  }
-  return best;
-}
-
 }  // namespace
 
 TEST(NarrowFeatures, ASquareIsLeftExactlyAsItWas) {

@@ -1054,40 +1054,70 @@ TEST(EmbedLines, ALineOutsideTheDomainMovesNothing) {
   EXPECT_EQ(m.points, before.points);
 }
 
-// --embed-points: each point takes the nearest interior vertex not taken (a point next
-// to the boundary an interior one), moved onto it; every quad stays convex and the mesh
-// keeps its vertices and quads. Of two points 6 m apart in quads of 100 m the second
-// gets another vertex, which stops where the quads between would leave [30, 150]
-// degrees.
-TEST(EmbedLines, PointsTakeTheirNearestInteriorVertices) {
+// --embed-points: each point takes one of its nearest interior vertices not taken
+// (nearest pairs first), moved onto it; every quad stays convex with its corners in [30,
+// 150] degrees, and the mesh keeps its vertices and quads. A point within a fifth of a
+// boundary edge of the boundary, or outside within one, takes a boundary vertex slid to
+// the boundary's point nearest it (a corner that lies there already); one outside and
+// farther gets none. Of three points within 8 m of each other in quads of 100 m, each
+// gets its own vertex; the last stops where the quads between would fold.
+TEST(EmbedLines, PointsTakeTheirNearestVerticesOrTheCoast) {
   const BackgroundMesh bg = square_background();
   QuadMesh m = grid();
   const QuadMesh before = m;
-  const std::vector<Point2> points = {{333, 471}, {612, 655}, {615, 660}, {150, 850}, {20, 520}};
-  std::vector<int> vertices;
+  const std::vector<Point2> points = {{333, 471},  {150, 850}, {20, 520},  {-30, 330}, {-10, -10},
+                                      {-200, 300}, {612, 655}, {615, 660}, {609, 662}};
+  const std::vector<Point2> coast = {{0, 520}, {0, 330}, {0, 0}};  // of points 2, 3, 4
+  std::vector<EmbeddedPoint> vertices;
   const SmoothParams params;
+  const EmbedParams embed;
   const EmbedStats st =
-      embed_lines(bg, m, {}, EmbedParams(), params, nullptr, nullptr, nullptr, points, &vertices);
+      embed_lines(bg, m, {}, embed, params, nullptr, nullptr, nullptr, points, &vertices);
   EXPECT_FALSE(st.requested);  // no line
-  EXPECT_EQ(st.num_points, points.size());
-  EXPECT_EQ(st.num_points_on, points.size() - 1);
+  EXPECT_EQ(st.num_points, points.size() - 1);
+  EXPECT_EQ(st.num_points_on, points.size() - 2);
+  EXPECT_EQ(st.num_points_coast, 3u);
+  EXPECT_DOUBLE_EQ(st.max_coast_distance_m, 30.0);
+  EXPECT_EQ(st.num_points_outside, 1u);
   ASSERT_EQ(vertices.size(), points.size());
   for (std::size_t k = 0; k < points.size(); ++k) {
-    ASSERT_GE(vertices[k], 0);
-    EXPECT_LT(m.chain[vertices[k]], 0) << k;
-    if (k != 2) {
-      EXPECT_EQ(m.points[vertices[k]], points[k]) << k;
+    const EmbeddedPoint& e = vertices[k];
+    if (k == 5) {
+      EXPECT_EQ(e.vertex, -1);
+      continue;
     }
-    for (std::size_t j = 0; j < k; ++j) EXPECT_NE(vertices[j], vertices[k]);
+    ASSERT_GE(e.vertex, 0) << k;
+    EXPECT_EQ(e.coast, k >= 2 && k <= 4) << k;
+    EXPECT_EQ(m.chain[e.vertex] >= 0 || m.fixed[e.vertex], e.coast) << k;
+    EXPECT_EQ(e.target, e.coast ? coast[k - 2] : points[k]) << k;
+    if (k < 6) {
+      EXPECT_EQ(m.points[e.vertex], e.target) << k;
+    }
+    for (std::size_t j = 0; j < k; ++j) EXPECT_NE(vertices[j].vertex, e.vertex);
   }
-  const double off = distance(m.points[vertices[2]], points[2]);
+  EXPECT_TRUE(m.fixed[vertices[4].vertex]);  // the corner, not moved
+  // The three close points: two on their vertices, the third short of it.
+  double off = 0;
+  int num_on = 0;
+  for (std::size_t k = 6; k < 9; ++k) {
+    const double d = distance(m.points[vertices[k].vertex], points[k]);
+    num_on += d <= embed.on_line_m;
+    off = std::max(off, d);
+  }
+  EXPECT_EQ(num_on, 2);
   EXPECT_GT(off, 1.0);
   EXPECT_LT(off, 0.5 * kSide / kN);
   EXPECT_DOUBLE_EQ(st.max_point_off_m, off);
   EXPECT_EQ(m.quads, before.quads);
   EXPECT_EQ(m.points.size(), before.points.size());
   for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
-    EXPECT_GT(quad_convexity(m, q), params.min_convexity) << q;
+    EXPECT_GE(quad_convexity(m, q), embed.min_turn_sine - 1e-12) << q;
+  // The boundary vertices stay on the square's boundary, between their neighbours.
+  for (int v = 0; v < static_cast<int>(m.points.size()); ++v)
+    if (m.chain[v] >= 0) {
+      EXPECT_LT(distance_to_square_boundary(m.points[v]), 1e-6) << v;
+      EXPECT_EQ(m.points[v], chain_point(bg, bg.chains[m.chain[v]], m.arc_m[v])) << v;
+    }
 }
 
 // D-Flow FM's links over quads and triangles: a unit square with a right triangle on its
