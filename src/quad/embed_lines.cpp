@@ -4,12 +4,14 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <tuple>
 #include <utility>
 
 #include "fields/align_lines.h"
 #include "mesh/locate.h"
+#include "mesh/nearest_points.h"
 #include "quad/quad_sweeps.h"
 #include "quad/quad_topology.h"
 
@@ -145,66 +147,110 @@ bool ray_meets_boundary(const BackgroundMesh& bg, const Point2& from, const Poin
   return found;
 }
 
-// The nearest point of the domain's boundary to p: its chain, the point and its arc
-// length along the chain; returns its distance (infinity without chains).
-double nearest_on_boundary(const BackgroundMesh& bg, const Point2& p, int& chain, Point2& at,
-                           double& arc) {
-  double best = kInf;
-  for (std::size_t c = 0; c < bg.chains.size(); ++c) {
-    const BoundaryChain& ch = bg.chains[c];
-    const std::size_t n = ch.vertices.size();
-    for (std::size_t i = 0; i < n; ++i) {
-      const Point2 &a = bg.points[ch.vertices[i]], &b = bg.points[ch.vertices[(i + 1) % n]];
-      const Point2 q = nearest_on_segment(p, a, b);
-      const double d = distance(p, q);
-      if (d >= best) continue;
-      best = d;
-      chain = static_cast<int>(c);
-      at = q;
-      arc = ch.arc_length_m[i] + distance(a, q);
+// The look-ups of --embed-points, indexed: the domain's boundary (its chains), its
+// triangles (whether a point is inside), and the mesh's interior and boundary vertices.
+class PointLookup {
+ public:
+  PointLookup(const BackgroundMesh& bg, const QuadMesh& m, const QuadTopology& t)
+      : bg_(bg), m_(m), t_(t), locator_(bg), interior_(vertices(false)), coast_(vertices(true)) {
+    std::vector<std::vector<Point2>> chains;
+    for (const BoundaryChain& ch : bg.chains) {
+      chains.emplace_back();
+      for (int v : ch.vertices) chains.back().push_back(bg.points[v]);
+      if (!ch.vertices.empty()) chains.back().push_back(bg.points[ch.vertices.front()]);
+    }
+    boundary_ = PolylineIndex(std::move(chains));
+  }
+
+  bool inside(const Point2& p) const { return locator_.locate(p).inside; }
+
+  // The nearest point of the domain's boundary to p within `reach`: its chain, the point
+  // and its arc length along the chain; returns its distance (infinity: none).
+  double nearest_on_boundary(const Point2& p, double reach, int& chain, Point2& at,
+                             double& arc) const {
+    const PolylineIndex::Nearest n = boundary_.nearest(p, reach);
+    if (n.line < 0) return kInf;
+    const BoundaryChain& ch = bg_.chains[n.line];
+    const Point2& a = bg_.points[ch.vertices[n.segment]];
+    const Point2& b = bg_.points[ch.vertices[(n.segment + 1) % ch.vertices.size()]];
+    chain = n.line;
+    at = nearest_on_segment(p, a, b);
+    arc = ch.arc_length_m[n.segment] + distance(a, at);
+    return distance(p, at);
+  }
+
+  // The boundary vertex of `chain` that a point of the coast (x, at `arc` along it)
+  // takes: one already there (a corner too), else the nearest along the chain, not a
+  // corner, that can slide there between its boundary neighbours (the ends of the
+  // mesh's boundary edge round x); not one `held`. -1: none. Looked for among the
+  // boundary vertices nearest x.
+  int coast_vertex(const std::vector<char>& held, int chain, const Point2& x, double arc,
+                   double on_m) const {
+    int best = -1;
+    double best_d = kInf;
+    for (const auto& [d, i] : coast_.nearest(x, 16)) {
+      const int v = coast_ids_[i];
+      if (m_.chain[v] != chain || held[v]) continue;
+      if (d <= on_m) return v;
+      const double along = slide(v, chain, arc);
+      if (along < best_d) best_d = along, best = v;
+    }
+    return best;
+  }
+
+  // The `count` interior vertices nearest p that are not `held`, nearest first, with
+  // their distances.
+  std::vector<std::pair<double, int>> nearest_free(const std::vector<char>& held, const Point2& p,
+                                                   std::size_t count) const {
+    for (std::size_t ask = 2 * count;; ask *= 4) {
+      std::vector<std::pair<double, int>> free;
+      const auto near = interior_.nearest(p, ask);
+      for (const auto& [d, i] : near)
+        if (!held[interior_ids_[i]] && free.size() < count) free.push_back({d, interior_ids_[i]});
+      if (free.size() == count || near.size() < ask) return free;
     }
   }
-  return best;
-}
 
-// The boundary vertex of `chain` that a point of the coast (x, at `arc` along it) takes:
-// one already there (a corner too), else the nearest along the chain, not a corner,
-// that can slide there between its boundary neighbours; not one `held`. -1: none.
-int coast_vertex(const BackgroundMesh& bg, const QuadMesh& m, const QuadTopology& t,
-                 const std::vector<char>& held, int chain, const Point2& x, double arc,
-                 double on_m) {
-  const double length = bg.chains[chain].length_m;
-  int best = -1;
-  double best_d = kInf;
-  for (int v = 0; v < static_cast<int>(m.points.size()); ++v) {
-    if (m.chain[v] != chain || held[v] || t.neighbours[v].empty()) continue;
-    if (distance(m.points[v], x) <= on_m) return v;
-    const auto& bn = t.boundary_neighbours[v];
-    if (m.fixed[v] || bn[0] < 0 || bn[1] < 0 || m.chain[bn[0]] != chain ||
-        m.chain[bn[1]] != chain ||
-        arc_delta(arc, m.arc_m[bn[0]], length) * arc_delta(arc, m.arc_m[bn[1]], length) >= 0)
-      continue;
-    const double d = std::abs(arc_delta(m.arc_m[v], arc, length));
-    if (d < best_d) best_d = d, best = v;
+ private:
+  // The interior (not `boundary`) or boundary vertices in use, for the kd-trees (their
+  // ids kept in interior_ids_ or coast_ids_).
+  std::vector<Point2> vertices(bool boundary) {
+    std::vector<int>& ids = boundary ? coast_ids_ : interior_ids_;
+    std::vector<Point2> at;
+    for (int v = 0; v < static_cast<int>(m_.points.size()); ++v) {
+      if (t_.neighbours[v].empty()) continue;
+      const bool on = m_.chain[v] >= 0 || m_.fixed[v];
+      if (on != boundary) continue;
+      ids.push_back(v);
+      at.push_back(m_.points[v]);
+    }
+    return at;
   }
-  return best;
-}
 
-// The `count` interior vertices nearest p that are not `held`, nearest first, with their
-// distances.
-std::vector<std::pair<double, int>> nearest_free(const QuadMesh& m, const QuadTopology& t,
-                                                 const std::vector<char>& held, const Point2& p,
-                                                 std::size_t count) {
-  std::vector<std::pair<double, int>> best;
-  for (int v = 0; v < static_cast<int>(m.points.size()); ++v) {
-    if (t.neighbours[v].empty() || m.chain[v] >= 0 || m.fixed[v] || held[v]) continue;
-    const std::pair<double, int> c{distance(m.points[v], p), v};
-    if (best.size() == count && !(c < best.back())) continue;
-    best.insert(std::upper_bound(best.begin(), best.end(), c), c);
-    if (best.size() > count) best.pop_back();
+  // How far boundary vertex v slides along `chain` to `arc`; infinity where it cannot:
+  // a corner, or `arc` not strictly between its boundary neighbours, on v's side of
+  // them (not round the far side of the chain).
+  double slide(int v, int chain, double arc) const {
+    const double length = bg_.chains[chain].length_m;
+    const auto& bn = t_.boundary_neighbours[v];
+    if (m_.fixed[v] || bn[0] < 0 || bn[1] < 0 || m_.chain[bn[0]] != chain ||
+        m_.chain[bn[1]] != chain)
+      return kInf;
+    const double a = arc_delta(m_.arc_m[v], m_.arc_m[bn[0]], length);
+    const double b = arc_delta(m_.arc_m[v], m_.arc_m[bn[1]], length);
+    const double x = arc_delta(m_.arc_m[v], arc, length);
+    if (a * b >= 0 || !(x > std::min(a, b) && x < std::max(a, b))) return kInf;
+    return std::abs(x);
   }
-  return best;
-}
+
+  const BackgroundMesh& bg_;
+  const QuadMesh& m_;
+  const QuadTopology& t_;
+  TriangleLocator locator_;
+  PolylineIndex boundary_;
+  std::vector<int> interior_ids_, coast_ids_;
+  NearestPoints interior_, coast_;
+};
 
 // The mean length of boundary vertex v's boundary edges (its longest edge without two).
 double boundary_edge_length(const QuadMesh& m, const QuadTopology& t, int v) {
@@ -454,12 +500,14 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   // The points: near the coast, to the coast's point nearest them by a boundary vertex;
   // else inside the domain, to themselves by the nearest interior vertex not held yet.
   std::vector<EmbeddedPoint> on_point(points.size());
-  std::vector<std::vector<Point2>> rings;  // the domain's rings, for points outside it
-  if (!points.empty())
-    for (const BoundaryChain& ch : bg.chains) {
-      rings.emplace_back();
-      for (int v : ch.vertices) rings.back().push_back(bg.points[v]);
-    }
+  std::optional<PointLookup> lookup;
+  double coast_reach = 0;  // the farthest a point may lie from the coast to go there
+  if (!points.empty()) {
+    lookup.emplace(bg, m, t);
+    for (int v = 0; v < nv; ++v)
+      if (m.chain[v] >= 0) coast_reach = std::max(coast_reach, boundary_edge_length(m, t, v));
+    coast_reach *= std::max(embed.point_coast_share, embed.point_land_share);
+  }
   constexpr std::size_t kCandidates = 4;
   std::vector<std::tuple<double, std::size_t, int>> pairs;  // (distance, point, vertex)
   std::vector<char> wants(points.size(), 0);                // inside, not at the coast
@@ -469,10 +517,9 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     int chain = -1;
     Point2 x;
     double arc = 0;
-    const double off = nearest_on_boundary(bg, p, chain, x, arc);
-    bool inside = false;
-    for (const auto& ring : rings) inside ^= crosses_odd(ring, p);
-    const int b = chain >= 0 ? coast_vertex(bg, m, t, held, chain, x, arc, embed.on_line_m) : -1;
+    const double off = lookup->nearest_on_boundary(p, coast_reach, chain, x, arc);
+    const bool inside = lookup->inside(p);
+    const int b = chain >= 0 ? lookup->coast_vertex(held, chain, x, arc, embed.on_line_m) : -1;
     const double share = inside ? embed.point_coast_share : embed.point_land_share;
     if (b >= 0 && off <= share * boundary_edge_length(m, t, b)) {
       e = {b, true, x};
@@ -491,7 +538,8 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     }
     e.target = p;
     wants[k] = 1;
-    for (const auto& [d, v] : nearest_free(m, t, held, p, kCandidates)) pairs.emplace_back(d, k, v);
+    for (const auto& [d, v] : lookup->nearest_free(held, p, kCandidates))
+      pairs.emplace_back(d, k, v);
   }
   // The points inside, each to one of its nearest free interior vertices, nearest pairs
   // first: taken point by point, two points in one quad could send the second to a far
@@ -508,7 +556,7 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     if (on_point[k].vertex < 0 && !held[v]) take(k, v);
   for (std::size_t k = 0; k < points.size(); ++k)  // all its candidates taken by others
     if (wants[k] && on_point[k].vertex < 0) {
-      const auto next = nearest_free(m, t, held, points[k], 1);
+      const auto next = lookup->nearest_free(held, points[k], 1);
       if (!next.empty()) take(k, next[0].second);
     }
 

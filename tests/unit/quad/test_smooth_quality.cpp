@@ -1112,6 +1112,22 @@ TEST(EmbedLines, PointsTakeTheirNearestVerticesOrTheCoast) {
   EXPECT_EQ(m.points.size(), before.points.size());
   for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
     EXPECT_GE(quad_convexity(m, q), embed.min_turn_sine - 1e-12) << q;
+  // Points crowding one stretch of the coast: each on a vertex there (a boundary one,
+  // else, its boundary vertices taken, an interior one), never one round the far side
+  // of the square; every quad still convex.
+  QuadMesh crowded = grid();
+  const std::vector<Point2> shore = {{15, 530}, {10, 510}, {18, 480}, {12, 560}, {5, 545}};
+  std::vector<EmbeddedPoint> on_shore;
+  int num_coast = 0;
+  embed_lines(bg, crowded, {}, embed, params, nullptr, nullptr, nullptr, shore, &on_shore);
+  for (std::size_t k = 0; k < shore.size(); ++k)
+    if (on_shore[k].vertex >= 0) {
+      num_coast += on_shore[k].coast;
+      EXPECT_LT(distance(crowded.points[on_shore[k].vertex], shore[k]), kSide / kN) << k;
+    }
+  EXPECT_GE(num_coast, 2);
+  for (int q = 0; q < static_cast<int>(crowded.quads.size()); ++q)
+    EXPECT_GT(quad_convexity(crowded, q), 0.0) << q;
   // The boundary vertices stay on the square's boundary, between their neighbours.
   for (int v = 0; v < static_cast<int>(m.points.size()); ++v)
     if (m.chain[v] >= 0) {
