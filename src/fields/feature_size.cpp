@@ -270,17 +270,12 @@ std::size_t BoundaryFeatureSize::num_narrow_sites() const {
   return narrow_ ? narrow_->sites.size() : 0;
 }
 
-struct CoastDistance::Tree {
-  MedialTree tree;  // the coast's samples
-};
-
 CoastDistance::CoastDistance(const Domain& domain, const PolylineIndex& open,
-                             double open_tolerance_m, double spacing_m)
-    : tree_(std::make_unique<Tree>()) {
+                             double open_tolerance_m, double spacing_m) {
   if (!(spacing_m > 0))
     throw Error(ErrorClass::internal, "sizing", "the coast's samples need a positive spacing");
   auto on_open = [&](const Point2& p) { return !open.empty() && open.near(p, open_tolerance_m); };
-  std::vector<K::Point_2> samples;
+  std::vector<Point2> samples;
   for (const Polygon& polygon : domain.polygons) {
     std::vector<const Ring*> rings{&polygon.outer};
     for (const Ring& h : polygon.holes) rings.push_back(&h);
@@ -292,22 +287,18 @@ CoastDistance::CoastDistance(const Domain& domain, const PolylineIndex& open,
         const int n = std::max(1, static_cast<int>(std::ceil(distance(a, b) / spacing_m)));
         for (int k = 0; k <= n; ++k) {
           const double t = static_cast<double>(k) / n;
-          samples.emplace_back(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y));
+          samples.push_back({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
         }
       }
   }
-  num_samples_ = samples.size();
-  if (samples.empty()) return;
-  tree_->tree.insert(samples.begin(), samples.end());
-  tree_->tree.build();  // now, not at the first query
+  samples_ = std::make_unique<NearestPoints>(std::move(samples));
 }
 
 CoastDistance::~CoastDistance() = default;
 
 double CoastDistance::operator()(const Point2& x) const {
-  if (num_samples_ == 0) return std::numeric_limits<double>::infinity();
-  MedialSearch search(tree_->tree, K::Point_2(x.x, x.y), 1);
-  return std::sqrt(search.begin()->second);
+  const auto nearest = samples_->nearest(x, 1);
+  return nearest.empty() ? std::numeric_limits<double>::infinity() : nearest[0].first;
 }
 
 }  // namespace isoquad

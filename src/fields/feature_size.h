@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/geometry.h"
+#include "mesh/nearest_points.h"
 
 namespace isoquad {
 
@@ -75,12 +76,10 @@ class CoastDistance {
   CoastDistance& operator=(const CoastDistance&) = delete;
 
   double operator()(const Point2& x) const;
-  bool empty() const { return num_samples_ == 0; }
+  bool empty() const { return samples_->size() == 0; }
 
  private:
-  struct Tree;
-  std::unique_ptr<Tree> tree_;
-  std::size_t num_samples_ = 0;
+  std::unique_ptr<NearestPoints> samples_;  // the coast's samples
 };
 
 }  // namespace isoquad
