@@ -262,6 +262,11 @@ std::string format_mesh_summary(const MeshResult& r) {
           " (the others' vertices up to %.3g m off: %s %s; the quads between would leave [30, "
           "150] degrees)",
           e.max_point_off_m, num_off > 1 ? "points" : "point", off.c_str());
+    if (e.num_points_shared > 0)
+      os << printf_string(
+          ", %zu sharing the vertex of a point before them within a fifth of a quad (up to "
+          "%.3g m away)",
+          e.num_points_shared, e.max_shared_distance_m);
     if (e.num_points_outside > 0)
       os << printf_string("; %zu outside the domain, not next to the coast, get none",
                           e.num_points_outside);
@@ -365,7 +370,9 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
           .value("embed_points_on_vertex", r.embed.num_points_on)
           .value("embed_points_max_off_m", r.embed.max_point_off_m)
           .value("embed_points_on_coast", r.embed.num_points_coast)
-          .value("embed_points_coast_max_m", r.embed.max_coast_distance_m);
+          .value("embed_points_coast_max_m", r.embed.max_coast_distance_m)
+          .value("embed_points_shared", r.embed.num_points_shared)
+          .value("embed_points_shared_max_m", r.embed.max_shared_distance_m);
     j.end_object();
     if (boundary) {
       std::size_t open = 0, land = 0;

@@ -77,8 +77,9 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
     if (!front.summary.embed_points_path.empty()) {
       data.vertex_point.assign(r.quads.points.size(), 0);
       for (std::size_t k = 0; k < r.embedded_points.size(); ++k)
-        if (r.embedded_points[k].vertex >= 0)
-          data.vertex_point[r.embedded_points[k].vertex] = front.embed_point_number[k];
+        if (r.embedded_points[k].vertex >= 0 && data.vertex_point[r.embedded_points[k].vertex] == 0)
+          data.vertex_point[r.embedded_points[k].vertex] =
+              front.embed_point_number[k];  // the first
     }
     for (const EmbeddedPath& path : r.embedded) {
       data.embedded.push_back(path.vertices);

@@ -164,6 +164,18 @@ class PointLookup {
 
   bool inside(const Point2& p) const { return locator_.locate(p).inside; }
 
+  // The mean length of the edges at the vertex nearest p.
+  double local_edge(const Point2& p) const {
+    const auto in = interior_.nearest(p, 1), on = coast_.nearest(p, 1);
+    int v = -1;
+    if (!in.empty()) v = interior_ids_[in[0].second];
+    if (!on.empty() && (v < 0 || on[0].first < in[0].first)) v = coast_ids_[on[0].second];
+    if (v < 0 || t_.neighbours[v].empty()) return 0.0;
+    double sum = 0;
+    for (int w : t_.neighbours[v]) sum += distance(m_.points[v], m_.points[w]);
+    return sum / static_cast<double>(t_.neighbours[v].size());
+  }
+
   // The nearest point of the domain's boundary to p within `reach`: its chain, the point
   // and its arc length along the chain; returns its distance (infinity: none).
   double nearest_on_boundary(const Point2& p, double reach, int& chain, Point2& at,
@@ -511,9 +523,17 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   constexpr std::size_t kCandidates = 4;
   std::vector<std::tuple<double, std::size_t, int>> pairs;  // (distance, point, vertex)
   std::vector<char> wants(points.size(), 0);                // inside, not at the coast
+  std::optional<NearestPoints> given;  // the points, to find those that share a vertex
+  if (!points.empty()) given.emplace(points);
   for (std::size_t k = 0; k < points.size(); ++k) {
     const Point2& p = points[k];
     EmbeddedPoint& e = on_point[k];
+    const double near = embed.point_share_share * lookup->local_edge(p);
+    for (const auto& [d, j] : given->nearest(p, 8))
+      if (d <= near && static_cast<std::size_t>(j) < k && on_point[j].shares < 0 &&
+          (e.shares < 0 || j < e.shares))
+        e.shares = j;
+    if (e.shares >= 0) continue;
     int chain = -1;
     Point2 x;
     double arc = 0;
@@ -660,7 +680,22 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     for (std::size_t k = 0; k < found.size(); ++k)
       paths->push_back({runs[found_run[k]].line, std::move(found[k])});
   for (std::size_t k = 0; k < points.size(); ++k) {
-    const EmbeddedPoint& e = on_point[k];
+    EmbeddedPoint& e = on_point[k];
+    if (e.shares >= 0) {
+      const EmbeddedPoint& first = on_point[e.shares];
+      e.vertex = first.vertex;
+      e.coast = first.coast;
+      e.target = first.target;
+      if (e.vertex < 0) {  // (outside the domain, as the first)
+        ++stats.num_points_outside;
+        continue;
+      }
+      ++stats.num_points;
+      ++stats.num_points_shared;
+      stats.max_shared_distance_m =
+          std::max(stats.max_shared_distance_m, distance(points[k], e.target));
+      continue;
+    }
     if (e.vertex < 0) continue;
     const double d = distance(m.points[e.vertex], e.target);
     if (d <= embed.on_line_m) ++stats.num_points_on;

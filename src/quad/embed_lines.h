@@ -61,6 +61,10 @@ struct EmbedParams {
   // from it (a station a little inland of a coast drawn coarser than the real one);
   // farther, it gets no vertex.
   double point_land_share = 1.0;
+  // A point within this share of the quads' edges there of a point before it in the file
+  // shares that point's vertex (a station given twice, or two a quad cannot tell apart):
+  // two vertices that near would leave a quad thinner than SCHISM's aspect ratio of 5.
+  double point_share_share = 0.2;
 };
 
 // A point of --embed-points and its vertex.
@@ -68,6 +72,7 @@ struct EmbeddedPoint {
   int vertex = -1;     // -1: none (outside the domain and not near it, or no vertex left)
   bool coast = false;  // a boundary vertex, for a point near the coast
   Point2 target;       // where the vertex goes: the point, or the coast's point nearest it
+  int shares = -1;     // the earlier point whose vertex (and target) it shares, if any
 };
 
 struct EmbedStats {
@@ -98,6 +103,10 @@ struct EmbedStats {
   std::size_t num_points_coast = 0;
   double max_coast_distance_m = 0.0;
   std::size_t num_points_outside = 0;
+  // Points sharing an earlier point's vertex (EmbedParams::point_share_share), and the
+  // farthest such point from the target it shares.
+  std::size_t num_points_shared = 0;
+  double max_shared_distance_m = 0.0;
 };
 
 // A path of edges on a line: its vertex ids, and the index of its line in `lines`.

@@ -1964,16 +1964,21 @@ TEST(CliOutputs, EmbeddedPointsGetVertices) {
       R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.4071,48.2345]}},)"
       R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.38,48.27]}},)"
       R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.44798,48.275]}},)"
-      R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.45135,48.26]}}]})");
+      R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.45135,48.26]}},)"
+      R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[-4.5123,48.3217]}}]})");
   CliResult r =
       mesh_box_800(dir, {"--embed-points", dir.file("stations.geojson"), "-o", dir.file("s.gr3"),
                          "-o", dir.file("s.gpkg"), "--report", dir.file("s.json")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.err.find("points:       4 of the 4 points in or next to the domain on a vertex, 2 at "
+  EXPECT_NE(r.err.find("points:       4 of the 5 points in or next to the domain on a vertex, 2 at "
                        "the coast's point nearest them (up to 1"),
             std::string::npos)
       << r.err;
-  EXPECT_NE(r.err.find("warning: --embed-points: 1 of the 5 points of"), std::string::npos)
+  EXPECT_NE(r.err.find(", 1 sharing the vertex of a point before them within a fifth of a quad (up "
+                       "to 0 m away)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("warning: --embed-points: 1 of the 6 points of"), std::string::npos)
       << r.err;
   const std::string report = read_file(dir.file("s.json"));
   EXPECT_NE(report.find("\"embed_points_on_vertex\": 4"), std::string::npos);

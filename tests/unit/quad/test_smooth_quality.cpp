@@ -1059,14 +1059,15 @@ TEST(EmbedLines, ALineOutsideTheDomainMovesNothing) {
 // 150] degrees, and the mesh keeps its vertices and quads. A point within a fifth of a
 // boundary edge of the boundary, or outside within one, takes a boundary vertex slid to
 // the boundary's point nearest it (a corner that lies there already); one outside and
-// farther gets none. Of three points within 8 m of each other in quads of 100 m, each
-// gets its own vertex; the last stops where the quads between would fold.
+// farther gets none. Of three points 22 to 24 m apart in quads of 100 m (beyond a fifth
+// of a quad, so not sharing a vertex), each gets its own vertex; one stops where the
+// quads between would fold.
 TEST(EmbedLines, PointsTakeTheirNearestVerticesOrTheCoast) {
   const BackgroundMesh bg = square_background();
   QuadMesh m = grid();
   const QuadMesh before = m;
   const std::vector<Point2> points = {{333, 471},  {150, 850}, {20, 520},  {-30, 330}, {-10, -10},
-                                      {-200, 300}, {612, 655}, {615, 660}, {609, 662}};
+                                      {-200, 300}, {612, 655}, {634, 655}, {623, 676}};
   const std::vector<Point2> coast = {{0, 520}, {0, 330}, {0, 0}};  // of points 2, 3, 4
   std::vector<EmbeddedPoint> vertices;
   const SmoothParams params;
@@ -1096,7 +1097,7 @@ TEST(EmbedLines, PointsTakeTheirNearestVerticesOrTheCoast) {
     for (std::size_t j = 0; j < k; ++j) EXPECT_NE(vertices[j].vertex, e.vertex);
   }
   EXPECT_TRUE(m.fixed[vertices[4].vertex]);  // the corner, not moved
-  // The three close points: two on their vertices, the third short of it.
+  // The three close points: two on their vertices, one short of it.
   double off = 0;
   int num_on = 0;
   for (std::size_t k = 6; k < 9; ++k) {
@@ -1134,6 +1135,30 @@ TEST(EmbedLines, PointsTakeTheirNearestVerticesOrTheCoast) {
       EXPECT_LT(distance_to_square_boundary(m.points[v]), 1e-6) << v;
       EXPECT_EQ(m.points[v], chain_point(bg, bg.chains[m.chain[v]], m.arc_m[v])) << v;
     }
+}
+
+// A point given twice, and one 4.5 m from it in quads of 100 m, share the first one's
+// vertex, on it; a point 30 m away (beyond a fifth of a quad) gets its own.
+TEST(EmbedLines, PointsTooCloseShareTheFirstOnesVertex) {
+  const BackgroundMesh bg = square_background();
+  QuadMesh m = grid();
+  const std::vector<Point2> points = {{333, 471}, {333, 471}, {335, 475}, {363, 471}};
+  std::vector<EmbeddedPoint> vertices;
+  const EmbedStats st = embed_lines(bg, m, {}, EmbedParams(), SmoothParams(), nullptr, nullptr,
+                                    nullptr, points, &vertices);
+  ASSERT_EQ(vertices.size(), 4u);
+  EXPECT_EQ(vertices[0].shares, -1);
+  EXPECT_EQ(vertices[1].shares, 0);
+  EXPECT_EQ(vertices[2].shares, 0);
+  EXPECT_EQ(vertices[3].shares, -1);
+  EXPECT_EQ(vertices[1].vertex, vertices[0].vertex);
+  EXPECT_EQ(vertices[2].vertex, vertices[0].vertex);
+  EXPECT_NE(vertices[3].vertex, vertices[0].vertex);
+  EXPECT_EQ(m.points[vertices[0].vertex], points[0]);
+  EXPECT_EQ(st.num_points, 4u);
+  EXPECT_EQ(st.num_points_shared, 2u);
+  EXPECT_DOUBLE_EQ(st.max_shared_distance_m, distance(points[2], points[0]));
+  EXPECT_EQ(st.num_points_on, 2u);  // the two with their own vertex
 }
 
 // D-Flow FM's links over quads and triangles: a unit square with a right triangle on its
