@@ -167,10 +167,12 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
   const bool lines = options.embed_lines && !r.fields.front.align_lines.empty();
   if (lines || !r.fields.front.embed_points.empty()) {
     progress.report("embed", 0.96);
+    EmbedParams embed = options.embed;
+    embed.point_coast_m = r.fields.front.summary.simplify_m;
     r.embed = embed_lines(r.fields.mesh, r.quads,
                           lines ? r.fields.front.align_lines : std::vector<std::vector<Point2>>(),
-                          options.embed, options.smooth, &r.fields.cross, &r.fields.size,
-                          &r.embedded, r.fields.front.embed_points, &r.embedded_points);
+                          embed, options.smooth, &r.fields.cross, &r.fields.size, &r.embedded,
+                          r.fields.front.embed_points, &r.embedded_points);
     clock.lap("embedding");
   }
   progress.report("quality", 0.97);

@@ -518,7 +518,8 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     lookup.emplace(bg, m, t);
     for (int v = 0; v < nv; ++v)
       if (m.chain[v] >= 0) coast_reach = std::max(coast_reach, boundary_edge_length(m, t, v));
-    coast_reach *= std::max(embed.point_coast_share, embed.point_land_share);
+    coast_reach = std::max(coast_reach * std::max(embed.point_coast_share, embed.point_land_share),
+                           embed.point_coast_m);
   }
   constexpr std::size_t kCandidates = 4;
   std::vector<std::tuple<double, std::size_t, int>> pairs;  // (distance, point, vertex)
@@ -541,7 +542,7 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     const bool inside = lookup->inside(p);
     const int b = chain >= 0 ? lookup->coast_vertex(held, chain, x, arc, embed.on_line_m) : -1;
     const double share = inside ? embed.point_coast_share : embed.point_land_share;
-    if (b >= 0 && off <= share * boundary_edge_length(m, t, b)) {
+    if (b >= 0 && off <= std::max(share * boundary_edge_length(m, t, b), embed.point_coast_m)) {
       e = {b, true, x};
       if (distance(m.points[b], x) > embed.on_line_m) {
         target[b] = x;
@@ -629,8 +630,13 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
         continue;
       }
       all = false;
-      if (!boundary)  // (along the coast only the whole way)
+      if (!boundary) {
         try_move(m, t, v, {0.5 * (p.x + q.x), 0.5 * (p.y + q.y)}, m.arc_m[v], sweep.min_convexity);
+      } else {  // half of the way along the coast
+        const BoundaryChain& ch = bg.chains[m.chain[v]];
+        const double half = m.arc_m[v] + 0.5 * arc_delta(m.arc_m[v], target_arc[v], ch.length_m);
+        try_move(m, t, v, chain_point(bg, ch, half), half, sweep.min_convexity);
+      }
     }
     if (all) break;
     angle_sweeps(bg, m, t, sweep, cross, size, &room, embed.sweep_iterations);

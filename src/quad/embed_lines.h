@@ -61,6 +61,10 @@ struct EmbedParams {
   // from it (a station a little inland of a coast drawn coarser than the real one);
   // farther, it gets no vertex.
   double point_land_share = 1.0;
+  // And, either side, a point within this distance (metres) of the coast: the domain's
+  // simplification tolerance (the mesh's job sets it), within which a point on the
+  // coast as drawn lies off the coast as meshed.
+  double point_coast_m = 0.0;
   // A point within this share of the quads' edges there of a point before it in the file
   // shares that point's vertex (a station given twice, or two a quad cannot tell apart):
   // two vertices that near would leave a quad thinner than SCHISM's aspect ratio of 5.

@@ -1161,6 +1161,25 @@ TEST(EmbedLines, PointsTooCloseShareTheFirstOnesVertex) {
   EXPECT_EQ(st.num_points_on, 2u);  // the two with their own vertex
 }
 
+// A point 30 m inside the boundary in quads of 100 m (beyond a fifth of a quad) takes an
+// interior vertex; with the simplification's tolerance at 40 m it goes to the coast.
+TEST(EmbedLines, PointsWithinTheSimplificationToleranceGoToTheCoast) {
+  const BackgroundMesh bg = square_background();
+  const std::vector<Point2> points = {{30, 450}};
+  EmbedParams embed;
+  for (const double tolerance : {0.0, 40.0}) {
+    QuadMesh m = grid();
+    embed.point_coast_m = tolerance;
+    std::vector<EmbeddedPoint> vertices;
+    embed_lines(bg, m, {}, embed, SmoothParams(), nullptr, nullptr, nullptr, points, &vertices);
+    ASSERT_EQ(vertices.size(), 1u);
+    ASSERT_GE(vertices[0].vertex, 0);
+    EXPECT_EQ(vertices[0].coast, tolerance > 0) << tolerance;
+    EXPECT_EQ(vertices[0].target, (tolerance > 0 ? Point2{0, 450} : points[0]));
+    EXPECT_EQ(m.points[vertices[0].vertex], vertices[0].target) << tolerance;
+  }
+}
+
 // D-Flow FM's links over quads and triangles: a unit square with a right triangle on its
 // right side and another above. The square's centre is its middle; a triangle's its
 // circumcentre (the middle of its hypotenuse), so the links run along the shared side's
