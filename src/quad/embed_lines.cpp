@@ -619,28 +619,60 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
                    sweep.min_convexity);
     }
   std::vector<char> done(nv, 0);
-  for (int round = 0; round < embed.rounds; ++round) {
-    bool all = true;
-    for (int v : order) {
-      if (done[v]) continue;
-      const Point2 p = m.points[v], q = target[v];
-      const bool boundary = m.chain[v] >= 0;
-      if (try_move(m, t, v, q, boundary ? target_arc[v] : m.arc_m[v], sweep.min_convexity)) {
-        done[v] = 1;
-        continue;
+  auto move_rounds = [&](const std::vector<int>& moving) {
+    for (int round = 0; round < embed.rounds; ++round) {
+      bool all = true;
+      for (int v : moving) {
+        if (done[v]) continue;
+        const Point2 p = m.points[v], q = target[v];
+        const bool boundary = m.chain[v] >= 0;
+        if (try_move(m, t, v, q, boundary ? target_arc[v] : m.arc_m[v], sweep.min_convexity)) {
+          done[v] = 1;
+          continue;
+        }
+        all = false;
+        if (!boundary) {
+          try_move(m, t, v, {0.5 * (p.x + q.x), 0.5 * (p.y + q.y)}, m.arc_m[v],
+                   sweep.min_convexity);
+        } else {  // half of the way along the coast
+          const BoundaryChain& ch = bg.chains[m.chain[v]];
+          const double half = m.arc_m[v] + 0.5 * arc_delta(m.arc_m[v], target_arc[v], ch.length_m);
+          try_move(m, t, v, chain_point(bg, ch, half), half, sweep.min_convexity);
+        }
       }
-      all = false;
-      if (!boundary) {
-        try_move(m, t, v, {0.5 * (p.x + q.x), 0.5 * (p.y + q.y)}, m.arc_m[v], sweep.min_convexity);
-      } else {  // half of the way along the coast
-        const BoundaryChain& ch = bg.chains[m.chain[v]];
-        const double half = m.arc_m[v] + 0.5 * arc_delta(m.arc_m[v], target_arc[v], ch.length_m);
-        try_move(m, t, v, chain_point(bg, ch, half), half, sweep.min_convexity);
-      }
+      if (all) break;
+      angle_sweeps(bg, m, t, sweep, cross, size, &room, embed.sweep_iterations);
     }
-    if (all) break;
-    angle_sweeps(bg, m, t, sweep, cross, size, &room, embed.sweep_iterations);
+  };
+  move_rounds(order);
+  // A point inside that its interior vertex did not reach, within point_retry_share of a
+  // boundary edge of the coast (in the boundary's row of quads, where the vertex cannot
+  // cross to it without folding them), goes to the coast instead; its vertex is let go
+  // to the sweeps.
+  std::vector<int> retry;
+  for (EmbeddedPoint& e : on_point) {
+    if (e.vertex < 0 || e.coast || e.shares >= 0 || done[e.vertex]) continue;
+    int chain = -1;
+    Point2 x;
+    double arc = 0;
+    const double off = lookup->nearest_on_boundary(e.target, coast_reach, chain, x, arc);
+    const int b = chain >= 0 ? lookup->coast_vertex(held, chain, x, arc, embed.on_line_m) : -1;
+    if (b < 0 || off > embed.point_retry_share * boundary_edge_length(m, t, b)) continue;
+    held[e.vertex] = 0;
+    room[e.vertex] = 1;
+    e = {b, true, x};
+    held[b] = 1;
+    room[b] = 0;
+    for (int w : t.neighbours[b])
+      for (int u : t.neighbours[w])
+        if (!held[u]) room[u] = 1;
+    if (distance(m.points[b], x) <= embed.on_line_m) continue;
+    target[b] = x;
+    target_arc[b] = arc;
+    retry.push_back(b);
   }
+  move_rounds(retry);
+  order.insert(order.end(), retry.begin(), retry.end());
   // The vertices next to the paths swept with the paths held, as smoothing left the rest.
   if (!order.empty()) angle_sweeps(bg, m, t, sweep, cross, size, &room, embed.sweep_iterations);
 

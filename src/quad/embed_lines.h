@@ -65,6 +65,10 @@ struct EmbedParams {
   // simplification tolerance (the mesh's job sets it), within which a point on the
   // coast as drawn lies off the coast as meshed.
   double point_coast_m = 0.0;
+  // A point inside whose interior vertex stopped short of it goes to the coast after all
+  // when it lies within this share of the boundary's edges from it (the boundary's row
+  // of quads).
+  double point_retry_share = 0.5;
   // A point within this share of the quads' edges there of a point before it in the file
   // shares that point's vertex (a station given twice, or two a quad cannot tell apart):
   // two vertices that near would leave a quad thinner than SCHISM's aspect ratio of 5.
