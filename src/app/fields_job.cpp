@@ -73,8 +73,10 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
   SizingParams sizing = options.sizing;
   sizing.open_parts = r.front.open_boundary_parts;  // for --size-expr's c
   if (!r.front.open_boundary_lines.empty()) sizing.open_tolerance_m = open_line_tolerance(r.front);
+  sizing.share_depths = r.depths;
   SizingOracle oracle(domain, sizing);
   r.sizing = oracle.summary();
+  r.depths = oracle.depths() && oracle.depths()->has_samples() ? oracle.depths() : nullptr;
   double smallest = std::numeric_limits<double>::infinity();
   const double estimate = estimate_num_quads(domain, [&oracle, &smallest](const Point2& p) {
     const double h = oracle(p);

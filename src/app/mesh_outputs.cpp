@@ -62,7 +62,7 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
     written.num_land_edges = data.boundary.num_land_edges;
     if (!o.bathymetry.empty()) {
       const RasterStack rasters(o.bathymetry, CrsInfo{front.domain.crs_wkt, front.domain.crs_name},
-                                bounding_box(r.quads.points));
+                                bounding_box(r.quads.points), r.fields.depths.get());
       written.depths = vertex_depths(rasters, r.quads, o.min_depth_m, o.depth_average);
       written.depths->time_steps =
           courant_time_steps(r.quads, written.depths->depth, o.courant, o.time_step_s);

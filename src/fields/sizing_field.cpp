@@ -156,7 +156,8 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
           "--time-step or a --size-expr in d");
     if (params.wavelength_period_s > 0 && params.cells_per_wavelength <= 0)
       usage("--wavelength-period needs --cells-per-wavelength");
-    bathymetry_ = std::make_unique<RasterStack>(params.bathymetry, crs, extent);
+    bathymetry_ = std::make_shared<const RasterStack>(params.bathymetry, crs, extent,
+                                                      params.share_depths.get());
     if (has_explicit_source(params))  // the time step rule is a bound, not a source
       for (const DepthRaster& r : params.bathymetry)
         summary_.sources.push_back((r.elevation ? "elevation " : "bathymetry ") + r.path);

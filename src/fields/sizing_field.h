@@ -60,6 +60,9 @@ struct SizingParams {
   // Ocean-model sizing from depth rasters (--bathymetry, --elevation), in priority
   // order: the first with a depth at a point gives it.
   std::vector<DepthRaster> bathymetry;
+  // Depths read before (an earlier attempt's), whose scattered samples the sizes share
+  // (RasterStack's `share`) instead of triangulating them again.
+  std::shared_ptr<const RasterStack> share_depths;
   double wavelength_period_s = 0.0;   // --wavelength-period T (0: off)
   double cells_per_wavelength = 0.0;  // --cells-per-wavelength N: h <= T sqrt(g d) / N
   double slope_factor = 0.0;          // --slope-factor R: h <= 2 pi d / (R |grad d|) (0: off)
@@ -132,6 +135,8 @@ class SizingOracle {
   // The same size everywhere: --size alone (clamped to hmin and hmax), no other source
   // and no local refinement.
   bool is_uniform() const;
+  // The depths the sizes read (--bathymetry, --elevation), null when they read none.
+  std::shared_ptr<const RasterStack> depths() const { return bathymetry_; }
 
  private:
   friend bool expression_uses_depth(const std::string& expression);
@@ -144,7 +149,7 @@ class SizingOracle {
   std::unique_ptr<Expression> expression_;
   std::unique_ptr<RasterField> raster_;
   std::unique_ptr<MeshNodeField> mesh_sizes_;
-  std::unique_ptr<RasterStack> bathymetry_;
+  std::shared_ptr<const RasterStack> bathymetry_;
   std::unique_ptr<FeatureSizes> features_;
   std::unique_ptr<CoastDistance> coast_;  // an expression in c
   double gradient_step_m_ = 1.0;

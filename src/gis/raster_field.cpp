@@ -282,18 +282,38 @@ double RasterField::mean_over(const Point2& p, double half_width) const {
 }
 
 RasterStack::RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo& query_crs,
-                         const std::optional<std::array<double, 4>>& extent)
-    : sources_(rasters) {
+                         const std::optional<std::array<double, 4>>& extent,
+                         const RasterStack* share)
+    : sources_(rasters), query_wkt_(query_crs.wkt) {
+  auto shared = [&](const DepthRaster& r) -> std::shared_ptr<const PointField> {
+    if (!share || share->query_wkt_ != query_wkt_) return nullptr;
+    for (std::size_t i = 0; i < share->sources_.size(); ++i) {
+      const DepthRaster& s = share->sources_[i];
+      if (s.path == r.path && s.elevation == r.elevation && s.crs_if_none == r.crs_if_none &&
+          s.field == r.field)
+        return share->rasters_[i];
+    }
+    return nullptr;
+  };
   for (const DepthRaster& r : rasters) {
-    if (is_mesh_file(r.path))
+    if (is_mesh_file(r.path)) {
       rasters_.push_back(
-          std::make_unique<MeshNodeField>(r.path, r.option(), query_crs, r.crs_if_none));
-    else if (is_sample_file(r.path))
-      rasters_.push_back(
-          std::make_unique<SampleField>(r.path, r.option(), query_crs, r.crs_if_none, r.field));
-    else
-      rasters_.push_back(std::make_unique<RasterField>(r.path, r.option(), query_crs, extent));
+          std::make_shared<MeshNodeField>(r.path, r.option(), query_crs, r.crs_if_none));
+    } else if (is_sample_file(r.path)) {
+      std::shared_ptr<const PointField> field = shared(r);
+      if (!field)
+        field =
+            std::make_shared<SampleField>(r.path, r.option(), query_crs, r.crs_if_none, r.field);
+      rasters_.push_back(std::move(field));
+    } else {
+      rasters_.push_back(std::make_shared<RasterField>(r.path, r.option(), query_crs, extent));
+    }
   }
+}
+
+bool RasterStack::has_samples() const {
+  return std::any_of(sources_.begin(), sources_.end(),
+                     [](const DepthRaster& r) { return is_sample_file(r.path); });
 }
 
 RasterStack::~RasterStack() = default;

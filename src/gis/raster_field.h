@@ -107,8 +107,12 @@ struct DepthRaster {
 // RasterField, MeshNodeField and SampleField.
 class RasterStack {
  public:
+  // With `share`, each source of scattered samples that `share` has too (the same file,
+  // options and query CRS) takes its field from it rather than triangulating the
+  // samples again: the sizes' depths, then the outputs'.
   RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo& query_crs,
-              const std::optional<std::array<double, 4>>& extent = std::nullopt);
+              const std::optional<std::array<double, 4>>& extent = std::nullopt,
+              const RasterStack* share = nullptr);
   ~RasterStack();
   RasterStack(const RasterStack&) = delete;
   RasterStack& operator=(const RasterStack&) = delete;
@@ -120,14 +124,19 @@ class RasterStack {
   double mean_over(const Point2& p, double half_width) const;
 
   std::size_t size() const { return rasters_.size(); }
+  // Whether a source is scattered samples (is_sample_file), which cost a triangulation.
+  bool has_samples() const;
+  // The field of source i.
+  const PointField& field(std::size_t i) const { return *rasters_[i]; }
   // --bathymetry 'a.tif', --elevation 'b.tif' (for messages).
   std::string paths_text() const;
   // The rasters' crs_hint()s, for a message that none gave a value.
   std::string crs_hints() const;
 
  private:
-  std::vector<std::unique_ptr<PointField>> rasters_;
+  std::vector<std::shared_ptr<const PointField>> rasters_;
   std::vector<DepthRaster> sources_;
+  std::string query_wkt_;
 };
 
 // Opens `path` as RasterField would, without reading its values (a mesh file: reads it

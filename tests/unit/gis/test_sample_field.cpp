@@ -229,3 +229,30 @@ TEST(SampleField, RasterStackTakesSamplesBeforeAGridAndGriddedXyzIsAGrid) {
   write_file(dir.file("grid.xyz"), grid);
   EXPECT_FALSE(is_sample_file(dir.file("grid.xyz")));
 }
+
+// A stack built with `share` takes the samples' field of the other (one triangulation for
+// the sizes and the outputs), not its grids; with another query CRS, or the samples
+// given with another option, it builds its own.
+TEST(SampleField, RasterStackSharesTheSamplesOfAnother) {
+  TempDir dir;
+  write_file(dir.file("survey.xyz"), scattered_xyz(50, 1000));
+  write_geotiff(dir.file("grid.tif"), -5000, 5000, 100, 100, 100, 32631,
+                [](double, double) { return 7.0; });
+  DepthRaster survey{dir.file("survey.xyz")};
+  survey.crs_if_none = "EPSG:32631";
+  const DepthRaster grid{dir.file("grid.tif")};
+  const RasterStack first({survey, grid}, utm());
+  EXPECT_TRUE(first.has_samples());
+  EXPECT_FALSE(RasterStack({grid}, utm()).has_samples());
+  const RasterStack second({survey, grid}, utm(), std::nullopt, &first);
+  EXPECT_EQ(&second.field(0), &first.field(0));
+  EXPECT_NE(&second.field(1), &first.field(1));
+  EXPECT_EQ(second.sample({400, 600}), first.sample({400, 600}));
+  const CrsInfo other = parse_crs("EPSG:32630", "test");
+  EXPECT_NE(&RasterStack({survey}, other, std::nullopt, &first).field(0), &first.field(0));
+  DepthRaster heights = survey;
+  heights.elevation = true;
+  const RasterStack third({heights}, utm(), std::nullopt, &first);
+  EXPECT_NE(&third.field(0), &first.field(0));
+  EXPECT_EQ(third.sample({400, 600}), -first.sample({400, 600}));
+}
