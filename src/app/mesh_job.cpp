@@ -245,30 +245,34 @@ std::string format_mesh_summary(const MeshResult& r) {
     const FrontEndResult& front = r.fields.front;
     // The numbers (in the file) of the first points left off their vertex.
     std::string off;
-    std::size_t num_off = 0;
+    std::size_t num_off = 0, num_coast_on = 0;
     for (std::size_t k = 0; k < r.embedded_points.size(); ++k) {
       const EmbeddedPoint& p = r.embedded_points[k];
-      if (p.vertex < 0 || distance(r.quads.points[p.vertex], p.target) <= EmbedParams().on_line_m)
+      if (p.vertex < 0) continue;
+      if (distance(r.quads.points[p.vertex], p.target) <= EmbedParams().on_line_m) {
+        num_coast_on += p.coast && p.shares < 0;
         continue;
+      }
       if (++num_off <= 5)
         off += (num_off > 1 ? ", " : "") + std::to_string(front.embed_point_number[k]);
     }
     if (num_off > 5) off += "...";
-    os << printf_string("points:       %zu of the %zu points in or next to the domain on a vertex",
-                        e.num_points_on, front.embed_points.size());
-    if (e.num_points_coast > 0)
-      os << printf_string(", %zu at the coast's point nearest them (up to %.3g m away)",
-                          e.num_points_coast, e.max_coast_distance_m);
-    if (num_off > 0)
-      os << printf_string(
-          " (the others' vertices up to %.3g m off: %s %s; the quads between would leave [30, "
-          "150] degrees)",
-          e.max_point_off_m, num_off > 1 ? "points" : "point", off.c_str());
+    os << printf_string(
+        "points:       %zu of the %zu points in or next to the domain on their vertex",
+        e.num_points_on, front.embed_points.size());
+    if (num_coast_on > 0)
+      os << printf_string(" (%zu of them at the coast's point nearest them, up to %.3g m away)",
+                          num_coast_on, e.max_coast_distance_m);
     if (e.num_points_shared > 0)
       os << printf_string(
-          ", %zu sharing the vertex of a point before them within a fifth of a quad (up to "
-          "%.3g m away)",
-          e.num_points_shared, e.max_shared_distance_m);
+          "; %zu %s the vertex of a point before %s within a fifth of a quad (up to %.3g m away)",
+          e.num_points_shared, e.num_points_shared > 1 ? "share" : "shares",
+          e.num_points_shared > 1 ? "them" : "it", e.max_shared_distance_m);
+    if (num_off > 0)
+      os << printf_string(
+          "; the others' vertices stop up to %.3g m short (%s %s: the quads between would leave "
+          "[30, 150] degrees)",
+          e.max_point_off_m, num_off > 1 ? "points" : "point", off.c_str());
     if (e.num_points_outside > 0)
       os << printf_string("; %zu outside the domain, not next to the coast, get none",
                           e.num_points_outside);
