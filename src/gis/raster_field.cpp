@@ -302,8 +302,8 @@ RasterStack::RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo&
     } else if (is_sample_file(r.path)) {
       std::shared_ptr<const PointField> field = shared(r);
       if (!field)
-        field =
-            std::make_shared<SampleField>(r.path, r.option(), query_crs, r.crs_if_none, r.field);
+        field = std::make_shared<SampleField>(r.path, r.option(), query_crs, r.crs_if_none, r.field,
+                                              extent);
       rasters_.push_back(std::move(field));
     } else {
       rasters_.push_back(std::make_shared<RasterField>(r.path, r.option(), query_crs, extent));

@@ -177,14 +177,32 @@ void check_sample_file(const std::string& path, const std::string& what,
 }
 
 SampleField::SampleField(const std::string& path, const std::string& what, const CrsInfo& query_crs,
-                         const std::string& crs_if_none, const std::string& field) {
+                         const std::string& crs_if_none, const std::string& field,
+                         const std::optional<std::array<double, 4>>& extent) {
   RawSamples raw = read_samples(path, what, field);
+  num_read_ = raw.points.size();
   const CrsTransform transform(samples_crs(raw, path, what, crs_if_none), query_crs);
   const long failed = transform.transform(raw.points);
   if (failed >= 0)
     fail(ErrorClass::crs, what, path,
          "sample " + std::to_string(failed + 1) + " " + format_point(raw.points[failed]) +
              " cannot be transformed into the meshing CRS");
+  if (extent) {
+    const auto& e = *extent;
+    const double margin = 0.25 * std::max(e[2] - e[0], e[3] - e[1]);
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < raw.points.size(); ++i) {
+      const Point2& p = raw.points[i];
+      if (p.x < e[0] - margin || p.x > e[2] + margin || p.y < e[1] - margin || p.y > e[3] + margin)
+        continue;
+      raw.points[kept] = p;
+      raw.values[kept++] = raw.values[i];
+    }
+    const bool dropped = kept < raw.points.size();
+    raw.points.resize(kept);
+    raw.values.resize(kept);
+    if (dropped && kept < 3) return;  // none near: NaN everywhere
+  }
   // Samples at the same point (a survey's repeated soundings) merged into their mean, in
   // the order of their coordinates.
   std::vector<Point2> points;
@@ -221,11 +239,12 @@ SampleField::SampleField(const std::string& path, const std::string& what, const
 SampleField::~SampleField() = default;
 
 double SampleField::sample(const Point2& p) const {
-  return triangles_->sample(p);
+  return triangles_ ? triangles_->sample(p) : std::numeric_limits<double>::quiet_NaN();
 }
 
 double SampleField::mean_over(const Point2& p, double half_width) const {
-  return triangles_->mean_over(p, half_width);
+  return triangles_ ? triangles_->mean_over(p, half_width)
+                    : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace isoquad

@@ -2,7 +2,9 @@
 // FM's .xyz samples) given as --bathymetry or --elevation beside grids and meshes.
 #pragma once
 
+#include <array>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -35,8 +37,13 @@ class SampleField : public PointField {
   // file that cannot be read, a malformed line, points without values or fewer than three
   // samples not in one line; Error(usage) for a missing `field`; Error(crs) without a CRS
   // or for samples that cannot be transformed into `query_crs`.
+  // With `extent` ({xmin, ymin, xmax, ymax} in the query CRS), only the samples within a
+  // quarter of its larger side of it are kept (a national survey, a bay meshed): the
+  // triangles over the extent are those of the samples round it. None there: NaN
+  // everywhere, for the next source.
   SampleField(const std::string& path, const std::string& what, const CrsInfo& query_crs,
-              const std::string& crs_if_none, const std::string& field);
+              const std::string& crs_if_none, const std::string& field,
+              const std::optional<std::array<double, 4>>& extent = std::nullopt);
   ~SampleField() override;
   SampleField(const SampleField&) = delete;
   SampleField& operator=(const SampleField&) = delete;
@@ -44,11 +51,12 @@ class SampleField : public PointField {
   double sample(const Point2& p) const override;
   // MeshNodeField::mean_over on the samples.
   double mean_over(const Point2& p, double half_width) const override;
-  std::size_t size() const { return size_; }  // distinct samples
+  std::size_t size() const { return size_; }          // distinct samples kept
+  std::size_t num_read() const { return num_read_; }  // samples read
 
  private:
-  std::size_t size_ = 0;
-  std::unique_ptr<MeshNodeField> triangles_;  // in the query CRS
+  std::size_t size_ = 0, num_read_ = 0;
+  std::unique_ptr<MeshNodeField> triangles_;  // in the query CRS; null: no sample near
 };
 
 // Opens the samples as SampleField would (the file, its points and `field`, its CRS)

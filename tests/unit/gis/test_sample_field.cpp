@@ -230,6 +230,31 @@ TEST(SampleField, RasterStackTakesSamplesBeforeAGridAndGriddedXyzIsAGrid) {
   EXPECT_FALSE(is_sample_file(dir.file("grid.xyz")));
 }
 
+// With an extent, the samples farther than a quarter of its larger side from it are not
+// kept (a national survey, a bay meshed): the values over it stay; an extent far from
+// every sample gives NaN everywhere rather than an error.
+TEST(SampleField, OnlyTheSamplesNearTheExtentAreKept) {
+  TempDir dir;
+  std::string text = scattered_xyz(50, 1000);
+  for (int i = 0; i < 20; ++i)  // far to the east
+    text += std::to_string(100000 + 500 * i) + " " + std::to_string(300 * (i % 4)) + " 5\n";
+  write_file(dir.file("survey.xyz"), text);
+  const SampleField all(dir.file("survey.xyz"), "--bathymetry", utm(), "EPSG:32631", "");
+  const SampleField near(dir.file("survey.xyz"), "--bathymetry", utm(), "EPSG:32631", "",
+                         std::array<double, 4>{0, 0, 1000, 1000});
+  EXPECT_EQ(all.num_read(), 74u);
+  EXPECT_EQ(all.size(), 74u);
+  EXPECT_EQ(near.num_read(), 74u);
+  EXPECT_EQ(near.size(), 54u);
+  for (const Point2& p : {Point2{400, 600}, Point2{50, 950}, Point2{990, 10}})
+    EXPECT_NEAR(near.sample(p), linear(p.x, p.y), 1e-4) << p.x << " " << p.y;
+  const SampleField none(dir.file("survey.xyz"), "--bathymetry", utm(), "EPSG:32631", "",
+                         std::array<double, 4>{-50000, 40000, -49000, 41000});
+  EXPECT_EQ(none.size(), 0u);
+  EXPECT_TRUE(std::isnan(none.sample({-49500, 40500})));
+  EXPECT_TRUE(std::isnan(none.mean_over({-49500, 40500}, 100)));
+}
+
 // A stack built with `share` takes the samples' field of the other (one triangulation for
 // the sizes and the outputs), not its grids; with another query CRS, or the samples
 // given with another option, it builds its own.
