@@ -2069,6 +2069,16 @@ TEST(CliOutputs, SoundingsGiveTheDepthsBetweenThem) {
   ASSERT_GT(g.nodes.size(), 50u);
   for (const auto& n : g.nodes)
     EXPECT_NEAR(n[2], depth_at(n[0], n[1]), 0.05) << n[0] << " " << n[1];
+  // Sizes from the same depths: the outputs' depths from the sizes' triangulation, as
+  // exact.
+  r = mesh_box(dir,
+               {"--size-expr", "400 + 4 * d", "--hmax", "1500", "--bathymetry",
+                dir.file("soundings.xyz"), "--depth-crs", "EPSG:4326", "-o", dir.file("d.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 d = parse_gr3(dir.file("d.ll"));
+  EXPECT_NE(d.nodes.size(), g.nodes.size());
+  for (const auto& n : d.nodes)
+    EXPECT_NEAR(n[2], depth_at(n[0], n[1]), 0.05) << n[0] << " " << n[1];
 
   r = mesh_box_800(dir, {"--bathymetry", dir.file("soundings.xyz"), "-o", dir.file("t.gr3")});
   EXPECT_EQ(r.exit_code, 4) << r.err;
