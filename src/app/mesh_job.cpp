@@ -380,6 +380,24 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
           .value("embed_points_shared", r.embed.num_points_shared)
           .value("embed_points_shared_max_m", r.embed.max_shared_distance_m);
     j.end_object();
+    // Each point's node (from 1, as the mesh files number them: TELEMAC's LIST OF POINTS,
+    // a station's node), how far it lies from the point, and why.
+    if (!r.fields.front.summary.embed_points_path.empty()) {
+      const FrontEndResult& front = r.fields.front;
+      j.begin_array("embedded_points");
+      for (std::size_t k = 0; k < r.embedded_points.size(); ++k) {
+        const EmbeddedPoint& p = r.embedded_points[k];
+        j.begin_object().value("point", front.embed_point_number[k]);
+        j.value("node", p.vertex >= 0 ? static_cast<long long>(p.vertex) + 1 : 0LL);
+        if (p.vertex >= 0) {
+          j.value("distance_m", distance(r.quads.points[p.vertex], front.embed_points[k]))
+              .value("coast", p.coast)
+              .value("shares_point", p.shares >= 0 ? front.embed_point_number[p.shares] : 0);
+        }
+        j.end_object();
+      }
+      j.end_array();
+    }
     if (boundary) {
       std::size_t open = 0, land = 0;
       for (const BoundarySegment& segment : boundary->segments)

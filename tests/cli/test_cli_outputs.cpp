@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <iomanip>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 
@@ -1986,12 +1987,24 @@ TEST(CliOutputs, EmbeddedPointsGetVertices) {
   EXPECT_NE(report.find("\"embed_points_on_vertex\": 4"), std::string::npos);
   EXPECT_NE(report.find("\"embed_points_on_coast\": 2"), std::string::npos);
   const Gr3 g = parse_gr3(dir.file("s.ll"));
-  for (const auto& [lon, lat] :
-       {std::pair{-4.5123, 48.3217}, {-4.4071, 48.2345}, {-4.45, 48.275}, {-4.45, 48.26}}) {
-    double nearest = 1e300;
-    for (const auto& n : g.nodes) nearest = std::min(nearest, std::hypot(n[0] - lon, n[1] - lat));
-    // The .ll's 7 decimals; on the coast, where the projected side is nearest (2 m).
-    EXPECT_LT(nearest, lon == -4.45 ? 2e-5 : 1e-6) << lon << " " << lat;
+  // The report's node of each point, numbered as hgrid.ll's: at the point (the .ll's 7
+  // decimals), or on the coast beside it where the projected side is nearest (2 m); the
+  // point given twice at the first one's node; the one on the land far off, none.
+  std::map<int, std::size_t> node_of;
+  const std::regex entry("\"point\": (\\d+),\\s*\"node\": (\\d+)");
+  for (auto it = std::sregex_iterator(report.begin(), report.end(), entry);
+       it != std::sregex_iterator(); ++it)
+    node_of[std::stoi((*it)[1])] = std::stoul((*it)[2]);
+  ASSERT_EQ(node_of.size(), 5u);  // the 6 read but the one far on the land
+  EXPECT_EQ(node_of.count(3), 0u);
+  EXPECT_EQ(node_of[6], node_of[1]);
+  const std::map<int, std::pair<double, double>> where = {
+      {1, {-4.5123, 48.3217}}, {2, {-4.4071, 48.2345}}, {4, {-4.45, 48.275}}, {5, {-4.45, 48.26}}};
+  for (const auto& [point, at] : where) {
+    ASSERT_GE(node_of[point], 1u);
+    ASSERT_LE(node_of[point], g.nodes.size());
+    const auto& n = g.nodes[node_of[point] - 1];
+    EXPECT_LT(std::hypot(n[0] - at.first, n[1] - at.second), point >= 4 ? 2e-5 : 1e-6) << point;
   }
   // The GeoPackage's vertices name their points by number in the file.
   std::multiset<long long> numbers;
