@@ -32,7 +32,7 @@ void check_mesh_field(const std::string& path, const std::string& what) {
 
 MeshNodeField::MeshNodeField(const std::string& path, const std::string& what,
                              const CrsInfo& query_crs, const std::string& crs_if_none,
-                             Values values) {
+                             Values values, const std::optional<std::array<double, 4>>& extent) {
   ReadMesh mesh = values == Values::nodes ? read_values(path, what) : read_mesh(path);
   points_ = std::move(mesh.points);
   values_ = std::move(mesh.node_values);
@@ -80,6 +80,37 @@ MeshNodeField::MeshNodeField(const std::string& path, const std::string& what,
       triangles_.push_back({q[1], q[3], q[0]});
     }
   }
+  if (extent) {  // the triangles whose boxes meet the extent's, widened; their nodes
+    const auto& e = *extent;
+    const double margin = 0.25 * std::max(e[2] - e[0], e[3] - e[1]);
+    const double x0 = e[0] - margin, y0 = e[1] - margin, x1 = e[2] + margin, y1 = e[3] + margin;
+    std::vector<int> node(points_.size(), -1);
+    std::vector<Point2> points;
+    std::vector<double> values;
+    std::size_t kept = 0;
+    for (const auto& t : triangles_) {
+      double bx0 = points_[t[0]].x, by0 = points_[t[0]].y, bx1 = bx0, by1 = by0;
+      for (int v : t) {
+        bx0 = std::min(bx0, points_[v].x), bx1 = std::max(bx1, points_[v].x);
+        by0 = std::min(by0, points_[v].y), by1 = std::max(by1, points_[v].y);
+      }
+      if (bx1 < x0 || bx0 > x1 || by1 < y0 || by0 > y1) continue;
+      std::array<int, 3> renumbered{};
+      for (int i = 0; i < 3; ++i) {
+        int& n = node[t[i]];
+        if (n < 0) {
+          n = static_cast<int>(points.size());
+          points.push_back(points_[t[i]]);
+          values.push_back(values_[t[i]]);
+        }
+        renumbered[i] = n;
+      }
+      triangles_[kept++] = renumbered;
+    }
+    triangles_.resize(kept);
+    points_ = std::move(points);
+    values_ = std::move(values);
+  }
   index_triangles();
 }
 
@@ -90,6 +121,10 @@ MeshNodeField::MeshNodeField(std::vector<Point2> points, std::vector<double> val
 }
 
 void MeshNodeField::index_triangles() {
+  if (triangles_.empty()) {  // no element near the extent (none is kept without one)
+    nx_ = ny_ = 0;
+    return;
+  }
   const std::array<double, 4> box = bounding_box(points_);
   const double width = std::max(box[2] - box[0], 1e-9), height = std::max(box[3] - box[1], 1e-9);
   // About one triangle a cell.
@@ -176,6 +211,7 @@ double MeshNodeField::max_value() const {
 }
 
 double MeshNodeField::sample(const Point2& p) const {
+  if (nx_ == 0) return std::numeric_limits<double>::quiet_NaN();
   const double fx = (p.x - x0_) / cell_, fy = (p.y - y0_) / cell_;
   if (!(fx >= -1 && fy >= -1 && fx <= nx_ + 1 && fy <= ny_ + 1))
     return std::numeric_limits<double>::quiet_NaN();

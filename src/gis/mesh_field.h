@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,8 +27,12 @@ class MeshNodeField : public PointField {
   // `what` names the option in messages (e.g. "--bathymetry"). Throws Error(input) for a
   // mesh read_mesh cannot read or whose nodes have no values, Error(crs) for a CRS that
   // cannot be used.
+  // With `extent` ({xmin, ymin, xmax, ymax} in the query CRS), only the elements within a
+  // quarter of its larger side of it are kept (a regional model's grid giving the depths
+  // of a bay): none there, NaN everywhere.
   MeshNodeField(const std::string& path, const std::string& what, const CrsInfo& query_crs,
-                const std::string& crs_if_none = "", Values values = Values::nodes);
+                const std::string& crs_if_none = "", Values values = Values::nodes,
+                const std::optional<std::array<double, 4>>& extent = std::nullopt);
   // A triangulation's node values (scattered samples' Delaunay triangles), its points
   // already in the query CRS.
   MeshNodeField(std::vector<Point2> points, std::vector<double> values,

@@ -297,8 +297,8 @@ RasterStack::RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo&
   };
   for (const DepthRaster& r : rasters) {
     if (is_mesh_file(r.path)) {
-      rasters_.push_back(
-          std::make_shared<MeshNodeField>(r.path, r.option(), query_crs, r.crs_if_none));
+      rasters_.push_back(std::make_shared<MeshNodeField>(
+          r.path, r.option(), query_crs, r.crs_if_none, MeshNodeField::Values::nodes, extent));
     } else if (is_sample_file(r.path)) {
       std::shared_ptr<const PointField> field = shared(r);
       if (!field)

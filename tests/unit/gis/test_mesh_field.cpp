@@ -56,6 +56,29 @@ TEST(MeshNodeField, LinearInsideNearestBoundaryJustOutsideNanFarOff) {
   EXPECT_TRUE(std::isnan(f.sample({5000, 50})));
 }
 
+// With an extent, the elements far from it are not kept: a box round the left quad
+// (0..100 x 0..100, widened by a quarter of 100 m) keeps the two quads (the second
+// touches it) and drops the triangle beyond x = 200; the values inside are the same. A
+// box far off keeps none: NaN.
+TEST(MeshNodeField, OnlyTheElementsNearTheExtentAreKept) {
+  TempDir dir;
+  write_file(dir.file("hgrid.gr3"), grid_gr3(linear));
+  const CrsInfo utm = parse_crs("EPSG:32631", "test");
+  const MeshNodeField all(dir.file("hgrid.gr3"), "--bathymetry", utm);
+  const MeshNodeField near(dir.file("hgrid.gr3"), "--bathymetry", utm, "",
+                           MeshNodeField::Values::nodes, std::array<double, 4>{0, 0, 100, 100});
+  for (const Point2 p : {Point2{10, 10}, Point2{150, 70}, Point2{100, 100}})
+    EXPECT_EQ(near.sample(p), all.sample(p)) << p.x << " " << p.y;
+  EXPECT_NEAR(all.sample({295, 50}), linear(295, 50), 1e-9);
+  EXPECT_TRUE(std::isnan(near.sample({295, 50})));  // (more than a cell off the two quads)
+  EXPECT_EQ(near.max_value(), linear(200, 100));    // the triangle's far node gone
+  const MeshNodeField none(dir.file("hgrid.gr3"), "--bathymetry", utm, "",
+                           MeshNodeField::Values::nodes,
+                           std::array<double, 4>{10000, 10000, 10100, 10100});
+  EXPECT_TRUE(std::isnan(none.sample({50, 50})));
+  EXPECT_TRUE(std::isnan(none.mean_over({50, 50}, 100)));
+}
+
 TEST(MeshNodeField, LonLatNodesTransformedAndStackedWithRasters) {
   TempDir dir;
   // hgrid.ll: the same grid in degrees from 3 E 45 N (EPSG:4326 by its extension).
