@@ -59,6 +59,17 @@ const CrsInfo& utm() {
   return crs;
 }
 
+// A survey of 54 soundings over [0, 1000]^2 (survey.xyz, in UTM 31N) and a grid of 7 m
+// everywhere over a larger square (grid.tif), as depth sources.
+std::pair<DepthRaster, DepthRaster> survey_and_grid(const TempDir& dir) {
+  write_file(dir.file("survey.xyz"), scattered_xyz(50, 1000));
+  write_geotiff(dir.file("grid.tif"), -5000, 5000, 100, 100, 100, 32631,
+                [](double, double) { return 7.0; });
+  DepthRaster survey{dir.file("survey.xyz")};
+  survey.crs_if_none = "EPSG:32631";
+  return {survey, DepthRaster{dir.file("grid.tif")}};
+}
+
 }  // namespace
 
 TEST(SampleField, LinearBetweenSamplesNanFarOffTheirOutline) {
@@ -211,22 +222,17 @@ TEST(SampleField, ErrorsNameTheFileAndTheFix) {
 
 TEST(SampleField, RasterStackTakesSamplesBeforeAGridAndGriddedXyzIsAGrid) {
   TempDir dir;
-  write_file(dir.file("survey.xyz"), scattered_xyz(50, 1000));
-  // A grid of 7 m everywhere over a larger square.
-  write_geotiff(dir.file("grid.tif"), -5000, 5000, 100, 100, 100, 32631,
-                [](double, double) { return 7.0; });
-  DepthRaster survey{dir.file("survey.xyz")};
-  survey.crs_if_none = "EPSG:32631";
+  const auto [survey, grid] = survey_and_grid(dir);
   check_depth_source(survey);
-  const RasterStack stack({survey, DepthRaster{dir.file("grid.tif")}}, utm());
+  const RasterStack stack({survey, grid}, utm());
   EXPECT_NEAR(stack.sample({400, 600}), linear(400, 600), 1e-4);
   EXPECT_NEAR(stack.sample({3000, 600}), 7.0, 1e-9);
   // Evenly spaced rows and columns: GDAL's XYZ grid, read as a raster.
-  std::string grid;
+  std::string rows;
   for (int j = 0; j < 5; ++j)
     for (int i = 0; i < 5; ++i)
-      grid += std::to_string(100 * i) + " " + std::to_string(100 * j) + " 3\n";
-  write_file(dir.file("grid.xyz"), grid);
+      rows += std::to_string(100 * i) + " " + std::to_string(100 * j) + " 3\n";
+  write_file(dir.file("grid.xyz"), rows);
   EXPECT_FALSE(is_sample_file(dir.file("grid.xyz")));
 }
 
@@ -260,12 +266,7 @@ TEST(SampleField, OnlyTheSamplesNearTheExtentAreKept) {
 // given with another option, it builds its own.
 TEST(SampleField, RasterStackSharesTheSamplesOfAnother) {
   TempDir dir;
-  write_file(dir.file("survey.xyz"), scattered_xyz(50, 1000));
-  write_geotiff(dir.file("grid.tif"), -5000, 5000, 100, 100, 100, 32631,
-                [](double, double) { return 7.0; });
-  DepthRaster survey{dir.file("survey.xyz")};
-  survey.crs_if_none = "EPSG:32631";
-  const DepthRaster grid{dir.file("grid.tif")};
+  const auto [survey, grid] = survey_and_grid(dir);
   const RasterStack first({survey, grid}, utm());
   EXPECT_TRUE(first.has_samples());
   EXPECT_FALSE(RasterStack({grid}, utm()).has_samples());
