@@ -417,6 +417,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
           .value("max_fill_distance_m", depths->max_fill_distance_m)
           .value("num_raised_to_min_depth", depths->num_raised)
           .value("averaged", depths->averaged)
+          .value("sources_kept", depths->kept)
           .value("num_dry", depths->num_dry)
           .value("courant", depths->time_steps.courant)
           .value("time_step_min_s", depths->time_steps.min_s)

@@ -64,6 +64,7 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
       const RasterStack rasters(o.bathymetry, CrsInfo{front.domain.crs_wkt, front.domain.crs_name},
                                 bounding_box(r.quads.points), r.fields.depths.get());
       written.depths = vertex_depths(rasters, r.quads, o.min_depth_m, o.depth_average);
+      written.depths->kept = rasters.kept_text();
       written.depths->time_steps =
           courant_time_steps(r.quads, written.depths->depth, o.courant, o.time_step_s);
       data.depth = std::move(written.depths->depth);
@@ -225,6 +226,7 @@ std::string format_written_summary(const MeshResult& r, const MeshJobOutputs& ou
   if (const std::optional<VertexDepths>& depths = written.depths) {
     text += printf_string("depths:       %.6g .. %.6g m", depths->min_m, depths->max_m);
     if (depths->averaged) text += " (each a mean over a square as wide as the vertex's quads)";
+    if (!depths->kept.empty()) text += " (from " + depths->kept + ")";
     if (depths->num_raised)
       text += printf_string(", %zu vertices raised to --min-depth", depths->num_raised);
     text += "\n";

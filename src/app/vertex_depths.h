@@ -33,6 +33,7 @@ struct VertexDepths {
   std::size_t num_raised = 0;        // depths raised to min_depth_m
   std::size_t num_dry = 0;           // vertices at depth 0 or above (before min_depth_m)
   bool averaged = false;             // means over squares round the vertices
+  std::string kept;                  // RasterStack::kept_text() of the sources read
   double min_m = 0.0, max_m = 0.0;   // the range of the depths written
   TimeSteps time_steps;              // courant_time_steps() of the depths written
 };

@@ -80,6 +80,7 @@ MeshNodeField::MeshNodeField(const std::string& path, const std::string& what,
       triangles_.push_back({q[1], q[3], q[0]});
     }
   }
+  num_read_nodes_ = points_.size();
   if (extent) {  // the triangles whose boxes meet the extent's, widened; their nodes
     const auto& e = *extent;
     const double margin = 0.25 * std::max(e[2] - e[0], e[3] - e[1]);
@@ -204,6 +205,12 @@ double MeshNodeField::mean_over(const Point2& p, double half_width) const {
       }
     }
   return count >= kMinAveraged ? sum / count : at_p;
+}
+
+std::string MeshNodeField::kept_text() const {
+  if (num_read_nodes_ == 0 || points_.size() == num_read_nodes_) return "";
+  return std::to_string(points_.size()) + " of its " + std::to_string(num_read_nodes_) +
+         " nodes, those round the domain";
 }
 
 double MeshNodeField::max_value() const {

@@ -45,12 +45,14 @@ class MeshNodeField : public PointField {
   static constexpr int kMinAveraged = 4;
   // The largest node value.
   double max_value() const;
+  std::string kept_text() const override;
 
  private:
   void index_triangles();       // the grid below, from points_ and triangles_
   std::vector<Point2> points_;  // in the query CRS
   std::vector<double> values_;
   std::vector<std::array<int, 3>> triangles_;
+  std::size_t num_read_nodes_ = 0;  // before those far from the extent were left out
   // A grid over the mesh's box: each cell's triangles (whose boxes meet it), as ranges
   // of cell_triangles_.
   double x0_ = 0, y0_ = 0, cell_ = 1;

@@ -6,6 +6,7 @@
 #include <sys/stat.h>
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <limits>
 #include <sstream>
 
@@ -336,6 +337,17 @@ std::string RasterStack::crs_hints() const {
   for (const auto& r : rasters_) {
     const std::string hint = r->crs_hint();
     if (!hint.empty()) text += "; " + hint;
+  }
+  return text;
+}
+
+std::string RasterStack::kept_text() const {
+  std::string text;
+  for (std::size_t i = 0; i < rasters_.size(); ++i) {
+    const std::string kept = rasters_[i]->kept_text();
+    if (!kept.empty())
+      text += (text.empty() ? "" : "; ") +
+              std::filesystem::path(sources_[i].path).filename().string() + ": " + kept;
   }
   return text;
 }

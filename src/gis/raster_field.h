@@ -26,6 +26,9 @@ class PointField {
   // Why no point may have found a value, when the field can tell (a raster without a
   // CRS whose extent looks like longitudes and latitudes); empty otherwise.
   virtual std::string crs_hint() const { return ""; }
+  // How much of the source was kept round the extent it was read for, where some was
+  // left out ("412 of its 3000 samples"); empty otherwise.
+  virtual std::string kept_text() const { return ""; }
 };
 
 class RasterField : public PointField {
@@ -132,6 +135,8 @@ class RasterStack {
   std::string paths_text() const;
   // The rasters' crs_hint()s, for a message that none gave a value.
   std::string crs_hints() const;
+  // The sources' kept_text()s, each after its file's name; empty when all were kept.
+  std::string kept_text() const;
 
  private:
   std::vector<std::shared_ptr<const PointField>> rasters_;

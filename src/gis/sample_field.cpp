@@ -198,10 +198,10 @@ SampleField::SampleField(const std::string& path, const std::string& what, const
       raw.points[kept] = p;
       raw.values[kept++] = raw.values[i];
     }
-    const bool dropped = kept < raw.points.size();
+    dropped_ = kept < raw.points.size();
     raw.points.resize(kept);
     raw.values.resize(kept);
-    if (dropped && kept < 3) return;  // none near: NaN everywhere
+    if (dropped_ && kept < 3) return;  // none near: NaN everywhere
   }
   // Samples at the same point (a survey's repeated soundings) merged into their mean, in
   // the order of their coordinates.
@@ -237,6 +237,12 @@ SampleField::SampleField(const std::string& path, const std::string& what, const
 }
 
 SampleField::~SampleField() = default;
+
+std::string SampleField::kept_text() const {
+  if (!dropped_) return "";
+  return std::to_string(size_) + " of its " + std::to_string(num_read_) +
+         " samples, those round the domain";
+}
 
 double SampleField::sample(const Point2& p) const {
   return triangles_ ? triangles_->sample(p) : std::numeric_limits<double>::quiet_NaN();

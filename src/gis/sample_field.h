@@ -51,11 +51,13 @@ class SampleField : public PointField {
   double sample(const Point2& p) const override;
   // MeshNodeField::mean_over on the samples.
   double mean_over(const Point2& p, double half_width) const override;
+  std::string kept_text() const override;
   std::size_t size() const { return size_; }          // distinct samples kept
   std::size_t num_read() const { return num_read_; }  // samples read
 
  private:
   std::size_t size_ = 0, num_read_ = 0;
+  bool dropped_ = false;                      // samples far from the extent left out
   std::unique_ptr<MeshNodeField> triangles_;  // in the query CRS; null: no sample near
 };
 

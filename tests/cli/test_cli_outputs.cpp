@@ -2073,11 +2073,16 @@ TEST(CliOutputs, SoundingsGiveTheDepthsBetweenThem) {
   for (const auto& [lon, lat] :
        {std::pair{-4.62, 48.18}, {-4.38, 48.18}, {-4.38, 48.37}, {-4.62, 48.37}})
     add(lon, lat);
+  for (int i = 0; i < 6; ++i) add(-3.0 + 0.01 * i, 47.0 + 0.02 * (i % 2));  // far off, left out
   write_file(dir.file("soundings.xyz"), text);
   CliResult r = mesh_box_800(dir, {"--bathymetry", dir.file("soundings.xyz"), "--depth-crs",
                                    "EPSG:4326", "-o", dir.file("s.gr3")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(without_schism_warning(r.err).find("warning"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find(" m (from soundings.xyz: 3004 of its 3010 samples, those round the "
+                       "domain)\n"),
+            std::string::npos)
+      << r.err;
   const Gr3 g = parse_gr3(dir.file("s.ll"));
   ASSERT_GT(g.nodes.size(), 50u);
   for (const auto& n : g.nodes)
