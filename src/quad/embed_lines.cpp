@@ -530,7 +530,7 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   for (std::size_t k = 0; k < points.size(); ++k) {
     const Point2& p = points[k];
     EmbeddedPoint& e = on_point[k];
-    const double near = embed.point_share_share * lookup->local_edge(p);
+    const double near = embed.point_merge_share * lookup->local_edge(p);
     for (const auto& [d, j] : given->nearest(p, 8))
       if (d <= near && static_cast<std::size_t>(j) < k && on_point[j].shares < 0 &&
           (e.shares < 0 || j < e.shares))

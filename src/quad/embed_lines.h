@@ -72,7 +72,7 @@ struct EmbedParams {
   // A point within this share of the quads' edges there of a point before it in the file
   // shares that point's vertex (a station given twice, or two a quad cannot tell apart):
   // two vertices that near would leave a quad thinner than SCHISM's aspect ratio of 5.
-  double point_share_share = 0.2;
+  double point_merge_share = 0.2;
 };
 
 // A point of --embed-points and its vertex.
@@ -111,7 +111,7 @@ struct EmbedStats {
   std::size_t num_points_coast = 0;
   double max_coast_distance_m = 0.0;
   std::size_t num_points_outside = 0;
-  // Points sharing an earlier point's vertex (EmbedParams::point_share_share), and the
+  // Points sharing an earlier point's vertex (EmbedParams::point_merge_share), and the
   // farthest such point from the target it shares.
   std::size_t num_points_shared = 0;
   double max_shared_distance_m = 0.0;
