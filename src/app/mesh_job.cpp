@@ -240,7 +240,9 @@ std::string format_mesh_summary(const MeshResult& r) {
                "glued to them\n");
   os << format_quad_shape_lines(q);
   if (r.fields.num_aligned_vertices > 0) os << format_align_line(q);
-  if (!r.fields.front.summary.embed_points_path.empty()) {
+  if (!r.fields.front.summary.embed_points_path.empty() && r.fields.front.embed_points.empty()) {
+    os << "points:       none of the file's points lies in or next to the domain\n";  // (--each)
+  } else if (!r.fields.front.summary.embed_points_path.empty()) {
     const EmbedStats& e = r.embed;
     const FrontEndResult& front = r.fields.front;
     // The numbers (in the file) of the first points left off their vertex.

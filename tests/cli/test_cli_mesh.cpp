@@ -1280,4 +1280,19 @@ TEST(CliMesh, WithEachARegionNoAlignLineReachesIsMeshedWithAWarning) {
   EXPECT_EQ(r.err.find("\naligned:      "), r.err.rfind("\naligned:      ")) << r.err;  // a only
   EXPECT_TRUE(std::filesystem::exists(dir.file("a.vtu")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("b.vtu")));
+  // The same for a file of points: region a gets its point, b says it has none.
+  const std::string point = dir.file("point.geojson");
+  write_file(point, R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+                    R"("geometry":{"type":"Point","coordinates":[0.21,0.33]}}]})");
+  const CliResult p = run_cli({"mesh", regions, "--each", "region", "--size", "3000",
+                               "--embed-points", point, "-o", dir.file("p_{}.vtu")},
+                              dir);
+  EXPECT_EQ(p.exit_code, 0) << p.err;
+  EXPECT_NE(p.err.find("--each region: 2 of 2 meshed"), std::string::npos) << p.err;
+  EXPECT_NE(p.err.find("points:       1 of the 1 points in or next to the domain on their vertex"),
+            std::string::npos)
+      << p.err;
+  EXPECT_NE(p.err.find("points:       none of the file's points lies in or next to the domain"),
+            std::string::npos)
+      << p.err;
 }
