@@ -628,7 +628,9 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
         if (done[v]) continue;
         const Point2 p = m.points[v], q = target[v];
         const bool boundary = m.chain[v] >= 0;
-        if (try_move(m, t, v, q, boundary ? target_arc[v] : m.arc_m[v], sweep.min_convexity)) {
+        const double bound = boundary ? std::max(params.min_convexity, embed.coast_min_turn_sine)
+                                      : sweep.min_convexity;
+        if (try_move(m, t, v, q, boundary ? target_arc[v] : m.arc_m[v], bound)) {
           done[v] = 1;
           continue;
         }
@@ -639,7 +641,7 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
         } else {  // half of the way along the coast
           const BoundaryChain& ch = bg.chains[m.chain[v]];
           const double half = m.arc_m[v] + 0.5 * arc_delta(m.arc_m[v], target_arc[v], ch.length_m);
-          try_move(m, t, v, chain_point(bg, ch, half), half, sweep.min_convexity);
+          try_move(m, t, v, chain_point(bg, ch, half), half, bound);
         }
       }
       if (all) break;
