@@ -76,7 +76,7 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
   sizing.share_depths = r.depths;
   SizingOracle oracle(domain, sizing);
   r.sizing = oracle.summary();
-  r.depths = oracle.depths() && oracle.depths()->has_samples() ? oracle.depths() : nullptr;
+  r.depths = oracle.depths() && oracle.depths()->has_shareable() ? oracle.depths() : nullptr;
   double smallest = std::numeric_limits<double>::infinity();
   const double estimate = estimate_num_quads(domain, [&oracle, &smallest](const Point2& p) {
     const double h = oracle(p);

@@ -69,8 +69,9 @@ struct FieldsResult {
   // --align (the lines in front.align_lines): the background vertices fixed to them.
   std::size_t num_aligned_vertices = 0;
   std::vector<StageTime> times;
-  // The depths the sizes read, kept when they hold scattered samples (soundings), whose
-  // triangulation a later attempt's sizes and the outputs' depths then share.
+  // The depths the sizes read, kept when they hold scattered samples (soundings) or a
+  // mesh, which a later attempt's sizes and the outputs' depths then share
+  // (RasterStack's `share`).
   std::shared_ptr<const RasterStack> depths;
 };
 

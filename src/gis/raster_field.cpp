@@ -298,8 +298,11 @@ RasterStack::RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo&
   };
   for (const DepthRaster& r : rasters) {
     if (is_mesh_file(r.path)) {
-      rasters_.push_back(std::make_shared<MeshNodeField>(
-          r.path, r.option(), query_crs, r.crs_if_none, MeshNodeField::Values::nodes, extent));
+      std::shared_ptr<const PointField> field = shared(r);
+      if (!field)
+        field = std::make_shared<MeshNodeField>(r.path, r.option(), query_crs, r.crs_if_none,
+                                                MeshNodeField::Values::nodes, extent);
+      rasters_.push_back(std::move(field));
     } else if (is_sample_file(r.path)) {
       std::shared_ptr<const PointField> field = shared(r);
       if (!field)
@@ -312,9 +315,10 @@ RasterStack::RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo&
   }
 }
 
-bool RasterStack::has_samples() const {
-  return std::any_of(sources_.begin(), sources_.end(),
-                     [](const DepthRaster& r) { return is_sample_file(r.path); });
+bool RasterStack::has_shareable() const {
+  return std::any_of(sources_.begin(), sources_.end(), [](const DepthRaster& r) {
+    return is_mesh_file(r.path) || is_sample_file(r.path);
+  });
 }
 
 RasterStack::~RasterStack() = default;

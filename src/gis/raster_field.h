@@ -110,9 +110,10 @@ struct DepthRaster {
 // RasterField, MeshNodeField and SampleField.
 class RasterStack {
  public:
-  // With `share`, each source of scattered samples that `share` has too (the same file,
-  // options and query CRS) takes its field from it rather than triangulating the
-  // samples again: the sizes' depths, then the outputs'.
+  // With `share`, each source of scattered samples or mesh that `share` has too (the same
+  // file, options and query CRS) takes its field from it rather than reading (and
+  // triangulating) it again: the sizes' depths, then the outputs'. Grids are read again,
+  // a window each.
   RasterStack(const std::vector<DepthRaster>& rasters, const CrsInfo& query_crs,
               const std::optional<std::array<double, 4>>& extent = std::nullopt,
               const RasterStack* share = nullptr);
@@ -127,8 +128,9 @@ class RasterStack {
   double mean_over(const Point2& p, double half_width) const;
 
   std::size_t size() const { return rasters_.size(); }
-  // Whether a source is scattered samples (is_sample_file), which cost a triangulation.
-  bool has_samples() const;
+  // Whether a source is scattered samples (is_sample_file, a triangulation) or a mesh
+  // (is_mesh_file, a whole file read): those `share` takes.
+  bool has_shareable() const;
   // The field of source i.
   const PointField& field(std::size_t i) const { return *rasters_[i]; }
   // --bathymetry 'a.tif', --elevation 'b.tif' (for messages).

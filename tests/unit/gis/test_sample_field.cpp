@@ -268,8 +268,8 @@ TEST(SampleField, RasterStackSharesTheSamplesOfAnother) {
   TempDir dir;
   const auto [survey, grid] = survey_and_grid(dir);
   const RasterStack first({survey, grid}, utm());
-  EXPECT_TRUE(first.has_samples());
-  EXPECT_FALSE(RasterStack({grid}, utm()).has_samples());
+  EXPECT_TRUE(first.has_shareable());
+  EXPECT_FALSE(RasterStack({grid}, utm()).has_shareable());
   const RasterStack second({survey, grid}, utm(), std::nullopt, &first);
   EXPECT_EQ(&second.field(0), &first.field(0));
   EXPECT_NE(&second.field(1), &first.field(1));
