@@ -261,18 +261,25 @@ TEST(SampleField, OnlyTheSamplesNearTheExtentAreKept) {
   EXPECT_TRUE(std::isnan(none.mean_over({-49500, 40500}, 100)));
 }
 
-// A stack built with `share` takes the samples' field of the other (one triangulation for
-// the sizes and the outputs), not its grids; with another query CRS, or the samples
-// given with another option, it builds its own.
+// A stack built with `share` takes the samples' and the meshes' fields of the other (one
+// triangulation, one read, for the sizes and the outputs), not its grids; with another
+// query CRS, or the samples given with another option, it builds its own.
 TEST(SampleField, RasterStackSharesTheSamplesOfAnother) {
   TempDir dir;
   const auto [survey, grid] = survey_and_grid(dir);
-  const RasterStack first({survey, grid}, utm());
+  // A model's grid of two triangles over the survey (a .gr3 in the same CRS), shared too.
+  write_file(dir.file("hgrid.gr3"),
+             "grid\n2 4\n1 0 0 5\n2 1000 0 5\n3 1000 1000 5\n4 0 1000 5\n1 3 1 2 3\n2 3 1 3 4\n");
+  DepthRaster model{dir.file("hgrid.gr3")};
+  model.crs_if_none = "EPSG:32631";
+  const RasterStack first({survey, grid, model}, utm());
   EXPECT_TRUE(first.has_shareable());
   EXPECT_FALSE(RasterStack({grid}, utm()).has_shareable());
-  const RasterStack second({survey, grid}, utm(), std::nullopt, &first);
+  const RasterStack second({survey, grid, model}, utm(), std::nullopt, &first);
   EXPECT_EQ(&second.field(0), &first.field(0));
   EXPECT_NE(&second.field(1), &first.field(1));
+  EXPECT_EQ(&second.field(2), &first.field(2));
+  EXPECT_EQ(second.field(2).sample({500, 200}), 5.0);
   EXPECT_EQ(second.sample({400, 600}), first.sample({400, 600}));
   const CrsInfo other = parse_crs("EPSG:32630", "test");
   EXPECT_NE(&RasterStack({survey}, other, std::nullopt, &first).field(0), &first.field(0));
