@@ -89,14 +89,9 @@ bool domain_contains(const Domain& domain, const Point2& p) {
 
 double distance_to_boundary(const Domain& domain, const Point2& p) {
   double best = std::numeric_limits<double>::infinity();
-  auto ring_distance = [&](const Ring& ring) {
-    for (std::size_t i = 0, n = ring.size(); i < n; ++i)
-      best = std::min(best, distance_to_segment(p, ring[i], ring[(i + 1) % n]));
-  };
-  for (const Polygon& polygon : domain.polygons) {
-    ring_distance(polygon.outer);
-    for (const Ring& hole : polygon.holes) ring_distance(hole);
-  }
+  for_each_side(domain, [&](const Point2& a, const Point2& b) {
+    best = std::min(best, distance_to_segment(p, a, b));
+  });
   return best;
 }
 

@@ -66,6 +66,18 @@ bool crosses_odd(const std::vector<Point2>& ring, const Point2& p);
 bool domain_contains(const Domain& domain, const Point2& p);
 // The distance from p to the domain's boundary (its nearest ring; infinity without one).
 double distance_to_boundary(const Domain& domain, const Point2& p);
+// Calls visit(a, b) for each side of every ring of the domain (each polygon's outer ring,
+// then its holes; a ring's closing side last), in that order.
+template <typename Visit>
+void for_each_side(const Domain& domain, Visit visit) {
+  auto ring_sides = [&visit](const Ring& r) {
+    for (std::size_t i = 0; i < r.size(); ++i) visit(r[i], r[(i + 1) % r.size()]);
+  };
+  for (const Polygon& polygon : domain.polygons) {
+    ring_sides(polygon.outer);
+    for (const Ring& hole : polygon.holes) ring_sides(hole);
+  }
+}
 std::size_t num_vertices(const Polygon& polygon);
 std::size_t num_vertices(const Domain& domain);
 std::size_t num_holes(const Domain& domain);

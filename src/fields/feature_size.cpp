@@ -276,21 +276,15 @@ CoastDistance::CoastDistance(const Domain& domain, const PolylineIndex& open,
     throw Error(ErrorClass::internal, "sizing", "the coast's samples need a positive spacing");
   auto on_open = [&](const Point2& p) { return !open.empty() && open.near(p, open_tolerance_m); };
   std::vector<Point2> samples;
-  for (const Polygon& polygon : domain.polygons) {
-    std::vector<const Ring*> rings{&polygon.outer};
-    for (const Ring& h : polygon.holes) rings.push_back(&h);
-    for (const Ring* r : rings)
-      for (std::size_t i = 0; i < r->size(); ++i) {
-        const Point2 a = (*r)[i], b = (*r)[(i + 1) % r->size()];
-        const Point2 middle{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
-        if (on_open(a) && on_open(b) && on_open(middle)) continue;  // the open sea
-        const int n = std::max(1, static_cast<int>(std::ceil(distance(a, b) / spacing_m)));
-        for (int k = 0; k <= n; ++k) {
-          const double t = static_cast<double>(k) / n;
-          samples.push_back({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
-        }
-      }
-  }
+  for_each_side(domain, [&](const Point2& a, const Point2& b) {
+    const Point2 middle{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
+    if (on_open(a) && on_open(b) && on_open(middle)) return;  // the open sea
+    const int n = std::max(1, static_cast<int>(std::ceil(distance(a, b) / spacing_m)));
+    for (int k = 0; k <= n; ++k) {
+      const double t = static_cast<double>(k) / n;
+      samples.push_back({a.x + t * (b.x - a.x), a.y + t * (b.y - a.y)});
+    }
+  });
   samples_ = std::make_unique<NearestPoints>(std::move(samples));
 }
 

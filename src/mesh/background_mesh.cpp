@@ -178,21 +178,15 @@ void seed_interior(Ct& ct, const Domain& domain, const BackgroundMeshParams& par
   const SizeOracle& size = params.max_edge_m;
   double xmin = 1e300, ymin = 1e300, xmax = -1e300, ymax = -1e300;
   std::vector<K::Point_2> boundary;
-  for (const Polygon& poly : domain.polygons) {
-    std::vector<const Ring*> rings{&poly.outer};
-    for (const Ring& h : poly.holes) rings.push_back(&h);
-    for (const Ring* r : rings)
-      for (std::size_t i = 0; i < r->size(); ++i) {
-        const Point2 a = (*r)[i], b = (*r)[(i + 1) % r->size()];
-        xmin = std::min(xmin, a.x), ymin = std::min(ymin, a.y);
-        xmax = std::max(xmax, a.x), ymax = std::max(ymax, a.y);
-        const double len = std::hypot(b.x - a.x, b.y - a.y);
-        const double e = size({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)});
-        const int n = std::max(1, static_cast<int>(std::ceil(len / (0.25 * e))));
-        for (int k = 0; k < n; ++k)
-          boundary.emplace_back(a.x + (b.x - a.x) * k / n, a.y + (b.y - a.y) * k / n);
-      }
-  }
+  for_each_side(domain, [&](const Point2& a, const Point2& b) {
+    xmin = std::min(xmin, a.x), ymin = std::min(ymin, a.y);
+    xmax = std::max(xmax, a.x), ymax = std::max(ymax, a.y);
+    const double len = std::hypot(b.x - a.x, b.y - a.y);
+    const double e = size({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)});
+    const int n = std::max(1, static_cast<int>(std::ceil(len / (0.25 * e))));
+    for (int k = 0; k < n; ++k)
+      boundary.emplace_back(a.x + (b.x - a.x) * k / n, a.y + (b.y - a.y) * k / n);
+  });
   using Traits = CGAL::Search_traits_2<K>;
   using Search = CGAL::Orthogonal_k_neighbor_search<Traits>;
   Search::Tree tree(boundary.begin(), boundary.end());
