@@ -178,6 +178,8 @@ class ButterflyRemover {
   int fan_size(int v) const { return fans_.offset[v + 1] - fans_.offset[v]; }
 
   std::vector<int> tiles_at(int v) const;
+  void append_tiles_at(int v, std::vector<int>& out) const;
+  int num_tiles_at(int v) const;
   bool is_meta(int v) const;
   std::vector<Spoke> spokes(int v) const;
   bool trace(int from, const Spoke& spoke, std::vector<int>& path) const;
@@ -211,16 +213,34 @@ class ButterflyRemover {
 
 std::vector<int> ButterflyRemover::tiles_at(int v) const {
   std::vector<int> tiles;
-  for (const int* f = fan_begin(v); f != fan_end(v); ++f) tiles.push_back(tiling_.label[*f]);
-  std::sort(tiles.begin(), tiles.end());
-  tiles.erase(std::unique(tiles.begin(), tiles.end()), tiles.end());
+  append_tiles_at(v, tiles);
   return tiles;
+}
+
+// The tiles round v, sorted, appended to `out`.
+void ButterflyRemover::append_tiles_at(int v, std::vector<int>& out) const {
+  const std::size_t begin = out.size();
+  for (const int* f = fan_begin(v); f != fan_end(v); ++f) out.push_back(tiling_.label[*f]);
+  std::sort(out.begin() + begin, out.end());
+  out.erase(std::unique(out.begin() + begin, out.end()), out.end());
+}
+
+// How many tiles meet at v, without listing them (the fans hold a few triangles).
+int ButterflyRemover::num_tiles_at(int v) const {
+  int count = 0;
+  for (const int* f = fan_begin(v); f != fan_end(v); ++f) {
+    const int label = tiling_.label[*f];
+    const int* earlier = fan_begin(v);
+    while (earlier != f && tiling_.label[*earlier] != label) ++earlier;
+    if (earlier == f) ++count;
+  }
+  return count;
 }
 
 // Section 2.1: 3 or more tiles inside the domain; on the boundary, the meta-graph's call.
 bool ButterflyRemover::is_meta(int v) const {
   if (on_domain_boundary(v)) return boundary_meta_[v] != 0;
-  return tiles_at(v).size() >= 3;
+  return num_tiles_at(v) >= 3;
 }
 
 // The background edges out of an interior vertex that separate two tiles.
@@ -288,7 +308,7 @@ double ButterflyRemover::size_at_midpoint(const std::vector<int>& path) const {
 // four tiles are distinct.
 std::optional<Butterfly> ButterflyRemover::identify(int a, int b) const {
   if (a == b || on_domain_boundary(a) || on_domain_boundary(b)) return std::nullopt;
-  if (tiles_at(a).size() != 3 || tiles_at(b).size() != 3) return std::nullopt;
+  if (num_tiles_at(a) != 3 || num_tiles_at(b) != 3) return std::nullopt;
   const std::vector<Spoke> spokes_a = spokes(a), spokes_b = spokes(b);
   if (spokes_a.size() != 3 || spokes_b.size() != 3) return std::nullopt;  // a split wedge
 
@@ -445,7 +465,7 @@ int ButterflyRemover::num_irregular(const std::vector<int>& vertices) const {
   int count = 0;
   for (int v : vertices) {
     if (on_domain_boundary(v)) continue;
-    const std::size_t n = tiles_at(v).size();
+    const int n = num_tiles_at(v);
     if (n >= 3 && n != 4) ++count;
   }
   return count;
@@ -673,8 +693,20 @@ bool ButterflyRemover::reparameterize(const Butterfly& b, const std::vector<int>
   // Labels before, to restore and to compare the tiles around the boundary vertices.
   std::vector<int> old_label(region.size());
   for (std::size_t k = 0; k < region.size(); ++k) old_label[k] = tiling_.label[region[k]];
-  std::vector<std::vector<int>> loop_tiles_before(loop_size);
-  for (int i = 0; i < loop_size; ++i) loop_tiles_before[i] = tiles_at(loop[i]);
+  // The tiles round each loop vertex, in one list: loop vertex i's from
+  // loop_tiles_begin[i] to loop_tiles_begin[i + 1].
+  std::vector<int> loop_tiles_before, loop_tiles_begin(loop_size + 1, 0), tiles_now;
+  for (int i = 0; i < loop_size; ++i) {
+    append_tiles_at(loop[i], loop_tiles_before);
+    loop_tiles_begin[i + 1] = static_cast<int>(loop_tiles_before.size());
+  }
+  auto same_tiles_as_before = [&](int i) {
+    tiles_now.clear();
+    append_tiles_at(loop[i], tiles_now);
+    return std::equal(tiles_now.begin(), tiles_now.end(),
+                      loop_tiles_before.begin() + loop_tiles_begin[i],
+                      loop_tiles_before.begin() + loop_tiles_begin[i + 1]);
+  };
   const int irregular_before = num_irregular(local_vertices);
   auto restore = [&]() {
     for (std::size_t k = 0; k < region.size(); ++k) tiling_.label[region[k]] = old_label[k];
@@ -742,7 +774,7 @@ bool ButterflyRemover::reparameterize(const Butterfly& b, const std::vector<int>
 
     for (std::size_t k = 0; k < region.size(); ++k) tiling_.label[region[k]] = tiles[part[k]];
     const int centre_vertex = local_vertices[centre];
-    bool valid = tiles_at(centre_vertex).size() == 4;
+    bool valid = num_tiles_at(centre_vertex) == 4;
     // Every new tile a disk; the tiles around every boundary vertex unchanged (the
     // interfaces and the rest of the meta-graph stay); no meta-vertex inside but v*.
     for (int k = 0; k < 4 && valid; ++k) {
@@ -753,7 +785,7 @@ bool ButterflyRemover::reparameterize(const Butterfly& b, const std::vector<int>
                                  return region_of_[f] >= 0 && part[region_of_[f]] == k;
                                }).has_value();
     }
-    for (int i = 0; i < loop_size && valid; ++i) valid = tiles_at(loop[i]) == loop_tiles_before[i];
+    for (int i = 0; i < loop_size && valid; ++i) valid = same_tiles_as_before(i);
     for (int i = 0; i < n && valid; ++i)
       if (!on_loop[i] && i != centre && is_meta(local_vertices[i])) valid = false;
     // Never more irregular meta-vertices than before.
