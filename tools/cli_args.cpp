@@ -542,8 +542,8 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
          "Vector file (any format, with a CRS) of polygons whose attribute --zones-field "
          "numbers them (1 or more): each quad takes the number of the first that holds "
          "its centroid (0: none), as a .2dm's material, SCHISM's hgrid.prop beside a .gr3, "
-         "a .msh's physical group (zone_N) "
-         "and a cell value of .gpkg, .geojson, .fgb, .vtu, .vtk and .nc (friction or "
+         "a .msh's physical group (zone_N), a .slf's FRIC_ID (each node's: that of most of its "
+         "quads) and a cell value of .gpkg, .geojson, .fgb, .vtu, .vtk and .nc (friction or "
          "vegetation classes, a model's regions)")
       ->group("Output");
   cmd->add_option("--zones-field", m.zones.field,

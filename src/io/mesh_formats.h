@@ -48,6 +48,10 @@ void write_fort14_file(const MeshView& v, const std::string& path, const std::st
 // of triangle-only models.
 std::array<std::array<int, 3>, 2> quad_as_triangles(const QuadMesh& mesh, int q);
 std::vector<std::array<int, 3>> quads_as_triangles(const QuadMesh& mesh);
+
+// Each node's zone from its quads' (--zones; TELEMAC's zones are the nodes'): the zone of
+// most of them; on a tie a zone before none (0), then the smaller number.
+std::vector<double> node_zones(const QuadMesh& mesh, const std::vector<double>& quad_zone);
 // One open boundary segment as a D-Flow FM polyline, named after the stem of `what`.
 void write_pli_file(const MeshView& v, const BoundarySegment& segment, const std::string& path,
                     const std::string& what);

@@ -1,9 +1,11 @@
 // TELEMAC-2D geometry (Selafin, double precision: "SERAFIND") and boundary conditions
 // (.cli). TELEMAC-2D computes on linear triangles only, so each quad is cut into two
-// counter-clockwise triangles (quad_as_triangles). The geometry holds one
-// variable, BOTTOM (the bed level: minus the depth, 0 when unknown), at time 0, and
-// IPOBO, each boundary node's line in the .cli (0 inside). Records are Fortran
-// sequential (a 4-byte length before and after), big-endian, TELEMAC's default.
+// counter-clockwise triangles (quad_as_triangles). The geometry holds the variable
+// BOTTOM (the bed level: minus the depth, 0 when unknown) at time 0, with --zones also
+// FRIC_ID (each node's zone, node_zones: the friction zone TELEMAC-2D looks up in its
+// FRICTION DATA FILE, instead of a ZONES FILE), and IPOBO, each boundary node's line in
+// the .cli (0 inside). Records are Fortran sequential (a 4-byte length before and after),
+// big-endian, TELEMAC's default.
 //
 // The .cli has a line per boundary node, 13 fields: LIHBOR LIUBOR LIVBOR HBOR UBOR VBOR
 // AUBOR LITBOR TBOR ATBOR BTBOR N K, with 2 2 2 ... 2 (a wall) on land and 5 4 4 ... 4
@@ -132,6 +134,36 @@ double skewness(const QuadMesh& m, const std::array<int, 3>& t) {
 
 }  // namespace
 
+std::vector<double> node_zones(const QuadMesh& m, const std::vector<double>& quad_zone) {
+  // Each node's quads' zones, as (node, zone) pairs sorted: runs of one node.
+  std::vector<std::pair<int, double>> at;
+  at.reserve(4 * m.quads.size());
+  for (std::size_t q = 0; q < m.quads.size(); ++q)
+    for (int n : m.quads[q]) at.emplace_back(n, quad_zone[q]);
+  std::sort(at.begin(), at.end());
+  std::vector<double> zone(m.points.size(), 0.0);
+  for (std::size_t i = 0; i < at.size();) {
+    std::size_t end = i;
+    while (end < at.size() && at[end].first == at[i].first) ++end;
+    // The zone of most of its quads; on a tie, a zone before none (0), then the smaller
+    // number (the runs come by increasing number).
+    double& best = zone[at[i].first];
+    std::size_t best_count = 0;
+    for (std::size_t j = i; j < end;) {
+      std::size_t k = j;
+      while (k < end && at[k].second == at[j].second) ++k;
+      const double z = at[j].second;
+      if (k - j > best_count || (k - j == best_count && best == 0 && z != 0)) {
+        best = z;
+        best_count = k - j;
+      }
+      j = k;
+    }
+    i = end;
+  }
+  return zone;
+}
+
 std::array<std::array<int, 3>, 2> quad_as_triangles(const QuadMesh& m, int q) {
   const auto& c = m.quads[q];
   const std::array<std::array<int, 3>, 2> a{{{c[0], c[1], c[2]}, {c[0], c[2], c[3]}}};
@@ -163,11 +195,18 @@ void write_telemac_files(const MeshView& v, const std::string& path, const std::
   w.text("isoquad " ISOQUAD_VERSION " mesh (quads cut into triangles)", 72);
   w.text("SERAFIND", 8);
   w.end();
-  w.ints({1, 0});
+  const bool zones = !v.data->zone.empty();
+  w.ints({zones ? 2 : 1, 0});
   w.begin(32);
   w.text("BOTTOM", 16);
   w.text("M", 16);
   w.end();
+  if (zones) {
+    w.begin(32);
+    w.text("FRIC_ID", 16);
+    w.text("", 16);
+    w.end();
+  }
   w.ints({1, 0, 0, 0, 0, 0, 0, static_cast<int>(boundary.size()), 0, 0});
   w.ints({static_cast<int>(ikle.size() / 3), np, 3, 1});
   w.ints(ikle);
@@ -180,6 +219,7 @@ void write_telemac_files(const MeshView& v, const std::string& path, const std::
   w.doubles(ys);
   w.doubles({0.0});  // the time step's time
   w.doubles(bottom);
+  if (zones) w.doubles(node_zones(m, v.data->zone));
   w.close();
 
   OutputFile f(cli_path, cli_what);

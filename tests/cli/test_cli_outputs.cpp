@@ -2109,18 +2109,19 @@ TEST(CliOutputs, SoundingsGiveTheDepthsBetweenThem) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("u.gr3")));
 }
 
-// --zones: each quad's zone in the GeoPackage's quads and as the .2dm's material, the
-// summary's count and a warning for the quads in none; a bad file stops the run before
-// the meshing, with nothing written.
+// --zones: each quad's zone in the GeoPackage's quads and as the .2dm's material, each
+// node's as TELEMAC's FRIC_ID, the summary's count and a warning for the quads in none;
+// a bad file stops the run before the meshing, with nothing written.
 TEST(CliOutputs, ZonesAreTheQuadsMaterials) {
   TempDir dir;
   write_file(dir.file("zones.geojson"),
              "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\","
              "\"properties\":{\"class\":7},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":"
              "[[[-4.7,48.1],[-4.5,48.1],[-4.5,48.4],[-4.7,48.4],[-4.7,48.1]]]}}]}");
-  CliResult r = mesh_box_800(dir, {"--zones", dir.file("zones.geojson"), "--zones-field", "class",
-                                   "-o", dir.file("m.gpkg"), "-o", dir.file("m.2dm"), "-o",
-                                   dir.file("m.msh"), "-o", dir.file("m.gr3")});
+  CliResult r =
+      mesh_box_800(dir, {"--zones", dir.file("zones.geojson"), "--zones-field", "class", "-o",
+                         dir.file("m.gpkg"), "-o", dir.file("m.2dm"), "-o", dir.file("m.msh"), "-o",
+                         dir.file("m.gr3"), "-o", dir.file("m.slf")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   ASSERT_EQ(mesh_box_800(dir, {"--zones", dir.file("zones.geojson"), "--zones-field", "class",
                                "--msh-version", "2.2", "-o", dir.file("m22.msh")})
@@ -2155,6 +2156,44 @@ TEST(CliOutputs, ZonesAreTheQuadsMaterials) {
     if (line.rfind("E4Q ", 0) == 0 && line.size() > 2 && line.substr(line.size() - 2) == " 7")
       ++materials_7;
   EXPECT_EQ(materials_7, in_zone);
+  // The .slf's second variable, FRIC_ID: each node's zone, that of most of its quads (the
+  // .2dm's materials), 7 on a tie; the nodes in zone 7 and in none both many.
+  const std::string fric =
+      python_check(dir,
+                   "import struct, sys, collections\n"
+                   "import numpy as np\n"
+                   "data = open(sys.argv[1], 'rb').read()\n"
+                   "pos = 0\n"
+                   "def record():\n"
+                   "    global pos\n"
+                   "    (n,) = struct.unpack('>i', data[pos:pos + 4])\n"
+                   "    pos += n + 8\n"
+                   "    return data[pos - n - 4:pos - 4]\n"
+                   "record()\n"
+                   "assert np.frombuffer(record(), '>i4').tolist() == [2, 0]\n"
+                   "assert record() == b'BOTTOM'.ljust(16) + b'M'.ljust(16)\n"
+                   "assert record() == b'FRIC_ID'.ljust(32)\n"
+                   "record()\n"
+                   "nelem, npoin, ndp, one = np.frombuffer(record(), '>i4')\n"
+                   "for k in range(6): record()  # ikle, ipobo, x, y, the time, bottom\n"
+                   "fric = np.frombuffer(record(), '>f8')\n"
+                   "assert pos == len(data) and len(fric) == npoin\n"
+                   "votes = collections.defaultdict(collections.Counter)\n"
+                   "for line in open(sys.argv[2]):\n"
+                   "    f = line.split()\n"
+                   "    if f and f[0] == 'E4Q':\n"
+                   "        for n in f[2:6]: votes[int(n) - 1][int(f[6])] += 1\n"
+                   "assert len(votes) == npoin\n"
+                   "for n, c in votes.items():\n"
+                   "    want = 7 if c[7] >= c[0] else 0\n"
+                   "    assert fric[n] == want, (n, c, fric[n])\n"
+                   "print((fric == 7).sum(), (fric == 0).sum())\n",
+                   {dir.file("m.slf"), dir.file("m.2dm")});
+  std::istringstream counts(fric);
+  std::size_t nodes_7 = 0, nodes_0 = 0;
+  counts >> nodes_7 >> nodes_0;
+  EXPECT_GT(nodes_7, 20u) << fric;
+  EXPECT_GT(nodes_0, 20u) << fric;
   EXPECT_NE(r.err.find("zones:        1 polygon(s) of " + dir.file("zones.geojson") + ": " +
                        std::to_string(in_none) + " quads in none; 7: " + std::to_string(in_zone) +
                        " quads"),
