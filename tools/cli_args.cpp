@@ -164,7 +164,7 @@ void add_quality_options(CLI::App* cmd, QualityArgs& q) {
   cmd->add_option("--mesh", q.mesh_path,
                   "The mesh to measure: SCHISM .gr3 or .ll, ADCIRC .14, SMS .2dm, Gmsh .msh "
                   "(ASCII 2.2 or 4.1), MIKE .mesh, UGRID .nc (also D-Flow FM's net files), "
-                  "TELEMAC .slf, or polygons (isoquad's .gpkg, .shp, .geojson); "
+                  "TELEMAC .slf, or polygons (isoquad's .gpkg, .shp, .geojson, .fgb); "
                   "triangles and quadrangles")
       ->required()
       ->group("Mesh");

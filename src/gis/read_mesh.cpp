@@ -1084,13 +1084,13 @@ std::string mesh_file_format(const std::string& path) {
   if (ext == ".mesh") return "mesh";
   if (ext == ".nc") return "nc";
   if (ext == ".slf" || ext == ".srf") return "slf";
-  if (ext == ".gpkg" || ext == ".shp" || ext == ".geojson") return "polygons";
+  if (ext == ".gpkg" || ext == ".shp" || ext == ".geojson" || ext == ".fgb") return "polygons";
   throw Error(ErrorClass::usage, "options",
               "'" + path +
                   "': a mesh to measure is a .gr3 or .ll (SCHISM), .14 or .grd (ADCIRC), .2dm "
                   "(SMS), .msh (Gmsh, ASCII), .mesh (MIKE 21/3 FM), .nc (UGRID, D-Flow FM's net "
                   "file), .slf (TELEMAC's Selafin) or a layer of polygons, each a triangle or a "
-                  "quadrangle (.gpkg: isoquad's layer 'quads', .shp, .geojson)");
+                  "quadrangle (.gpkg: isoquad's layer 'quads', .shp, .geojson, .fgb)");
 }
 
 bool is_mesh_file(const std::string& path) {

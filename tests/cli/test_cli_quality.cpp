@@ -61,14 +61,14 @@ TEST(CliQuality, IsoquadsOwnOutputsMeasureAsTheMeshReportSays) {
   std::vector<std::string> args = {"mesh", sample("corsica.geojson"), "--report",
                                    dir.file("r.json")};
   args.insert(args.end(), kCorsica.begin(), kCorsica.end());
-  for (const char* ext : {".gr3", ".msh", ".2dm", ".mesh", ".nc", ".gpkg"}) {
+  for (const char* ext : {".gr3", ".msh", ".2dm", ".mesh", ".nc", ".gpkg", ".fgb"}) {
     args.push_back("-o");
     args.push_back(dir.file(std::string("m") + ext));
   }
   const CliResult made = run_cli(args, dir);
   ASSERT_EQ(made.exit_code, 0) << made.err;
   const std::string mesh_report = read_file(dir.file("r.json"));
-  for (const char* ext : {".gr3", ".msh", ".2dm", ".mesh", ".nc", ".gpkg"}) {
+  for (const char* ext : {".gr3", ".msh", ".2dm", ".mesh", ".nc", ".gpkg", ".fgb"}) {
     const std::string report = dir.file(std::string("q") + ext + ".json");
     const CliResult r =
         run_cli(quality_args(dir.file(std::string("m") + ext), {"--report", report}), dir);
