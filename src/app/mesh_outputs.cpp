@@ -137,10 +137,16 @@ std::vector<std::string> mesh_job_warnings(const MeshResult& r, const MeshJobOut
                                            const MeshJobWritten& written,
                                            double max_orthogonality) {
   std::vector<std::string> warnings;
-  if (written.zones && written.zones->counts.count(0))
-    warnings.push_back(printf_string(
-        "%zu of the %zu quads lie in no polygon of %s: their zone is 0 (a .2dm's material 0)",
-        written.zones->counts.at(0), r.quads.quads.size(), outputs.zones.path.c_str()));
+  if (written.zones && written.zones->counts.count(0)) {
+    const std::size_t none = written.zones->counts.at(0), all = r.quads.quads.size();
+    warnings.push_back(
+        none == all
+            ? printf_string("none of the %zu quads lies in a polygon of %s: every zone is 0 "
+                            "(do its polygons cover this domain, in the CRS it names?)",
+                            all, outputs.zones.path.c_str())
+            : printf_string("%zu of the %zu quads lie in no polygon of %s: their zone is 0", none,
+                            all, outputs.zones.path.c_str()));
+  }
   const std::optional<VertexDepths>& depths = written.depths;
   if (depths && depths->num_filled)
     warnings.push_back(printf_string(

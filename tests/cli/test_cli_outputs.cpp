@@ -2218,6 +2218,17 @@ TEST(CliOutputs, ZonesAreTheQuadsMaterials) {
   const std::size_t first = groups.find(expected);  // meshio prints blank lines too
   EXPECT_NE(first, std::string::npos) << groups;
   EXPECT_NE(groups.find(expected, first + 1), std::string::npos) << groups;
+  // Polygons that miss the domain (another region's, or in a wrong CRS): said so.
+  write_file(dir.file("far.geojson"),
+             "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\","
+             "\"properties\":{\"zone\":2},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":"
+             "[[[3.7,43.1],[3.9,43.1],[3.9,43.3],[3.7,43.3],[3.7,43.1]]]}}]}");
+  r = mesh_box_800(dir, {"--zones", dir.file("far.geojson"), "-o", dir.file("far.gpkg")});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("none of the " + std::to_string(in_zone + in_none) +
+                       " quads lies in a polygon of " + dir.file("far.geojson")),
+            std::string::npos)
+      << r.err;
   // The default attribute, zone, is not in the file.
   r = mesh_box_800(dir, {"--zones", dir.file("zones.geojson"), "-o", dir.file("x.gpkg")});
   EXPECT_EQ(r.exit_code, 2) << r.err;
