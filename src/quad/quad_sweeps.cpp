@@ -431,12 +431,16 @@ void aligned_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t
 // vertices it marks move, the others stay.
 void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
                   const SmoothParams& params, const CrossField* cross, const SizingField* size,
-                  const std::vector<char>* only, int iterations, const Progress& progress) {
+                  const std::vector<char>* only, int iterations, const Progress& progress,
+                  SweepSetup* setup) {
   const int nv = static_cast<int>(m.points.size());
   if (iterations < 0) iterations = params.angle_iterations;
   const double ow = params.angle_orientation_weight;
-  std::unique_ptr<TriangleLocator> locator;
-  if ((cross && ow > 0) || size) locator = std::make_unique<TriangleLocator>(bg);
+  SweepSetup own;
+  if (!setup) setup = &own;
+  if (((cross && ow > 0) || size) && !setup->locator)
+    setup->locator = std::make_unique<TriangleLocator>(bg);
+  const TriangleLocator* locator = setup->locator.get();
   // The cross at every vertex where the sweeps start: the unit vector of one of its axes.
   std::vector<Point2> axis;
   if (cross && ow > 0) {
@@ -450,9 +454,18 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
     }
   }
   // Target areas: h^2 at the quad centroids where the sweeps start (the sizing field),
-  // else the areas there.
+  // else the areas there; with `only`, of the quads of its vertices (the others' are not
+  // read).
   std::vector<double> area0(m.quads.size());
+  std::vector<char> read_area;
+  if (only) {
+    read_area.assign(m.quads.size(), 0);
+    for (int v = 0; v < nv; ++v)
+      if ((*only)[v])
+        for (int k = t.quad_start[v]; k < t.quad_start[v + 1]; ++k) read_area[t.quad_items[k]] = 1;
+  }
   for (std::size_t q = 0; q < m.quads.size(); ++q) {
+    if (only && !read_area[q]) continue;
     area0[q] = quad_area(m, static_cast<int>(q));
     if (!size) continue;
     const Location loc = locator->locate(quad_centroid(m, static_cast<int>(q)));
@@ -554,8 +567,17 @@ void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
         if (moved_at[w] > stayed_at[v]) return false;
     return true;
   };
-  // The vertices of one colour move independently, so in parallel.
-  const std::vector<std::vector<int>> colours = quad_colouring(m, t);
+  // The vertices of one colour move independently, so in parallel; with `only`, its
+  // vertices of each colour, in the same order.
+  if (setup->colours.empty()) setup->colours = quad_colouring(m, t);
+  std::vector<std::vector<int>> some;
+  if (only)
+    for (const std::vector<int>& colour : setup->colours) {
+      some.emplace_back();
+      for (int v : colour)
+        if ((*only)[v]) some.back().push_back(v);
+    }
+  const std::vector<std::vector<int>>& colours = only ? some : setup->colours;
   const int threads = sweep_threads(params);
   std::vector<std::vector<double>> scratch(threads);
   long time = 0;

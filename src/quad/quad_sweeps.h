@@ -4,11 +4,13 @@
 // measurements are SmoothParams' (smooth_quads.h).
 #pragma once
 
+#include <memory>
 #include <vector>
 
 #include "fields/cross_field.h"
 #include "fields/sizing_field.h"
 #include "mesh/background_mesh.h"
+#include "mesh/locate.h"
 #include "quad/quad_mesh.h"
 #include "quad/quad_topology.h"
 #include "quad/smooth_quads.h"
@@ -27,13 +29,22 @@ void aligned_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t
                     const SizingField& size, const CrossField& cross, const SmoothParams& params,
                     const Progress& progress = Progress());
 
+// What the angle sweeps set up over the whole mesh, the same for every call on one
+// background mesh and one topology (the positions may change between calls): the point
+// locator (built at the first call that needs it) and the vertices' colouring. Calls
+// with `only` that share one (the embedding's rounds) then cost what their vertices do.
+struct SweepSetup {
+  std::unique_ptr<TriangleLocator> locator;
+  std::vector<std::vector<int>> colours;  // empty until the first call
+};
+
 // The angle sweeps (SmoothParams::angle_iterations, or `iterations`); with `only`, the
 // vertices it marks move, the others stay. The mesh is the same with any number of
-// threads.
+// threads, and with or without `setup`.
 void angle_sweeps(const BackgroundMesh& bg, QuadMesh& m, const QuadTopology& t,
                   const SmoothParams& params, const CrossField* cross, const SizingField* size,
                   const std::vector<char>* only = nullptr, int iterations = -1,
-                  const Progress& progress = Progress());
+                  const Progress& progress = Progress(), SweepSetup* setup = nullptr);
 
 // Lowers the D-Flow FM orthogonality of the links over params.max_orthogonality: in up
 // to params.orthogonality_rounds rounds, each interior corner of their quads takes the

@@ -608,6 +608,46 @@ TEST(SmoothQuads, AngleSweepsGiveTheSameMeshWithAnyNumberOfThreads) {
   EXPECT_GT(moved, 1.0);
 }
 
+TEST(SmoothQuads, AngleSweepsOnSomeVerticesGiveTheSameMeshWithASharedSetup) {
+  // The same pushed grid, sweeps on the vertices of a band only (as the embedding's
+  // rounds run them), twice in a row: without a setup, and with one kept between the two
+  // calls (its locator and colouring built once). Bit for bit the same; the band moved,
+  // the rest did not.
+  const BackgroundMesh bg = square_background();
+  SizingField size;
+  for (const Point2& p : bg.points) size.size_m.push_back(20.0 + 0.02 * p.x);
+  const CrossField cross = constant_cross_field(bg, 10.0);
+  constexpr int n = 40;
+  QuadMesh start = grid(n);
+  std::vector<char> only(start.points.size(), 0);
+  for (int j = 1; j < n; ++j)
+    for (int i = 1; i < n; ++i) {
+      Point2& p = start.points[j * (n + 1) + i];
+      p.x += 0.2 * (kSide / n) * std::sin(1.3 * i + j);
+      p.y += 0.2 * (kSide / n) * std::cos(0.7 * i + 2.0 * j);
+      only[j * (n + 1) + i] = i >= 10 && i < 20;
+    }
+  const QuadTopology t = quad_topology(start);
+  const SmoothParams params;
+  QuadMesh alone = start, shared = start;
+  SweepSetup setup;
+  for (int call = 0; call < 2; ++call) {
+    angle_sweeps(bg, alone, t, params, &cross, &size, &only, 4);
+    angle_sweeps(bg, shared, t, params, &cross, &size, &only, 4, Progress(), &setup);
+  }
+  EXPECT_FALSE(setup.colours.empty());
+  double moved = 0;
+  for (std::size_t v = 0; v < start.points.size(); ++v) {
+    EXPECT_EQ(shared.points[v].x, alone.points[v].x) << v;
+    EXPECT_EQ(shared.points[v].y, alone.points[v].y) << v;
+    if (!only[v]) {
+      EXPECT_EQ(alone.points[v], start.points[v]) << v;
+    }
+    moved = std::max(moved, distance(start.points[v], alone.points[v]));
+  }
+  EXPECT_GT(moved, 1.0);
+}
+
 TEST(SmoothQuads, AQuadNoMoveMendsIsFlippedWithItsNeighbour) {
   // Two quads of a hexagon whose vertex h1 is pushed inside: split along (h0, h3), the
   // quad holding h1 is not convex, and no vertex may move (all fixed). Split along
@@ -1060,14 +1100,16 @@ TEST(EmbedLines, ALineOutsideTheDomainMovesNothing) {
 // boundary edge of the boundary, or outside within one, takes a boundary vertex slid to
 // the boundary's point nearest it (a corner that lies there already); one outside and
 // farther gets none. Of three points 22 to 24 m apart in quads of 100 m (beyond a fifth
-// of a quad, so not sharing a vertex), each gets its own vertex; one stops where the
-// quads between would fold.
+// of a quad, so not sharing a vertex), each gets its own vertex, the third on its second
+// try (its nearest free vertex stopped where the quads between would fold); of three in
+// a row 22 m apart, one stops short even so.
 TEST(EmbedLines, PointsTakeTheirNearestVerticesOrTheCoast) {
   const BackgroundMesh bg = square_background();
   QuadMesh m = grid();
   const QuadMesh before = m;
-  const std::vector<Point2> points = {{333, 471},  {150, 850}, {20, 520},  {-30, 330}, {-10, -10},
-                                      {-200, 300}, {612, 655}, {634, 655}, {623, 676}};
+  const std::vector<Point2> points = {{333, 471}, {150, 850},  {20, 520},  {-30, 330},
+                                      {-10, -10}, {-200, 300}, {612, 655}, {634, 655},
+                                      {623, 676}, {212, 255},  {234, 255}, {256, 255}};
   const std::vector<Point2> coast = {{0, 520}, {0, 330}, {0, 0}};  // of points 2, 3, 4
   std::vector<EmbeddedPoint> vertices;
   const SmoothParams params;
@@ -1076,7 +1118,7 @@ TEST(EmbedLines, PointsTakeTheirNearestVerticesOrTheCoast) {
       embed_lines(bg, m, {}, embed, params, nullptr, nullptr, nullptr, points, &vertices);
   EXPECT_FALSE(st.requested);  // no line
   EXPECT_EQ(st.num_points, points.size() - 1);
-  EXPECT_EQ(st.num_points_on, points.size() - 2);
+  EXPECT_EQ(st.num_points_on, points.size() - 2);  // all but the one outside and one of the row
   EXPECT_EQ(st.num_points_coast, 3u);
   EXPECT_DOUBLE_EQ(st.max_coast_distance_m, 30.0);
   EXPECT_EQ(st.num_points_outside, 1u);
@@ -1091,16 +1133,16 @@ TEST(EmbedLines, PointsTakeTheirNearestVerticesOrTheCoast) {
     EXPECT_EQ(e.coast, k >= 2 && k <= 4) << k;
     EXPECT_EQ(m.chain[e.vertex] >= 0 || m.fixed[e.vertex], e.coast) << k;
     EXPECT_EQ(e.target, e.coast ? coast[k - 2] : points[k]) << k;
-    if (k < 6) {
+    if (k < 9) {
       EXPECT_EQ(m.points[e.vertex], e.target) << k;
     }
     for (std::size_t j = 0; j < k; ++j) EXPECT_NE(vertices[j].vertex, e.vertex);
   }
   EXPECT_TRUE(m.fixed[vertices[4].vertex]);  // the corner, not moved
-  // The three close points: two on their vertices, one short of it.
+  // The three in a row: two on their vertices, one short of it.
   double off = 0;
   int num_on = 0;
-  for (std::size_t k = 6; k < 9; ++k) {
+  for (std::size_t k = 9; k < 12; ++k) {
     const double d = distance(m.points[vertices[k].vertex], points[k]);
     num_on += d <= embed.on_line_m;
     off = std::max(off, d);
