@@ -602,6 +602,7 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   // instead of folding round its vertex (Brittany's 300 random points: 233 -> 252 on
   // their vertex, against a quarter and a half: 245).
   const std::vector<Point2> before_points = m.points;
+  const std::vector<double> before_arcs = m.arc_m;
   auto drag_neighbours = [&](const std::vector<const EmbeddedPoint*>& which) {
     for (const double share : {0.33, 0.67})
       for (const EmbeddedPoint* ep : which) {
@@ -693,12 +694,23 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   // (if its quads allow) and is let go, the other is dragged and moved as the first was,
   // with room round the two alone; when it stops short too, the positions and arcs the
   // try changed are put back (Brittany's 300 random points: 269 -> 289 on their vertex).
+  // A point at the coast whose boundary vertex could not slide to it (where the coast
+  // bends) tries the boundary vertex at the other end of the edge it lies on.
   for (EmbeddedPoint& e : on_point) {
-    if (e.vertex < 0 || e.coast || e.shares >= 0 || done[e.vertex]) continue;
+    if (e.vertex < 0 || e.shares >= 0 || done[e.vertex] ||
+        distance(m.points[e.vertex], e.target) <= embed.on_line_m)
+      continue;
     const int old = e.vertex;
     std::vector<std::pair<double, int>> others;  // by their distance now
-    for (const auto& [d, v] : lookup->nearest_free(held, e.target, kCandidates))
-      if (v != old) others.emplace_back(distance(m.points[v], e.target), v);
+    if (e.coast) {
+      const int other = m.chain[old] >= 0 ? lookup->coast_vertex(held, m.chain[old], e.target,
+                                                                 target_arc[old], embed.on_line_m)
+                                          : -1;
+      if (other >= 0) others.emplace_back(0.0, other);
+    } else {
+      for (const auto& [d, v] : lookup->nearest_free(held, e.target, kCandidates))
+        if (v != old) others.emplace_back(distance(m.points[v], e.target), v);
+    }
     std::sort(others.begin(), others.end());
     for (const auto& [d, next] : others) {
       const std::vector<Point2> kept = m.points;
@@ -710,10 +722,13 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
             if (!held[u] || u == old) local[u] = 1;
       local[next] = 0;
       std::swap(room, local);
-      try_move(m, t, old, before_points[old], m.arc_m[old], sweep.min_convexity);
+      try_move(m, t, old, before_points[old], before_arcs[old],
+               m.chain[old] >= 0 ? std::max(params.min_convexity, embed.coast_min_turn_sine)
+                                 : sweep.min_convexity);
       held[old] = 0;
       held[next] = 1;
       target[next] = e.target;
+      target_arc[next] = target_arc[old];
       e.vertex = next;
       drag_neighbours({&e});
       move_rounds({next});

@@ -1179,6 +1179,34 @@ TEST(EmbedLines, PointsTakeTheirNearestVerticesOrTheCoast) {
     }
 }
 
+// A point at the coast whose nearest boundary vertex cannot slide to it (its quads'
+// corners would leave the bound) takes the boundary vertex at the other end of its edge.
+// The grid's vertex (100, 100) is pushed to (70, 100), so that (100, 0) sliding right
+// turns its quads' corners by 37 degrees, past a bound of [55, 125] degrees, where (200,
+// 0) sliding left turns them by 29. With the interior vertex held by a line-free point
+// of its own, the sweeps cannot straighten it first.
+TEST(EmbedLines, ACoastPointTakesTheOtherEndOfItsEdgeWhenTheNearestCannotSlide) {
+  const BackgroundMesh bg = square_background();
+  QuadMesh m = grid();
+  const int pushed = 1 * (kN + 1) + 1, near = 1, far = 2;  // (100, 100), (100, 0), (200, 0)
+  m.points[pushed] = {70, 100};
+  EmbedParams embed;
+  embed.coast_min_turn_sine = 0.82;  // corners in [55, 125] degrees
+  const std::vector<Point2> points = {{145, 5}, {70, 100}};
+  std::vector<EmbeddedPoint> vertices;
+  const EmbedStats st =
+      embed_lines(bg, m, {}, embed, SmoothParams(), nullptr, nullptr, nullptr, points, &vertices);
+  ASSERT_EQ(vertices.size(), 2u);
+  EXPECT_EQ(vertices[1].vertex, pushed);
+  EXPECT_TRUE(vertices[0].coast);
+  EXPECT_EQ(vertices[0].vertex, far);
+  EXPECT_EQ(m.points[far], (Point2{145, 0}));
+  EXPECT_EQ(st.num_points_on, 2u);
+  EXPECT_EQ(m.points[near].y, 0.0);
+  for (int q = 0; q < static_cast<int>(m.quads.size()); ++q)
+    EXPECT_GT(quad_convexity(m, q), 0.0) << q;
+}
+
 // A point given twice, and one 4.5 m from it in quads of 100 m, share the first one's
 // vertex, on it; a point 30 m away (beyond a fifth of a quad) gets its own.
 TEST(EmbedLines, PointsTooCloseShareTheFirstOnesVertex) {
