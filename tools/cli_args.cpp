@@ -490,7 +490,8 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "D-Flow FM: last, the interior corners of quads whose links have an "
                   "orthogonality over this move until they do not, where they can (D-Flow FM "
                   "refuses a network with one over 0.5, its CosPhiuTrsh: 0.45 leaves a margin; "
-                  "default 0: none). Costs a little of the angles in [75,105]")
+                  "default 0: none; again after --embed and --embed-points, their vertices "
+                  "held). Costs a little of the angles in [75,105]")
       ->check(CLI::Range(0.0, 1.0))
       ->group("Quads");
   cmd->add_option("--coast-weight", m.mesh.smooth.coast_weight,

@@ -753,6 +753,16 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   if (!order.empty())
     angle_sweeps(bg, m, t, sweep, cross, size, &room, embed.sweep_iterations, Progress(),
                  &sweep_setup);
+  // D-Flow FM's orthogonality again (SmoothParams::max_orthogonality), the vertices on the
+  // lines and points held: the moves onto them bent links that the smoothing had
+  // straightened.
+  if (params.max_orthogonality > 0 && !order.empty()) {
+    const std::vector<char> fixed = m.fixed;
+    for (int v = 0; v < nv; ++v)
+      if (held[v]) m.fixed[v] = 1;
+    orthogonality_sweeps(m, t, params);
+    m.fixed = fixed;
+  }
 
   // How closely the paths follow the lines: their vertices' distances, and the stretches
   // of line between two consecutive vertices on it (an edge's ends) that stay within

@@ -1207,6 +1207,33 @@ TEST(EmbedLines, ACoastPointTakesTheOtherEndOfItsEdgeWhenTheNearestCannotSlide) 
     EXPECT_GT(quad_convexity(m, q), 0.0) << q;
 }
 
+// With D-Flow FM's bound (SmoothParams::max_orthogonality), the links the moves onto the
+// points bent are straightened again after them, the points' vertices held.
+TEST(EmbedLines, LinksBentByThePointsAreStraightenedAgainUnderDflowfmsBound) {
+  const BackgroundMesh bg = square_background();
+  const std::vector<Point2> points = {{350, 450}, {640, 660}, {160, 840}};
+  auto over = [](const QuadMesh& mesh, double bound) {
+    std::size_t n = 0;
+    for (double o : dflowfm_links(mesh).orthogonality) n += o > bound;
+    return n;
+  };
+  SmoothParams plain, dflowfm;
+  dflowfm.max_orthogonality = 0.1;
+  QuadMesh bent = grid(), straightened = grid();
+  std::vector<EmbeddedPoint> at_bent, at_straightened;
+  embed_lines(bg, bent, {}, EmbedParams(), plain, nullptr, nullptr, nullptr, points, &at_bent);
+  embed_lines(bg, straightened, {}, EmbedParams(), dflowfm, nullptr, nullptr, nullptr, points,
+              &at_straightened);
+  ASSERT_GT(over(bent, 0.1), 10u);
+  EXPECT_LT(over(straightened, 0.1), over(bent, 0.1) / 2);
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    ASSERT_GE(at_straightened[k].vertex, 0) << k;
+    EXPECT_EQ(straightened.points[at_straightened[k].vertex], points[k]) << k;
+  }
+  for (int q = 0; q < static_cast<int>(straightened.quads.size()); ++q)
+    EXPECT_GT(quad_convexity(straightened, q), 0.0) << q;
+}
+
 // A point given twice, and one 4.5 m from it in quads of 100 m, share the first one's
 // vertex, on it; a point 30 m away (beyond a fifth of a quad) gets its own.
 TEST(EmbedLines, PointsTooCloseShareTheFirstOnesVertex) {
