@@ -1075,6 +1075,21 @@ TEST(CliOutputs, LonLatOutputsAcrossTheAntimeridianStayWhole) {
   EXPECT_NEAR(extent.MaxX, 180.4, 1e-6);
 }
 
+// Python: record() returns the next Fortran record of the Selafin file sys.argv[1] (a
+// 4-byte big-endian length before and after it, both checked).
+constexpr const char* kSelafinRecords =
+    "import struct, sys\n"
+    "import numpy as np\n"
+    "data = open(sys.argv[1], 'rb').read()\n"
+    "pos = 0\n"
+    "def record():\n"
+    "    global pos\n"
+    "    (n,) = struct.unpack('>i', data[pos:pos + 4])\n"
+    "    body = data[pos + 4:pos + 4 + n]\n"
+    "    assert struct.unpack('>i', data[pos + 4 + n:pos + 8 + n]) == (n,)\n"
+    "    pos += n + 8\n"
+    "    return body\n";
+
 TEST(CliOutputs, TelemacGeometryAndBoundaryConditions) {
   TempDir dir;
   const CliResult r = mesh_water_box(dir, {"-o", dir.file("geo.slf"), "-o", dir.file("hgrid.gr3"),
@@ -1139,45 +1154,35 @@ TEST(CliOutputs, TelemacGeometryAndBoundaryConditions) {
   write_file(dir.file("nodes.txt"), cli_nodes.str());
   write_file(dir.file("depths.txt"), depths.str());
   python_check(dir,
-               "import struct, sys\n"
-               "import numpy as np\n"
-               "data = open(sys.argv[1], 'rb').read()\n"
-               "pos = 0\n"
-               "def record():\n"
-               "    global pos\n"
-               "    (n,) = struct.unpack('>i', data[pos:pos + 4])\n"
-               "    body = data[pos + 4:pos + 4 + n]\n"
-               "    assert struct.unpack('>i', data[pos + 4 + n:pos + 8 + n]) == (n,)\n"
-               "    pos += n + 8\n"
-               "    return body\n"
-               "ints = lambda b: np.frombuffer(b, '>i4')\n"
-               "reals = lambda b: np.frombuffer(b, '>f8')\n"
-               "title = record()\n"
-               "assert len(title) == 80 and title.endswith(b'SERAFIND'), title\n"
-               "assert ints(record()).tolist() == [1, 0]\n"
-               "assert record() == b'BOTTOM'.ljust(16) + b'M'.ljust(16)\n"
-               "iparam = ints(record())\n"
-               "nelem, npoin, ndp, one = ints(record())\n"
-               "assert ndp == 3 and one == 1 and nelem == 2 * int(sys.argv[3])\n"
-               "ikle = ints(record()).reshape(nelem, 3) - 1\n"
-               "ipobo = ints(record())\n"
-               "x, y = reals(record()), reals(record())\n"
-               "assert reals(record()).tolist() == [0.0]\n"
-               "bottom = reals(record())\n"
-               "assert pos == len(data)\n"
-               "cli = [int(n) - 1 for n in open(sys.argv[4]).read().split()]\n"
-               "assert iparam[7] == len(cli) and len(ipobo) == npoin\n"
-               "want = np.zeros(npoin, int)\n"
-               "want[cli] = np.arange(1, len(cli) + 1)\n"
-               "assert (ipobo == want).all()\n"
-               "depth = np.array(open(sys.argv[5]).read().split(), float)\n"
-               "assert len(depth) == npoin and np.allclose(bottom, -depth, atol=1e-6) and "
-               "bottom.min() < -100\n"
-               "a, b, c = ikle[:, 0], ikle[:, 1], ikle[:, 2]\n"
-               "area = 0.5 * ((x[b] - x[a]) * (y[c] - y[a]) - (x[c] - x[a]) * (y[b] - y[a]))\n"
-               "assert area.min() > 0, area.min()\n"
-               "assert abs(area.sum() - float(sys.argv[2])) < 1e-6 * area.sum(), (area.sum(), "
-               "sys.argv[2])\n",
+               std::string(kSelafinRecords) +
+                   "ints = lambda b: np.frombuffer(b, '>i4')\n"
+                   "reals = lambda b: np.frombuffer(b, '>f8')\n"
+                   "title = record()\n"
+                   "assert len(title) == 80 and title.endswith(b'SERAFIND'), title\n"
+                   "assert ints(record()).tolist() == [1, 0]\n"
+                   "assert record() == b'BOTTOM'.ljust(16) + b'M'.ljust(16)\n"
+                   "iparam = ints(record())\n"
+                   "nelem, npoin, ndp, one = ints(record())\n"
+                   "assert ndp == 3 and one == 1 and nelem == 2 * int(sys.argv[3])\n"
+                   "ikle = ints(record()).reshape(nelem, 3) - 1\n"
+                   "ipobo = ints(record())\n"
+                   "x, y = reals(record()), reals(record())\n"
+                   "assert reals(record()).tolist() == [0.0]\n"
+                   "bottom = reals(record())\n"
+                   "assert pos == len(data)\n"
+                   "cli = [int(n) - 1 for n in open(sys.argv[4]).read().split()]\n"
+                   "assert iparam[7] == len(cli) and len(ipobo) == npoin\n"
+                   "want = np.zeros(npoin, int)\n"
+                   "want[cli] = np.arange(1, len(cli) + 1)\n"
+                   "assert (ipobo == want).all()\n"
+                   "depth = np.array(open(sys.argv[5]).read().split(), float)\n"
+                   "assert len(depth) == npoin and np.allclose(bottom, -depth, atol=1e-6) and "
+                   "bottom.min() < -100\n"
+                   "a, b, c = ikle[:, 0], ikle[:, 1], ikle[:, 2]\n"
+                   "area = 0.5 * ((x[b] - x[a]) * (y[c] - y[a]) - (x[c] - x[a]) * (y[b] - y[a]))\n"
+                   "assert area.min() > 0, area.min()\n"
+                   "assert abs(area.sum() - float(sys.argv[2])) < 1e-6 * area.sum(), (area.sum(), "
+                   "sys.argv[2])\n",
                {dir.file("geo.slf"), std::to_string(mesh_area), std::to_string(g.num_elements),
                 dir.file("nodes.txt"), dir.file("depths.txt")});
 
@@ -2160,34 +2165,27 @@ TEST(CliOutputs, ZonesAreTheQuadsMaterials) {
   // .2dm's materials), 7 on a tie; the nodes in zone 7 and in none both many.
   const std::string fric =
       python_check(dir,
-                   "import struct, sys, collections\n"
-                   "import numpy as np\n"
-                   "data = open(sys.argv[1], 'rb').read()\n"
-                   "pos = 0\n"
-                   "def record():\n"
-                   "    global pos\n"
-                   "    (n,) = struct.unpack('>i', data[pos:pos + 4])\n"
-                   "    pos += n + 8\n"
-                   "    return data[pos - n - 4:pos - 4]\n"
-                   "record()\n"
-                   "assert np.frombuffer(record(), '>i4').tolist() == [2, 0]\n"
-                   "assert record() == b'BOTTOM'.ljust(16) + b'M'.ljust(16)\n"
-                   "assert record() == b'FRIC_ID'.ljust(32)\n"
-                   "record()\n"
-                   "nelem, npoin, ndp, one = np.frombuffer(record(), '>i4')\n"
-                   "for k in range(6): record()  # ikle, ipobo, x, y, the time, bottom\n"
-                   "fric = np.frombuffer(record(), '>f8')\n"
-                   "assert pos == len(data) and len(fric) == npoin\n"
-                   "votes = collections.defaultdict(collections.Counter)\n"
-                   "for line in open(sys.argv[2]):\n"
-                   "    f = line.split()\n"
-                   "    if f and f[0] == 'E4Q':\n"
-                   "        for n in f[2:6]: votes[int(n) - 1][int(f[6])] += 1\n"
-                   "assert len(votes) == npoin\n"
-                   "for n, c in votes.items():\n"
-                   "    want = 7 if c[7] >= c[0] else 0\n"
-                   "    assert fric[n] == want, (n, c, fric[n])\n"
-                   "print((fric == 7).sum(), (fric == 0).sum())\n",
+                   std::string(kSelafinRecords) +
+                       "import collections\n"
+                       "record()\n"
+                       "assert np.frombuffer(record(), '>i4').tolist() == [2, 0]\n"
+                       "assert record() == b'BOTTOM'.ljust(16) + b'M'.ljust(16)\n"
+                       "assert record() == b'FRIC_ID'.ljust(32)\n"
+                       "record()\n"
+                       "nelem, npoin, ndp, one = np.frombuffer(record(), '>i4')\n"
+                       "for k in range(6): record()  # ikle, ipobo, x, y, the time, bottom\n"
+                       "fric = np.frombuffer(record(), '>f8')\n"
+                       "assert pos == len(data) and len(fric) == npoin\n"
+                       "votes = collections.defaultdict(collections.Counter)\n"
+                       "for line in open(sys.argv[2]):\n"
+                       "    f = line.split()\n"
+                       "    if f and f[0] == 'E4Q':\n"
+                       "        for n in f[2:6]: votes[int(n) - 1][int(f[6])] += 1\n"
+                       "assert len(votes) == npoin\n"
+                       "for n, c in votes.items():\n"
+                       "    want = 7 if c[7] >= c[0] else 0\n"
+                       "    assert fric[n] == want, (n, c, fric[n])\n"
+                       "print((fric == 7).sum(), (fric == 0).sum())\n",
                    {dir.file("m.slf"), dir.file("m.2dm")});
   std::istringstream counts(fric);
   std::size_t nodes_7 = 0, nodes_0 = 0;

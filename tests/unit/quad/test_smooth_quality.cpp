@@ -573,22 +573,33 @@ TEST(SmoothQuads, AngleSweepsCountTheCornersOutOfRange) {
   EXPECT_LE(corners_out_of_range(counted), corners_out_of_range(squares) - 3);
 }
 
+// A grid of n x n quads with its interior vertices pushed off their places.
+QuadMesh pushed_grid(int n) {
+  QuadMesh m = grid(n);
+  for (int j = 1; j < n; ++j)
+    for (int i = 1; i < n; ++i) {
+      Point2& p = m.points[j * (n + 1) + i];
+      p.x += 0.2 * (kSide / n) * std::sin(1.3 * i + j);
+      p.y += 0.2 * (kSide / n) * std::cos(0.7 * i + 2.0 * j);
+    }
+  return m;
+}
+
+// Sizes growing to the right on the square's background mesh.
+SizingField sizes_growing_to_the_right(const BackgroundMesh& bg) {
+  SizingField size;
+  for (const Point2& p : bg.points) size.size_m.push_back(20.0 + 0.02 * p.x);
+  return size;
+}
+
 TEST(SmoothQuads, AngleSweepsGiveTheSameMeshWithAnyNumberOfThreads) {
   // A 40 x 40 grid with its interior vertices pushed off their places, under a cross at
   // 10 degrees and sizes growing to the right: one, two and three threads move every
   // vertex to the same place, bit for bit, and the sweeps did move them.
   const BackgroundMesh bg = square_background();
-  SizingField size;
-  for (const Point2& p : bg.points) size.size_m.push_back(20.0 + 0.02 * p.x);
+  const SizingField size = sizes_growing_to_the_right(bg);
   const CrossField cross = constant_cross_field(bg, 10.0);
-  constexpr int n = 40;
-  QuadMesh start = grid(n);
-  for (int j = 1; j < n; ++j)
-    for (int i = 1; i < n; ++i) {
-      Point2& p = start.points[j * (n + 1) + i];
-      p.x += 0.2 * (kSide / n) * std::sin(1.3 * i + j);
-      p.y += 0.2 * (kSide / n) * std::cos(0.7 * i + 2.0 * j);
-    }
+  const QuadMesh start = pushed_grid(40);
   SmoothParams params;
   params.iterations = 0;
   std::vector<QuadMesh> meshes;
@@ -614,19 +625,13 @@ TEST(SmoothQuads, AngleSweepsOnSomeVerticesGiveTheSameMeshWithASharedSetup) {
   // calls (its locator and colouring built once). Bit for bit the same; the band moved,
   // the rest did not.
   const BackgroundMesh bg = square_background();
-  SizingField size;
-  for (const Point2& p : bg.points) size.size_m.push_back(20.0 + 0.02 * p.x);
+  const SizingField size = sizes_growing_to_the_right(bg);
   const CrossField cross = constant_cross_field(bg, 10.0);
   constexpr int n = 40;
-  QuadMesh start = grid(n);
+  const QuadMesh start = pushed_grid(n);
   std::vector<char> only(start.points.size(), 0);
   for (int j = 1; j < n; ++j)
-    for (int i = 1; i < n; ++i) {
-      Point2& p = start.points[j * (n + 1) + i];
-      p.x += 0.2 * (kSide / n) * std::sin(1.3 * i + j);
-      p.y += 0.2 * (kSide / n) * std::cos(0.7 * i + 2.0 * j);
-      only[j * (n + 1) + i] = i >= 10 && i < 20;
-    }
+    for (int i = 10; i < 20; ++i) only[j * (n + 1) + i] = 1;
   const QuadTopology t = quad_topology(start);
   const SmoothParams params;
   QuadMesh alone = start, shared = start;
