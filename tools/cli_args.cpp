@@ -397,6 +397,11 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "one nearer the coast than a fifth of a quad, or on the land within a quad of "
                   "it, a vertex on the coast beside it. In the file's CRS, else the INPUT's")
       ->group("Cross field");
+  cmd->add_option("--embed-points-name", m.embed_points_name,
+                  "Attribute of --embed-points naming each point (a station's name), in the "
+                  "summary and the report's embedded_points (default: name, when the layer has "
+                  "it)")
+      ->group("Cross field");
   const char* g = "Tiling (paper, sections 2.2 to 2.5)";
   cmd->add_option("--init", m.init,
                   "How tiles start: front (default; seeds one tile apart along the cross field, "
@@ -655,6 +660,10 @@ MeshOptions mesh_options(const CommonArgs& a, const FieldArgs& f, const MeshArgs
   if (options.embed_lines && f.align_path.empty())
     throw Error(ErrorClass::usage, "options", "--embed needs --align: the lines to embed");
   options.fields.front.embed_points_path = m.embed_points;
+  options.fields.front.embed_points_name_field = m.embed_points_name;
+  if (!m.embed_points_name.empty() && m.embed_points.empty())
+    throw Error(ErrorClass::usage, "options",
+                "--embed-points-name names an attribute of --embed-points' file: give the file");
   options.subdivide.corner_angle_deg = options.tiling.graph.corner_angle_deg;
   options.tiling.conform_rule =
       m.conform_rule == "longest-away"      ? ConformShiftRule::longest_away_from_corner

@@ -65,6 +65,7 @@ struct MeshArgs {
   bool depth_average = false;  // --depth-average
   ZonesSource zones;           // --zones, --zones-layer, --zones-field
   std::string embed_points;    // --embed-points
+  std::string embed_points_name;  // --embed-points-name
   std::string stop_after;  // empty: the whole job
   std::string conform_rule = "lattice";
   std::string init = "front";

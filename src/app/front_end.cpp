@@ -437,7 +437,10 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   if (!options.embed_points_path.empty()) {
     const std::string& path = options.embed_points_path;
     s.embed_points_path = path;
-    PointLayer layer = read_point_layer(path, "--embed-points", false);
+    const std::string& named = options.embed_points_name_field;
+    PointLayer layer = read_point_layer(
+        path, "--embed-points", false, "", "", std::numeric_limits<std::size_t>::max(),
+        {named.empty() ? "name" : named, "--embed-points-name", !named.empty()});
     if (layer.points.empty())
       throw Error(ErrorClass::input, "read", "--embed-points '" + path + "': holds no point");
     const CrsInfo from =
@@ -449,6 +452,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
                       " cannot be transformed into the meshing CRS");
     s.embed_points_read = layer.points.size();
     result.embed_points = std::move(layer.points);
+    result.embed_point_name = std::move(layer.names);
   }
 
   progress.report("clean", 0.7);
@@ -593,6 +597,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     // Inside the domain, or outside it within the target size of its boundary: the
     // meshing puts those near the coast on it (EmbedParams::point_coast_share).
     std::vector<Point2> kept;
+    std::vector<std::string> kept_names;
     for (std::size_t k = 0; k < result.embed_points.size(); ++k) {
       const Point2& p = result.embed_points[k];
       const bool inside = domain_contains(result.domain, p);
@@ -600,6 +605,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
           !(s.target_size_m > 0 && distance_to_boundary(result.domain, p) <= s.target_size_m))
         continue;
       kept.push_back(p);
+      if (!result.embed_point_name.empty()) kept_names.push_back(result.embed_point_name[k]);
       result.embed_point_number.push_back(static_cast<int>(k + 1));
       if (inside) ++s.embed_points_inside;
     }
@@ -613,6 +619,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
       throw Error(ErrorClass::input, "read", "--embed-points: " + outside);
     if (far > 0) s.warnings.push_back("--embed-points: " + outside + ": they get no vertex");
     result.embed_points = std::move(kept);
+    result.embed_point_name = std::move(kept_names);
   }
   s.num_components = result.domain.polygons.size();
   s.num_holes = num_holes(result.domain);

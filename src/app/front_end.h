@@ -63,8 +63,10 @@ struct FrontEndOptions {
   // --embed-points.
   bool align_optional = false;
   // A vector file of points (its first layer of points) that the mesh gets vertices at
-  // (--embed-points); in its CRS, else the INPUT's.
+  // (--embed-points); in its CRS, else the INPUT's. Their names: the attribute
+  // embed_points_name_field (--embed-points-name), else `name` when the layer has it.
   std::string embed_points_path;
+  std::string embed_points_name_field;
 };
 
 // What the front end did, for the summary and the report.
@@ -156,6 +158,7 @@ struct FrontEndResult {
   // the file (from 1).
   std::vector<Point2> embed_points;
   std::vector<int> embed_point_number;
+  std::vector<std::string> embed_point_name;  // each one's name; empty: the file has none
   // The domain's boundary where it is open, before meshing: runs of its edges whose
   // ends and middle lie on open_boundary_lines (within open_line_tolerance), each run a
   // polyline in the meshing CRS, the domain on its left; empty without open lines.

@@ -255,8 +255,11 @@ std::string format_mesh_summary(const MeshResult& r) {
         num_coast_on += p.coast && p.shares < 0;
         continue;
       }
-      if (++num_off <= 5)
+      if (++num_off <= 5) {
         off += (num_off > 1 ? ", " : "") + std::to_string(front.embed_point_number[k]);
+        if (!front.embed_point_name.empty() && !front.embed_point_name[k].empty())
+          off += " (" + front.embed_point_name[k] + ")";
+      }
     }
     if (num_off > 5) off += "...";
     os << printf_string(
@@ -390,6 +393,7 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
       for (std::size_t k = 0; k < r.embedded_points.size(); ++k) {
         const EmbeddedPoint& p = r.embedded_points[k];
         j.begin_object().value("point", front.embed_point_number[k]);
+        if (!front.embed_point_name.empty()) j.value("name", front.embed_point_name[k]);
         j.value("node", p.vertex >= 0 ? static_cast<long long>(p.vertex) + 1 : 0LL);
         if (p.vertex >= 0) {
           j.value("distance_m", distance(r.quads.points[p.vertex], front.embed_points[k]))

@@ -77,10 +77,13 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
     }
     if (!front.summary.embed_points_path.empty()) {
       data.vertex_point.assign(r.quads.points.size(), 0);
-      for (std::size_t k = 0; k < r.embedded_points.size(); ++k)
-        if (r.embedded_points[k].vertex >= 0 && data.vertex_point[r.embedded_points[k].vertex] == 0)
-          data.vertex_point[r.embedded_points[k].vertex] =
-              front.embed_point_number[k];  // the first
+      if (!front.embed_point_name.empty()) data.vertex_point_name.assign(r.quads.points.size(), "");
+      for (std::size_t k = 0; k < r.embedded_points.size(); ++k) {
+        const int v = r.embedded_points[k].vertex;
+        if (v < 0 || data.vertex_point[v] != 0) continue;  // the first point of a vertex
+        data.vertex_point[v] = front.embed_point_number[k];
+        if (!front.embed_point_name.empty()) data.vertex_point_name[v] = front.embed_point_name[k];
+      }
     }
     for (const EmbeddedPath& path : r.embedded) {
       data.embedded.push_back(path.vertices);

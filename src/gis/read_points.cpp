@@ -60,7 +60,7 @@ bool has_point_layer(const std::string& path) {
 
 PointLayer read_point_layer(const std::string& path, const std::string& what, bool with_values,
                             const std::string& field, const std::string& field_option,
-                            std::size_t max_points) {
+                            std::size_t max_points, const PointNames& names) {
   auto fail = [&](ErrorClass cls, const std::string& problem) {
     throw Error(cls, "read", what + " '" + path + "': " + problem);
   };
@@ -78,6 +78,13 @@ PointLayer read_point_layer(const std::string& path, const std::string& what, bo
     if (index < 0)
       fail(ErrorClass::usage, "layer '" + name + "' has no attribute '" + field + "' (" +
                                   field_option + "; attributes: " + field_names(*layer) + ")");
+  }
+  int name_index = -1;
+  if (!names.field.empty()) {
+    name_index = layer->GetLayerDefn()->GetFieldIndex(names.field.c_str());
+    if (name_index < 0 && names.required)
+      fail(ErrorClass::usage, "layer '" + name + "' has no attribute '" + names.field + "' (" +
+                                  names.option + "; attributes: " + field_names(*layer) + ")");
   }
   layer->ResetReading();
   for (auto& feature : *layer) {
@@ -107,6 +114,9 @@ PointLayer read_point_layer(const std::string& path, const std::string& what, bo
       if (!std::isfinite(p.getX()) || !std::isfinite(p.getY()) || !std::isfinite(v)) return;
       out.points.push_back({p.getX(), p.getY()});
       if (with_values) out.values.push_back(v);
+      if (name_index >= 0)
+        out.names.emplace_back(
+            feature->IsFieldSetAndNotNull(name_index) ? feature->GetFieldAsString(name_index) : "");
     };
     if (wkbFlatten(g->getGeometryType()) == wkbPoint)
       add(*g->toPoint());

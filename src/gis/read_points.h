@@ -14,6 +14,7 @@ namespace isoquad {
 struct PointLayer {
   std::vector<Point2> points;  // in the layer's CRS
   std::vector<double> values;  // with values: each point's
+  std::vector<std::string> names;  // with a name attribute: each point's (its feature's)
   std::string crs;             // WKT; empty when the layer has none
   std::string layer_name;
 };
@@ -30,8 +31,15 @@ bool has_point_layer(const std::string& path);
 // cannot be read, no layer of points, another geometry or a value that is not a number;
 // Error(usage) for a missing `field`, or points without Z and no `field` (naming the
 // layer's attributes and `field_option`).
+// `names`: the attribute (any case) whose text names each point; a layer without it
+// gives no names, unless `names_required` (then Error(usage), naming `names_option`).
+struct PointNames {
+  std::string field, option;
+  bool required = false;
+};
 PointLayer read_point_layer(const std::string& path, const std::string& what, bool with_values,
                             const std::string& field = "", const std::string& field_option = "",
-                            std::size_t max_points = std::numeric_limits<std::size_t>::max());
+                            std::size_t max_points = std::numeric_limits<std::size_t>::max(),
+                            const PointNames& names = PointNames());
 
 }  // namespace isoquad

@@ -91,6 +91,8 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
   if (depth) vfields.push_back({"depth", FieldType::real});
   const bool point = !v.data->vertex_point.empty();
   if (point) vfields.push_back({"point", FieldType::integer});
+  const bool named = !v.data->vertex_point_name.empty();
+  if (named) vfields.push_back({"point_name", FieldType::text});
   w.begin_layer("vertices", GeometryKind::point, vfields);
   for (std::size_t i = 0; i < pts.size(); ++i) {
     std::vector<FieldValue> values = {FieldValue::integer(static_cast<long long>(i)),
@@ -99,6 +101,7 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
                                       FieldValue::integer(q.boundary[i])};
     if (depth) values.push_back(FieldValue::real(v.data->depth[i]));
     if (point) values.push_back(FieldValue::integer(v.data->vertex_point[i]));
+    if (named) values.push_back(FieldValue::text(v.data->vertex_point_name[i]));
     w.add_point(pts[i], values);
   }
   w.begin_layer("boundary", GeometryKind::line,

@@ -76,6 +76,9 @@ struct MeshOutputData {
   // #P with --embed-points: the number (from 1, in its file) of the point each vertex was
   // moved onto, 0 for none: the GeoPackage's vertices' `point`. Empty: none given.
   std::vector<int> vertex_point;
+  // #P with named points (--embed-points-name, or their `name`): that point's name, the
+  // vertices' `point_name`. Empty: no names.
+  std::vector<std::string> vertex_point_name;
   // Paths of edges on lines (--embed; vertex ids), each with the index of its line in
   // the file: the GeoPackage's layer `embedded`.
   std::vector<std::vector<int>> embedded;

@@ -2019,6 +2019,45 @@ TEST(CliOutputs, EmbeddedPointsGetVertices) {
     if (f->GetFieldAsInteger64("point") != 0) numbers.insert(f->GetFieldAsInteger64("point"));
   GDALClose(ds);
   EXPECT_EQ(numbers, (std::multiset<long long>{1, 2, 4, 5}));
+  // Named stations (their `name`, or --embed-points-name's attribute): each name in the
+  // report's entry and as the GeoPackage's point_name of its vertex; an attribute the
+  // file lacks stops the run before the meshing.
+  write_file(
+      dir.file("named.geojson"),
+      R"({"type":"FeatureCollection","features":[)"
+      R"({"type":"Feature","properties":{"name":"Le Conquet","code":"LC"},"geometry":{"type":"Point","coordinates":[-4.5123,48.3217]}},)"
+      R"({"type":"Feature","properties":{"name":"Camaret","code":"CA"},"geometry":{"type":"Point","coordinates":[-4.4071,48.2345]}}]})");
+  for (const char* field : {"", "code"}) {
+    std::vector<std::string> args = {
+        "--embed-points", dir.file("named.geojson"), "-o",         dir.file("n.gpkg"),
+        "--report",       dir.file("n.json"),        "--overwrite"};
+    if (*field) args.insert(args.end(), {"--embed-points-name", field});
+    r = mesh_box_800(dir, args);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string named = read_file(dir.file("n.json"));
+    const std::vector<std::string> names = *field
+                                               ? std::vector<std::string>{"LC", "CA"}
+                                               : std::vector<std::string>{"Le Conquet", "Camaret"};
+    for (std::size_t k = 0; k < 2; ++k)
+      EXPECT_NE(named.find("\"point\": " + std::to_string(k + 1) + ",\n      \"name\": \"" +
+                           names[k] + "\""),
+                std::string::npos)
+          << named;
+    std::multiset<std::string> in_gpkg;
+    ds = open_vector(dir.file("n.gpkg"));
+    ASSERT_NE(ds, nullptr);
+    for (auto& f : *ds->GetLayerByName("vertices"))
+      if (f->GetFieldAsInteger64("point") != 0) in_gpkg.insert(f->GetFieldAsString("point_name"));
+    GDALClose(ds);
+    EXPECT_EQ(in_gpkg, std::multiset<std::string>(names.begin(), names.end()));
+  }
+  r = mesh_box_800(dir, {"--embed-points", dir.file("named.geojson"), "--embed-points-name",
+                         "station", "-o", dir.file("m.gpkg")});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("has no attribute 'station' (--embed-points-name; attributes: name, code)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("m.gpkg")));
   write_file(dir.file("onland.geojson"),
              R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
              R"("geometry":{"type":"Point","coordinates":[-4.38,48.27]}}]})");
