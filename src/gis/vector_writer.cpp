@@ -34,6 +34,10 @@ struct VectorWriter::State {
   // Same input, same bytes: GeoPackage stores a "last change" time, which we pin unless
   // the user sets OGR_CURRENT_DATE.
   CPLConfigOptionSetter fixed_date{"OGR_CURRENT_DATE", "2000-01-01T00:00:00.000Z", true};
+  // GDAL 3.6 builds a large GeoPackage layer's spatial index in a second thread that
+  // hands it rows one batch at a time; on a mesh that is twice as slow as building it
+  // in the writing thread (France at 1.5 km, 454,000 features: 8.6 against 4.3 s).
+  CPLConfigOptionSetter rtree_in_this_thread{"OGR_GPKG_ALLOW_THREADED_RTREE", "NO", true};
   GdalErrorCapture capture;
   std::unique_ptr<GDALDataset, DatasetCloser> ds;
   OGRSpatialReference srs;
