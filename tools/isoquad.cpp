@@ -26,6 +26,7 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "gis/atomic_output.h"
+#include "gis/gdal_env.h"
 #include "gis/raster_domain.h"
 #include "gis/read_mesh.h"
 #include "gis/read_polygons.h"
@@ -454,6 +455,7 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
                   const std::string& command_line) {
   if (!m.stop_after.empty())
     throw Error(ErrorClass::usage, "options", "--each meshes: no --stop-after");
+  const VectorDatasetPool pool;  // INPUT and the other vector files read once, not per region
   std::vector<EachRegion> regions = each_regions(a, f, m.each);
   for (EachRegion& r : regions) {
     r.skip = m.skip_existing && every_output_exists(r.a, r.f, m);
@@ -484,6 +486,7 @@ int run_quality_each(const CommonArgs& a, const FieldArgs& f, const QualityArgs&
   if (a.input.empty())
     throw Error(ErrorClass::usage, "options",
                 "--each selects regions from INPUT's features: give INPUT");
+  const VectorDatasetPool pool;
   std::vector<EachRegion> regions = each_regions(a, f, q.each);
   return run_each(
       a, q.each, regions, q.jobs, "measured", [&](EachRegion& r, const Console& console) {

@@ -44,8 +44,93 @@ GdalErrorCapture::~GdalErrorCapture() { CPLPopErrorHandler(); }
 
 std::string GdalErrorCapture::last_message() const { return g_last_message; }
 
+namespace {
+
+struct PooledDataset {
+  std::string key;  // the path and the open options
+  GDALDataset* ds = nullptr;
+  bool in_use = false;
+};
+
+std::mutex g_pool_mutex;
+int g_pool_users = 0;  // live VectorDatasetPool objects
+std::vector<PooledDataset> g_pool;
+
+std::string pool_key(const std::string& path, const std::vector<std::string>& open_options) {
+  std::string key = path;
+  for (const std::string& o : open_options) key += '\n' + o;
+  return key;
+}
+
+// A kept data set of `key` that nobody uses, marked used; nullptr if none (or no pool).
+GDALDataset* take_pooled(const std::string& key) {
+  const std::lock_guard<std::mutex> lock(g_pool_mutex);
+  if (g_pool_users == 0) return nullptr;
+  for (PooledDataset& p : g_pool) {
+    if (p.in_use || p.key != key) continue;
+    p.in_use = true;
+    return p.ds;
+  }
+  return nullptr;
+}
+
+// Keeps a data set just opened for `key`, in use; false without a pool.
+bool add_pooled(const std::string& key, GDALDataset* ds) {
+  const std::lock_guard<std::mutex> lock(g_pool_mutex);
+  if (g_pool_users == 0) return false;
+  g_pool.push_back({key, ds, true});
+  return true;
+}
+
+// Puts a kept data set back, as a fresh open would give it; false when the pool has
+// ended since (the caller closes it).
+bool return_pooled(GDALDataset* ds) {
+  const std::lock_guard<std::mutex> lock(g_pool_mutex);
+  auto it = std::find_if(g_pool.begin(), g_pool.end(),
+                         [ds](const PooledDataset& p) { return p.ds == ds; });
+  if (it == g_pool.end()) return false;
+  if (g_pool_users == 0) {
+    g_pool.erase(it);
+    return false;
+  }
+  for (int i = 0; i < ds->GetLayerCount(); ++i) {
+    OGRLayer* layer = ds->GetLayer(i);
+    layer->SetAttributeFilter(nullptr);
+    layer->SetSpatialFilter(nullptr);
+    layer->ResetReading();
+  }
+  it->in_use = false;
+  return true;
+}
+
+}  // namespace
+
 void GdalDatasetCloser::operator()(GDALDataset* ds) const {
+  if (pooled && return_pooled(ds)) return;
   GDALClose(ds);
+}
+
+VectorDatasetPool::VectorDatasetPool() {
+  const std::lock_guard<std::mutex> lock(g_pool_mutex);
+  ++g_pool_users;
+}
+
+VectorDatasetPool::~VectorDatasetPool() {
+  std::vector<GDALDataset*> unused;
+  {
+    const std::lock_guard<std::mutex> lock(g_pool_mutex);
+    if (--g_pool_users > 0) return;
+    // Data sets still in use are closed when their users let them go (return_pooled).
+    for (auto it = g_pool.begin(); it != g_pool.end();) {
+      if (it->in_use) {
+        ++it;
+      } else {
+        unused.push_back(it->ds);
+        it = g_pool.erase(it);
+      }
+    }
+  }
+  for (GDALDataset* ds : unused) GDALClose(ds);
 }
 
 namespace {
@@ -144,6 +229,8 @@ GdalDataset open_vector_dataset(const std::string& path, const std::string& stag
     if (S_ISREG(st.st_mode) && st.st_size == 0) fail("file is empty");
   }
   if (is_model_lines_file(path)) return read_model_lines(path, stage);
+  const std::string key = pool_key(path, open_options);
+  if (GDALDataset* kept = take_pooled(key)) return GdalDataset(kept, GdalDatasetCloser{true});
   std::string problem;
   const std::string open_path = gdal_path(path, ArchiveContent::vector, problem);
   if (open_path.empty()) fail(problem);
@@ -159,6 +246,7 @@ GdalDataset open_vector_dataset(const std::string& path, const std::string& stag
          (why.empty() ? std::string(" (unknown or corrupt format)") : " (" + why + ")"));
   }
   if (ds->GetLayerCount() == 0) fail("contains no vector layer");
+  if (add_pooled(key, ds.get())) return GdalDataset(ds.release(), GdalDatasetCloser{true});
   return ds;
 }
 

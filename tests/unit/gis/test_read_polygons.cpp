@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "gis/gdal_env.h"
 #include "support/fixtures.h"
 #include "support/write_archive.h"
 
@@ -68,6 +69,36 @@ TEST(ReadPolygons, WhereAndBboxSelectFeatures) {
   ASSERT_EQ(d.polygons.size(), 1u);
   EXPECT_DOUBLE_EQ(d.polygons[0].rings[0][0].x, -3.0);
   ASSERT_TRUE(d.bbox_ring.has_value());
+}
+
+// Under a pool (--each) a file is opened once: later reads get the kept data set back with
+// none of the earlier reads' filters, and two reads at once get a data set each.
+TEST(ReadPolygons, APoolKeepsTheDataSetAndClearsItsFilters) {
+  TempDir dir;
+  const std::string path = good_geojson(dir);
+  const VectorDatasetPool pool;
+  GDALDataset* kept = nullptr;
+  {
+    const GdalDataset a = open_vector_dataset(path, "read");
+    kept = a.get();
+    const GdalDataset b = open_vector_dataset(path, "read");
+    EXPECT_NE(b.get(), kept);  // in use: another data set
+    const GdalDataset c = open_vector_dataset(path, "read", {"FLATTEN_NESTED_ATTRIBUTES=YES"});
+    EXPECT_NE(c.get(), kept);  // other open options: another data set
+    EXPECT_NE(c.get(), b.get());
+  }
+  EXPECT_EQ(open_vector_dataset(path, "read").get(), kept);
+
+  ReadParams p = params(path);
+  p.where = "name = 'f1'";
+  ASSERT_EQ(read_polygons(p).polygons.size(), 1u);
+  p = params(path);
+  p.bbox = std::array<double, 4>{-3.5, 46.5, -2.5, 48.5};
+  const SourceData d = read_polygons(p);
+  ASSERT_EQ(d.polygons.size(), 1u);  // the where above is gone
+  EXPECT_DOUBLE_EQ(d.polygons[0].rings[0][0].x, -3.0);
+  EXPECT_EQ(read_polygons(params(path)).polygons.size(), 2u);  // and the bbox
+  EXPECT_EQ(open_vector_dataset(path, "read").get(), kept);
 }
 
 TEST(ReadPolygons, BboxInAnotherCrs) {
