@@ -436,6 +436,7 @@ int run_each(const CommonArgs& a, const std::string& field, std::vector<EachRegi
       console.err << "isoquad: " << field << " = " << values[k] << ": " << e.what() << "\n";
       RegionOutcome outcome;
       outcome.exit = exit_code(e.error_class());
+      if (e.error_class() == ErrorClass::usage) outcome.usage_error = e.what();
       return outcome;
     }
   };

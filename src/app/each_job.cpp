@@ -50,11 +50,22 @@ std::vector<RegionOutcome> run_regions(
     std::size_t n, std::size_t jobs, const std::function<std::string(std::size_t)>& header,
     const std::function<RegionOutcome(std::size_t, const Console&)>& run, std::ostream& stream) {
   std::vector<RegionOutcome> outcomes(n);
+  for (RegionOutcome& o : outcomes) o.not_run = true;
   jobs = std::min(jobs, n);
+  // Whether outcome k repeats the usage error of a region that ended before it.
+  std::vector<std::string> usage_errors;
+  auto repeats_usage_error = [&](std::size_t k) {
+    const std::string& e = outcomes[k].usage_error;
+    if (e.empty() || outcomes[k].quality) return false;
+    if (std::find(usage_errors.begin(), usage_errors.end(), e) != usage_errors.end()) return true;
+    usage_errors.push_back(e);
+    return false;
+  };
   if (jobs <= 1) {
     for (std::size_t k = 0; k < n; ++k) {
       stream << header(k) << std::flush;
       outcomes[k] = run(k, Console{stream, stream, true});
+      if (repeats_usage_error(k)) break;
     }
     return outcomes;
   }
@@ -67,14 +78,18 @@ std::vector<RegionOutcome> run_regions(
   std::mutex mutex;
   std::size_t printed = 0;
   std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};
   auto worker = [&] {
-    for (std::size_t k = next++; k < n; k = next++) {
+    for (std::size_t k = next++; k < n && !stop; k = next++) {
+      RegionOutcome outcome;
       try {
-        outcomes[k] = run(k, Console{buffers[k].out, buffers[k].err, false});
+        outcome = run(k, Console{buffers[k].out, buffers[k].err, false});
       } catch (...) {
         buffers[k].crash = std::current_exception();
       }
       const std::lock_guard<std::mutex> lock(mutex);
+      outcomes[k] = std::move(outcome);
+      if (repeats_usage_error(k)) stop = true;
       buffers[k].done = true;
       for (; printed < n && buffers[printed].done; ++printed)
         stream << header(printed) << buffers[printed].out.str() << buffers[printed].err.str()
@@ -85,6 +100,12 @@ std::vector<RegionOutcome> run_regions(
   for (std::size_t j = 1; j < jobs; ++j) pool.emplace_back(worker);
   worker();
   for (std::thread& t : pool) t.join();
+  // Regions after one that did not start are printed by nobody above: those that ran
+  // print now, in order.
+  for (; printed < n; ++printed)
+    if (buffers[printed].done)
+      stream << header(printed) << buffers[printed].out.str() << buffers[printed].err.str()
+             << std::flush;
   for (const Buffers& b : buffers)
     if (b.crash) std::rethrow_exception(b.crash);
   return outcomes;
@@ -113,7 +134,7 @@ std::string format_each_table(const std::string& field, const std::vector<std::s
     table += padded(values[k]);
     const RegionOutcome& o = outcomes[k];
     if (!o.quality) {
-      table += printf_string(" %8s\n", o.skipped ? "skipped" : "failed");
+      table += printf_string(" %8s\n", o.skipped ? "skipped" : o.not_run ? "not run" : "failed");
       continue;
     }
     const QualitySummary& q = *o.quality;
@@ -127,23 +148,42 @@ std::string format_each_table(const std::string& field, const std::vector<std::s
 std::string format_each_total(const std::string& field, const std::vector<std::string>& values,
                               const std::vector<RegionOutcome>& outcomes, const std::string& done) {
   std::vector<std::string> failed;
-  std::size_t skipped = 0;
+  std::size_t skipped = 0, not_run = 0;
   for (std::size_t k = 0; k < values.size(); ++k)
     if (outcomes[k].skipped)
       ++skipped;
+    else if (outcomes[k].not_run)
+      ++not_run;
     else if (!outcomes[k].quality)
       failed.push_back(values[k]);
   std::string line = "--each " + field + ": " +
-                     std::to_string(values.size() - failed.size() - skipped) + " of " +
+                     std::to_string(values.size() - failed.size() - skipped - not_run) + " of " +
                      std::to_string(values.size()) + " " + done;
   if (skipped) line += ", " + std::to_string(skipped) + " skipped (every output exists)";
   for (std::size_t i = 0; i < failed.size(); ++i) line += (i ? ", " : "; failed: ") + failed[i];
+  if (not_run) {
+    // The two regions whose usage error was the same.
+    std::vector<std::string> same;
+    for (std::size_t k = 0; k < values.size() && same.size() < 2; ++k) {
+      if (outcomes[k].usage_error.empty()) continue;
+      for (std::size_t j = k + 1; j < values.size(); ++j)
+        if (outcomes[j].usage_error == outcomes[k].usage_error) {
+          same = {values[k], values[j]};
+          break;
+        }
+    }
+    line += "; " + std::to_string(not_run) + " not run";
+    if (same.size() == 2)
+      line += ": " + same[0] + " and " + same[1] +
+              " failed with the same usage error, which the other regions would repeat; "
+              "correct the command and run it again (--skip-existing keeps what is meshed)";
+  }
   return line + "\n";
 }
 
 int each_exit_code(const std::vector<RegionOutcome>& outcomes) {
   for (const RegionOutcome& o : outcomes)
-    if (!o.quality && !o.skipped) return o.exit;
+    if (!o.quality && !o.skipped && !o.not_run) return o.exit;
   return 0;
 }
 

@@ -42,13 +42,18 @@ struct RegionOutcome {
   double seconds = 0.0;
   bool skipped = false;  // nothing to do (--skip-existing)
   int exit = 0;          // failed: its exit code
+  // Failed on the command (a usage error, exit 2): the message, as the error gave it.
+  std::string usage_error;
+  bool not_run = false;  // the batch stopped before it (see run_regions)
 };
 
 // Runs `run(k, console)` for the regions k = 0 .. n-1 on `jobs` threads. Each region's
 // `header(k)` and what it prints reach `stream` in the regions' order: with one thread as
 // it goes, with more from buffers, each region's as soon as it and those before it are
-// done (its out, then its err). Anything `run` throws is rethrown once every region has
-// run.
+// done (its out, then its err). Once two regions have failed with the same usage error
+// (one that names no place of theirs: the command is wrong for every region), no other
+// region starts: those are `not_run`. Anything `run` throws is rethrown once every
+// started region has run.
 std::vector<RegionOutcome> run_regions(
     std::size_t n, std::size_t jobs, const std::function<std::string(std::size_t)>& header,
     const std::function<RegionOutcome(std::size_t, const Console&)>& run,
@@ -59,7 +64,7 @@ std::vector<RegionOutcome> run_regions(
 std::string format_each_table(const std::string& field, const std::vector<std::string>& values,
                               const std::vector<RegionOutcome>& outcomes);
 // "--each FIELD: M of N meshed[, S skipped (every output exists)][; failed: a, b]" (`done`
-// for "meshed").
+// for "meshed"), and when the batch stopped, how many were not run and why.
 std::string format_each_total(const std::string& field, const std::vector<std::string>& values,
                               const std::vector<RegionOutcome>& outcomes,
                               const std::string& done = "meshed");

@@ -933,6 +933,30 @@ TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
   EXPECT_NE(alone.err.find("--jobs"), std::string::npos) << alone.err;
 }
 
+// A usage error that two regions share is the command's: the batch ends there, the
+// regions not started listed as not run, with the exit code of a usage error.
+TEST(CliMesh, EachStopsAtAUsageErrorTwoRegionsShare) {
+  TempDir dir;
+  const std::string input = dir.file("regions.geojson");
+  write_file(input, R"({"type":"FeatureCollection","features":[)" + square_feature(0, 0, 0.3, "p") +
+                        "," + square_feature(1, 0, 0.25, "q") + "," +
+                        square_feature(0, 1, 0.2, "r") + "," + square_feature(2, 2, 0.35, "s") +
+                        "]}");
+  const CliResult r = run_cli({"mesh", input, "--size", "3000", "--each", "region", "--domain",
+                               "water", "-o", dir.file("{}.gr3")},
+                              dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("region = q: domain: --domain water needs --bbox"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("region = r:"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("== region = r"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("\nr       not run\n"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--each region: 0 of 4 meshed; failed: p, q; 2 not run: p and q failed "
+                       "with the same usage error"),
+            std::string::npos)
+      << r.err;
+}
+
 // --skip-existing: a batch stopped part-way (its unfinished region left nothing) resumes
 // with the regions whose outputs are missing, and leaves the others' files untouched; a
 // region with only some of its outputs is not taken as done; a single run whose every

@@ -4,7 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <functional>
+#include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
@@ -111,4 +114,66 @@ TEST(EachJob, TheTableHasALinePerRegionPaddedInCharacters) {
   EXPECT_EQ(format_each_total("name", values, outcomes),
             "--each name: 1 of 3 meshed, 1 skipped (every output exists); failed: cc\n");
   EXPECT_EQ(each_exit_code(outcomes), 3);
+}
+
+// A usage error that two regions share is the command's: the regions not yet started are
+// not run. Usage errors that differ (they name a place) and other failures go on.
+TEST(EachJob, TheSameUsageErrorTwiceStopsTheBatch) {
+  const std::vector<std::string> values = {"a", "b", "c", "d", "e", "f", "g", "h"};
+  auto batch = [&](std::size_t jobs, const std::function<RegionOutcome(std::size_t)>& fail,
+                   std::vector<int>& ran) {
+    ran.assign(values.size(), 0);
+    std::ostringstream stream;
+    std::mutex mutex;
+    return run_regions(
+        values.size(), jobs, [](std::size_t k) { return "== " + std::to_string(k) + "\n"; },
+        [&](std::size_t k, const Console&) {
+          {
+            const std::lock_guard<std::mutex> lock(mutex);
+            ran[k] = 1;
+          }
+          return fail(k);
+        },
+        stream);
+  };
+  auto usage = [](const std::string& message) {
+    RegionOutcome o;
+    o.exit = 2;
+    o.usage_error = message;
+    return o;
+  };
+  for (const std::size_t jobs : {1, 2}) {
+    std::vector<int> ran;
+    auto outcomes = batch(
+        jobs, [&](std::size_t) { return usage("read: no attribute 'x'"); }, ran);
+    const int num_ran = static_cast<int>(std::count(ran.begin(), ran.end(), 1));
+    EXPECT_GE(num_ran, 2) << jobs << " jobs";
+    EXPECT_LE(num_ran, jobs == 1 ? 2 : 3) << jobs << " jobs";
+    for (std::size_t k = 0; k < values.size(); ++k) EXPECT_EQ(outcomes[k].not_run, !ran[k]) << k;
+    EXPECT_EQ(each_exit_code(outcomes), 2);
+    const std::string total = format_each_total("name", values, outcomes);
+    EXPECT_NE(total.find("; failed: a, b"), std::string::npos) << total;
+    EXPECT_NE(total.find(std::to_string(8 - num_ran) +
+                         " not run: a and b failed with the same usage error"),
+              std::string::npos)
+        << total;
+    EXPECT_NE(format_each_table("name", values, outcomes).find("h     not run\n"),
+              std::string::npos);
+
+    // Usage errors that name a place, and the same input error everywhere: all run.
+    outcomes = batch(
+        jobs, [&](std::size_t k) { return usage("sizing: no size at " + std::to_string(k)); }, ran);
+    EXPECT_EQ(std::count(ran.begin(), ran.end(), 1), 8) << jobs << " jobs";
+    EXPECT_EQ(format_each_total("name", values, outcomes).find("not run"), std::string::npos);
+    outcomes = batch(
+        jobs,
+        [&](std::size_t) {
+          RegionOutcome o;
+          o.exit = 3;
+          return o;
+        },
+        ran);
+    EXPECT_EQ(std::count(ran.begin(), ran.end(), 1), 8) << jobs << " jobs";
+    EXPECT_EQ(each_exit_code(outcomes), 3);
+  }
 }
