@@ -243,6 +243,7 @@ RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::stri
   job.command_line = command_line;
   progress.report("write", 0.95);
   const MeshJobWritten written = write_mesh_job_outputs(r, job);
+  r.fields.times.push_back(written.output_time);  // for the summary's times
   progress.report("written", 1.0);
   if (a.report_path == kStdoutPath) std::cout << written.report << std::flush;
   RegionOutcome outcome;

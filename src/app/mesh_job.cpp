@@ -316,7 +316,7 @@ std::string format_mesh_summary(const MeshResult& r) {
 
 std::string mesh_report_json(const MeshResult& r, const std::string& command_line,
                              const MeshBoundary* boundary, const VertexDepths* depths,
-                             const QuadZones* zones) {
+                             const QuadZones* zones, const std::vector<StageTime>& more_stages) {
   JsonWriter j;
   j.begin_object();
   add_report_header(j, command_line);
@@ -452,7 +452,9 @@ std::string mesh_report_json(const MeshResult& r, const std::string& command_lin
         .value("num_thin_repairs", r.smooth.num_thin_repairs)
         .end_object();
   }
-  add_stage_times(j, r.fields.times);
+  std::vector<StageTime> times = r.fields.times;
+  times.insert(times.end(), more_stages.begin(), more_stages.end());
+  add_stage_times(j, times);
   j.value("peak_memory_mb", process_peak_mb());  // the whole process so far
   j.end_object();
   return j.str();

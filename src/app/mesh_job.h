@@ -72,10 +72,11 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress = Pro
 std::string format_mesh_summary(const MeshResult& r);
 // The JSON report; with `boundary` (extract_boundary() of the quads, as the outputs
 // have it), its open and land edges and segments too; with `depths`, how the vertices'
-// depths were made; with `zones`, the quads in each zone.
+// depths were made; with `zones`, the quads in each zone; `more_stages` after the run's
+// own (the writing of the outputs).
 std::string mesh_report_json(const MeshResult& r, const std::string& command_line,
                              const MeshBoundary* boundary = nullptr,
-                             const VertexDepths* depths = nullptr,
-                             const QuadZones* zones = nullptr);
+                             const VertexDepths* depths = nullptr, const QuadZones* zones = nullptr,
+                             const std::vector<StageTime>& more_stages = {});
 
 }  // namespace isoquad

@@ -44,6 +44,8 @@ std::vector<std::pair<std::string, std::string>> quality_items(const QualitySumm
 }
 
 MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs& o) {
+  std::vector<StageTime> output_time;
+  StageClock clock(output_time);
   OutputSet set;
   MeshJobWritten written;
   MeshOutputData data;
@@ -112,10 +114,12 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
       plot_tiling(r.fields.mesh, r.tiling.tiling, r.tiling.graph, pp);
     }
   }
+  clock.lap("output");
+  written.output_time = output_time.front();
   if (!o.report_path.empty()) {
     std::string json = mesh_report_json(r, o.command_line, r.has_quads ? &data.boundary : nullptr,
                                         written.depths ? &*written.depths : nullptr,
-                                        written.zones ? &*written.zones : nullptr);
+                                        written.zones ? &*written.zones : nullptr, output_time);
     if (o.report_path == kStdoutPath)
       written.report = std::move(json);
     else

@@ -41,6 +41,9 @@ struct MeshJobWritten {
   std::optional<QuadZones> zones;      // with --zones (the quads' zones moved out)
   std::vector<std::string> files;     // the mesh files written
   std::string report;  // the JSON report when its path is kStdoutPath (printed once all is written)
+  // Stage "output": the boundary's parts, the depths, zones, mesh files and plot (not the
+  // report, which lists it).
+  StageTime output_time;
 };
 
 // Writes them all or none (Error(output) when one cannot be written).

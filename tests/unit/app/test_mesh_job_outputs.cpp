@@ -56,6 +56,14 @@ TEST(MeshJobOutputs, WritesEveryMeshThePlotAndTheReport) {
                                   [](const auto& kv) { return kv.first == "num_quads"; });
   ASSERT_NE(quads, items.end());
   EXPECT_EQ(quads->second, std::to_string(r.quality.num_quads));
+  // The writing is a stage of its own, the report's last.
+  EXPECT_EQ(w.output_time.stage, "output");
+  EXPECT_GT(w.output_time.seconds, 0.0);
+  EXPECT_GT(w.output_time.peak_mb, 0.0);
+  const std::string json = read_file(dir.file("m.json"));
+  const std::size_t last = json.rfind("\"stage\": ");
+  ASSERT_NE(last, std::string::npos);
+  EXPECT_EQ(json.substr(last, 17), "\"stage\": \"output\"");
 }
 
 TEST(MeshJobOutputs, AnOutputThatCannotBeWrittenLeavesNoneOfThem) {
