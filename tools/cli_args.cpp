@@ -176,7 +176,8 @@ void add_quality_options(CLI::App* cmd, QualityArgs& q) {
   cmd->add_option("--each", q.each,
                   "A mesh measured per value of this attribute over the selected features (each "
                   "value's features together): {} in --mesh, -o, --report and --plot stands for "
-                  "the value; a region that fails does not stop the others")
+                  "the value; a region that fails does not stop the others, unless two fail with "
+                  "the same usage error (the command's)")
       ->group("Selection");
   cmd->add_option("--jobs", q.jobs,
                   "With --each: regions measured at once, each on its own thread (default 1)")
@@ -370,7 +371,8 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
   cmd->add_option("--each", m.each,
                   "A mesh per value of this attribute over the selected features (each value's "
                   "features together): {} in -o, --report and --plot stands for the value; a "
-                  "region that fails does not stop the others")
+                  "region that fails does not stop the others, unless two fail with the same "
+                  "usage error (the command's)")
       ->group("Selection");
   cmd->add_option("--jobs", m.jobs,
                   "With --each: regions meshed at once, each on its own thread (default 1). Every "
