@@ -33,6 +33,16 @@ bool is_polygonal(OGRwkbGeometryType t) {
          f == wkbMultiSurface || f == wkbPolyhedralSurface || f == wkbTIN;
 }
 
+// Whether `g` holds an area: a polygonal geometry, or a geometry collection (as overlays
+// and some GeoJSON give) with a polygonal part, at any depth.
+bool has_polygonal_part(const OGRGeometry& g) {
+  if (is_polygonal(g.getGeometryType())) return true;
+  if (wkbFlatten(g.getGeometryType()) != wkbGeometryCollection) return false;
+  for (const OGRGeometry* part : *g.toGeometryCollection())
+    if (has_polygonal_part(*part)) return true;
+  return false;
+}
+
 bool is_linear(OGRwkbGeometryType t) {
   const OGRwkbGeometryType f = wkbFlatten(t);
   return f == wkbLineString || f == wkbMultiLineString || f == wkbCircularString ||
@@ -206,7 +216,7 @@ class Reader {
     for (auto& feature : *layer_) {
       ++out_.num_features;
       const OGRGeometry* g = feature->GetGeometryRef();
-      if (!g || g->IsEmpty() || !is_polygonal(g->getGeometryType())) {
+      if (!g || g->IsEmpty() || !has_polygonal_part(*g)) {
         ++out_.num_features_skipped;
         if (g && !g->IsEmpty()) ++num_other;
         else ++num_empty;
@@ -237,6 +247,12 @@ class Reader {
                               area + ": the water domain is the whole " + area);
       return;
     }
+    if (num_parts_ignored_ > 0)
+      out_.warnings.push_back(std::to_string(num_parts_ignored_) +
+                              " point or line part(s) of geometry collections ignored (the "
+                              "first in feature " +
+                              std::to_string(first_feature_ignored_) +
+                              "); their polygons are read");
     if (out_.polygons.empty() && out_.num_rings_from_lines > 0 && !selection.empty())
       fail(ErrorClass::input, "the " + std::to_string(out_.num_rings_from_lines) +
                                   " ring(s) the lines of layer " + quote(out_.layer_name) +
@@ -258,6 +274,9 @@ class Reader {
     const OGRwkbGeometryType t = wkbFlatten(g.getGeometryType());
     if (t == wkbPolygon) {
       add_polygon(fid, static_cast<int>(part_count_++), *g.toPolygon());
+    } else if (!g.IsEmpty() && t != wkbMultiPolygon && t != wkbPolyhedralSurface && t != wkbTIN &&
+               t != wkbGeometryCollection) {
+      if (num_parts_ignored_++ == 0) first_feature_ignored_ = fid;  // a point or line
     } else if (t == wkbMultiPolygon || t == wkbPolyhedralSurface || t == wkbTIN ||
                t == wkbGeometryCollection) {
       const auto* coll = dynamic_cast<const OGRGeometryCollection*>(&g);
@@ -470,6 +489,8 @@ class Reader {
   GdalDataset ds_;
   OGRLayer* layer_ = nullptr;
   std::size_t part_count_ = 0;
+  std::size_t num_parts_ignored_ = 0;  // points and lines in geometry collections
+  long long first_feature_ignored_ = -1;
   SourceData out_;
 };
 

@@ -101,6 +101,35 @@ TEST(ReadPolygons, APoolKeepsTheDataSetAndClearsItsFilters) {
   EXPECT_EQ(open_vector_dataset(path, "read").get(), kept);
 }
 
+// A geometry collection (as overlays and some GeoJSON give) is read for its polygons,
+// its points and lines ignored with a warning; one without a polygon is not a polygon.
+TEST(ReadPolygons, TheGeometryCollectionsPolygonsAreRead) {
+  TempDir dir;
+  const std::string path = dir.file("gc.geojson");
+  write_file(
+      path,
+      R"({"type":"FeatureCollection","features":[)"
+      R"({"type":"Feature","properties":{},"geometry":{"type":"Polygon","coordinates":)"
+      R"([[[-3,47],[-2,47],[-2,48],[-3,48],[-3,47]]]}},)"
+      R"({"type":"Feature","properties":{},"geometry":{"type":"GeometryCollection",)"
+      R"("geometries":[{"type":"Point","coordinates":[0.5,47.5]},)"
+      R"({"type":"Polygon","coordinates":[[[-1,47,3],[0,47,3],[0,48,3],[-1,48,3],[-1,47,3]]]},)"
+      R"({"type":"LineString","coordinates":[[1,47],[2,48]]}]}}]})");
+  const SourceData d = read_polygons(params(path));
+  ASSERT_EQ(d.polygons.size(), 2u);
+  EXPECT_DOUBLE_EQ(d.polygons[1].rings[0][0].x, -1.0);
+  ASSERT_EQ(d.warnings.size(), 1u);
+  EXPECT_NE(d.warnings[0].find("2 point or line part(s) of geometry collections ignored (the "
+                               "first in feature 1)"),
+            std::string::npos)
+      << d.warnings[0];
+
+  write_file(path, R"({"type":"FeatureCollection","features":[)"
+                   R"({"type":"Feature","properties":{},"geometry":{"type":"GeometryCollection",)"
+                   R"("geometries":[{"type":"Point","coordinates":[0.5,47.5]}]}}]})");
+  expect_error(params(path), ErrorClass::input, "has no polygons");
+}
+
 TEST(ReadPolygons, BboxInAnotherCrs) {
   TempDir dir;
   ReadParams p = params(good_geojson(dir));
