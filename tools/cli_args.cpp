@@ -532,6 +532,13 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "Write coordinates in this CRS (e.g. EPSG:4326); SCHISM .gr3 stays in the "
                   "meshing CRS (its .ll is in lon/lat)")
       ->group("Output");
+  cmd->add_option("--numbering", m.numbering,
+                  "rcm (default): nodes in reverse Cuthill-McKee order, neighbours numbered close "
+                  "together (a small bandwidth, as OceanMesh2D's renum and SMS's renumbering "
+                  "give an ADCIRC grid), and quads after their nodes; tiles: as the subdivision "
+                  "numbers them (tile corners, then sides' midpoints, then centres)")
+      ->check(CLI::IsMember({"rcm", "tiles"}))
+      ->group("Output");
   cmd->add_flag("--schism-split", m.schism_split,
                 "In SCHISM's .gr3 and .ll, each quad that fails SCHISM's checks (smallest over "
                 "largest angle under 0.5, or longest over shortest side over 5) as two "
@@ -673,6 +680,7 @@ MeshOptions mesh_options(const CommonArgs& a, const FieldArgs& f, const MeshArgs
       : m.conform_rule == "lattice"         ? ConformShiftRule::lattice
                                             : ConformShiftRule::close_shortest;
   options.tiling.init = m.init == "merge" ? TilingInit::merge : TilingInit::front;
+  options.renumber = m.numbering == "rcm";
   options.tiling.stop_after = m.stop_after == "init"        ? TilingStep::init
                               : m.stop_after == "relax"     ? TilingStep::relax
                               : m.stop_after == "conform"   ? TilingStep::conform

@@ -61,6 +61,7 @@ struct MeshArgs {
   std::string msh_version = "4.1";
   std::string msh_groups = "kind";
   std::string output_crs;
+  std::string numbering = "rcm";  // --numbering
   bool schism_split = false;
   bool depth_average = false;  // --depth-average
   ZonesSource zones;           // --zones, --zones-layer, --zones-field

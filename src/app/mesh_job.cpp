@@ -14,6 +14,7 @@
 #include "core/text.h"
 #include "mesh/boundary_corners.h"
 #include "mesh/locate.h"
+#include "quad/quad_numbering.h"
 
 namespace isoquad {
 
@@ -174,6 +175,15 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
                           embed, options.smooth, &r.fields.cross, &r.fields.size, &r.embedded,
                           r.fields.front.embed_points, &r.embedded_points);
     clock.lap("embedding");
+  }
+  if (options.renumber) {
+    // Neighbours numbered close together, as models and their tools like (quad_numbering.h).
+    const QuadNumbering numbering = reverse_cuthill_mckee(r.quads);
+    std::vector<std::vector<int>*> lists;
+    for (EmbeddedPath& path : r.embedded) lists.push_back(&path.vertices);
+    renumber(r.quads, numbering, lists);
+    for (EmbeddedPoint& p : r.embedded_points)
+      if (p.vertex >= 0) p.vertex = numbering.new_vertex[p.vertex];
   }
   progress.report("quality", 0.97);
   r.quality = measure_quality(r.quads, r.fields.mesh, r.fields.size, r.fields.cross, &r.metrics);

@@ -38,6 +38,9 @@ struct MeshOptions {
   // --embed: a path of edges moved onto each of --align's lines (embed_lines.h).
   bool embed_lines = false;
   EmbedParams embed;
+  // --numbering rcm: the vertices in reverse Cuthill-McKee order and the quads after them
+  // (quad_numbering.h); false (tiles): as the subdivision numbers them.
+  bool renumber = true;
 };
 
 struct MeshResult {

@@ -16,6 +16,7 @@
 #include "fields/cross_field.h"
 #include "mesh/locate.h"
 #include "quad/quad_mesh.h"
+#include "quad/quad_numbering.h"
 #include "support/test_support.h"
 
 using namespace isoquad;
@@ -510,4 +511,39 @@ TEST(MeshJob, AlignedLinesKeepTheirCrossesWhenTheFieldIsSolvedOnACoarserMesh) {
     EXPECT_EQ(coarse.cross.angle_rad[v], expected) << v;
   }
   EXPECT_EQ(fixed, fine.num_aligned_vertices);
+}
+
+// The final numbering (--numbering): reverse Cuthill-McKee by default, the subdivision's
+// own with renumber off; the same quads either way, and the embedded points' vertices
+// numbered with them.
+TEST(MeshJob, TheVerticesAreNumberedNeighboursCloseTogether) {
+  TempDir dir;
+  const std::string points = dir.file("stations.geojson");
+  write_file(
+      points,
+      R"({"type":"FeatureCollection","features":[)"
+      R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[9.0,42.2]}},)"
+      R"({"type":"Feature","properties":{},"geometry":{"type":"Point","coordinates":[9.2,42.5]}}]})");
+  MeshOptions o = corsica(8000);
+  o.fields.front.embed_points_path = points;
+  const MeshResult rcm = build_mesh(o);
+  o.renumber = false;
+  const MeshResult tiles = build_mesh(o);
+  ASSERT_EQ(rcm.quads.points.size(), tiles.quads.points.size());
+  ASSERT_EQ(rcm.quads.quads.size(), tiles.quads.quads.size());
+  const int n = static_cast<int>(rcm.quads.points.size());
+  EXPECT_LT(vertex_bandwidth(rcm.quads), n / 10) << n;  // 78 of 1,561
+  EXPECT_GT(vertex_bandwidth(tiles.quads), n / 2) << vertex_bandwidth(tiles.quads);
+  EXPECT_EQ(rcm.quality.num_quads, tiles.quality.num_quads);
+  EXPECT_EQ(rcm.quality.share_angles_75_105, tiles.quality.share_angles_75_105);
+  EXPECT_EQ(rcm.quality.orientation_mean_deg, tiles.quality.orientation_mean_deg);
+  ASSERT_EQ(rcm.embedded_points.size(), 2u);
+  for (std::size_t k = 0; k < 2; ++k) {
+    const int a = rcm.embedded_points[k].vertex, b = tiles.embedded_points[k].vertex;
+    ASSERT_GE(a, 0);
+    ASSERT_GE(b, 0);
+    EXPECT_EQ(rcm.quads.points[a].x, tiles.quads.points[b].x);
+    EXPECT_EQ(rcm.quads.points[a].y, tiles.quads.points[b].y);
+    EXPECT_LT(distance(rcm.quads.points[a], rcm.embedded_points[k].target), 1.0);
+  }
 }
