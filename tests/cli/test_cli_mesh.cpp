@@ -824,6 +824,16 @@ std::string square_feature(double x, double y, double side, const std::string& r
   return s.str();
 }
 
+// Four squares of lon/lat, regions p, q, r and s, as a GeoJSON file in `dir`.
+std::string four_regions(const TempDir& dir) {
+  const std::string input = dir.file("regions.geojson");
+  write_file(input, R"({"type":"FeatureCollection","features":[)" + square_feature(0, 0, 0.3, "p") +
+                        "," + square_feature(1, 0, 0.25, "q") + "," +
+                        square_feature(0, 1, 0.2, "r") + "," + square_feature(2, 2, 0.35, "s") +
+                        "]}");
+  return input;
+}
+
 }  // namespace
 
 // --each: a mesh per value of an attribute. Three squares of lon/lat, two of them
@@ -886,11 +896,7 @@ TEST(CliMesh, EachValueOfAnAttributeGetsItsOwnMesh) {
 // print in the same order; a failure is reported the same way.
 TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
   TempDir dir;
-  const std::string input = dir.file("regions.geojson");
-  write_file(input, R"({"type":"FeatureCollection","features":[)" + square_feature(0, 0, 0.3, "p") +
-                        "," + square_feature(1, 0, 0.25, "q") + "," +
-                        square_feature(0, 1, 0.2, "r") + "," + square_feature(2, 2, 0.35, "s") +
-                        "]}");
+  const std::string input = four_regions(dir);
   auto run = [&](const std::string& stem, const std::vector<std::string>& extra) {
     std::vector<std::string> args = {"mesh",   input,    "--size", "3000",
                                      "--each", "region", "-o",     dir.file(stem + "_{}.gr3")};
@@ -937,11 +943,7 @@ TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
 // regions not started listed as not run, with the exit code of a usage error.
 TEST(CliMesh, EachStopsAtAUsageErrorTwoRegionsShare) {
   TempDir dir;
-  const std::string input = dir.file("regions.geojson");
-  write_file(input, R"({"type":"FeatureCollection","features":[)" + square_feature(0, 0, 0.3, "p") +
-                        "," + square_feature(1, 0, 0.25, "q") + "," +
-                        square_feature(0, 1, 0.2, "r") + "," + square_feature(2, 2, 0.35, "s") +
-                        "]}");
+  const std::string input = four_regions(dir);
   const CliResult r = run_cli({"mesh", input, "--size", "3000", "--each", "region", "--domain",
                                "water", "-o", dir.file("{}.gr3")},
                               dir);
