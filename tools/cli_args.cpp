@@ -183,6 +183,11 @@ void add_quality_options(CLI::App* cmd, QualityArgs& q) {
                   "With --each: regions measured at once, each on its own thread (default 1)")
       ->check(kPositive)
       ->group("Selection");
+  cmd->add_option("--each-table", q.each_table,
+                  "With --each: the closing table as a CSV file, a row per region in order "
+                  "(status, exit code, the quality figures, the error of a failed one; no "
+                  "seconds, so that the same batch writes the same bytes)")
+      ->group("Selection");
 }
 
 void add_field_options(CLI::App* cmd, FieldArgs& f) {
@@ -379,6 +384,12 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "region's files are the same; their summaries print in order as they finish, "
                   "without progress; the peak memory is that of the regions running together")
       ->check(kPositive)
+      ->group("Selection");
+  cmd->add_option("--each-table", m.each_table,
+                  "With --each: the closing table as a CSV file, a row per region in order "
+                  "(status, exit code, the quality figures, the error of a failed one; no "
+                  "seconds, so that the same batch writes the same bytes); written again by a "
+                  "batch resumed with --skip-existing")
       ->group("Selection");
   cmd->add_flag("--skip-existing", m.skip_existing,
                 "Mesh nothing where every output (with --report and --plot) exists already: with "

@@ -417,10 +417,10 @@ std::vector<EachRegion> each_regions(const CommonArgs& a, const FieldArgs& f,
 }
 
 // Runs `run` for every region, `jobs` at once; a failure (Error) is reported in its
-// console and the others go on. Then the table and the total ("M of N `done`"); the exit
-// code is the first failure's.
+// console and the others go on. Then the table (and with `table_path` its CSV) and the
+// total ("M of N `done`"); the exit code is the first failure's.
 int run_each(const CommonArgs& a, const std::string& field, std::vector<EachRegion>& regions,
-             int jobs, const std::string& done,
+             int jobs, const std::string& done, const std::string& table_path,
              const std::function<RegionOutcome(EachRegion&, const Console&)>& run) {
   std::vector<std::string> values;
   for (const EachRegion& r : regions) values.push_back(r.value);
@@ -437,6 +437,7 @@ int run_each(const CommonArgs& a, const std::string& field, std::vector<EachRegi
       console.err << "isoquad: " << field << " = " << values[k] << ": " << e.what() << "\n";
       RegionOutcome outcome;
       outcome.exit = exit_code(e.error_class());
+      outcome.error = e.what();
       if (e.error_class() == ErrorClass::usage) outcome.usage_error = e.what();
       return outcome;
     }
@@ -444,6 +445,8 @@ int run_each(const CommonArgs& a, const std::string& field, std::vector<EachRegi
   const std::vector<RegionOutcome> outcomes =
       run_regions(regions.size(), static_cast<std::size_t>(jobs), header, region);
   const int exit = each_exit_code(outcomes);
+  if (!table_path.empty())
+    write_text_file(table_path, format_each_csv(field, values, outcomes, done), a.overwrite);
   if (!a.quiet) std::cerr << format_each_table(field, values, outcomes);
   if (!a.quiet || exit)
     std::cerr << (exit ? "isoquad: " : "") << format_each_total(field, values, outcomes, done);
@@ -459,6 +462,10 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
     throw Error(ErrorClass::usage, "options", "--each meshes: no --stop-after");
   const VectorDatasetPool pool;  // INPUT and the other vector files read once, not per region
   std::vector<EachRegion> regions = each_regions(a, f, m.each);
+  // A resumed batch (--skip-existing) writes its table again.
+  CommonArgs table_args = a;
+  table_args.overwrite = a.overwrite || m.skip_existing;
+  if (!m.each_table.empty()) check_output_path(m.each_table, table_args.overwrite);
   for (EachRegion& r : regions) {
     r.skip = m.skip_existing && every_output_exists(r.a, r.f, m);
     if (r.skip) continue;
@@ -466,16 +473,19 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
     if (!r.f.plot_path.empty()) check_output_path(r.f.plot_path, a.overwrite);
     check_mesh_outputs(mesh_outputs(r.a, m), mesh_write_options(m));
   }
-  return run_each(a, m.each, regions, m.jobs, "meshed", [&](EachRegion& r, const Console& console) {
-    if (r.skip) {
-      if (!a.quiet) console.out << "skipped: every output exists (--skip-existing)\n";
-      RegionOutcome outcome;
-      outcome.skipped = true;
-      return outcome;
-    }
-    MeshArgs mm = m;
-    return run_mesh(r.a, r.f, mm, command_line + " [--each: " + r.filter + "]", console);
-  });
+  return run_each(table_args, m.each, regions, m.jobs, "meshed", m.each_table,
+                  [&](EachRegion& r, const Console& console) {
+                    if (r.skip) {
+                      if (!a.quiet)
+                        console.out << "skipped: every output exists (--skip-existing)\n";
+                      RegionOutcome outcome;
+                      outcome.skipped = true;
+                      return outcome;
+                    }
+                    MeshArgs mm = m;
+                    return run_mesh(r.a, r.f, mm, command_line + " [--each: " + r.filter + "]",
+                                    console);
+                  });
 }
 
 // quality --each FIELD: each region's mesh ({} in --mesh) measured against its fields.
@@ -490,12 +500,14 @@ int run_quality_each(const CommonArgs& a, const FieldArgs& f, const QualityArgs&
                 "--each selects regions from INPUT's features: give INPUT");
   const VectorDatasetPool pool;
   std::vector<EachRegion> regions = each_regions(a, f, q.each);
-  return run_each(
-      a, q.each, regions, q.jobs, "measured", [&](EachRegion& r, const Console& console) {
-        QualityArgs qq = q;
-        qq.mesh_path = fill_each_mark(q.mesh_path, r.name);
-        return run_quality(r.a, r.f, qq, command_line + " [--each: " + r.filter + "]", console);
-      });
+  if (!q.each_table.empty()) check_output_path(q.each_table, a.overwrite);
+  return run_each(a, q.each, regions, q.jobs, "measured", q.each_table,
+                  [&](EachRegion& r, const Console& console) {
+                    QualityArgs qq = q;
+                    qq.mesh_path = fill_each_mark(q.mesh_path, r.name);
+                    return run_quality(r.a, r.f, qq, command_line + " [--each: " + r.filter + "]",
+                                       console);
+                  });
 }
 
 }  // namespace
@@ -594,6 +606,8 @@ int main(int argc, char** argv) {
     if (mesh_cmd->parsed() && mesh_extra.jobs != 1)
       throw Error(ErrorClass::usage, "options",
                   "--jobs meshes the regions of --each at once: give --each");
+    if (mesh_cmd->parsed() && !mesh_extra.each_table.empty())
+      throw Error(ErrorClass::usage, "options", "--each-table is --each's table: give --each");
     if (mesh_cmd->parsed() && mesh_extra.skip_existing &&
         every_output_exists(mesh_args, mesh_field_args, mesh_extra)) {
       if (!mesh_args.quiet) std::cerr << "skipped: every output exists (--skip-existing)\n";
@@ -605,6 +619,8 @@ int main(int argc, char** argv) {
     if (quality_cmd->parsed() && quality_extra.jobs != 1)
       throw Error(ErrorClass::usage, "options",
                   "--jobs measures the regions of --each at once: give --each");
+    if (quality_cmd->parsed() && !quality_extra.each_table.empty())
+      throw Error(ErrorClass::usage, "options", "--each-table is --each's table: give --each");
     if (quality_cmd->parsed()) {
       run_quality(quality_args, quality_field_args, quality_extra, joined_command_line(argc, argv));
       return 0;

@@ -181,6 +181,49 @@ std::string format_each_total(const std::string& field, const std::vector<std::s
   return line + "\n";
 }
 
+namespace {
+
+// A CSV field (RFC 4180): quoted, its quotes doubled, when it holds a comma, a quote or a
+// line break.
+std::string csv_field(const std::string& text) {
+  if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
+  std::string quoted = "\"";
+  for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return quoted + "\"";
+}
+
+}  // namespace
+
+std::string format_each_csv(const std::string& field, const std::vector<std::string>& values,
+                            const std::vector<RegionOutcome>& outcomes, const std::string& done) {
+  std::string csv = csv_field(field) +
+                    ",status,exit,quads,vertices,angles_75_105_pct,min_angle_deg,max_angle_deg,"
+                    "regular_interior_pct,size_ratio_median,sizes_08_125_pct,"
+                    "orientation_mean_deg,orientation_p90_deg,schism_angle_ratio_fails,"
+                    "schism_aspect_fails,dflowfm_links_over_05,error\r\n";
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const RegionOutcome& o = outcomes[k];
+    const char* status = o.quality   ? done.c_str()
+                         : o.skipped ? "skipped"
+                         : o.not_run ? "not run"
+                                     : "failed";
+    csv += csv_field(values[k]) + "," + status + "," + std::to_string(o.exit);
+    if (o.quality) {
+      const QualitySummary& q = *o.quality;
+      csv += printf_string(",%zu,%zu,%.2f,%.2f,%.2f,%.2f,%.4f,%.2f,%.2f,%.2f,%zu,%zu,%zu,",
+                           q.num_quads, q.num_vertices, 100 * q.share_angles_75_105,
+                           q.min_angle_deg, q.max_angle_deg, 100 * q.share_regular_interior,
+                           q.size_ratio_median, 100 * q.share_size_08_125, q.orientation_mean_deg,
+                           q.orientation_p90_deg, q.schism_angle_ratio_violations,
+                           q.schism_aspect_violations, q.dflowfm_orthogonality_violations);
+    } else {
+      csv += ",,,,,,,,,,,,,,";
+    }
+    csv += csv_field(o.error) + "\r\n";
+  }
+  return csv;
+}
+
 int each_exit_code(const std::vector<RegionOutcome>& outcomes) {
   for (const RegionOutcome& o : outcomes)
     if (!o.quality && !o.skipped && !o.not_run) return o.exit;

@@ -42,6 +42,7 @@ struct RegionOutcome {
   double seconds = 0.0;
   bool skipped = false;  // nothing to do (--skip-existing)
   int exit = 0;          // failed: its exit code
+  std::string error;     // failed: the message, as the error gave it
   // Failed on the command (a usage error, exit 2): the message, as the error gave it.
   std::string usage_error;
   bool not_run = false;  // the batch stopped before it (see run_regions)
@@ -68,6 +69,13 @@ std::string format_each_table(const std::string& field, const std::vector<std::s
 std::string format_each_total(const std::string& field, const std::vector<std::string>& values,
                               const std::vector<RegionOutcome>& outcomes,
                               const std::string& done = "meshed");
+// The table as CSV (--each-table), for a batch's records and golden files: a header, then
+// a row per region in the regions' order: its value, status (`done`, failed, skipped, not
+// run), exit code, quads, vertices, the quality figures (shares in percent) and the
+// error of a failed one. No seconds: the same batch gives the same bytes.
+std::string format_each_csv(const std::string& field, const std::vector<std::string>& values,
+                            const std::vector<RegionOutcome>& outcomes,
+                            const std::string& done = "meshed");
 // The first failed region's exit code, 0 when none failed.
 int each_exit_code(const std::vector<RegionOutcome>& outcomes);
 

@@ -903,8 +903,8 @@ TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
     args.insert(args.end(), extra.begin(), extra.end());
     return run_cli(args, dir);
   };
-  const CliResult one = run("one", {});
-  const CliResult two = run("two", {"--jobs", "2"});
+  const CliResult one = run("one", {"--each-table", dir.file("one.csv")});
+  const CliResult two = run("two", {"--jobs", "2", "--each-table", dir.file("two.csv")});
   ASSERT_EQ(one.exit_code, 0) << one.err;
   ASSERT_EQ(two.exit_code, 0) << two.err;
   std::size_t at = 0;
@@ -924,15 +924,37 @@ TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
     EXPECT_NE(two.err.find(std::string("two_") + region + ".gr3", header), std::string::npos);
   }
   EXPECT_NE(two.err.find("--each region: 4 of 4 meshed"), std::string::npos) << two.err;
+  // The table as CSV: the same bytes however many at once (no seconds).
+  const std::string table = read_file(dir.file("one.csv"));
+  EXPECT_EQ(table, read_file(dir.file("two.csv")));
+  EXPECT_EQ(table.substr(0, table.find("\r\n")),
+            "region,status,exit,quads,vertices,angles_75_105_pct,min_angle_deg,max_angle_deg,"
+            "regular_interior_pct,size_ratio_median,sizes_08_125_pct,orientation_mean_deg,"
+            "orientation_p90_deg,schism_angle_ratio_fails,schism_aspect_fails,"
+            "dflowfm_links_over_05,error");
+  EXPECT_NE(table.find("\r\nq,meshed,0,"), std::string::npos) << table;
   // One region over --max-quads: the others written, the same message and exit code.
-  const CliResult failed = run("cap", {"--jobs", "2", "--max-quads", "150", "-q"});
+  const CliResult failed =
+      run("cap", {"--jobs", "2", "--max-quads", "150", "-q", "--each-table", dir.file("cap.csv")});
   EXPECT_EQ(failed.exit_code, 2) << failed.err;
   EXPECT_NE(failed.err.find("region = s: sizing:"), std::string::npos) << failed.err;
   EXPECT_NE(failed.err.find("--each region: 3 of 4 meshed; failed: s"), std::string::npos)
       << failed.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("cap_s.gr3")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("cap_p.gr3")));
-  // --jobs without --each.
+  // Its row: the exit code, no figures, and the message quoted (it holds commas).
+  const std::string capped = read_file(dir.file("cap.csv"));
+  EXPECT_NE(capped.find("\r\ns,failed,2,,,,,,,,,,,,,,\"sizing: the sizes ask for about"),
+            std::string::npos)
+      << capped;
+  EXPECT_NE(capped.find("\r\np,meshed,0,"), std::string::npos) << capped;
+  // --jobs and --each-table without --each.
+  const CliResult table_alone = run_cli({"mesh", input, "--size", "3000", "--each-table",
+                                         dir.file("t.csv"), "-o", dir.file("a.gpkg")},
+                                        dir);
+  EXPECT_EQ(table_alone.exit_code, 2);
+  EXPECT_NE(table_alone.err.find("--each-table is --each's table"), std::string::npos)
+      << table_alone.err;
   const CliResult alone =
       run_cli({"mesh", input, "--size", "3000", "--jobs", "2", "-o", dir.file("alone.gpkg")}, dir);
   EXPECT_EQ(alone.exit_code, 2);
@@ -944,15 +966,21 @@ TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
 TEST(CliMesh, EachStopsAtAUsageErrorTwoRegionsShare) {
   TempDir dir;
   const std::string input = four_regions(dir);
-  const CliResult r = run_cli({"mesh", input, "--size", "3000", "--each", "region", "--domain",
-                               "water", "-o", dir.file("{}.gr3")},
-                              dir);
+  const CliResult r =
+      run_cli({"mesh", input, "--size", "3000", "--each", "region", "--domain", "water", "-o",
+               dir.file("{}.gr3"), "--each-table", dir.file("batch.csv")},
+              dir);
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("region = q: domain: --domain water needs --bbox"), std::string::npos)
       << r.err;
   EXPECT_EQ(r.err.find("region = r:"), std::string::npos) << r.err;
   EXPECT_EQ(r.err.find("== region = r"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("\nr       not run\n"), std::string::npos) << r.err;
+  const std::string table = read_file(dir.file("batch.csv"));
+  EXPECT_NE(table.find("\r\nq,failed,2,,,,,,,,,,,,,,domain: --domain water needs --bbox"),
+            std::string::npos)
+      << table;
+  EXPECT_NE(table.find("\r\ns,not run,0,,,,,,,,,,,,,,\r\n"), std::string::npos) << table;
   EXPECT_NE(r.err.find("--each region: 0 of 4 meshed; failed: p, q; 2 not run: p and q failed "
                        "with the same usage error"),
             std::string::npos)
@@ -975,13 +1003,17 @@ TEST(CliMesh, SkipExistingResumesABatch) {
     args.insert(args.end(), extra.begin(), extra.end());
     return run_cli(args, dir);
   };
-  CliResult r = run({});
+  CliResult r = run({"--each-table", dir.file("batch.csv")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string p_grid = read_file(dir.file("p.gr3"));
   const auto q_time = std::filesystem::last_write_time(dir.file("q.gr3"));
   for (const char* f : {"p.gr3", "p.ll", "p.json"}) std::filesystem::remove(dir.file(f));
-  r = run({"--skip-existing", "--jobs", "2"});
+  r = run({"--skip-existing", "--jobs", "2", "--each-table", dir.file("batch.csv")});
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The table written again (without --overwrite): p meshed, q skipped.
+  const std::string table = read_file(dir.file("batch.csv"));
+  EXPECT_NE(table.find("\r\np,meshed,0,"), std::string::npos) << table;
+  EXPECT_NE(table.find("\r\nq,skipped,0,"), std::string::npos) << table;
   EXPECT_NE(r.err.find("== region = q (2 of 2)\nskipped: every output exists (--skip-existing)"),
             std::string::npos)
       << r.err;

@@ -303,15 +303,31 @@ TEST(CliQuality, EachRegionsMeshMeasuredAsItsReportSays) {
   std::vector<std::string> mesh = {"mesh"};
   mesh.insert(mesh.end(), common.begin(), common.end());
   mesh.insert(mesh.end(), {"--where", "name <> 'f2'", "-o", dir.file("{}.gr3"), "--report",
-                           dir.file("{}.json")});
+                           dir.file("{}.json"), "--each-table", dir.file("made.csv")});
   const CliResult made = run_cli(mesh, dir);
   ASSERT_EQ(made.exit_code, 0) << made.err;
   std::vector<std::string> quality = {"quality"};
   quality.insert(quality.end(), common.begin(), common.end());
   quality.insert(quality.end(),
                  {"--mesh", dir.file("{}.gr3"), "--report", dir.file("{}.q.json"), "--jobs", "2"});
+  quality.insert(quality.end(), {"--each-table", dir.file("measured.csv")});
   const CliResult measured = run_cli(quality, dir);
   EXPECT_EQ(measured.exit_code, 3) << measured.err;  // f2 has no mesh
+  // The two tables: each region's figures as the mesh run gave them, f2 failed.
+  const std::string made_table = read_file(dir.file("made.csv"));
+  const std::string measured_table = read_file(dir.file("measured.csv"));
+  for (const std::string name : {"f0", "f1"}) {
+    const std::string start = "\r\n" + name + ",meshed,0,";
+    const std::size_t at = made_table.find(start);
+    ASSERT_NE(at, std::string::npos) << made_table;
+    const std::size_t end = made_table.find("\r\n", at + 2);
+    const std::string figures = made_table.substr(at + start.size(), end - at - start.size());
+    EXPECT_NE(measured_table.find("\r\n" + name + ",measured,0," + figures + "\r\n"),
+              std::string::npos)
+        << figures << "\n"
+        << measured_table;
+  }
+  EXPECT_NE(measured_table.find("\r\nf2,failed,3,"), std::string::npos) << measured_table;
   EXPECT_NE(measured.err.find("name = f2: read: '" + dir.file("f2.gr3") + "': no such mesh file"),
             std::string::npos)
       << measured.err;
@@ -321,7 +337,7 @@ TEST(CliQuality, EachRegionsMeshMeasuredAsItsReportSays) {
     expect_same_quality(read_file(dir.file(std::string(name) + ".json")),
                         read_file(dir.file(std::string(name) + ".q.json")), 1e-6, name);
   // --mesh without {} under --each.
-  quality[quality.size() - 5] = dir.file("f0.gr3");
+  quality[quality.size() - 7] = dir.file("f0.gr3");
   const CliResult no_mark = run_cli(quality, dir);
   EXPECT_EQ(no_mark.exit_code, 2);
   EXPECT_NE(no_mark.err.find("with --each, --mesh needs {}"), std::string::npos) << no_mark.err;

@@ -177,3 +177,41 @@ TEST(EachJob, TheSameUsageErrorTwiceStopsTheBatch) {
     EXPECT_EQ(each_exit_code(outcomes), 3);
   }
 }
+
+// The table as CSV: a row per region, every row as many fields as the header, values and
+// errors with commas or quotes quoted (RFC 4180), no seconds.
+TEST(EachJob, TheTableAsCsvQuotesWhatNeedsIt) {
+  std::vector<RegionOutcome> outcomes(4);
+  outcomes[0].quality = QualitySummary{};
+  outcomes[0].quality->num_quads = 1234;
+  outcomes[0].quality->share_angles_75_105 = 0.9;
+  outcomes[0].seconds = 1.5;
+  outcomes[1].skipped = true;
+  outcomes[2].exit = 3;
+  outcomes[2].error = "read: 'a.shp': \"x\", y";
+  outcomes[3].not_run = true;
+  const std::vector<std::string> values = {"Bonaire, Saint Eustatius and Saba", "b", "c\"d", "e"};
+  const std::string csv = format_each_csv("name", values, outcomes);
+  std::vector<std::string> rows;
+  for (std::size_t at = 0, next; (next = csv.find("\r\n", at)) != std::string::npos; at = next + 2)
+    rows.push_back(csv.substr(at, next - at));
+  ASSERT_EQ(rows.size(), 5u) << csv;
+  // Fields outside quotes: commas not between an odd number of quotes.
+  auto num_fields = [](const std::string& row) {
+    std::size_t n = 1;
+    bool quoted = false;
+    for (char c : row) {
+      if (c == '"') quoted = !quoted;
+      if (c == ',' && !quoted) ++n;
+    }
+    return n;
+  };
+  for (const std::string& row : rows) EXPECT_EQ(num_fields(row), 17u) << row;
+  EXPECT_EQ(rows[1].substr(0, 57), "\"Bonaire, Saint Eustatius and Saba\",meshed,0,1234,0,90.00");
+  EXPECT_EQ(rows[2], "b,skipped,0,,,,,,,,,,,,,,");
+  EXPECT_EQ(rows[3], "\"c\"\"d\",failed,3,,,,,,,,,,,,,,\"read: 'a.shp': \"\"x\"\", y\"");
+  EXPECT_EQ(rows[4], "e,not run,0,,,,,,,,,,,,,,");
+  EXPECT_EQ(csv.find("1.5"), std::string::npos);  // no seconds
+  EXPECT_EQ(format_each_csv("name", values, outcomes, "measured").find("meshed"),
+            std::string::npos);
+}
