@@ -422,6 +422,9 @@ std::vector<EachRegion> each_regions(const CommonArgs& a, const FieldArgs& f,
 int run_each(const CommonArgs& a, const std::string& field, std::vector<EachRegion>& regions,
              int jobs, const std::string& done, const std::string& table_path,
              const std::function<RegionOutcome(EachRegion&, const Console&)>& run) {
+  if (has_each_mark(table_path))
+    throw Error(ErrorClass::usage, "options",
+                "--each-table is one file for the whole batch, without {}: '" + table_path + "'");
   std::vector<std::string> values;
   for (const EachRegion& r : regions) values.push_back(r.value);
   auto header = [&](std::size_t k) -> std::string {

@@ -955,6 +955,11 @@ TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
   EXPECT_EQ(table_alone.exit_code, 2);
   EXPECT_NE(table_alone.err.find("--each-table is --each's table"), std::string::npos)
       << table_alone.err;
+  const CliResult marked = run("m", {"--each-table", dir.file("{}.csv")});
+  EXPECT_EQ(marked.exit_code, 2);
+  EXPECT_NE(marked.err.find("--each-table is one file for the whole batch"), std::string::npos)
+      << marked.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("m_p.gr3")));
   const CliResult alone =
       run_cli({"mesh", input, "--size", "3000", "--jobs", "2", "-o", dir.file("alone.gpkg")}, dir);
   EXPECT_EQ(alone.exit_code, 2);
