@@ -82,23 +82,37 @@ struct BoundaryFeatureSize::Impl {
       if (v < at[c] || (v == at[c] && site < best[c])) at[c] = v, best[c] = site;
     };
     for (int k = 0; k < static_cast<int>(sites.size()); ++k) offer(cell_x(sites[k].x), cell_y(sites[k].y), k);
-    // Forward and backward sweeps over the 8 neighbours, twice.
+    // Forward and backward sweeps over the 8 neighbours, twice. A cell's best site and
+    // value are kept in registers while its neighbours are offered (only the cell itself
+    // changes meanwhile), and its centre computed once: the same comparisons in the same
+    // order as offer() for each neighbour, so the same sites.
     for (int round = 0; round < 2; ++round)
       for (int pass = 0; pass < 2; ++pass) {
         const int step = pass == 0 ? 1 : -1;
         for (int jj = 0; jj < ny; ++jj) {
           const int j = pass == 0 ? jj : ny - 1 - jj;
+          const double cy = centre_y(j);
           for (int ii = 0; ii < nx; ++ii) {
             const int i = pass == 0 ? ii : nx - 1 - ii;
+            const double cx = centre_x(i);
             const std::size_t c = static_cast<std::size_t>(j) * nx + i;
+            int best_site = best[c];
+            double best_value = at[c];
+            const bool inside = i > 0 && j > 0 && i < nx - 1 && j < ny - 1;
             for (int dj = -1; dj <= 1; ++dj)
               for (int di = -1; di <= 1; ++di) {
                 const int a = i - step * di, b = j - step * dj;
-                if ((di == 0 && dj == 0) || a < 0 || b < 0 || a >= nx || b >= ny) continue;
+                if (di == 0 && dj == 0) continue;
+                if (!inside && (a < 0 || b < 0 || a >= nx || b >= ny)) continue;
                 const int site = best[static_cast<std::size_t>(b) * nx + a];
                 // The cell's own site again changes nothing (most neighbours share it).
-                if (site >= 0 && site != best[c]) offer(i, j, site);
+                if (site < 0 || site == best_site) continue;
+                const double v = value(site, cx, cy);
+                if (v < best_value || (v == best_value && site < best_site))
+                  best_value = v, best_site = site;
               }
+            best[c] = best_site;
+            at[c] = best_value;
           }
         }
       }
