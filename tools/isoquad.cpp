@@ -159,7 +159,8 @@ int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
   const auto t0 = std::chrono::steady_clock::now();
   FieldsResult r = build_fields(options, Progress(make_progress(a.quiet)));
   // The fields, the plot and the report are moved into place together, when all are
-  // complete.
+  // complete. Writing the fields and the plot is the stage "output".
+  StageClock clock(r.times);
   OutputSet set;
   write_fields(r.mesh, r.size, r.cross, r.front.domain.crs_wkt, set.add(a.output, a.overwrite),
                true);
@@ -169,6 +170,7 @@ int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
     pp.overwrite = true;
     plot_fields(r.mesh, r.size, r.cross, r.singularities, pp);
   }
+  clock.lap("output");
   const std::string report = fields_report_json(r, command_line);
   commit_with_report(a, set, report);
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -50,29 +50,30 @@ TEST(CliFields, ReportHasTheDomainSizingBackgroundCrossFieldAndStages) {
                               dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string script = dir.file("check.py");
-  write_file(script,
-             "import sys, json, meshio\n"
-             "m = meshio.read(sys.argv[1]); r = json.load(open(sys.argv[2]))\n"
-             "assert 'fields' in r['command_line'] and r['isoquad_version']\n"
-             "from osgeo import gdal\n"
-             "L = r['libraries']  # in a fixed order, GDAL's as Python's GDAL has it\n"
-             "assert list(L)[0] == 'CGAL' and L['SLEEF'] and L['GDAL'] == gdal.__version__, L\n"
-             "assert r['domain']['num_components'] >= 1 and r['domain']['area_m2'] > 0\n"
-             "s = r['sizing']; size = m.point_data['size']\n"
-             "assert s['hmax_m'] == 8000 and 0 < s['hmin_m'] < s['hmax_m']\n"
-             "assert abs(s['size_min_m'] - size.min()) <= 1e-6 * size.min(), s\n"
-             "assert abs(s['size_max_m'] - size.max()) <= 1e-6 * size.max(), s\n"
-             "assert s['predicted_quads'] > 10\n"
-             "b = r['background']\n"
-             "assert b['num_vertices'] == len(m.points), b\n"
-             "assert b['num_triangles'] == len(m.cells_dict['triangle']), b\n"
-             "c = r['cross_field']\n"
-             "assert c['num_singularities'] == b['num_singularities'] == "
-             "c['num_index_plus_quarter'] + c['num_index_minus_quarter_or_less'], c\n"
-             "stages = [t['stage'] for t in r['stages']]\n"
-             "assert stages[0] == 'front end' and stages[-1] == 'cross field', stages\n"
-             "assert all(t['seconds'] >= 0 and t['peak_mb'] > 0 for t in r['stages'])\n"
-             "print('ok')\n");
+  write_file(
+      script,
+      "import sys, json, meshio\n"
+      "m = meshio.read(sys.argv[1]); r = json.load(open(sys.argv[2]))\n"
+      "assert 'fields' in r['command_line'] and r['isoquad_version']\n"
+      "from osgeo import gdal\n"
+      "L = r['libraries']  # in a fixed order, GDAL's as Python's GDAL has it\n"
+      "assert list(L)[0] == 'CGAL' and L['SLEEF'] and L['GDAL'] == gdal.__version__, L\n"
+      "assert r['domain']['num_components'] >= 1 and r['domain']['area_m2'] > 0\n"
+      "s = r['sizing']; size = m.point_data['size']\n"
+      "assert s['hmax_m'] == 8000 and 0 < s['hmin_m'] < s['hmax_m']\n"
+      "assert abs(s['size_min_m'] - size.min()) <= 1e-6 * size.min(), s\n"
+      "assert abs(s['size_max_m'] - size.max()) <= 1e-6 * size.max(), s\n"
+      "assert s['predicted_quads'] > 10\n"
+      "b = r['background']\n"
+      "assert b['num_vertices'] == len(m.points), b\n"
+      "assert b['num_triangles'] == len(m.cells_dict['triangle']), b\n"
+      "c = r['cross_field']\n"
+      "assert c['num_singularities'] == b['num_singularities'] == "
+      "c['num_index_plus_quarter'] + c['num_index_minus_quarter_or_less'], c\n"
+      "stages = [t['stage'] for t in r['stages']]\n"
+      "assert stages[0] == 'front end' and stages[-2:] == ['cross field', 'output'], stages\n"
+      "assert all(t['seconds'] >= 0 and t['peak_mb'] > 0 for t in r['stages'])\n"
+      "print('ok')\n");
   const CliResult py = run_cli_program("/usr/bin/python3", {script, vtu, report}, dir);
   EXPECT_EQ(py.exit_code, 0) << py.err << py.out;
   EXPECT_EQ(py.out.rfind("ok", 0), 0u) << py.out;
