@@ -85,19 +85,31 @@ bool add_pooled(const std::string& key, GDALDataset* ds) {
 // Puts a kept data set back, as a fresh open would give it; false when the pool has
 // ended since (the caller closes it).
 bool return_pooled(GDALDataset* ds) {
-  const std::lock_guard<std::mutex> lock(g_pool_mutex);
-  auto it = std::find_if(g_pool.begin(), g_pool.end(),
-                         [ds](const PooledDataset& p) { return p.ds == ds; });
-  if (it == g_pool.end()) return false;
-  if (g_pool_users == 0) {
-    g_pool.erase(it);
-    return false;
+  auto find = [ds] {
+    return std::find_if(g_pool.begin(), g_pool.end(),
+                        [ds](const PooledDataset& p) { return p.ds == ds; });
+  };
+  {
+    const std::lock_guard<std::mutex> lock(g_pool_mutex);
+    const auto it = find();
+    if (it == g_pool.end()) return false;
+    if (g_pool_users == 0) {
+      g_pool.erase(it);
+      return false;
+    }
   }
+  // Still marked in use: nobody else takes it meanwhile.
   for (int i = 0; i < ds->GetLayerCount(); ++i) {
     OGRLayer* layer = ds->GetLayer(i);
     layer->SetAttributeFilter(nullptr);
     layer->SetSpatialFilter(nullptr);
     layer->ResetReading();
+  }
+  const std::lock_guard<std::mutex> lock(g_pool_mutex);
+  const auto it = find();
+  if (g_pool_users == 0) {  // the pool ended while the layers were reset
+    g_pool.erase(it);
+    return false;
   }
   it->in_use = false;
   return true;
