@@ -11,6 +11,7 @@
 #include "core/error.h"
 #include "core/stage_clock.h"
 #include "fields/align_lines.h"
+#include "fields/feature_size.h"
 #include "fields/size_cache.h"
 #include "gis/raster_field.h"
 #include "mesh/locate.h"
@@ -61,6 +62,9 @@ void check_quad_budget(double quads, const char* how, double smallest, const Dom
 // default). Against the field solved on the background mesh, Corsica automatic at hmax 8
 // km: 1.6 degrees on average (0.75: the same; 2: 4.6).
 constexpr double kCoarseEdge = 1.0;
+// Away from the boundary the field turns over distances like the distance d to it: the
+// coarse mesh's edges grow to kCoarseGrowth d there, where that is longer than the sizes.
+constexpr double kCoarseGrowth = 0.25;
 
 // The sizing sources, the background mesh and the sizes at its vertices (stages
 // "sizing sources", "background mesh" and "sizing field"). The sources and the size
@@ -130,7 +134,10 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
   if (options.coarse_cross_above > 0 && r.mesh.points.size() > options.coarse_cross_above &&
       options.cross.source != CrossSource::constant) {
     BackgroundMeshParams coarse_params;
-    coarse_params.max_edge_m = [&size_at](const Point2& p) { return kCoarseEdge * size_at(p); };
+    const CoastDistance boundary_distance(domain, PolylineIndex(), 0.0, smallest);
+    coarse_params.max_edge_m = [&size_at, &boundary_distance](const Point2& p) {
+      return kCoarseEdge * std::max(size_at(p), kCoarseGrowth * boundary_distance(p));
+    };
     coarse = build_background_mesh(domain, coarse_params);
     timer.lap("coarse mesh");
   }
@@ -225,6 +232,8 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options, 
     if (none) lines.reset();
   }
   const LineCrosses* fixed_lines = lines ? &*lines : nullptr;
+  if (options.cross.source != CrossSource::constant)
+    r.num_cross_solve_vertices = coarse ? coarse->points.size() : r.mesh.points.size();
   switch (options.cross.source) {
     case CrossSource::boundary:
       r.cross = boundary_field(r.mesh, r.size, options.cross.conformal, coarse ? &*coarse : nullptr,
@@ -354,6 +363,7 @@ void add_background_report(JsonWriter& j, const FieldsResult& r) {
       .value("num_index_plus_quarter", c.plus)
       .value("num_index_minus_quarter_or_less", c.minus)
       .value("total_index_quarters", c.total_quarters);
+  if (r.num_cross_solve_vertices > 0) j.value("num_solve_vertices", r.num_cross_solve_vertices);
   if (r.num_aligned_vertices > 0)
     j.value("align_path", r.front.summary.align_path)
         .value("align_num_lines", r.front.summary.align_num_lines)

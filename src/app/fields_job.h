@@ -66,6 +66,10 @@ struct FieldsResult {
   SizingField size;
   CrossField cross;
   std::vector<Singularity> singularities;
+  // The vertices of the mesh the boundary-aligned field was solved on: the background
+  // mesh's, or a coarser mesh's for a large one (FieldsOptions::coarse_cross_above); 0
+  // for a constant field.
+  std::size_t num_cross_solve_vertices = 0;
   // --align (the lines in front.align_lines): the background vertices fixed to them.
   std::size_t num_aligned_vertices = 0;
   std::vector<StageTime> times;
