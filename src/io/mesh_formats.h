@@ -18,6 +18,17 @@ struct MeshView {
   bool geographic = false;     // lon/lat degrees
 };
 
+// The per-quad values the formats with cell data write (GeoPackage, GeoJSON, FlatGeobuf,
+// VTU, VTK, UGRID), in this order: the metrics, then time_step_s (NaN where dry) and
+// zone when known. `integer`: whole numbers (the zone).
+struct QuadField {
+  const char* name;
+  const std::vector<double>* values;  // #Q
+  const char* units;                  // UDUNITS, for UGRID
+  bool integer = false;
+};
+std::vector<QuadField> quad_fields(const MeshOutputData& data);
+
 // The `what` path is the final name, for messages.
 // `open_per_segment`: each open segment its own physical group (MeshWriteOptions).
 void write_msh_file(const MeshView& v, const std::string& path, const std::string& what,

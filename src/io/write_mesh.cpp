@@ -37,33 +37,24 @@ void write_quads_layer(const MeshView& v, VectorWriter& w) {
   const QuadMesh& m = *v.data->mesh;
   const QuadMetrics& q = *v.data->metrics;
   const auto& pts = v.points;
-  std::vector<FieldDef> qfields = {{"id", FieldType::integer},
-                                   {"size_ratio", FieldType::real},
-                                   {"orientation_deg", FieldType::real},
-                                   {"min_angle_deg", FieldType::real},
-                                   {"max_angle_deg", FieldType::real},
-                                   {"eta", FieldType::real},
-                                   {"irregular_corners", FieldType::integer},
-                                   {"orthogonality", FieldType::real}};
-  const bool time_steps = !v.data->time_step_s.empty();
-  if (time_steps) qfields.push_back({"time_step_s", FieldType::real});  // NaN: NULL (dry)
-  const bool zones = !v.data->zone.empty();
-  if (zones) qfields.push_back({"zone", FieldType::integer});
-  w.begin_layer("quads", GeometryKind::polygon, qfields);
+  const std::vector<QuadField> fields = quad_fields(*v.data);
+  std::vector<FieldDef> defs = {{"id", FieldType::integer}};
+  for (const QuadField& f : fields)  // a NaN time step is NULL (dry)
+    defs.push_back({f.name, f.integer ? FieldType::integer : FieldType::real});
+  defs.push_back({"irregular_corners", FieldType::integer});
+  w.begin_layer("quads", GeometryKind::polygon, defs);
+  std::vector<FieldValue> values;
   for (std::size_t i = 0; i < m.quads.size(); ++i) {
     const auto& t = m.quads[i];
     int irregular = 0;
     for (int c : t) irregular += q.degree[c] != q.ideal_degree[c];
-    std::vector<FieldValue> values = {FieldValue::integer(static_cast<long long>(i)),
-                                      FieldValue::real(q.size_ratio[i]),
-                                      FieldValue::real(q.orientation_deg[i]),
-                                      FieldValue::real(q.min_angle_deg[i]),
-                                      FieldValue::real(q.max_angle_deg[i]),
-                                      FieldValue::real(q.eta[i]),
-                                      FieldValue::integer(irregular),
-                                      FieldValue::real(q.orthogonality[i])};
-    if (time_steps) values.push_back(FieldValue::real(v.data->time_step_s[i]));
-    if (zones) values.push_back(FieldValue::integer(static_cast<long long>(v.data->zone[i])));
+    values.assign(1, FieldValue::integer(static_cast<long long>(i)));
+    for (const QuadField& f : fields) {
+      const double x = (*f.values)[i];
+      values.push_back(f.integer ? FieldValue::integer(static_cast<long long>(x))
+                                 : FieldValue::real(x));
+    }
+    values.push_back(FieldValue::integer(irregular));
     w.add_polygon(std::vector<Point2>{pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]]}, values);
   }
 }
@@ -209,18 +200,30 @@ void write_vtu_mesh(const MeshView& mv, const std::string& path) {
   std::vector<double> degree(q.degree.begin(), q.degree.end());
   v.point_data = {{"degree", degree}};
   if (!mv.data->depth.empty()) v.point_data.push_back({"depth", mv.data->depth});
-  v.cell_data = {{"size_ratio", q.size_ratio},
-                 {"orientation_deg", q.orientation_deg},
-                 {"min_angle_deg", q.min_angle_deg},
-                 {"max_angle_deg", q.max_angle_deg},
-                 {"eta", q.eta},
-                 {"orthogonality", q.orthogonality}};
-  if (!mv.data->time_step_s.empty()) v.cell_data.push_back({"time_step_s", mv.data->time_step_s});
-  if (!mv.data->zone.empty()) v.cell_data.push_back({"zone", mv.data->zone});
+  for (const QuadField& f : quad_fields(*mv.data)) v.cell_data.push_back({f.name, *f.values});
   write_vtu(v, path, true);
 }
 
 }  // namespace
+
+std::vector<QuadField> quad_fields(const MeshOutputData& data) {
+  const QuadMetrics& q = *data.metrics;
+  std::vector<QuadField> fields = {{"size_ratio", &q.size_ratio, "1"},
+                                   {"orientation_deg", &q.orientation_deg, "degree"},
+                                   {"min_angle_deg", &q.min_angle_deg, "degree"},
+                                   {"max_angle_deg", &q.max_angle_deg, "degree"},
+                                   {"aspect_ratio", &q.aspect_ratio, "1"},
+                                   {"eta", &q.eta, "1"},
+                                   {"orthogonality", &q.orthogonality, "1"}};
+  if (!data.time_step_s.empty()) fields.push_back({"time_step_s", &data.time_step_s, "s"});
+  if (!data.zone.empty()) fields.push_back({"zone", &data.zone, "1", true});
+  for (const QuadField& f : fields)
+    if (f.values->size() != data.mesh->quads.size())
+      throw Error(ErrorClass::internal, "write",
+                  std::string("the quads' ") + f.name + " has " + std::to_string(f.values->size()) +
+                      " values for " + std::to_string(data.mesh->quads.size()) + " quads");
+  return fields;
+}
 
 bool unwrap_antimeridian(const QuadMesh& mesh, std::vector<Point2>& lonlat) {
   auto spans_half_the_globe = [&](const std::vector<Point2>& ll) {

@@ -124,7 +124,6 @@ void write_cf_grid_mapping(NcFile& nc, int var, const std::string& wkt) {
 
 void write_ugrid_file(const MeshView& v, const std::string& path, const std::string& what) {
   const QuadMesh& m = *v.data->mesh;
-  const QuadMetrics& q = *v.data->metrics;
   // Unique edges, in order of first appearance around the quads.
   std::map<std::pair<int, int>, int> edge_id;
   std::vector<int> edges;
@@ -195,26 +194,14 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
   nc.text(ve, "long_name", "Maps every edge to the two nodes it connects");
   nc.integer(ve, "start_index", 1);
 
-  struct FaceVar {
-    const char* name;
-    const std::vector<double>* values;
-    const char* units;
-    int id = -1;
-  };
-  std::vector<FaceVar> face_vars = {{"size_ratio", &q.size_ratio, "1"},
-                                    {"orientation_deg", &q.orientation_deg, "degree"},
-                                    {"min_angle_deg", &q.min_angle_deg, "degree"},
-                                    {"max_angle_deg", &q.max_angle_deg, "degree"},
-                                    {"eta", &q.eta, "1"},
-                                    {"orthogonality", &q.orthogonality, "1"}};
-  // The time step at a gravity-wave Courant number of 1 (NaN where dry).
-  if (!v.data->time_step_s.empty()) face_vars.push_back({"time_step_s", &v.data->time_step_s, "s"});
-  if (!v.data->zone.empty()) face_vars.push_back({"zone", &v.data->zone, "1"});
-  for (FaceVar& fv : face_vars) {
-    fv.id = nc.var(fv.name, NC_DOUBLE, {df});
-    nc.text(fv.id, "mesh", "mesh");
-    nc.text(fv.id, "location", "face");
-    nc.text(fv.id, "units", fv.units);
+  const std::vector<QuadField> face_vars = quad_fields(*v.data);
+  std::vector<int> face_var_ids;
+  for (const QuadField& fv : face_vars) {
+    const int id = nc.var(fv.name, NC_DOUBLE, {df});
+    nc.text(id, "mesh", "mesh");
+    nc.text(id, "location", "face");
+    nc.text(id, "units", fv.units);
+    face_var_ids.push_back(id);
   }
   int vd = -1, vz = -1;
   if (!v.data->depth.empty()) {
@@ -238,8 +225,11 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
   for (int& n : edges) ++n;
   if (!faces.empty()) nc.check(nc_put_var_int(nc.id(), vf, faces.data()), "faces");
   if (!edges.empty()) nc.check(nc_put_var_int(nc.id(), ve, edges.data()), "edges");
-  for (const FaceVar& fv : face_vars)
-    if (!fv.values->empty()) nc.check(nc_put_var_double(nc.id(), fv.id, fv.values->data()), fv.name);
+  for (std::size_t k = 0; k < face_vars.size(); ++k) {
+    const QuadField& fv = face_vars[k];
+    if (!fv.values->empty())
+      nc.check(nc_put_var_double(nc.id(), face_var_ids[k], fv.values->data()), fv.name);
+  }
   if (vd >= 0) {
     nc.check(nc_put_var_double(nc.id(), vd, v.data->depth.data()), "depth");
     std::vector<double> z;

@@ -21,18 +21,9 @@ void write_vtk_legacy_file(const MeshView& v, const std::string& path, const std
   f << "CELL_TYPES " << m.quads.size() << "\n";
   for (std::size_t i = 0; i < m.quads.size(); ++i) f << "9\n";
   f << "CELL_DATA " << m.quads.size() << "\n";
-  std::vector<std::pair<const char*, const std::vector<double>*>> cell = {
-      {"size_ratio", &q.size_ratio},
-      {"orientation_deg", &q.orientation_deg},
-      {"min_angle_deg", &q.min_angle_deg},
-      {"max_angle_deg", &q.max_angle_deg},
-      {"eta", &q.eta},
-      {"orthogonality", &q.orthogonality}};
-  if (!v.data->time_step_s.empty()) cell.push_back({"time_step_s", &v.data->time_step_s});
-  if (!v.data->zone.empty()) cell.push_back({"zone", &v.data->zone});
-  for (const auto& [name, values] : cell) {
-    f << "SCALARS " << name << " double 1\nLOOKUP_TABLE default\n";
-    for (double x : *values) f << x << "\n";
+  for (const QuadField& c : quad_fields(*v.data)) {
+    f << "SCALARS " << c.name << " double 1\nLOOKUP_TABLE default\n";
+    for (double x : *c.values) f << x << "\n";
   }
   f << "POINT_DATA " << v.points.size() << "\nSCALARS degree int 1\nLOOKUP_TABLE default\n";
   for (int d : q.degree) f << d << "\n";

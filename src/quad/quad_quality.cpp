@@ -224,6 +224,7 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
   qm = QuadMetrics{};
   qm.min_angle_deg.resize(nq);
   qm.max_angle_deg.resize(nq);
+  qm.aspect_ratio.resize(nq);
   qm.size_ratio.resize(nq);
   qm.orientation_deg.resize(nq);
   qm.eta.resize(nq);
@@ -261,6 +262,7 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
     Point2 c{0, 0};
     for (int i = 0; i < 4; ++i) c.x += 0.25 * m.points[t[i]].x, c.y += 0.25 * m.points[t[i]].y;
     const double aspect = quad_aspect(m, q);
+    qm.aspect_ratio[q] = aspect;
     const bool bad_aspect = fails_schism_aspect_ratio(aspect);
     if (bad_aspect) ++s.schism_aspect_violations;
     if (bad_ratio || bad_aspect) ++s.schism_failures;

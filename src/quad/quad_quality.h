@@ -19,6 +19,7 @@ namespace isoquad {
 struct QuadMetrics {
   std::vector<double> min_angle_deg;    // #Q
   std::vector<double> max_angle_deg;    // #Q
+  std::vector<double> aspect_ratio;     // #Q longest side / shortest (SCHISM's, checked at 5)
   std::vector<double> size_ratio;       // #Q sqrt(area) / h(centroid)
   std::vector<double> orientation_deg;  // #Q mean deviation of the 4 edges from the cross, [0, 45]
   std::vector<double> eta;              // #Q Gmsh's eta = 1 - max|90 - a| / 90

@@ -478,6 +478,38 @@ TEST(CliOutputs, AnOpenBoundaryDenserThanTheDomainsEdgeTakesTheWholeEdge) {
   EXPECT_LE(open, 52);
 }
 
+// The GeoPackage's quads find the quads SCHISM's checks fail, as the report counts them:
+// `aspect_ratio` over 5, min_angle_deg / max_angle_deg under 0.5, either.
+TEST(CliOutputs, TheQuadsFieldsFindWhatSchismsChecksFail) {
+  TempDir dir;
+  const CliResult r =
+      mesh_box_800(dir, {"-o", dir.file("m.gpkg"), "--report", dir.file("m.json"), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string report = read_file(dir.file("m.json"));
+  GDALDataset* ds = open_vector(dir.file("m.gpkg"));
+  ASSERT_NE(ds, nullptr);
+  long quads = 0, aspect = 0, ratio = 0, either = 0;
+  double largest = 0;
+  for (auto& f : *ds->GetLayerByName("quads")) {
+    const double a = f->GetFieldAsDouble("aspect_ratio");
+    EXPECT_GE(a, 1.0);
+    largest = std::max(largest, a);
+    const bool bad_aspect = a > 5, bad_ratio = f->GetFieldAsDouble("min_angle_deg") <
+                                               0.5 * f->GetFieldAsDouble("max_angle_deg");
+    ++quads;
+    aspect += bad_aspect;
+    ratio += bad_ratio;
+    either += bad_aspect || bad_ratio;
+  }
+  GDALClose(ds);
+  EXPECT_EQ(quads, report_count(report, "num_quads"));
+  EXPECT_EQ(aspect, report_count(report, "schism_aspect_ratio_violations"));
+  EXPECT_EQ(ratio, report_count(report, "schism_angle_ratio_violations"));
+  EXPECT_EQ(either, report_count(report, "schism_failures"));
+  EXPECT_GT(ratio, 0) << report;
+  EXPECT_GT(largest, 1.5);
+}
+
 // --schism-split: hgrid.gr3 has each quad that fails SCHISM's checks (as the report
 // counts them) as two counter-clockwise triangles in its place, and no quad left that
 // fails them (measured here); without it the run warns with the same count.

@@ -56,6 +56,7 @@ struct Fixture {
       metrics.orientation_deg.push_back(0.5 * q);
       metrics.min_angle_deg.push_back(90);
       metrics.max_angle_deg.push_back(90);
+      metrics.aspect_ratio.push_back(1.0 + 0.1 * q);
       metrics.eta.push_back(1);
       metrics.orthogonality.push_back(0.02 * q);
     }

@@ -100,6 +100,8 @@ TEST(QuadQuality, PerfectGridIsPerfect) {
   EXPECT_DOUBLE_EQ(s.share_regular_boundary, 1.0);  // corners have degree 1 at 90 degrees
   EXPECT_NEAR(s.eta_min, 1.0, 1e-9);
   EXPECT_EQ(s.schism_angle_ratio_violations, 0u);
+  ASSERT_EQ(metrics.aspect_ratio.size(), m.quads.size());
+  for (double a : metrics.aspect_ratio) EXPECT_NEAR(a, 1.0, 1e-9);
   EXPECT_EQ(s.num_boundary_vertices, static_cast<std::size_t>(4 * kN));
   EXPECT_NEAR(s.mesh_area_m2, kSide * kSide, 1e-6);
   EXPECT_NEAR(s.domain_area_m2, kSide * kSide, 1e-6);
