@@ -2,8 +2,11 @@
 """Renders an isoquad mesh GeoPackage with QGIS (headless), using the styles embedded in
 its layer_styles table, to a PNG. Checks that every layer opened with its embedded
 default style and prints one line per layer: name, features, renderer, style.
+`--style quads=checks` draws a layer with another of its stored styles instead; a
+rule-based style then prints a line per rule: `rule <label>: <features it selects>`.
 
     /usr/bin/python3 tools/render_gpkg_qgis.py mesh.gpkg mesh.png [--size 1200]
+        [--style LAYER=NAME]...
 
 Needs Debian's python3-qgis and qgis-providers (QGIS 3.22). Exit 1 when a layer does not
 load or is not styled from the GeoPackage.
@@ -15,13 +18,48 @@ import sys
 os.environ.setdefault("QT_QPA_PLATFORM", "offscreen")
 os.environ.setdefault("XDG_RUNTIME_DIR", "/tmp")
 
-from qgis.core import (QgsApplication, QgsMapRendererParallelJob, QgsMapSettings,  # noqa: E402
-                       QgsProject, QgsVectorLayer)
+from qgis.core import (QgsApplication, QgsExpression, QgsFeatureRequest,  # noqa: E402
+                       QgsMapRendererParallelJob, QgsMapSettings, QgsProject, QgsVectorLayer)
 from qgis.PyQt.QtCore import QSize  # noqa: E402
 from qgis.PyQt.QtGui import QColor  # noqa: E402
+from qgis.PyQt.QtXml import QDomDocument  # noqa: E402
 
 EXPECTED = {"quads": "graduatedSymbol", "vertices": "categorizedSymbol",
             "boundary": "categorizedSymbol"}
+
+
+def use_stored_style(layer, style_name):
+    """Applies the layer's style named style_name from the GeoPackage's layer_styles."""
+    _, ids, names, _, _ = layer.listStylesInDatabase()
+    if style_name not in names:
+        print(f"{layer.name()}: no stored style '{style_name}' (has {names})", file=sys.stderr)
+        return False
+    qml, error = layer.getStyleFromDatabase(ids[names.index(style_name)])
+    doc = QDomDocument()
+    if not doc.setContent(qml):
+        print(f"{layer.name()}: style '{style_name}' is not XML {error}", file=sys.stderr)
+        return False
+    applied, message = layer.importNamedStyle(doc)
+    if not applied:
+        print(f"{layer.name()}: style '{style_name}': {message}", file=sys.stderr)
+    return applied
+
+
+def print_rules(layer):
+    """Prints each rule of a rule-based renderer with the features its filter selects."""
+    ok = True
+    for rule in layer.renderer().rootRule().children():
+        if rule.isElse():
+            print(f"rule {rule.label()}: else")
+            continue
+        expression = QgsExpression(rule.filterExpression())
+        if expression.hasParserError():
+            print(f"rule {rule.label()}: {expression.parserErrorString()}", file=sys.stderr)
+            ok = False
+            continue
+        count = sum(1 for _ in layer.getFeatures(QgsFeatureRequest(expression)))
+        print(f"rule {rule.label()}: {count}")
+    return ok
 
 
 def main():
@@ -31,7 +69,10 @@ def main():
     ap.add_argument("--size", type=int, default=1200)
     ap.add_argument("--layers", default="quads,boundary",
                     help="layers to draw, top last (default: quads,boundary)")
+    ap.add_argument("--style", action="append", default=[], metavar="LAYER=NAME",
+                    help="draw LAYER with its stored style NAME instead of the default")
     args = ap.parse_args()
+    chosen = dict(s.split("=", 1) for s in args.style)
 
     app = QgsApplication([], False)
     app.initQgis()
@@ -43,10 +84,18 @@ def main():
             print(f"{name}: does not load", file=sys.stderr)
             ok = False
             continue
+        expected = EXPECTED.get(name)
+        if name in chosen:
+            if not use_stored_style(layer, chosen[name]):
+                ok = False
+                continue
+            expected = None
         renderer = layer.renderer().type()
         style = layer.styleManager().currentStyle()
         print(f"{name}: {layer.featureCount()} features, renderer {renderer}, style '{style}'")
-        if name in EXPECTED and renderer != EXPECTED[name]:
+        if renderer == "RuleRenderer":
+            ok = print_rules(layer) and ok
+        if expected and renderer != expected:
             print(f"{name}: not styled from the GeoPackage (renderer {renderer})", file=sys.stderr)
             ok = False
         QgsProject.instance().addMapLayer(layer)

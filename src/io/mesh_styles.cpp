@@ -10,6 +10,8 @@ const std::vector<MeshStyle>& mesh_styles() {
       {"quads", "orientation", "deviation from the cross field (degrees)", kQml_quads_orientation,
        false},
       {"quads", "irregular", "corners at irregular vertices", kQml_quads_irregular, false},
+      {"quads", "checks", "quads that fail SCHISM's or D-Flow FM's checks", kQml_quads_checks,
+       false},
       {"vertices", "degree", "number of quads at each vertex", kQml_vertices_degree, true},
       {"vertices", "depth", "depth in metres, positive down", kQml_vertices_depth, false},
       {"boundary", "kind", "open (sea) and land boundary", kQml_boundary_kind, true},

@@ -774,6 +774,42 @@ TEST(CliOutputs, QgisRendersTheEmbeddedStyles) {
   EXPECT_GT(pixels["open"], 100) << out;
 }
 
+// The stored style `checks` of the quads (styles/quads_checks.qml), applied by QGIS: its
+// rules select as many quads as the report counts for SCHISM's checks and D-Flow FM's
+// orthogonality (each link over 0.5 marks its two quads). Skipped without python3-qgis.
+TEST(CliOutputs, QgisFindsTheQuadsThatFailTheModelsChecks) {
+  TempDir dir;
+  if (run_cli_program("/usr/bin/python3", {"-c", "import qgis.core"}, dir).exit_code != 0)
+    GTEST_SKIP() << "python3-qgis is not installed";
+  const CliResult r =
+      mesh_box_800(dir, {"-o", dir.file("m.gpkg"), "--report", dir.file("m.json"), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string report = read_file(dir.file("m.json"));
+  const CliResult q = run_cli_program(
+      "/usr/bin/python3",
+      {source_dir() + "/tools/render_gpkg_qgis.py", dir.file("m.gpkg"), dir.file("m.png"), "--size",
+       "300", "--layers", "quads", "--style", "quads=checks"},
+      dir);
+  ASSERT_EQ(q.exit_code, 0) << q.out << q.err;
+  EXPECT_NE(q.out.find("renderer RuleRenderer"), std::string::npos) << q.out;
+  auto selected = [&q](const std::string& label) {
+    const std::string key = "rule " + label + ": ";
+    const std::size_t at = q.out.find(key);
+    return at == std::string::npos ? -1L : std::stol(q.out.substr(at + key.size()));
+  };
+  const long angle = report_count(report, "schism_angle_ratio_violations");
+  ASSERT_GT(angle, 0) << report;
+  EXPECT_EQ(selected("SCHISM: min/max angle under 0.5"), angle) << q.out;
+  EXPECT_EQ(selected("SCHISM: aspect ratio over 5"),
+            report_count(report, "schism_aspect_ratio_violations"))
+      << q.out;
+  const long links = report_count(report, "dflowfm_orthogonality_violations");
+  const long marked = selected("D-Flow FM: a link's orthogonality over 0.5");
+  EXPECT_GE(marked, links > 0 ? 2 : 0) << q.out;
+  EXPECT_LE(marked, 2 * links) << q.out;
+  EXPECT_NE(q.out.find("rule every check passed: else"), std::string::npos) << q.out;
+}
+
 // SMS .2dm: the same nodes, elements and boundary as hgrid.gr3 of the same run, z the
 // elevation (minus the depth), one nodestring per boundary segment (open ones first, an
 // island closed by its first node). Then QGIS's mesh reader (MDAL) opens it and the
