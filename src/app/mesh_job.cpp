@@ -280,9 +280,12 @@ std::string format_mesh_summary(const MeshResult& r) {
                           num_coast_on, e.max_coast_distance_m);
     if (e.num_points_shared > 0)
       os << printf_string(
-          "; %zu %s the vertex of a point before %s within a fifth of a quad (up to %.3g m away)",
+          "; %zu %s the vertex of a point before %s within a fifth of a quad (%s)",
           e.num_points_shared, e.num_points_shared > 1 ? "share" : "shares",
-          e.num_points_shared > 1 ? "them" : "it", e.max_shared_distance_m);
+          e.num_points_shared > 1 ? "them" : "it",
+          e.max_shared_distance_m > 0
+              ? printf_string("up to %.3g m away", e.max_shared_distance_m).c_str()
+              : (e.num_points_shared > 1 ? "each at the same place" : "at the same place"));
     if (num_off > 0)
       os << printf_string(
           "; the others' vertices stop up to %.3g m short (%s %s: the quads between would leave "

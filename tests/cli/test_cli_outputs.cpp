@@ -2050,8 +2050,8 @@ TEST(CliOutputs, EmbeddedPointsGetVertices) {
       std::string::npos)
       << r.err;
   EXPECT_NE(
-      r.err.find("; 1 shares the vertex of a point before it within a fifth of a quad (up to 0 "
-                 "m away)\n"),
+      r.err.find("; 1 shares the vertex of a point before it within a fifth of a quad (at the "
+                 "same place)\n"),
       std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("warning: --embed-points: 1 of the 6 points of"), std::string::npos)
