@@ -134,7 +134,9 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
   if (options.coarse_cross_above > 0 && r.mesh.points.size() > options.coarse_cross_above &&
       options.cross.source != CrossSource::constant) {
     BackgroundMeshParams coarse_params;
-    const CoastDistance boundary_distance(domain, PolylineIndex(), 0.0, smallest);
+    // Sampled every hmin (at most 400,000 samples): d need not be closer than the sizes.
+    const CoastDistance boundary_distance(domain, PolylineIndex(), 0.0,
+                                          std::max(smallest, perimeter(domain) / 400000.0));
     coarse_params.max_edge_m = [&size_at, &boundary_distance](const Point2& p) {
       return kCoarseEdge * std::max(size_at(p), kCoarseGrowth * boundary_distance(p));
     };
