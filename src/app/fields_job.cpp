@@ -319,9 +319,13 @@ std::string format_fields_summary(const FieldsResult& r) {
   const SingularityCounts c = count_singularities(r.singularities);
   std::snprintf(buf, sizeof buf,
                 "cross field:  %zu singularities (%d of index +1/4, %d of index -1/4 or less; "
-                "total index %d/4)\n",
+                "total index %d/4)",
                 r.singularities.size(), c.plus, c.minus, c.total_quarters);
   os << buf;
+  if (r.num_cross_solve_vertices > 0 && r.num_cross_solve_vertices != r.mesh.points.size())
+    os << "; solved on a coarser mesh of " << r.num_cross_solve_vertices
+       << " vertices and interpolated";
+  os << "\n";
   if (r.num_aligned_vertices > 0)
     os << "aligned:      " << r.num_aligned_vertices << " background vertices along the "
        << r.front.summary.align_num_lines << " line(s) of " << r.front.summary.align_path << "\n";

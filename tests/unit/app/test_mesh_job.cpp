@@ -472,6 +472,11 @@ TEST(MeshJob, ALargeBackgroundMeshHasItsCrossFieldSolvedOnACoarserMesh) {
     const auto [fine, coarse] = fields_without_and_with_a_coarse_mesh(o);
     ASSERT_GT(fine.mesh.points.size(), 1000u);
     EXPECT_EQ(fine.num_cross_solve_vertices, fine.mesh.points.size());
+    EXPECT_EQ(format_fields_summary(fine).find("coarser mesh"), std::string::npos);
+    EXPECT_NE(format_fields_summary(coarse).find("; solved on a coarser mesh of " +
+                                                 std::to_string(coarse.num_cross_solve_vertices) +
+                                                 " vertices and interpolated\n"),
+              std::string::npos);
     // Edges of h: about a quarter of the background mesh's vertices (Corsica 4,245 of
     // 14,702); France's grow inside: 15,865 of 125,160.
     EXPECT_LT(coarse.num_cross_solve_vertices,
