@@ -36,6 +36,8 @@ std::vector<std::string> each_file_names(const std::string& field,
       if (static_cast<unsigned char>(c) < 0x80 && !std::isalnum(static_cast<unsigned char>(c)) &&
           c != '.' && c != '-' && c != '_')
         c = '_';
+    // "." and ".." would name the folder, or the one above, in a path such as out/{}/m.gpkg.
+    if (name == "." || name == "..") name = "_" + name;
     const auto [at, added] = value_of.emplace(name, value);
     if (!added)
       throw Error(ErrorClass::usage, "options",

@@ -17,8 +17,9 @@
 using namespace isoquad;
 
 TEST(EachJob, ValuesBecomeFileNamesAndTwoThatMeetAreRefused) {
-  EXPECT_EQ(each_file_names("name", {"Côte d'Ivoire", "a/b c", "", "x.y-z_1"}),
-            (std::vector<std::string>{"Côte_d_Ivoire", "a_b_c", "_", "x.y-z_1"}));
+  EXPECT_EQ(
+      each_file_names("name", {"Côte d'Ivoire", "a/b c", "", "x.y-z_1", "..", ".", "..."}),
+      (std::vector<std::string>{"Côte_d_Ivoire", "a_b_c", "_", "x.y-z_1", "_..", "_.", "..."}));
   try {
     each_file_names("name", {"a b", "a/b"});
     FAIL() << "two values with one file name";
