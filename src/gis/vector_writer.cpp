@@ -59,10 +59,11 @@ void VectorWriter::fail(const std::string& what) const {
 
 VectorWriter::VectorWriter(const std::string& path, bool overwrite, const std::string& crs_wkt,
                            const std::string& driver_name,
-                           const std::vector<std::string>& layer_options) {
+                           const std::vector<std::string>& layer_options,
+                           const std::string& shown_path) {
   ensure_gdal_registered();
   state_ = std::make_unique<State>();
-  state_->path = path;
+  state_->path = shown_path.empty() ? path : shown_path;
   state_->driver = driver_name;
   state_->layer_options = layer_options;
   state_->out = std::make_unique<AtomicOutput>(path, overwrite);

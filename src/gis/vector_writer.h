@@ -49,10 +49,12 @@ class VectorWriter {
  public:
   // Creates the temporary file next to `path` with OGR's driver (GeoPackage by default;
   // "GeoJSON" or "FlatGeobuf" hold one layer), its layers created with `layer_options`
-  // (OGR's NAME=VALUE). Throws Error(output).
+  // (OGR's NAME=VALUE). Throws Error(output), naming `shown_path` when given (the final
+  // name, when `path` is an OutputSet's temporary file), else `path`.
   VectorWriter(const std::string& path, bool overwrite, const std::string& crs_wkt,
                const std::string& driver = "GPKG",
-               const std::vector<std::string>& layer_options = {});
+               const std::vector<std::string>& layer_options = {},
+               const std::string& shown_path = "");
   ~VectorWriter();  // without commit(), removes everything
   VectorWriter(const VectorWriter&) = delete;
   VectorWriter& operator=(const VectorWriter&) = delete;

@@ -60,10 +60,11 @@ void write_quads_layer(const MeshView& v, VectorWriter& w) {
 }
 
 // GeoJSON (`geojson`: RFC 7946 when in longitudes and latitudes) or FlatGeobuf: the quads.
-void write_quad_polygons(const MeshView& v, const std::string& path, const std::string& driver) {
+void write_quad_polygons(const MeshView& v, const std::string& path, const std::string& what,
+                         const std::string& driver) {
   std::vector<std::string> options;
   if (driver == "GeoJSON" && v.geographic) options.push_back("RFC7946=YES");
-  VectorWriter w(path, true, v.crs_wkt, driver, options);
+  VectorWriter w(path, true, v.crs_wkt, driver, options, what);
   write_quads_layer(v, w);
   w.commit();
 }
@@ -71,8 +72,7 @@ void write_quad_polygons(const MeshView& v, const std::string& path, const std::
 void write_gpkg(const MeshView& v, const std::string& path, const std::string& what) {
   const QuadMetrics& q = *v.data->metrics;
   const auto& pts = v.points;
-  VectorWriter w(path, true, v.crs_wkt);
-  (void)what;
+  VectorWriter w(path, true, v.crs_wkt, "GPKG", {}, what);
   write_quads_layer(v, w);
   std::vector<FieldDef> vfields = {{"id", FieldType::integer},
                                    {"degree", FieldType::integer},
@@ -376,10 +376,10 @@ std::vector<std::string> write_mesh_outputs(const MeshOutputData& data,
       case MeshFormat::geojson:
         // GeoJSON is read as longitudes and latitudes (RFC 7946) unless --output-crs says.
         write_quad_polygons(options.output_crs.empty() ? lonlat_view("GeoJSON") : *view, tmp,
-                            "GeoJSON");
+                            o.path, "GeoJSON");
         break;
       case MeshFormat::fgb:
-        write_quad_polygons(*view, tmp, "FlatGeobuf");
+        write_quad_polygons(*view, tmp, o.path, "FlatGeobuf");
         break;
       case MeshFormat::vtu: write_vtu_mesh(*view, tmp); break;
       case MeshFormat::vtk: write_vtk_legacy_file(*view, tmp, o.path); break;
