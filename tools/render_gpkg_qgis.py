@@ -28,6 +28,14 @@ EXPECTED = {"quads": "graduatedSymbol", "vertices": "categorizedSymbol",
             "boundary": "categorizedSymbol"}
 
 
+def layer_and_style(text):
+    """--style's LAYER=NAME as (LAYER, NAME)."""
+    layer, equals, name = text.partition("=")
+    if not equals or not layer or not name:
+        raise argparse.ArgumentTypeError(f"'{text}': expected LAYER=NAME, e.g. quads=checks")
+    return layer, name
+
+
 def use_stored_style(layer, style_name):
     """Applies the layer's style named style_name from the GeoPackage's layer_styles."""
     _, ids, names, _, _ = layer.listStylesInDatabase()
@@ -70,9 +78,10 @@ def main():
     ap.add_argument("--layers", default="quads,boundary",
                     help="layers to draw, top last (default: quads,boundary)")
     ap.add_argument("--style", action="append", default=[], metavar="LAYER=NAME",
+                    type=layer_and_style,
                     help="draw LAYER with its stored style NAME instead of the default")
     args = ap.parse_args()
-    chosen = dict(s.split("=", 1) for s in args.style)
+    chosen = dict(args.style)
 
     app = QgsApplication([], False)
     app.initQgis()
