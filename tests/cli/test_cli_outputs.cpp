@@ -728,13 +728,20 @@ TEST(CliOutputs, ASignalWhileWritingLeavesNoTemporaryFile) {
   EXPECT_TRUE(caught) << "no run was caught while writing";
 }
 
+// QGIS's Python bindings, which tools/install-deps.sh installs (python3-qgis): the tests
+// that run QGIS fail without them rather than pass unrun.
+bool qgis_importable(const TempDir& dir) {
+  return run_cli_program("/usr/bin/python3", {"-c", "import qgis.core"}, dir).exit_code == 0;
+}
+constexpr const char* kQgisMissing =
+    "/usr/bin/python3 cannot import qgis.core: run tools/install-deps.sh (python3-qgis)";
+
 // Acceptance: QGIS 3.22 (python3-qgis, headless) opens the GeoPackage with its embedded
 // styles and renders it; the PNG shows the size-conformance colours of styles/quads_size.qml
-// and the boundary colours of styles/boundary_kind.qml. Skipped without python3-qgis.
+// and the boundary colours of styles/boundary_kind.qml.
 TEST(CliOutputs, QgisRendersTheEmbeddedStyles) {
   TempDir dir;
-  if (run_cli_program("/usr/bin/python3", {"-c", "import qgis.core"}, dir).exit_code != 0)
-    GTEST_SKIP() << "python3-qgis is not installed";
+  ASSERT_TRUE(qgis_importable(dir)) << kQgisMissing;
   const CliResult r = run_cli({"mesh", water_input(dir), "--domain", "water", "--bbox",
                                "-4.6,48.2,-4.4,48.35", "--size", "800", "-o", dir.file("m.gpkg"), "-q"},
                               dir);
@@ -776,11 +783,10 @@ TEST(CliOutputs, QgisRendersTheEmbeddedStyles) {
 
 // The stored style `checks` of the quads (styles/quads_checks.qml), applied by QGIS: its
 // rules select as many quads as the report counts for SCHISM's checks and D-Flow FM's
-// orthogonality (each link over 0.5 marks its two quads). Skipped without python3-qgis.
+// orthogonality (each link over 0.5 marks its two quads).
 TEST(CliOutputs, QgisFindsTheQuadsThatFailTheModelsChecks) {
   TempDir dir;
-  if (run_cli_program("/usr/bin/python3", {"-c", "import qgis.core"}, dir).exit_code != 0)
-    GTEST_SKIP() << "python3-qgis is not installed";
+  ASSERT_TRUE(qgis_importable(dir)) << kQgisMissing;
   const CliResult r =
       mesh_box_800(dir, {"-o", dir.file("m.gpkg"), "--report", dir.file("m.json"), "-q"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
