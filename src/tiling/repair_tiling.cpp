@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 #include <queue>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -94,10 +95,6 @@ class Repairer {
     face_stamp_.assign(num_faces, 0);
     vertex_stamp_.assign(num_vertices, 0);
     cycle_stamp_.assign(num_vertices, 0);
-    vertex_parent_.assign(num_vertices, -1);
-    split_attempts_.assign(num_vertices, 0);
-    dist_.assign(num_faces, 0.0);
-    part_.assign(num_faces, 0);
     changed_.assign(tiling.num_tiles(), 0);
     reshaped_.assign(tiling.num_tiles(), 0);
     tile_size_.assign(tiling.num_tiles(), 0);
@@ -478,7 +475,7 @@ class Repairer {
       bool conflict = false;
       for (std::size_t k = 0; k < enclosed_.size(); ++k) {
         const int f = enclosed_[k];
-        mass += geom_.mass[f];
+        mass += geom_.mass(f);
         conflict = conflict || touched_[label_[f]];
         for (int g : mesh_.neighbours[f])
           if (g >= 0 && label_[g] != t && face_stamp_[g] != face_round_) {
@@ -524,6 +521,8 @@ class Repairer {
     // outer cycle (read before its stamp is overwritten) and touches another tile.
     ++vertex_round_;
     const int seen = vertex_round_;
+    // Sized at the first ring cut: most tilings have none.
+    if (vertex_parent_.empty()) vertex_parent_.assign(mesh_.points.size(), -1);
     std::vector<int> queue;
     int found = -1;
     double hole_y = 0.0;
@@ -769,7 +768,8 @@ class Repairer {
       for (std::size_t k = 0; k < chain.vertices.size(); ++k) {
         const int v = chain.vertices[k];
         if (!is_reflex_corner(v)) continue;
-        const bool sharp = turning_deg_[v] < -params_.sharp_reflex_deg && split_attempts_[v] < 2;
+        const int attempts = split_attempts(v);
+        const bool sharp = turning_deg_[v] < -params_.sharp_reflex_deg && attempts < 2;
         const int need = sharp ? 3 : 2;
         if (sectors[v] >= need) continue;
         const std::vector<FanTriangle> fan_v = fan(v);
@@ -780,13 +780,13 @@ class Repairer {
         const int tile = r[widest].tile;
         if (touched_[tile]) continue;
         const int num_parts = need - sectors[v] + 1;
-        if (split_attempts_[v] >= params_.max_corner_splits) {
+        if (attempts >= params_.max_corner_splits) {
           demote_corner(v);
           ++fixes;
           continue;
         }
         // A corner met again (its neighbour moved away): give it a tile of its own.
-        split_from_corner(fan_v, r[widest], num_parts, split_attempts_[v] < 2);
+        split_from_corner(fan_v, r[widest], num_parts, attempts < 2);
         ++split_attempts_[v];
         touched_[tile] = 1;
         ++stats_.tiles_split;
@@ -810,41 +810,42 @@ class Repairer {
     const double width = (run.hi - run.lo) / num_parts;
     using Item = std::pair<double, int>;  // (distance, triangle)
     std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
-    ++face_round_;
+    // Per triangle reached: its distance and its part (a tile's triangles, not the mesh's).
+    std::unordered_map<int, std::pair<double, int>> reached;
     for (int k = run.begin; k < run.end; ++k) {
       const FanTriangle& ft = fan_v[k % n];
       double mid = 0.5 * (ft.lo + ft.hi);
       if (mid < run.lo) mid += kTwoPi;
       const int q = std::clamp(static_cast<int>((mid - run.lo) / width), 0, num_parts - 1);
-      dist_[ft.f] = 0.0;
-      part_[ft.f] = q;
-      face_stamp_[ft.f] = face_round_;
+      reached[ft.f] = {0.0, q};
       queue.push({0.0, ft.f});
     }
     while (!queue.empty()) {
       const auto [d, f] = queue.top();
       queue.pop();
-      if (d > dist_[f]) continue;
+      const auto [best, part] = reached.at(f);
+      if (d > best) continue;
       for (int g : mesh_.neighbours[f]) {
         if (g < 0 || label_[g] != tile) continue;
         const double nd = d + std::hypot(geom_.cx[g] - geom_.cx[f], geom_.cy[g] - geom_.cy[f]);
-        if (face_stamp_[g] != face_round_ || nd < dist_[g]) {
-          face_stamp_[g] = face_round_;
-          dist_[g] = nd;
-          part_[g] = part_[f];
+        const auto it = reached.find(g);
+        if (it == reached.end() || nd < it->second.first) {
+          reached[g] = {nd, part};
           queue.push({nd, g});
         }
       }
     }
-    for (int f : members)
-      if (face_stamp_[f] == face_round_ && part_[f] > 0) relabel(f, part_tile[part_[f]]);
+    for (int f : members) {
+      const auto it = reached.find(f);
+      if (it != reached.end() && it->second.second > 0) relabel(f, part_tile[it->second.second]);
+    }
     if (num_parts != 2 || !allow_merge) return;
     // Two parts: rather than add a tile, the lighter part joins the neighbour it shares
     // most boundary with when it is small (the tiles next to the corner then meet there);
     // the relaxation keeps the number of tiles, so new tiles would accumulate step after
     // step.
     double mass[2] = {0.0, 0.0};
-    for (int f : members) mass[label_[f] == tile ? 0 : 1] += geom_.mass[f];
+    for (int f : members) mass[label_[f] == tile ? 0 : 1] += geom_.mass(f);
     const int light = mass[1] <= mass[0] ? 1 : 0;
     if (mass[light] > params_.max_merged_part_mass) return;
     SharedLengths shared;
@@ -918,13 +919,17 @@ class Repairer {
   std::vector<int> vertex_begin_, vertex_faces_;  // triangles around each vertex
   std::vector<int> next_on_boundary_;             // next chain vertex, -1 inside
   std::vector<double> turning_deg_;
-  std::vector<int> face_stamp_, vertex_stamp_, vertex_parent_;
+  std::vector<int> face_stamp_, vertex_stamp_;
+  std::vector<int> vertex_parent_;  // #V scratch of the ring cuts, sized at the first
   int face_round_ = 0, vertex_round_ = 0;
   std::vector<int> members_, enclosed_;
-  std::vector<int> split_attempts_;
+  // Splits tried at each reflex corner (a few corners: not an array over the vertices).
+  std::unordered_map<int, int> split_attempts_;
+  int split_attempts(int v) const {
+    const auto it = split_attempts_.find(v);
+    return it == split_attempts_.end() ? 0 : it->second;
+  }
   std::vector<int> islands_split_;  // islands split by split_isolated, by their first triangle
-  std::vector<double> dist_;  // #F scratch of split_from_corner
-  std::vector<int> part_;     // #F scratch of split_from_corner
   std::vector<char> changed_, touched_;
   // Since the round's structures were found: the triangles relabelled, the tiles they
   // left or joined (reshaped_ #T), and every tile's number of triangles.
