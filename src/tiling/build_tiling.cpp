@@ -62,11 +62,18 @@ TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
     return &result.steps.back();
   };
 
+  // A step starts by freeing the meta-graph of the step before (only the last step's is
+  // returned): the step and its repair build their own.
+  auto begin_step = [&] {
+    result.graph = MetaGraph();
+    return Clock::now();
+  };
+
   // The shares of the progress follow France at a uniform 3 km: the initialization a
   // tenth, the relaxation a fifth, the conforming a quarter, the butterflies a third.
 
   // 2.2: merging by compactness, or frontal seeding.
-  auto start = Clock::now();
+  auto start = begin_step();
   progress.report("tiling init", 0.0);
   tiling = params.init == TilingInit::merge ? init_tiling(mesh, geom)
                                             : seed_tiling(mesh, geom, size, cross, params.seed);
@@ -74,7 +81,7 @@ TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
   if (params.stop_after == TilingStep::init) return result;
 
   // 2.3: L-infinity relaxation.
-  start = Clock::now();
+  start = begin_step();
   RelaxParams relax;
   relax.max_iters = params.relax_iters;
   const RelaxResult relaxed =
@@ -83,7 +90,7 @@ TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
   if (params.stop_after == TilingStep::relax) return result;
 
   // 2.4: conforming relaxation.
-  start = Clock::now();
+  start = begin_step();
   ConformParams conform;
   conform.iters = params.conform_iters;
   conform.shift = params.conform_shift;
@@ -96,7 +103,7 @@ TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
 
 #ifdef ISOQUAD_HAVE_BUTTERFLIES
   // 2.5: butterfly removal by local parameterization.
-  start = Clock::now();
+  start = begin_step();
   progress.report("tiling butterflies", 0.55);
   ButterflyParams butterfly;
   butterfly.max_length_ratio = params.butterfly_max;
@@ -112,7 +119,7 @@ TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
   // After 2.5: pairs of tiles re-split into a quadrangle and the rest when that leaves
   // fewer irregular vertices.
   if (params.resplit_rounds > 0) {
-    start = Clock::now();
+    start = begin_step();
     progress.report("tiling pairs", 0.9);
     ResplitParams resplit;
     resplit.max_rounds = params.resplit_rounds;

@@ -39,7 +39,8 @@ class Merger {
   Merger(const BackgroundMesh& mesh, const TriangleGeometry& geom) {
     const int n = geom.num_triangles();
     area_ = geom.area_m2;
-    mass_ = geom.mass;
+    mass_.resize(n);
+    for (int f = 0; f < n; ++f) mass_[f] = geom.mass(f);
     perimeter_.assign(n, 0.0);
     parent_.resize(n);
     alive_.assign(n, 1);
@@ -206,7 +207,7 @@ Tiling init_tiling(const BackgroundMesh& mesh, const TriangleGeometry& geom,
                    const InitParams& params, InitStats* stats) {
   const int num_faces = geom.num_triangles();
   InitStats s;
-  for (int f = 0; f < num_faces; ++f) s.total_mass += geom.mass[f];
+  for (int f = 0; f < num_faces; ++f) s.total_mass += geom.mass(f);
   Merger merger(mesh, geom);
 
   // Compactness first (2.2): the most compact unions merge while they fit in one tile.

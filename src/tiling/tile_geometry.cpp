@@ -13,7 +13,6 @@ TriangleGeometry triangle_geometry(const BackgroundMesh& mesh, const SizingField
   g.cy.resize(num_faces);
   g.area_m2.resize(num_faces);
   g.size_m.resize(num_faces);
-  g.mass.resize(num_faces);
   for (int f = 0; f < num_faces; ++f) {
     const auto& t = mesh.triangles[f];
     const Point2 &a = mesh.points[t[0]], &b = mesh.points[t[1]], &c = mesh.points[t[2]];
@@ -21,9 +20,6 @@ TriangleGeometry triangle_geometry(const BackgroundMesh& mesh, const SizingField
     g.cy[f] = (a.y + b.y + c.y) / 3.0;
     g.area_m2[f] = signed_area(a, b, c);
     g.size_m[f] = (size.size_m[t[0]] + size.size_m[t[1]] + size.size_m[t[2]]) / 3.0;
-  }
-  for (int f = 0; f < num_faces; ++f) {
-    g.mass[f] = g.area_m2[f] / (4.0 * g.size_m[f] * g.size_m[f]);
   }
   return g;
 }

@@ -22,8 +22,9 @@ struct TriangleGeometry {
   // quads came out at 0.6 h and 8 points fewer angles in [75,105] degrees.
   std::vector<double> area_m2;
   std::vector<double> size_m;  // #F h at the centroid (mean of the vertex sizes)
-  // #F area / (2h)^2: the share of one ideally sized tile (tiles are 2h wide).
-  std::vector<double> mass;
+  // area / (2h)^2: the share of one ideally sized tile (tiles are 2h wide). Computed when
+  // read, not held: an array over the triangles fewer at the tiling's peak.
+  double mass(int f) const { return area_m2[f] / (4.0 * size_m[f] * size_m[f]); }
   // #F bit i set: no flood or merge crosses the edge opposite triangles[f][i]
   // (corner_barriers.h). Empty when there are no barriers.
   std::vector<std::uint8_t> barrier;
