@@ -49,11 +49,12 @@ void check_quad_budget(double quads, const char* how, double smallest, const Dom
                        const FieldsOptions& options) {
   if (!(options.max_quads > 0) || !(quads > options.max_quads)) return;
   char buf[512];
-  std::snprintf(buf, sizeof buf,
-                "the sizes ask for about %.3g quads (%s; %.6g km2, sizes from %.6g m), over the "
-                "limit of %.0f (--max-quads; 0: none). A quad takes about 3 to 5 KB of memory at the "
-                "peak: check the sizes' units (metres), or raise --max-quads",
-                quads, how, area(domain) / 1e6, smallest, options.max_quads);
+  std::snprintf(
+      buf, sizeof buf,
+      "the sizes ask for about %.3g quads (%s; %.6g km2, sizes from %.6g m), over the "
+      "limit of %.0f (--max-quads; 0: none). A quad takes about 2 to 5 KB of memory at the "
+      "peak: check the sizes' units (metres), or raise --max-quads",
+      quads, how, area(domain) / 1e6, smallest, options.max_quads);
   throw Error(ErrorClass::usage, "sizing", buf);
 }
 
