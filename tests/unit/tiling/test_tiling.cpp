@@ -182,6 +182,63 @@ TEST(Tiling, ReflexCornerIsSharedByTwoTiles) {
   EXPECT_EQ(reflex_corners, 1);
 }
 
+namespace {
+
+// Every triangle with a corner in `vertices` given to the tile of the first of them.
+Tiling given_to_one_tile(const BackgroundMesh& mesh, const Tiling& tiling,
+                         const std::vector<int>& vertices) {
+  const std::set<int> around(vertices.begin(), vertices.end());
+  Tiling t = tiling;
+  int tile = -1;
+  for (std::size_t f = 0; f < mesh.triangles.size(); ++f)
+    for (int w : mesh.triangles[f])
+      if (around.count(w)) {
+        if (tile < 0) tile = t.label[f];
+        t.label[f] = tile;
+        break;
+      }
+  return t;
+}
+
+}  // namespace
+
+TEST(Tiling, RepairSplitsATileThatCoversAReflexCornerAlone) {
+  // The L's reflex corner given to one tile: the repair splits that tile from the
+  // corner (a Dijkstra over the tile's triangles from the corner's fan), so that two
+  // tiles meet there again, without giving up on the corner.
+  FieldsResult f = fields_on(l_domain(1000.0), 60.0, true);
+  const TilingResult r = build_tiling(f.mesh, f.size, f.cross, TilingParams());
+  int corner = -1;
+  for (const BoundaryChain& chain : f.mesh.chains)
+    for (std::size_t k = 0; k < chain.vertices.size(); ++k)
+      if (chain.is_corner[k] && chain.corner_turning_deg[k] < 0) corner = chain.vertices[k];
+  ASSERT_GE(corner, 0);
+  Tiling broken = given_to_one_tile(f.mesh, r.tiling, {corner});
+  const RepairStats stats = repair_tiling(f.mesh, triangle_geometry(f.mesh, f.size), broken);
+  EXPECT_GE(stats.tiles_split, 1);
+  EXPECT_EQ(stats.corners_demoted, 0);
+  const MetaGraph g = build_meta_graph(f.mesh, broken, MetaGraphParams());
+  EXPECT_EQ(check_tiling(f.mesh, broken, g), "");
+  ASSERT_GE(g.meta_index[corner], 0);
+  EXPECT_GE(g.vertex_num_tiles[g.meta_index[corner]], 2);
+}
+
+TEST(Tiling, RepairCutsATileThatWrapsAHole) {
+  // Every triangle touching the annulus's hole given to one tile: it wraps the hole, and
+  // the repair cuts it open along a path of triangles to another tile.
+  FieldsResult f = fields_on(annulus_domain(1000.0, 400.0, 96), 60.0, false);
+  const TilingResult r = build_tiling(f.mesh, f.size, f.cross, TilingParams());
+  std::vector<int> hole;
+  for (const BoundaryChain& chain : f.mesh.chains)
+    if (chain.ring > 0) hole.insert(hole.end(), chain.vertices.begin(), chain.vertices.end());
+  ASSERT_FALSE(hole.empty());
+  Tiling broken = given_to_one_tile(f.mesh, r.tiling, hole);
+  const RepairStats stats = repair_tiling(f.mesh, triangle_geometry(f.mesh, f.size), broken);
+  EXPECT_GE(stats.rings_cut, 1);
+  const MetaGraph g = build_meta_graph(f.mesh, broken, MetaGraphParams());
+  EXPECT_EQ(check_tiling(f.mesh, broken, g), "");
+}
+
 TEST(Tiling, CornerBarrierSeparatesTheSidesOfAReflexCorner) {
   FieldsResult f = fields_on(l_domain(1000.0), 60.0, true);
   TriangleGeometry geom = triangle_geometry(f.mesh, f.size);
