@@ -79,14 +79,9 @@ class Repairer {
       : mesh_(mesh), tags_(mesh), geom_(geom), tiling_(tiling), label_(tiling.label), params_(params) {
     const int num_vertices = static_cast<int>(mesh.points.size());
     const int num_faces = static_cast<int>(mesh.triangles.size());
-    vertex_begin_.assign(num_vertices + 1, 0);
-    for (const auto& t : mesh.triangles)
-      for (int v : t) ++vertex_begin_[v + 1];
-    for (int v = 0; v < num_vertices; ++v) vertex_begin_[v + 1] += vertex_begin_[v];
-    vertex_faces_.resize(vertex_begin_[num_vertices]);
-    std::vector<int> fill(vertex_begin_.begin(), vertex_begin_.end() - 1);
-    for (int f = 0; f < num_faces; ++f)
-      for (int v : mesh.triangles[f]) vertex_faces_[fill[v]++] = f;
+    vertex_face_.assign(num_vertices, -1);
+    for (int f = num_faces - 1; f >= 0; --f)
+      for (int v : mesh.triangles[f]) vertex_face_[v] = f;
     next_on_boundary_.assign(num_vertices, -1);
     for (const BoundaryChain& chain : mesh.chains)
       for (std::size_t k = 0; k < chain.vertices.size(); ++k)
@@ -273,11 +268,32 @@ class Repairer {
     return true;
   }
 
+  // The triangles round v in increasing id order, as a list of every vertex's triangles
+  // gives them: turning round v across its edges one way, then, when a domain boundary
+  // stops the turn, the other way from the first.
+  void faces_around(int v, std::vector<int>& out) const {
+    out.clear();
+    const int first = vertex_face_[v];
+    auto next = [&](int f, int side) {  // side 1 or 2: the neighbour across an edge at v
+      const auto& t = mesh_.triangles[f];
+      const int i = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+      return mesh_.neighbours[f][(i + side) % 3];
+    };
+    int f = first;
+    do {
+      out.push_back(f);
+      f = next(f, 2);
+    } while (f >= 0 && f != first);
+    if (f < 0)
+      for (f = next(first, 1); f >= 0; f = next(f, 1)) out.push_back(f);
+    std::sort(out.begin(), out.end());
+  }
+
   // count_vertex_sectors at one vertex.
   int sectors_at(int v) const {
     int changes = 0;
-    for (int k = vertex_begin_[v]; k < vertex_begin_[v + 1]; ++k) {
-      const int f = vertex_faces_[k];
+    faces_around(v, fan_scratch_);
+    for (const int f : fan_scratch_) {
       const auto& t = mesh_.triangles[f];
       for (int i = 0; i < 3; ++i) {
         if (t[i] == v) continue;  // the edge opposite v does not end at v
@@ -343,8 +359,9 @@ class Repairer {
     std::vector<FanTriangle> out;
     const Point2& pv = mesh_.points[v];
     int ref = next_on_boundary_[v];
-    for (int k = vertex_begin_[v]; k < vertex_begin_[v + 1]; ++k) {
-      const int f = vertex_faces_[k];
+    std::vector<int> faces;
+    faces_around(v, faces);
+    for (const int f : faces) {
       const auto& t = mesh_.triangles[f];
       const int i = t[0] == v ? 0 : t[1] == v ? 1 : 2;
       if (ref < 0) ref = t[(i + 1) % 3];
@@ -512,9 +529,11 @@ class Repairer {
     const int outer_mark = vertex_round_;
     for (int k = b.cycle_begin[outer]; k < b.cycle_begin[outer + 1]; ++k)
       vertex_stamp_[halfedge_from(mesh_, b.halfedges[k])] = outer_mark;
+    std::vector<int> faces_x, faces_v;
     auto other_tile_at = [&](int v) {
-      for (int k = vertex_begin_[v]; k < vertex_begin_[v + 1]; ++k)
-        if (label_[vertex_faces_[k]] != tile) return label_[vertex_faces_[k]];
+      faces_around(v, faces_v);
+      for (const int f : faces_v)
+        if (label_[f] != tile) return label_[f];
       return -1;
     };
     // Breadth-first from the hole's vertices; a vertex is a target when it lies on the
@@ -540,8 +559,9 @@ class Repairer {
     hole_y /= hole_end - hole_begin;
     for (std::size_t q = 0; q < queue.size() && found < 0; ++q) {
       const int x = queue[q];
-      for (int k = vertex_begin_[x]; k < vertex_begin_[x + 1] && found < 0; ++k) {
-        const int f = vertex_faces_[k];
+      faces_around(x, faces_x);
+      for (std::size_t k = 0; k < faces_x.size() && found < 0; ++k) {
+        const int f = faces_x[k];
         if (label_[f] != tile) continue;
         for (int y : mesh_.triangles[f]) {
           if (vertex_stamp_[y] == seen) continue;
@@ -560,9 +580,11 @@ class Repairer {
       const int target = other_tile_at(found);
       if (touched_[target]) return false;
       std::vector<int> band;
-      for (int v = found; v >= 0; v = vertex_parent_[v])
-        for (int k = vertex_begin_[v]; k < vertex_begin_[v + 1]; ++k)
-          if (label_[vertex_faces_[k]] == tile) band.push_back(vertex_faces_[k]);
+      for (int v = found; v >= 0; v = vertex_parent_[v]) {
+        faces_around(v, faces_v);
+        for (const int f : faces_v)
+          if (label_[f] == tile) band.push_back(f);
+      }
       for (int f : band) relabel(f, target);
       touched_[tile] = touched_[target] = 1;
       ++stats_.rings_cut;
@@ -634,9 +656,11 @@ class Repairer {
         const int g = halfedge_across(mesh_, h);
         if (g >= 0) shared.add(label_[g], edge_length_m(h));
         const int v = halfedge_from(mesh_, h);
-        if (is_reflex_corner(v) && sectors[v] <= 2)
-          for (int q = vertex_begin_[v]; q < vertex_begin_[v + 1]; ++q)
-            if (label_[vertex_faces_[q]] != t) forbidden.push_back(label_[vertex_faces_[q]]);
+        if (is_reflex_corner(v) && sectors[v] <= 2) {
+          faces_around(v, fan_scratch_);
+          for (const int f : fan_scratch_)
+            if (label_[f] != t) forbidden.push_back(label_[f]);
+        }
       }
       if (shared.empty()) {
         // An island split before that is one small tile again (its parts were too small
@@ -916,7 +940,11 @@ class Repairer {
   std::vector<int>& label_;
   const RepairParams& params_;
   RepairStats stats_;
-  std::vector<int> vertex_begin_, vertex_faces_;  // triangles around each vertex
+  // #V a triangle at each vertex, the first in id order: the others are found by turning
+  // round it (faces_around), without a list of every vertex's triangles (the mesh's
+  // triangles three times over, the largest array of the tiling's peak).
+  std::vector<int> vertex_face_;
+  mutable std::vector<int> fan_scratch_;          // faces_around's output where no other call nests
   std::vector<int> next_on_boundary_;             // next chain vertex, -1 inside
   std::vector<double> turning_deg_;
   std::vector<int> face_stamp_, vertex_stamp_;
