@@ -44,7 +44,7 @@ struct FieldsOptions {
   // quads than this (estimate_num_quads), and again before the cross field when the
   // background mesh predicts more (predicted_num_quads); 0: no limit. A mistyped size
   // (--size 10 for 10 km over France: 5 billion quads) otherwise fills the memory: a
-  // quad costs about 2 to 5 KB at the peak (France at --size 700: 1,044,076 quads, 2.2 GB;
+  // quad costs about 2 to 5 KB at the peak (France at --size 700: 1,044,076 quads, 2.1 GB;
   // the Mediterranean at 1:10m with hmin 1 km, 90,121 quads, 436 MB).
   double max_quads = 1e6;
   // On a background mesh of more vertices than this, the boundary-aligned cross field is
