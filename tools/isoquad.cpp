@@ -24,6 +24,7 @@
 #include "app/versions.h"
 #include "cli_args.h"
 #include "core/error.h"
+#include "core/stage_clock.h"
 #include "core/text.h"
 #include "gis/atomic_output.h"
 #include "gis/gdal_env.h"
@@ -518,8 +519,6 @@ int run_quality_each(const CommonArgs& a, const FieldArgs& f, const QualityArgs&
 }  // namespace
 
 int main(int argc, char** argv) {
-  // First, before any thread: Ctrl-C or a batch system's SIGTERM leaves no temporary file.
-  isoquad::remove_unfinished_outputs_on_signals();
   CLI::App app{
       "isoquad: isotropic all-quadrangle meshes of map polygons (coastlines, lakes, sea "
       "areas) that follow a sizing field and a cross field."};
@@ -600,6 +599,13 @@ int main(int argc, char** argv) {
     return exit_code(ErrorClass::usage);
   }
 
+  // Before any thread starts (the signals' own, the stages' helpers): the heap's pools,
+  // then the signals every thread blocks, so that Ctrl-C or a batch system's SIGTERM
+  // leaves no temporary file.
+  limit_heap_arenas(mesh_cmd->parsed()      ? mesh_extra.jobs
+                    : quality_cmd->parsed() ? quality_extra.jobs
+                                            : 1);
+  isoquad::remove_unfinished_outputs_on_signals();
   try {
     if (domain_cmd->parsed()) return run_domain(domain_args);
     if (fields_cmd->parsed()) return run_fields(fields_args, field_args, joined_command_line(argc, argv));

@@ -101,6 +101,14 @@ void release_free_memory() {
 #endif
 }
 
+void limit_heap_arenas(int arenas) {
+#if defined(__GLIBC__)
+  if (arenas >= 1) mallopt(M_ARENA_MAX, arenas);
+#else
+  (void)arenas;
+#endif
+}
+
 bool stage_peaks_supported() {
   return ResidentSampler::instance().works();
 }
