@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -26,7 +27,7 @@ struct VtuMesh {
 // Writes atomically (temporary file, then rename). Throws Error(output).
 void write_vtu(const VtuMesh& mesh, const std::string& path, bool overwrite);
 
-// The document as text (exposed for tests).
-std::string vtu_document(const VtuMesh& mesh);
+// The document, written onto `out` as it is encoded.
+void write_vtu_document(const VtuMesh& mesh, std::ostream& out);
 
 }  // namespace isoquad

@@ -18,6 +18,7 @@
 #include "gis/read_mesh.h"
 #include "io/mesh_boundary.h"
 #include "io/write_mesh.h"
+#include "io/write_vtu.h"
 #include "support/test_support.h"
 
 using namespace isoquad;
@@ -524,6 +525,31 @@ TEST(MeshOutputs, LegacyVtkLoadsInMeshio) {
              "assert np.allclose(np.ravel(m.point_data['depth']), 10 + 0.5 * np.arange(16))\n"
              "assert np.ravel(m.point_data['degree']).tolist()[5] == 3\n",
              {dir.file("m.vtk")});
+}
+
+TEST(MeshOutputs, VtuArraysOfEveryLengthLoadInMeshio) {
+  // The arrays are base64 encoded as they are written: with their 8-byte counts, 5 points
+  // (128 bytes), 7 corners (64), 2 offsets (24) and 2 types (10) leave 2, 1, 0 and 1
+  // bytes after the last full group of three, each padded its own way.
+  const std::vector<Point2> points = {{0, 0}, {2, 0}, {2, 1}, {0, 1}, {3, 0.5}};
+  VtuMesh mesh;
+  mesh.points = &points;
+  mesh.cells = {{0, 1, 2, 3}, {1, 4, 2}};
+  mesh.point_data = {{"depth", {1.5, -2.25, 3e10, 0.0, 7.0}}};
+  mesh.cell_data = {{"size_ratio", {0.75, 1.125}}};
+  TempDir dir;
+  write_vtu(mesh, dir.file("m.vtu"), false);
+  python_check(
+      dir,
+      "import sys, meshio, numpy as np\n"
+      "m = meshio.read(sys.argv[1])\n"
+      "assert m.cells_dict['quad'].tolist() == [[0, 1, 2, 3]], m.cells_dict\n"
+      "assert m.cells_dict['triangle'].tolist() == [[1, 4, 2]], m.cells_dict\n"
+      "assert m.points.tolist() == [[0, 0, 0], [2, 0, 0], [2, 1, 0], [0, 1, 0], [3, 0.5, 0]]\n"
+      "assert np.ravel(m.point_data['depth']).tolist() == [1.5, -2.25, 3e10, 0.0, 7.0]\n"
+      "sr = [np.ravel(b).tolist() for b in m.cell_data['size_ratio']]\n"
+      "assert sorted(sum(sr, [])) == [0.75, 1.125], sr\n",
+      {dir.file("m.vtu")});
 }
 
 TEST(MeshOutputs, UgridNetcdfHasTheRequiredAttributes) {
