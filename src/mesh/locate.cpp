@@ -57,6 +57,10 @@ TriangleLocator::TriangleLocator(const BackgroundMesh& mesh) : mesh_(&mesh) {
 }
 
 Location TriangleLocator::locate(const Point2& p) const {
+  return search(p, true);
+}
+
+Location TriangleLocator::search(const Point2& p, bool skip_empty_rings) const {
   const BackgroundMesh& m = *mesh_;
   const int ci = std::clamp(static_cast<int>((p.x - x0_) / cell_), 0, nx_ - 1);
   const int cj = std::clamp(static_cast<int>((p.y - y0_) / cell_), 0, ny_ - 1);
@@ -65,26 +69,38 @@ Location TriangleLocator::locate(const Point2& p) const {
   // A point on an edge or a vertex can come out of the barycentric computation a
   // rounding error outside both triangles: that is inside.
   constexpr double kOnEdge = 1e-12;
-  // Search rings of cells until a containing triangle is found, or the nearest one
-  // once a ring adds nothing better.
-  for (int ring = 0; ring < std::max(nx_, ny_); ++ring) {
-    for (int j = cj - ring; j <= cj + ring; ++j)
-      for (int i = ci - ring; i <= ci + ring; ++i) {
-        if (std::max(std::abs(i - ci), std::abs(j - cj)) != ring) continue;
-        if (i < 0 || j < 0 || i >= nx_ || j >= ny_) continue;
-        const std::size_t c = static_cast<std::size_t>(j) * nx_ + i;
-        for (int k = start_[c]; k < start_[c + 1]; ++k) {
-          const int f = items_[k];
-          const auto& t = m.triangles[f];
-          const auto b = barycentric(m.points[t[0]], m.points[t[1]], m.points[t[2]], p);
-          const double violation = std::max({0.0, -b[0], -b[1], -b[2]});
-          if (violation < best_violation || (violation == best_violation && f < best.triangle)) {
-            best_violation = violation;
-            best.triangle = f;
-            best.bary = b;
-          }
-        }
+  auto visit = [&](int i, int j) {
+    if (i < 0 || j < 0 || i >= nx_ || j >= ny_) return;
+    const std::size_t c = static_cast<std::size_t>(j) * nx_ + i;
+    for (int k = start_[c]; k < start_[c + 1]; ++k) {
+      const int f = items_[k];
+      const auto& t = m.triangles[f];
+      const auto b = barycentric(m.points[t[0]], m.points[t[1]], m.points[t[2]], p);
+      const double violation = std::max({0.0, -b[0], -b[1], -b[2]});
+      // The least violation, then the lowest id: the order of the visits does not matter.
+      if (violation < best_violation || (violation == best_violation && f < best.triangle)) {
+        best_violation = violation;
+        best.triangle = f;
+        best.bary = b;
       }
+    }
+  };
+  // Search rings of cells until a containing triangle is found, or the nearest one
+  // once a ring adds nothing better. Rings known to be empty are skipped: they would
+  // change nothing.
+  const int last_ring = std::max(nx_, ny_);
+  for (int ring = 0; ring < last_ring; ++ring) {
+    if (skip_empty_rings && ring == 2 && best.triangle < 0) {
+      std::call_once(empty_rings_once_, [this] { find_empty_rings(); });
+      ring = std::max(ring, empty_rings_[static_cast<std::size_t>(cj) * nx_ + ci]);
+      if (ring >= last_ring) break;
+    }
+    if (ring == 0) {
+      visit(ci, cj);
+    } else {
+      for (int i = ci - ring; i <= ci + ring; ++i) visit(i, cj - ring), visit(i, cj + ring);
+      for (int j = cj - ring + 1; j <= cj + ring - 1; ++j) visit(ci - ring, j), visit(ci + ring, j);
+    }
     if (best_violation <= kOnEdge) break;
     if (best.triangle >= 0 && ring >= 1) break;
   }
@@ -95,6 +111,42 @@ Location TriangleLocator::locate(const Point2& p) const {
     for (double& w : best.bary) w /= s;
   }
   return best;
+}
+
+// A chessboard distance transform of the cells that hold triangles: two raster passes,
+// each cell taking one more than the least of its already visited neighbours.
+void TriangleLocator::find_empty_rings() const {
+  const int big = nx_ + ny_;
+  std::vector<int>& d = empty_rings_;
+  d.assign(static_cast<std::size_t>(nx_) * ny_, big);
+  auto at = [&](int i, int j) -> int& { return d[static_cast<std::size_t>(j) * nx_ + i]; };
+  for (int j = 0; j < ny_; ++j)
+    for (int i = 0; i < nx_; ++i) {
+      const std::size_t c = static_cast<std::size_t>(j) * nx_ + i;
+      if (start_[c + 1] > start_[c]) {
+        at(i, j) = 0;
+        continue;
+      }
+      int v = at(i, j);
+      if (i > 0) v = std::min(v, at(i - 1, j) + 1);
+      if (j > 0) {
+        v = std::min(v, at(i, j - 1) + 1);
+        if (i > 0) v = std::min(v, at(i - 1, j - 1) + 1);
+        if (i + 1 < nx_) v = std::min(v, at(i + 1, j - 1) + 1);
+      }
+      at(i, j) = v;
+    }
+  for (int j = ny_ - 1; j >= 0; --j)
+    for (int i = nx_ - 1; i >= 0; --i) {
+      int v = at(i, j);
+      if (i + 1 < nx_) v = std::min(v, at(i + 1, j) + 1);
+      if (j + 1 < ny_) {
+        v = std::min(v, at(i, j + 1) + 1);
+        if (i + 1 < nx_) v = std::min(v, at(i + 1, j + 1) + 1);
+        if (i > 0) v = std::min(v, at(i - 1, j + 1) + 1);
+      }
+      at(i, j) = v;
+    }
 }
 
 Location TriangleLocator::locate(const Point2& p, int hint) const {

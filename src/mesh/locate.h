@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <mutex>
 #include <vector>
 
 #include "core/geometry.h"
@@ -27,12 +28,22 @@ class TriangleLocator {
   // well inside it (every barycentric coordinate over 1e-9) is in no other triangle, so
   // the answer is the one locate(p) gives, without the search.
   Location locate(const Point2& p, int hint) const;
+  // locate(p) visiting every ring of cells, the empty ones too (for tests: the same
+  // answer, slower by the empty rings).
+  Location locate_visiting_every_ring(const Point2& p) const { return search(p, false); }
 
  private:
+  Location search(const Point2& p, bool skip_empty_rings) const;
+  void find_empty_rings() const;
   const BackgroundMesh* mesh_;
   double x0_ = 0, y0_ = 0, cell_ = 1;
   int nx_ = 1, ny_ = 1;
   std::vector<int> start_, items_;  // CSR: triangles overlapping each cell
+  // Per cell, the rings round it that hold no triangle (its chessboard distance to the
+  // nearest cell that holds one), found at the first point located two rings or more
+  // from any triangle: the search starts past them.
+  mutable std::once_flag empty_rings_once_;
+  mutable std::vector<int> empty_rings_;
 };
 
 // Barycentric coordinates of p in triangle (a, b, c).

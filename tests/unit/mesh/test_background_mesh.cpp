@@ -370,6 +370,34 @@ TEST(TriangleLocator, PointsOnEdgesAndVerticesAreInside) {
   EXPECT_GE(far.triangle, 0);
 }
 
+TEST(TriangleLocator, PointsFarFromEveryTriangleGetWhatEveryRingGives) {
+  // Two islands 100 km apart: most cells of the grid hold no triangle, and a point far
+  // out skips the rings of cells round it that hold none. It must get the triangle,
+  // coordinates and flag of the search through every ring.
+  Domain d = square_domain(1000.0);
+  Domain other = square_domain(1000.0);
+  for (Point2& p : other.polygons[0].outer) p.x += 100000.0, p.y += 60000.0;
+  d.polygons.push_back(other.polygons[0]);
+  const BackgroundMesh m = build_background_mesh(d, uniform(25.0));
+  const TriangleLocator locator(m);
+  std::vector<Point2> points;
+  for (int i = -4; i <= 24; ++i)
+    for (int j = -4; j <= 16; ++j) points.push_back({5000.0 * i + 123.0, 5000.0 * j + 77.0});
+  points.push_back({500.0, 500.0});
+  points.push_back({100500.0, 60500.0});
+  int far = 0;
+  for (const Point2& p : points) {
+    const Location fast = locator.locate(p);
+    const Location every = locator.locate_visiting_every_ring(p);
+    EXPECT_EQ(fast.triangle, every.triangle) << p.x << " " << p.y;
+    EXPECT_EQ(fast.bary, every.bary) << p.x << " " << p.y;
+    EXPECT_EQ(fast.inside, every.inside) << p.x << " " << p.y;
+    far += !fast.inside && std::min(std::hypot(p.x - 500.0, p.y - 500.0),
+                                    std::hypot(p.x - 100500.0, p.y - 60500.0)) > 20000.0;
+  }
+  EXPECT_GT(far, 400);
+}
+
 TEST(TriangleLocator, AHintGivesWhatTheSearchGives) {
   // Points inside, on edges and vertices, and outside, each with the triangle it is in,
   // a neighbour, a far triangle and no hint: the same triangle and coordinates.
