@@ -1,7 +1,6 @@
 #include "io/write_vtu.h"
 
 #include <cstdint>
-#include <cstring>
 #include <fstream>
 #include <string>
 

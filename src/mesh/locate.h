@@ -41,7 +41,8 @@ class TriangleLocator {
   std::vector<int> start_, items_;  // CSR: triangles overlapping each cell
   // Per cell, the rings round it that hold no triangle (its chessboard distance to the
   // nearest cell that holds one), found at the first point located two rings or more
-  // from any triangle: the search starts past them.
+  // from any triangle: the search starts past them. An int a cell, as start_ holds;
+  // never made when every point located lies within a ring of the mesh.
   mutable std::once_flag empty_rings_once_;
   mutable std::vector<int> empty_rings_;
 };
