@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "gis/gdal_env.h"
 #include "gis/rings_from_lines.h"
+#include "gis/where_hint.h"
 
 namespace isoquad {
 
@@ -259,8 +260,13 @@ class Reader {
                                   " make all miss the selection (" + selection.substr(1) + ")");
     if (out_.num_features == 0) {
       if (selection.empty()) fail(ErrorClass::input, "layer " + quote(out_.layer_name) + " is empty");
+      const std::string hint =
+          p_.where.empty()
+              ? ""
+              : where_hint(*layer_, p_.where, p_.clip ? "the area of --clip" : "the bbox");
       fail(ErrorClass::input, "the selection (" + selection.substr(1) +
-                                  ") matched no feature in layer " + quote(out_.layer_name));
+                                  ") matched no feature in layer " + quote(out_.layer_name) +
+                                  (hint.empty() ? "" : ": " + hint));
     }
     if (out_.polygons.empty())
       fail(ErrorClass::input, "layer " + quote(out_.layer_name) + " has no polygons (" +

@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "gis/gdal_env.h"
+#include "gis/where_hint.h"
 #include "support/fixtures.h"
 #include "support/write_archive.h"
 
@@ -175,6 +176,41 @@ TEST(ReadPolygons, BadInputsAreReportedWithFileAndProblem) {
   p = params(good_geojson(dir));
   p.layer = "nope";
   expect_error(p, ErrorClass::usage, "no layer 'nope'");
+}
+
+// A filter that selects nothing says why, when a value it compares with is mistyped or
+// lies outside the bbox.
+TEST(ReadPolygons, AFilterThatSelectsNothingNamesTheNearestValues) {
+  TempDir dir;
+  ReadParams p = params(good_geojson(dir));  // features f0 (x -3 to -2) and f1 (x -1 to 0)
+  p.where = "name = 'f7'";
+  expect_error(p, ErrorClass::input, "no feature has name 'f7' (the nearest: 'f0', 'f1')");
+  p.where = "'g1' = name";
+  expect_error(p, ErrorClass::input, "no feature has name 'g1' (the nearest: 'f1')");
+  p.where = "name IN ('f0', 'xyz')";  // f0 matches
+  EXPECT_EQ(read_polygons(p).polygons.size(), 1u);
+  p.bbox = std::array<double, 4>{-1.5, 46.5, 0.5, 48.5};  // f1 only
+  p.where = "name = 'f0'";
+  expect_error(p, ErrorClass::input, "the features with name 'f0' lie outside the bbox");
+  // A pattern, or a value that some feature holds, gets no hint.
+  for (const char* where : {"name LIKE 'zz%'", "name = 'f1' AND id = 7"}) {
+    p.where = where;
+    const std::string message = read_error(p).what();
+    EXPECT_NE(message.find("matched no feature"), std::string::npos) << message;
+    EXPECT_EQ(message.find("no feature has"), std::string::npos) << message;
+    EXPECT_EQ(message.find("lie outside"), std::string::npos) << message;
+  }
+}
+
+TEST(WhereHint, NearestValuesAreCloseInSpellingOrHoldTheValue) {
+  const std::vector<std::string> countries{"France",      "Greece",      "Ireland",       "Kenya",
+                                           "North Korea", "South Korea", "Guinea-Bissau", "Guinea"};
+  EXPECT_EQ(nearest_values("Frnce", countries), std::vector<std::string>{"France"});
+  EXPECT_EQ(nearest_values("korea", countries),
+            (std::vector<std::string>{"North Korea", "South Korea"}));
+  EXPECT_EQ(nearest_values("Guinea Bisau", countries), std::vector<std::string>{"Guinea-Bissau"});
+  EXPECT_TRUE(nearest_values("Atlantis", countries).empty());
+  EXPECT_EQ(nearest_values("e", countries, 2).size(), 0u);  // a letter is near nothing
 }
 
 TEST(ReadPolygons, RepairClosesUnclosedRings) {
