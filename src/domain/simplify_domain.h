@@ -9,6 +9,10 @@
 // brought to 0.5 m at a tolerance of 385 m). The narrow-feature step keeps such a mouth
 // when cutting it would change the topology, and the quads across it then had sides of
 // 0.4 m next to sides of a kilometre.
+//
+// Rings drawn much more finely than the tolerance (a quarter of their vertices or more
+// with both neighbours within a quarter of it) are thinned first, away from other parts
+// of the boundary, so that the time grows with the number of vertices, not its square.
 #pragma once
 
 #include <cstddef>
