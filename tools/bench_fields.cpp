@@ -1,12 +1,13 @@
 // Benchmarks on mainland France (Natural Earth 1:10m) with automatic sizing at about
 // 4,500 quads: the front end, the background mesh and fields, the four tiling steps, and
-// the whole mesh job. Not a test: run it by hand, in a Release build, and compare stages
-// as ratios within one run.
+// the whole mesh job; and the simplification of its coast drawn finely. Not a test: run it by hand,
+// in a Release build, and compare stages as ratios within one run.
 //   build/isoquad_bench_fields --benchmark_repetitions=3
 #include <benchmark/benchmark.h>
 
 #include "app/fields_job.h"
 #include "app/mesh_job.h"
+#include "domain/simplify_domain.h"
 #include "mesh/boundary_corners.h"
 #include "tiling/build_tiling.h"
 
@@ -91,6 +92,45 @@ void BM_FranceDomain(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(build_planar_domain(o));
 }
 BENCHMARK(BM_FranceDomain)->Unit(benchmark::kMillisecond);
+
+// The simplification of a coastline drawn finely: France's domain with a vertex every
+// `spacing` metres along its edges (the argument), simplified at 700 m with the clearance
+// of the same (France automatic's). The time should grow with the vertices, not their
+// square (docs/measurements.md, "Coastlines drawn finely").
+void BM_DenseCoastSimplify(benchmark::State& state) {
+  const double spacing = static_cast<double>(state.range(0));
+  Domain dense = france_domain();
+  for (Polygon& p : dense.polygons) {
+    std::vector<Ring*> rings{&p.outer};
+    for (Ring& h : p.holes) rings.push_back(&h);
+    for (Ring* r : rings) {
+      Ring out;
+      for (std::size_t i = 0; i < r->size(); ++i) {
+        const Point2 a = (*r)[i], b = (*r)[(i + 1) % r->size()];
+        const int n = std::max(1, static_cast<int>(distance(a, b) / spacing));
+        for (int k = 0; k < n; ++k)
+          out.push_back({a.x + (b.x - a.x) * k / n, a.y + (b.y - a.y) * k / n});
+      }
+      *r = std::move(out);
+    }
+  }
+  double before = 0, after = 0;
+  for (auto _ : state) {
+    Domain d = dense;
+    const SimplifyResult r = simplify_domain(d, {700.0, 700.0});
+    before = static_cast<double>(r.num_vertices_before);
+    after = static_cast<double>(r.num_vertices_after);
+  }
+  state.counters["vertices_before"] = before;
+  state.counters["vertices_after"] = after;
+}
+BENCHMARK(BM_DenseCoastSimplify)
+    ->Arg(160)
+    ->Arg(80)
+    ->Arg(40)
+    ->Arg(20)
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
 
 }  // namespace
 
