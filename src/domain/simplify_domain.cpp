@@ -228,9 +228,11 @@ std::vector<std::vector<char>> thinning_kept(const std::vector<Ring*>& rings, do
         const Entry hi{e.cx + dx, e.cy + dy, std::numeric_limits<int>::max(), 0};
         for (auto it = std::lower_bound(entries.begin(), entries.end(), lo, by_cell);
              it != entries.end() && by_cell(*it, hi) && !near; ++it) {
-          if (distance(x, (*rings[it->ring])[it->index]) >= radius) continue;
-          const int forward = (it->index - e.index + n) % n;
-          near = it->ring != e.ring || (forward > ahead && n - forward > back);
+          if (it->ring == e.ring) {  // x itself, or its run
+            const int forward = (it->index - e.index + n) % n;
+            if (forward <= ahead || n - forward <= back) continue;
+          }
+          near = distance(x, (*rings[it->ring])[it->index]) < radius;
         }
       }
     kept[e.ring][e.index] = near ? 1 : 0;
