@@ -319,6 +319,18 @@ PolylineIndex::Nearest PolylineIndex::nearest(const Point2& p, double tolerance)
   return best;
 }
 
+std::vector<std::pair<int, int>> PolylineIndex::segments_near(const Point2& p,
+                                                              double tolerance) const {
+  std::vector<std::pair<int, int>> out;
+  visit_near(p, tolerance, [&](int line, int segment, double) {
+    out.emplace_back(line, segment);
+    return true;
+  });
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
 bool PolylineIndex::nearest_segment(const Point2& p, double tolerance, Point2& a, Point2& b) const {
   const Nearest n = nearest(p, tolerance);
   if (n.line < 0) return false;

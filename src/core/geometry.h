@@ -5,6 +5,7 @@
 
 #include <array>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace isoquad {
@@ -125,6 +126,9 @@ class PolylineIndex {
     double distance = 0.0;
   };
   Nearest nearest(const Point2& p, double tolerance) const;
+  // Every segment within `tolerance` (plus its line's slack) of p, as (line, segment),
+  // in that order, each once.
+  std::vector<std::pair<int, int>> segments_near(const Point2& p, double tolerance) const;
 
  private:
   // Calls visit(line, segment, distance) for each segment within `tolerance` (plus its

@@ -103,21 +103,39 @@ bool nearest_on_run(const PolylineIndex& run, const Point2& p, double tolerance,
   return true;
 }
 
-// The nearest point of a polyline to p (every segment looked at), and its arc length
-// along the polyline.
-Point2 nearest_on_polyline(const std::vector<Point2>& line, const Point2& p,
-                           double* arc = nullptr) {
-  Point2 best = line.front();
-  double best_d = distance(p, best), best_arc = 0, along = 0;
-  for (std::size_t i = 1; i < line.size(); ++i) {
-    const Point2 q = nearest_on_segment(p, line[i - 1], line[i]);
-    const double d = distance(p, q);
-    if (d < best_d) best_d = d, best = q, best_arc = along + distance(line[i - 1], q);
-    along += distance(line[i - 1], line[i]);
+// The nearest point of a polyline to p and its arc length along it: of its first vertex
+// and its segments' nearest points, the first nearest. Only the segments near p are
+// looked at (a line drawn every 10 m has thousands), found by an index in a radius
+// doubled from 1 m until one is within it, then widened by a rounding error's margin:
+// the same point and arc as a look at every segment.
+class PolylineLocator {
+ public:
+  explicit PolylineLocator(const std::vector<Point2>& line)
+      : line_(line), index_({line}), along_(line.size(), 0.0) {
+    for (std::size_t i = 1; i < line.size(); ++i)
+      along_[i] = along_[i - 1] + distance(line[i - 1], line[i]);
   }
-  if (arc) *arc = best_arc;
-  return best;
-}
+  Point2 nearest(const Point2& p, double* arc = nullptr) const {
+    Point2 best = line_.front();
+    double best_d = distance(p, best), best_arc = 0;
+    double radius = 1.0;
+    while (radius < best_d && !index_.near(p, radius)) radius *= 2;
+    radius = std::min(radius, best_d) * (1 + 1e-9) + 1e-9;
+    for (const auto& [l, s] : index_.segments_near(p, radius)) {
+      const Point2 q = nearest_on_segment(p, line_[s], line_[s + 1]);
+      const double d = distance(p, q);
+      if (d < best_d) best_d = d, best = q, best_arc = along_[s] + distance(line_[s], q);
+    }
+    if (arc) *arc = best_arc;
+    return best;
+  }
+  const PolylineIndex& index() const { return index_; }
+
+ private:
+  const std::vector<Point2>& line_;
+  PolylineIndex index_;
+  std::vector<double> along_;  // arc length at each vertex
+};
 
 // Where the ray from `from` along `dir` (unit) first meets the domain's boundary within
 // `reach`: the chain, the point and its arc length along the chain; false when it does not.
@@ -439,6 +457,7 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     }
     for (std::size_t i = 1; i < run.size(); ++i)
       stats.line_length_m += distance(run[i - 1], run[i]);
+    const PolylineLocator locator(run);
     ++stats.num_runs;
     stats.num_edges += path.size() - 1;
     // The line's corners: where it turns by corner_turn_rad or more.
@@ -466,7 +485,7 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
             distance(corner, m.points[v]) < std::min(step, next))
           turns_in_quad = false;
       double arc = 0;
-      Point2 q = nearest_on_polyline(run, m.points[v], &arc);
+      Point2 q = locator.nearest(m.points[v], &arc);
       // The path's ends at the line's own ends: those points exactly.
       const bool first = i == 0, last = i + 1 == path.size();
       if ((first && runs[r].own_ends[0]) || (last && runs[r].own_ends[1])) {
@@ -769,6 +788,7 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   // max_chord_share of the edge's length of it, with how far they bend away.
   for (std::size_t k = 0; k < found.size(); ++k) {
     const std::vector<Point2>& run = runs[found_run[k]].points;
+    const PolylineLocator locator(run);
     std::vector<double> run_arc(run.size(), 0.0);
     for (std::size_t i = 1; i < run.size(); ++i)
       run_arc[i] = run_arc[i - 1] + distance(run[i - 1], run[i]);
@@ -777,7 +797,7 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
     for (int v : found[k]) {
       ++stats.num_vertices;
       double arc = 0;
-      const double d = distance(m.points[v], nearest_on_polyline(run, m.points[v], &arc));
+      const double d = distance(m.points[v], locator.nearest(m.points[v], &arc));
       const bool boundary = m.chain[v] >= 0 || m.fixed[v];
       if (boundary) ++stats.num_boundary;
       if (!boundary) stats.max_vertex_off_m = std::max(stats.max_vertex_off_m, d);

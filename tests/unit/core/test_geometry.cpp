@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 using namespace isoquad;
 
 TEST(Geometry, SignedAreaAndPerimeterOfUnitSquare) {
@@ -84,6 +86,14 @@ TEST(Geometry, PolylineIndexFindsPointsNearAnySegment) {
       if (found) {
         EXPECT_EQ(distance_to_segment({x, y}, a, b), nearest) << x << " " << y;
       }
+      // The segments near: exactly those within 1.3 of the point, in order, once each.
+      std::vector<std::pair<int, int>> within;
+      if (distance_to_segment({x, y}, {-10, 0}, {-10, 5}) <= 1.3) within.emplace_back(1, 0);
+      for (std::size_t i = 0; i + 1 < stairs.size(); ++i)
+        if (distance_to_segment({x, y}, stairs[i], stairs[i + 1]) <= 1.3)
+          within.emplace_back(0, static_cast<int>(i));
+      std::sort(within.begin(), within.end());
+      EXPECT_EQ(index.segments_near({x, y}, 1.3), within) << x << " " << y;
     }
   EXPECT_FALSE(PolylineIndex().near({0, 0}, 1.0));
   EXPECT_DOUBLE_EQ(distance_to_segment({2, 1}, {0, 0}, {4, 0}), 1.0);
