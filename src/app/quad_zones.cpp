@@ -11,10 +11,11 @@ namespace isoquad {
 
 namespace {
 
-// Whether p is inside the rings (closed), by the even-odd rule over all of them.
-bool inside(const std::vector<std::vector<Point2>>& rings, const Point2& p) {
+// Whether p is inside the rings (closed; their sides in bands), by the even-odd rule over
+// all of them.
+bool inside(const std::vector<EdgeBands>& rings, const Point2& p) {
   bool in = false;
-  for (const auto& r : rings) in ^= crosses_odd(r, p);
+  for (const EdgeBands& r : rings) in ^= r.crosses_odd(p);
   return in;
 }
 
@@ -62,8 +63,13 @@ std::vector<std::vector<std::vector<Point2>>> read_zone_polygons(const ZonesSour
 QuadZones quad_zones(const ZonesSource& source, const CrsInfo& mesh_crs, const QuadMesh& mesh) {
   std::vector<double> numbers;
   const auto polygons = read_zone_polygons(source, mesh_crs, &numbers);
-  // Each polygon's bounding box, to pass over the quads far from it.
+  // Each polygon's bounding box, to pass over the quads far from it, and its rings' sides
+  // in bands (a zone drawn with 100,000 vertices over 9,064 quads: the output stage 2.6 ->
+  // 0.4 s).
   std::vector<std::array<double, 4>> boxes;
+  std::vector<std::vector<EdgeBands>> bands(polygons.size());
+  for (std::size_t k = 0; k < polygons.size(); ++k)
+    for (const auto& r : polygons[k]) bands[k].emplace_back(r);
   for (const auto& rings : polygons) {
     std::array<double, 4> b{INFINITY, INFINITY, -INFINITY, -INFINITY};
     for (const auto& r : rings)
@@ -79,7 +85,7 @@ QuadZones quad_zones(const ZonesSource& source, const CrsInfo& mesh_crs, const Q
     for (int v : mesh.quads[q]) c.x += 0.25 * mesh.points[v].x, c.y += 0.25 * mesh.points[v].y;
     for (std::size_t k = 0; k < polygons.size(); ++k) {
       const auto& b = boxes[k];
-      if (c.x < b[0] || c.x > b[2] || c.y < b[1] || c.y > b[3] || !inside(polygons[k], c)) continue;
+      if (c.x < b[0] || c.x > b[2] || c.y < b[1] || c.y > b[3] || !inside(bands[k], c)) continue;
       out.zone[q] = numbers[k];
       break;
     }

@@ -78,6 +78,60 @@ bool crosses_odd(const std::vector<Point2>& ring, const Point2& p) {
   return odd;
 }
 
+EdgeBands::EdgeBands(const std::vector<Point2>& ring) : ring_(ring) {
+  const std::size_t n = ring.size();
+  if (n == 0) {
+    start_.assign(2, 0);
+    return;
+  }
+  y0_ = y1_ = ring[0].y;
+  for (const Point2& p : ring) y0_ = std::min(y0_, p.y), y1_ = std::max(y1_, p.y);
+  bands_ = std::max<std::size_t>(1, n / 8);
+  start_.assign(bands_ + 1, 0);
+  for (int pass = 0; pass < 2; ++pass) {
+    std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Point2 &a = ring[i], &b = ring[(i + 1) % n];
+      for (std::size_t k = band(std::min(a.y, b.y)); k <= band(std::max(a.y, b.y)); ++k) {
+        if (pass == 0)
+          ++start_[k + 1];
+        else
+          sides_[fill[k]++] = i;
+      }
+    }
+    if (pass == 0) {
+      for (std::size_t k = 0; k < bands_; ++k) start_[k + 1] += start_[k];
+      sides_.resize(start_[bands_]);
+    }
+  }
+}
+
+std::size_t EdgeBands::band(double y) const {
+  if (y1_ <= y0_) return 0;
+  const double t = (y - y0_) / (y1_ - y0_) * static_cast<double>(bands_);
+  return std::min(bands_ - 1, static_cast<std::size_t>(std::max(0.0, t)));
+}
+
+std::pair<const std::size_t*, const std::size_t*> EdgeBands::sides_at(double y) const {
+  if (ring_.empty() || y < y0_ || y > y1_) return {nullptr, nullptr};
+  const std::size_t k = band(y);
+  return {sides_.data() + start_[k], sides_.data() + start_[k + 1]};
+}
+
+bool EdgeBands::crosses_odd(const Point2& p) const {
+  // crosses_odd's test, side by side, over the sides of p's band: a side that crosses
+  // the ray has p.y between its ends' y, so it is listed there, once.
+  bool odd = false;
+  const std::size_t n = ring_.size();
+  const auto [first, last] = sides_at(p.y);
+  for (const std::size_t* s = first; s != last; ++s) {
+    const Point2 &a = ring_[*s], &b = ring_[(*s + 1) % n];
+    if ((a.y > p.y) != (b.y > p.y) && p.x < a.x + (p.y - a.y) * (b.x - a.x) / (b.y - a.y))
+      odd = !odd;
+  }
+  return odd;
+}
+
 bool domain_contains(const Domain& domain, const Point2& p) {
   bool in = false;
   for (const Polygon& polygon : domain.polygons) {

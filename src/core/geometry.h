@@ -62,6 +62,25 @@ double perimeter(const Domain& domain);
 // last point joined to its first; a ring that repeats its first point alike): the
 // even-odd rule, p inside when the count over all the rings that bound an area is odd.
 bool crosses_odd(const std::vector<Point2>& ring, const Point2& p);
+// A ring's sides in bands of y (about eight to a band), for the questions of many points
+// about one ring in time proportional to the sides that cross the point's band. The ring
+// must outlive it.
+class EdgeBands {
+ public:
+  explicit EdgeBands(const std::vector<Point2>& ring);
+  // The sides (side i joins points i and i + 1, the last the first) whose y range meets
+  // the band of y: every side with y between its ends' y; none outside the ring's range.
+  std::pair<const std::size_t*, const std::size_t*> sides_at(double y) const;
+  // crosses_odd(ring, p), the same answer.
+  bool crosses_odd(const Point2& p) const;
+
+ private:
+  std::size_t band(double y) const;
+  const std::vector<Point2>& ring_;
+  double y0_ = 0, y1_ = 0;
+  std::size_t bands_ = 1;
+  std::vector<std::size_t> start_, sides_;
+};
 // Whether p lies inside the domain (even-odd over every ring: in a polygon, not in its
 // holes); a point on the boundary may go either way.
 bool domain_contains(const Domain& domain, const Point2& p);

@@ -17,41 +17,20 @@ std::string feature_name(const SourceLine& line) {
          (line.part ? " part " + std::to_string(line.part) : std::string());
 }
 
-// A ring (stored open) with its edges in bands of y, for "where does this point lie"
-// queries in time proportional to the edges that cross the point's band.
+// A ring (stored open) with its sides in bands of y (EdgeBands), for "where does this
+// point lie" queries in time proportional to the sides that cross the point's band.
 class RingLocator {
  public:
-  explicit RingLocator(const Ring& ring) : ring_(ring) {
-    const std::size_t n = ring.size();
-    y0_ = y1_ = ring[0].y;
-    for (const Point2& p : ring) y0_ = std::min(y0_, p.y), y1_ = std::max(y1_, p.y);
-    bands_ = std::max<std::size_t>(1, n / 8);
-    start_.assign(bands_ + 1, 0);
-    for (int pass = 0; pass < 2; ++pass) {
-      std::vector<std::size_t> fill(start_.begin(), start_.end() - 1);
-      for (std::size_t i = 0; i < n; ++i) {
-        const Point2 &a = ring[i], &b = ring[(i + 1) % n];
-        for (std::size_t k = band(std::min(a.y, b.y)); k <= band(std::max(a.y, b.y)); ++k) {
-          if (pass == 0)
-            ++start_[k + 1];
-          else
-            edges_[fill[k]++] = i;
-        }
-      }
-      if (pass == 0) {
-        for (std::size_t k = 0; k < bands_; ++k) start_[k + 1] += start_[k];
-        edges_.resize(start_[bands_]);
-      }
-    }
-  }
+  explicit RingLocator(const Ring& ring) : ring_(ring), bands_(ring) {}
 
   // 1 inside, 0 on the boundary, -1 outside.
   int locate(const Point2& p) const {
-    if (p.y < y0_ || p.y > y1_) return -1;
-    const std::size_t n = ring_.size(), k = band(p.y);
+    const auto [first, last] = bands_.sides_at(p.y);
+    if (first == last) return -1;
+    const std::size_t n = ring_.size();
     bool inside = false;
-    for (std::size_t e = start_[k]; e < start_[k + 1]; ++e) {
-      const Point2 &a = ring_[edges_[e]], &b = ring_[(edges_[e] + 1) % n];
+    for (const std::size_t* s = first; s != last; ++s) {
+      const Point2 &a = ring_[*s], &b = ring_[(*s + 1) % n];
       if (p == a || p == b) return 0;
       if ((a.y > p.y) != (b.y > p.y)) {
         const double cross = (b.x - a.x) * (p.y - a.y) - (b.y - a.y) * (p.x - a.x);
@@ -66,16 +45,8 @@ class RingLocator {
   }
 
  private:
-  std::size_t band(double y) const {
-    if (y1_ <= y0_) return 0;
-    const double t = (y - y0_) / (y1_ - y0_) * static_cast<double>(bands_);
-    return std::min(bands_ - 1, static_cast<std::size_t>(std::max(0.0, t)));
-  }
-
   const Ring& ring_;
-  double y0_ = 0, y1_ = 0;
-  std::size_t bands_ = 1;
-  std::vector<std::size_t> start_, edges_;
+  EdgeBands bands_;
 };
 
 // Whether `inner` lies inside the ring of `outer`, judged at its first vertex off that

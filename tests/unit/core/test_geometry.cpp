@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 using namespace isoquad;
 
@@ -99,4 +100,29 @@ TEST(Geometry, PolylineIndexFindsPointsNearAnySegment) {
   EXPECT_DOUBLE_EQ(distance_to_segment({2, 1}, {0, 0}, {4, 0}), 1.0);
   EXPECT_DOUBLE_EQ(distance_to_segment({7, 4}, {0, 0}, {4, 0}), 5.0);
   EXPECT_DOUBLE_EQ(distance_to_segment({3, 4}, {0, 0}, {0, 0}), 5.0);
+}
+
+// A ring's sides in bands answer crosses_odd as the ring does, point for point: a star
+// of 300 vertices (spikes and notches, horizontal sides, a repeated first point) and
+// points on a grid through it, on its vertices and at their heights.
+TEST(Geometry, EdgeBandsAnswerAsTheRing) {
+  std::vector<Point2> star;
+  for (int i = 0; i < 300; ++i) {
+    const double t = 2 * M_PI * i / 300, r = i % 7 == 0 ? 5.0 : (i % 2 ? 10.0 : 8.0);
+    star.push_back({std::round(r * std::cos(t) * 8) / 8, std::round(r * std::sin(t) * 8) / 8});
+  }
+  for (const bool closed : {false, true}) {
+    std::vector<Point2> ring = star;
+    if (closed) ring.push_back(ring.front());
+    const EdgeBands bands(ring);
+    for (double x = -11; x <= 11; x += 0.37)
+      for (double y = -11; y <= 11; y += 0.29)
+        ASSERT_EQ(bands.crosses_odd({x, y}), crosses_odd(ring, {x, y})) << x << " " << y;
+    for (const Point2& v : ring) {
+      ASSERT_EQ(bands.crosses_odd(v), crosses_odd(ring, v)) << v.x << " " << v.y;
+      for (double dx : {-0.5, 0.5})
+        ASSERT_EQ(bands.crosses_odd({v.x + dx, v.y}), crosses_odd(ring, {v.x + dx, v.y}));
+    }
+  }
+  EXPECT_FALSE(EdgeBands({}).crosses_odd({0, 0}));
 }
