@@ -8,14 +8,11 @@
 #include <set>
 #include <utility>
 
+#include "core/text.h"
+
 namespace isoquad {
 
 namespace {
-
-std::string lower(std::string s) {
-  for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return s;
-}
 
 // Levenshtein distance, one row at a time.
 std::size_t edit_distance(const std::string& a, const std::string& b) {
@@ -69,7 +66,7 @@ std::vector<std::size_t> field_mentions(const std::string& sql, const std::strin
     if (c == '\'') in_literal = !in_literal;
     outside += in_literal || c == '\'' ? ' ' : c;
   }
-  const std::string text = lower(outside), name = lower(field);
+  const std::string text = lower_case(outside), name = lower_case(field);
   auto word_char = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
   std::vector<std::size_t> mentions;
   for (std::size_t at = text.find(name); at != std::string::npos; at = text.find(name, at + 1)) {
@@ -86,7 +83,7 @@ std::vector<std::size_t> field_mentions(const std::string& sql, const std::strin
 bool after_like(const std::string& sql, std::size_t at) {
   std::size_t end = at;
   while (end > 0 && std::isspace(static_cast<unsigned char>(sql[end - 1]))) --end;
-  return end >= 4 && lower(sql.substr(end - 4, 4)) == "like" &&
+  return end >= 4 && lower_case(sql.substr(end - 4, 4)) == "like" &&
          (end == 4 || !std::isalnum(static_cast<unsigned char>(sql[end - 5])));
 }
 
@@ -99,11 +96,11 @@ std::string quote(const std::string& s) {
 std::vector<std::string> nearest_values(const std::string& typed,
                                         const std::vector<std::string>& candidates,
                                         std::size_t most) {
-  const std::string t = lower(typed);
+  const std::string t = lower_case(typed);
   const std::size_t limit = std::max<std::size_t>(1, t.size() / 3);
   std::vector<std::pair<std::size_t, std::string>> ranked;  // (rank, value)
   for (const std::string& c : candidates) {
-    const std::string l = lower(c);
+    const std::string l = lower_case(c);
     const std::size_t d = edit_distance(t, l);
     if (d <= limit)
       ranked.emplace_back(d, c);
@@ -170,9 +167,9 @@ std::string where_hint(OGRLayer& layer, const std::string& where, const std::str
 
   // OGR SQL compares text ignoring case.
   auto holds = [](const std::set<std::string>& values, const std::string& value) {
-    const std::string l = lower(value);
+    const std::string l = lower_case(value);
     return std::any_of(values.begin(), values.end(),
-                       [&](const std::string& v) { return lower(v) == l; });
+                       [&](const std::string& v) { return lower_case(v) == l; });
   };
   std::string hint;
   auto add = [&](const std::string& s) { hint += (hint.empty() ? "" : "; ") + s; };

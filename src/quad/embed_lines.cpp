@@ -129,7 +129,8 @@ class PolylineLocator {
     if (arc) *arc = best_arc;
     return best;
   }
-  const PolylineIndex& index() const { return index_; }
+  // The arc length from the line's start to its vertex i.
+  double arc_at(std::size_t i) const { return along_[i]; }
 
  private:
   const std::vector<Point2>& line_;
@@ -789,9 +790,6 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
   for (std::size_t k = 0; k < found.size(); ++k) {
     const std::vector<Point2>& run = runs[found_run[k]].points;
     const PolylineLocator locator(run);
-    std::vector<double> run_arc(run.size(), 0.0);
-    for (std::size_t i = 1; i < run.size(); ++i)
-      run_arc[i] = run_arc[i - 1] + distance(run[i - 1], run[i]);
     int previous = -1;  // the last vertex on the line
     double previous_arc = 0;
     for (int v : found[k]) {
@@ -809,7 +807,7 @@ EmbedStats embed_lines(const BackgroundMesh& bg, QuadMesh& m,
       if (previous >= 0 && arc > previous_arc) {
         double off = 0;
         for (std::size_t i = 0; i < run.size(); ++i)
-          if (run_arc[i] > previous_arc && run_arc[i] < arc)
+          if (locator.arc_at(i) > previous_arc && locator.arc_at(i) < arc)
             off = std::max(off, distance_to_segment(run[i], m.points[previous], m.points[v]));
         // Spanned where the line stays near the edge (a curve's chord), not where it
         // winds away between the edge's ends.
