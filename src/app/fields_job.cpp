@@ -10,6 +10,7 @@
 #include "app/summary.h"
 #include "core/error.h"
 #include "core/stage_clock.h"
+#include "core/text.h"
 #include "fields/align_lines.h"
 #include "fields/feature_size.h"
 #include "fields/size_cache.h"
@@ -281,9 +282,12 @@ std::string format_fields_summary(const FieldsResult& r) {
   char buf[256];
   os << "sizing:       ";
   for (std::size_t i = 0; i < r.sizing.sources.size(); ++i) os << (i ? " + " : "") << r.sizing.sources[i];
-  std::snprintf(buf, sizeof buf, "; hmin %.6g m, hmax %.6g m, gradation %.3g\n", r.sizing.hmin_m,
-                r.sizing.hmax_m, r.sizing.gradation);
-  os << buf;
+  // A constant size alone has no bounds: "none" rather than 0 and inf.
+  const std::string hmin = r.sizing.hmin_m > 0 ? printf_string("%.6g m", r.sizing.hmin_m) : "none";
+  const std::string hmax =
+      std::isfinite(r.sizing.hmax_m) ? printf_string("%.6g m", r.sizing.hmax_m) : "none";
+  os << "; hmin " << hmin << ", hmax " << hmax
+     << printf_string(", gradation %.3g\n", r.sizing.gradation);
   if (r.sizing.num_narrow_sites > 0) {
     std::snprintf(buf, sizeof buf,
                   "narrow sizes: one element across the channels, inlets and spits %.6g to %.6g m "

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "fields/feature_size.h"
 #include "fields/size_features.h"
 #include "gis/mesh_field.h"
@@ -101,7 +102,8 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
   gradation_ = params.gradation;
   gradient_step_m_ = std::max(1e-3, hmin_ > 0 ? 0.5 * hmin_ : 1.0);
 
-  if (params.constant_m) summary_.sources.push_back("constant " + std::to_string(*params.constant_m) + " m");
+  if (params.constant_m)
+    summary_.sources.push_back(printf_string("constant %.6g m", *params.constant_m));
   if (!params.expression.empty()) {
     expression_ = std::make_unique<Expression>();
     try {
