@@ -96,6 +96,7 @@ TilingResult build_tiling(BackgroundMesh& mesh, const SizingField& size,
   conform.shift = params.conform_shift;
   conform.rule = params.conform_rule;
   conform.graph = params.graph;
+  conform.verify_relocations = params.verify_relocations;
   const RelaxResult conformed =
       conform_tiling(mesh, geom, cross, tiling, conform, progress.slice(0.3, 0.55));
   finish("conform", start, conformed.iterations);

@@ -50,6 +50,7 @@ struct TilingParams {
   CornerBarrierParams barriers;  // --corner-barrier
   TilingStep stop_after = TilingStep::none;  // --stop-after; none: the whole job
   bool verify_repairs = false;               // RepairParams::verify_updates (tests)
+  bool verify_relocations = false;           // ConformParams::verify_relocations (tests)
 };
 
 // What one step did, for the report (--report) and the summary.

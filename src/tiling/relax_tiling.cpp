@@ -1,9 +1,13 @@
 #include "tiling/relax_tiling.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <optional>
+#include <string>
 
+#include "core/error.h"
 #include "tiling/choose_corners.h"
 #include "tiling/flood_tiling.h"
 
@@ -162,7 +166,44 @@ TileAdjacency adjacency_from_labels(const BackgroundMesh& mesh, const std::vecto
   return adjacent;
 }
 
-// ConformShiftRule::lattice. out holds the tile centroids on entry.
+// ConformShiftRule::lattice, one tile: its shift (dx, dy) from its centroid, from the tile
+// centroids cx, cy of it and its neighbours.
+struct LatticeShift {
+  double dx = 0.0, dy = 0.0, length = 0.0;
+};
+LatticeShift lattice_shift(const BackgroundMesh& mesh, const CrossField& cross,
+                           const std::vector<std::pair<int, double>>& adjacent, int t,
+                           int relocated, const std::vector<double>& cx,
+                           const std::vector<double>& cy, double pull) {
+  const double theta = frame_angle_at(mesh, cross, relocated);
+  const double ux = std::cos(theta), uy = std::sin(theta);
+  // Per side (+u, -u, +v, -v): the neighbour sharing the most boundary, and its offset
+  // across that side's axis.
+  double best_len[4] = {0, 0, 0, 0}, across[4] = {0, 0, 0, 0};
+  for (const auto& [j, len] : adjacent) {
+    const double dx = cx[j] - cx[t], dy = cy[j] - cy[t];
+    const double du = dx * ux + dy * uy, dv = dy * ux - dx * uy;
+    const int side = std::abs(du) >= std::abs(dv) ? (du > 0 ? 0 : 1) : (dv > 0 ? 2 : 3);
+    if (len > best_len[side]) {
+      best_len[side] = len;
+      across[side] = side < 2 ? dv : du;
+    }
+  }
+  double move_u = 0.0, move_v = 0.0;
+  int nu = 0, nv = 0;
+  for (int side = 0; side < 4; ++side) {
+    if (best_len[side] <= 0.0) continue;
+    if (side < 2)
+      move_v += across[side], ++nv;
+    else
+      move_u += across[side], ++nu;
+  }
+  if (nu > 0) move_u *= pull / nu;
+  if (nv > 0) move_v *= pull / nv;
+  return {move_u * ux - move_v * uy, move_u * uy + move_v * ux, std::hypot(move_u, move_v)};
+}
+
+// ConformShiftRule::lattice over every tile. out holds the tile centroids on entry.
 void lattice_targets(const BackgroundMesh& mesh, const CrossField& cross,
                      const TileAdjacency& adjacent, const std::vector<int>& relocated,
                      double pull, ConformTargets& out) {
@@ -170,32 +211,11 @@ void lattice_targets(const BackgroundMesh& mesh, const CrossField& cross,
   const std::vector<double> cx = out.x, cy = out.y;
   for (int t = 0; t < num_tiles; ++t) {
     if (relocated[t] < 0) continue;
-    const double theta = frame_angle_at(mesh, cross, relocated[t]);
-    const double ux = std::cos(theta), uy = std::sin(theta);
-    // Per side (+u, -u, +v, -v): the neighbour sharing the most boundary, and its offset
-    // across that side's axis.
-    double best_len[4] = {0, 0, 0, 0}, across[4] = {0, 0, 0, 0};
-    for (const auto& [j, len] : adjacent[t]) {
-      const double dx = cx[j] - cx[t], dy = cy[j] - cy[t];
-      const double du = dx * ux + dy * uy, dv = dy * ux - dx * uy;
-      const int side = std::abs(du) >= std::abs(dv) ? (du > 0 ? 0 : 1) : (dv > 0 ? 2 : 3);
-      if (len > best_len[side]) {
-        best_len[side] = len;
-        across[side] = side < 2 ? dv : du;
-      }
-    }
-    double move_u = 0.0, move_v = 0.0;
-    int nu = 0, nv = 0;
-    for (int side = 0; side < 4; ++side) {
-      if (best_len[side] <= 0.0) continue;
-      if (side < 2) move_v += across[side], ++nv;
-      else move_u += across[side], ++nu;
-    }
-    if (nu > 0) move_u *= pull / nu;
-    if (nv > 0) move_v *= pull / nv;
-    out.x[t] += move_u * ux - move_v * uy;
-    out.y[t] += move_u * uy + move_v * ux;
-    out.shift_m[t] = std::hypot(move_u, move_v);
+    const LatticeShift shift =
+        lattice_shift(mesh, cross, adjacent[t], t, relocated[t], cx, cy, pull);
+    out.x[t] += shift.dx;
+    out.y[t] += shift.dy;
+    out.shift_m[t] = shift.length;
   }
 }
 
@@ -323,6 +343,150 @@ ConformTargets targets_of(const BackgroundMesh& mesh, const TriangleGeometry& ge
   return out;
 }
 
+// One conforming iteration's relocated generators from every tile's target: the passes
+// over the whole mesh (targets_of, nearest_triangles_in_tiles).
+std::vector<int> relocate_all(const BackgroundMesh& mesh, const TriangleGeometry& geom,
+                              const CrossField& cross, const Tiling& current,
+                              const ConformParams& params) {
+  // The lattice rule needs only the tile adjacency; the others the tiles' meta-vertices.
+  MetaGraph graph;
+  if (params.rule != ConformShiftRule::lattice)
+    graph = build_meta_graph(mesh, current, params.graph);
+  const ConformTargets targets =
+      targets_of(mesh, geom, cross, current,
+                 params.rule == ConformShiftRule::lattice ? nullptr : &graph, params);
+  std::vector<int> next = nearest_triangles_in_tiles(geom, current.label, targets.x, targets.y);
+  for (int t = 0; t < current.num_tiles(); ++t)
+    if (settled(geom, current.generator[t], targets.x[t], targets.y[t], params.settle_h))
+      next[t] = current.generator[t];
+  return next;
+}
+
+// The lattice rule's relocations kept from one iteration to the next. A tile's target
+// depends on its triangles, the labels of the triangles round it and its neighbours'
+// centroids: it changes only where the flood changed the tile or a neighbour, and a
+// tile whose target stands keeps its generator (the triangle nearest that target, or
+// one within settle_h of it, since the iteration that moved it there). So only those
+// tiles are computed again, each over its own triangles in ascending order: the sums
+// and ties of relocate_all's passes over the mesh, and the same generators.
+class LatticeRelocator {
+ public:
+  LatticeRelocator(const BackgroundMesh& mesh, const TriangleGeometry& geom,
+                   const CrossField& cross, const ConformParams& params, int num_tiles)
+      : mesh_(mesh),
+        geom_(geom),
+        cross_(cross),
+        params_(params),
+        cx_(num_tiles, 0.0),
+        cy_(num_tiles, 0.0),
+        relocated_(num_tiles, -1),
+        adjacent_(num_tiles),
+        stamp_(geom.num_triangles(), 0) {}
+
+  // changed: the tiles the last flood may have changed (all on the first call).
+  std::vector<int> relocate(const Tiling& current, const std::vector<char>& changed) {
+    const int num_tiles = current.num_tiles();
+    // Tiles to compute again: the changed ones and their neighbours (by the adjacency of
+    // before the flood: a label that changed next to a tile belonged to a changed tile).
+    dirty_.clear();
+    for (int t = 0; t < num_tiles; ++t) {
+      bool dirty = changed[t] != 0;
+      for (std::size_t k = 0; k < adjacent_[t].size() && !dirty; ++k)
+        dirty = changed[adjacent_[t][k].first] != 0;
+      if (dirty) dirty_.push_back(t);
+    }
+    // Their triangles, ascending; the changed tiles' centroids and nearest triangles;
+    // every dirty tile's adjacency, as adjacency_from_labels lists it.
+    member_start_.assign(1, 0);
+    members_.clear();
+    for (int t : dirty_) {
+      collect(t, current);
+      const auto begin = members_.begin() + member_start_.back();
+      std::sort(begin, members_.end());
+      member_start_.push_back(static_cast<int>(members_.size()));
+      const int* first = members_.data() + member_start_[member_start_.size() - 2];
+      const int* last = members_.data() + members_.size();
+      if (changed[t]) {
+        double w = 0.0, sx = 0.0, sy = 0.0;
+        for (const int* f = first; f != last; ++f) {
+          const double a = geom_.area_m2[*f];
+          sx += a * geom_.cx[*f];
+          sy += a * geom_.cy[*f];
+          w += a;
+        }
+        cx_[t] = sx / w;
+        cy_[t] = sy / w;
+        relocated_[t] = nearest(first, last, cx_[t], cy_[t]);
+      }
+      adjacent_[t].clear();
+      for (const int* f = first; f != last; ++f)
+        for (int i = 0; i < 3; ++i) {
+          const int g = mesh_.neighbours[*f][i];
+          if (g < 0 || current.label[g] == t) continue;
+          const Point2 &a = mesh_.points[mesh_.triangles[*f][(i + 1) % 3]],
+                       &b = mesh_.points[mesh_.triangles[*f][(i + 2) % 3]];
+          add_shared(adjacent_, t, current.label[g], distance(a, b));
+        }
+    }
+    // Their targets and relocations; every other tile keeps its generator.
+    std::vector<int> next = current.generator;
+    for (std::size_t k = 0; k < dirty_.size(); ++k) {
+      const int t = dirty_[k];
+      const LatticeShift shift =
+          lattice_shift(mesh_, cross_, adjacent_[t], t, relocated_[t], cx_, cy_, params_.shift);
+      const double x = cx_[t] + shift.dx, y = cy_[t] + shift.dy;
+      if (settled(geom_, current.generator[t], x, y, params_.settle_h)) continue;
+      next[t] =
+          nearest(members_.data() + member_start_[k], members_.data() + member_start_[k + 1], x, y);
+    }
+    return next;
+  }
+
+ private:
+  // Appends tile t's triangles: a search from its generator (the tiles of a flood are
+  // connected and own their generator).
+  void collect(int t, const Tiling& current) {
+    ++current_;
+    const std::size_t start = members_.size();
+    const int g = current.generator[t];
+    stamp_[g] = current_;
+    members_.push_back(g);
+    for (std::size_t k = start; k < members_.size(); ++k)
+      for (int h : mesh_.neighbours[members_[k]])
+        if (h >= 0 && current.label[h] == t && stamp_[h] != current_) {
+          stamp_[h] = current_;
+          members_.push_back(h);
+        }
+  }
+
+  // The first of the triangles [first, last) (ascending) nearest (x, y), as
+  // nearest_triangles_in_tiles finds it.
+  int nearest(const int* first, const int* last, double x, double y) const {
+    int best = -1;
+    double best_d2 = std::numeric_limits<double>::infinity();
+    for (const int* f = first; f != last; ++f) {
+      const double dx = geom_.cx[*f] - x, dy = geom_.cy[*f] - y;
+      const double d2 = dx * dx + dy * dy;
+      if (d2 < best_d2) {
+        best_d2 = d2;
+        best = *f;
+      }
+    }
+    return best;
+  }
+
+  const BackgroundMesh& mesh_;
+  const TriangleGeometry& geom_;
+  const CrossField& cross_;
+  const ConformParams& params_;
+  std::vector<double> cx_, cy_;  // #T centroids
+  std::vector<int> relocated_;   // #T the triangle nearest the centroid
+  TileAdjacency adjacent_;       // #T
+  std::vector<int> dirty_, member_start_, members_;
+  std::vector<int> stamp_;  // #F
+  int current_ = 0;
+};
+
 }  // namespace
 
 ConformTargets conform_targets(const BackgroundMesh& mesh, const TriangleGeometry& geom,
@@ -346,19 +510,19 @@ RelaxResult conform_tiling(const BackgroundMesh& mesh, const TriangleGeometry& g
   std::vector<char> changed(num_tiles, 1);
   GeneratorHistory history;
   history.add(current.generator);
+  std::optional<LatticeRelocator> lattice;
+  if (params.rule == ConformShiftRule::lattice)
+    lattice.emplace(mesh, geom, cross, params, num_tiles);
   for (int it = 0; it < params.iters; ++it) {
     progress.report("conform", static_cast<double>(it) / params.iters);
-    // The lattice rule needs only the tile adjacency; the others the tiles' meta-vertices.
-    MetaGraph graph;
-    if (params.rule != ConformShiftRule::lattice) graph = build_meta_graph(mesh, current, params.graph);
-    const ConformTargets targets = targets_of(mesh, geom, cross, current,
-                                              params.rule == ConformShiftRule::lattice ? nullptr : &graph,
-                                              params);
-    std::vector<int> next =
-        nearest_triangles_in_tiles(geom, current.label, targets.x, targets.y);
-    for (int t = 0; t < num_tiles; ++t)
-      if (settled(geom, current.generator[t], targets.x[t], targets.y[t], params.settle_h))
-        next[t] = current.generator[t];
+    std::vector<int> next = lattice ? lattice->relocate(current, changed)
+                                    : relocate_all(mesh, geom, cross, current, params);
+    if (lattice && params.verify_relocations &&
+        next != relocate_all(mesh, geom, cross, current, params))
+      throw Error(ErrorClass::internal, "tiling",
+                  "conforming iteration " + std::to_string(it) +
+                      ": the lattice rule's relocations, kept from the iteration before, "
+                      "differ from those computed over every tile");
     ++r.iterations;
     if (stop_iterating(next, current.generator, history, r)) break;
     current.generator.swap(next);

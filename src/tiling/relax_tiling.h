@@ -72,6 +72,10 @@ struct ConformParams {
   ConformShiftRule rule = ConformShiftRule::close_shortest;
   MetaGraphParams graph;
   bool record_energy = false;
+  // The lattice rule computes again only the tiles the last flood changed and their
+  // neighbours; with this, every iteration's relocations are checked against those
+  // computed over every tile (slow; for tests). A difference is an internal error.
+  bool verify_relocations = false;
 };
 
 // Conforming relaxation (2.4): relaxation iterations whose relocation target is the

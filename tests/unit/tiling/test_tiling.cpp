@@ -377,6 +377,27 @@ TEST(Tiling, RepairsUpdateTheirStructuresAsTheLabelsWouldGiveThem) {
   }
 }
 
+TEST(Tiling, ConformingKeepsTheRelocationsOfTilesNothingChangedAround) {
+  // The lattice rule computes again only the tiles the last flood changed and their
+  // neighbours: on Brittany's water and France (automatic sizes) every iteration's
+  // relocations equal those computed over every tile (ConformParams::verify_relocations
+  // throws otherwise), and later iterations change a small part of the tiles.
+  FieldsOptions france;
+  france.front.read.path = sample("france.shp");
+  france.sizing.hmax_m = 28000.0;
+  for (const FieldsOptions& o : {brittany_water(), france}) {
+    FieldsResult f = build_fields(o);
+    tag_corners(f.mesh, f.size, CornerParams());
+    TilingParams p;
+    p.stop_after = TilingStep::conform;
+    p.verify_relocations = true;
+    TilingResult r;
+    EXPECT_NO_THROW(r = build_tiling(f.mesh, f.size, f.cross, p)) << o.front.read.path;
+    EXPECT_GE(step(r, "conform").iterations, 5) << o.front.read.path;
+    EXPECT_EQ(check_tiling(f.mesh, r.tiling, r.graph), "") << o.front.read.path;
+  }
+}
+
 TEST(Tiling, CheckTilingSaysWhereATileHasTooFewMetaVertices) {
   // One tile, and a second made of one triangle on the boundary away from the corners:
   // two meta-vertices (the ends of its boundary edge). The place is what a failed tiling
