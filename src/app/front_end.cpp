@@ -8,6 +8,7 @@
 
 #include "core/error.h"
 #include "core/text.h"
+#include "domain/exclude_areas.h"
 #include "domain/separate_rings.h"
 #include "gis/crs.h"
 #include "gis/mesh_outline.h"
@@ -302,6 +303,55 @@ void read_clip(const FrontEndOptions& options, ReadParams& read) {
   read.clip_name = "--clip '" + options.clip_path + "'";
 }
 
+// --exclude: its polygons in the area read (or all of them), in its CRS or else the
+// INPUT's, removed from the domain (in the meshing CRS).
+void exclude_polygons(const FrontEndOptions& options, const ReadParams& read,
+                      const CrsInfo& source_crs, FrontEndResult& result) {
+  const std::string what = "--exclude '" + options.exclude_path + "'";
+  ReadParams rp;
+  rp.path = options.exclude_path;
+  rp.layer = options.exclude_layer;
+  rp.where = options.exclude_where;
+  rp.default_crs = source_crs.wkt;
+  rp.repair = options.read.repair;
+  // The area read: --bbox (in --bbox-crs, else the INPUT's CRS) or --clip (in its own).
+  rp.bbox = read.bbox;
+  rp.clip = read.clip;
+  rp.clip_name = read.clip_name;
+  rp.bbox_crs = read.bbox_crs.empty() ? source_crs.wkt : read.bbox_crs;
+  rp.empty_area_ok = true;
+  SourceData areas;
+  try {
+    areas = read_polygons(rp);
+  } catch (const Error& e) {
+    throw read_error_of_option(e, "--exclude");
+  }
+  const CrsInfo meshing_crs{result.domain.crs_wkt, result.domain.crs_name};
+  const CrsTransform to_meshing(areas.crs, meshing_crs);
+  for (SourcePolygon& sp : areas.polygons)
+    for (Ring& ring : sp.rings)
+      if (to_meshing.transform(ring) >= 0)
+        throw Error(ErrorClass::crs, "read",
+                    what + ": feature " + std::to_string(sp.fid) +
+                        " cannot be transformed into the meshing CRS");
+  ExcludeParams ep;
+  ep.repair = options.read.repair;
+  ep.what = what;
+  const CrsTransform to_file(meshing_crs, areas.crs);
+  ep.to_file = [&](const Point2& p) {
+    Point2 q = p;
+    return to_file.transform(q) ? q : p;
+  };
+  const ExcludeResult r = exclude_areas(result.domain, areas.polygons, ep);
+  DomainSummary& s = result.summary;
+  s.exclude_path = options.exclude_path;
+  s.exclude_num_polygons = r.num_polygons;
+  s.exclude_num_repaired = r.num_repaired;
+  s.exclude_area_removed_m2 = r.area_removed_m2;
+  if (r.num_polygons == 0)
+    s.warnings.push_back(what + " has no polygon in the area meshed: nothing is excluded");
+}
+
 double open_line_tolerance(const FrontEndResult& result) {
   double extent = 0.0;
   for (const auto& line : result.open_boundary_lines)
@@ -318,6 +368,9 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   ReadParams read = options.read;
   read.empty_bbox_selection_ok = options.kind == DomainKind::water;
   read_clip(options, read);
+  if ((!options.exclude_layer.empty() || !options.exclude_where.empty()) &&
+      options.exclude_path.empty())
+    throw Error(ErrorClass::usage, "options", "--exclude-layer and --exclude-where need --exclude");
   std::vector<std::vector<Point2>> mesh_open_lines;
   const bool from_mesh = options.source.has_value() || is_mesh_file(read.path);
   if (!options.open_groups.empty() && (options.source || !from_mesh))
@@ -454,6 +507,8 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     result.embed_points = std::move(layer.points);
     result.embed_point_name = std::move(layer.names);
   }
+
+  if (!options.exclude_path.empty()) exclude_polygons(options, read, source.crs, result);
 
   progress.report("clean", 0.7);
   double h = options.target_size_m;

@@ -52,6 +52,12 @@ struct FrontEndOptions {
   std::string clip_path;
   std::string clip_layer;  // its layer (empty: the first with polygons)
   std::string clip_where;  // OGR SQL selecting its polygon among several
+  // A vector file of polygons whose area is not meshed (--exclude): removed from the
+  // domain, their edges land. In its CRS, else the INPUT's; only those in the area of
+  // --bbox or --clip are read.
+  std::string exclude_path;
+  std::string exclude_layer;  // its layer (empty: the only one, or the first with polygons)
+  std::string exclude_where;  // OGR SQL selecting some of its features
   // With a Gmsh .msh as INPUT: its physical groups of curves (names or tags) that are
   // open; empty: those named "open..." (open_boundaries_from_groups).
   std::vector<std::string> open_groups;
@@ -108,6 +114,11 @@ struct DomainSummary {
   std::string open_boundary_path;
   std::size_t open_boundary_num_lines = 0;
   double open_boundary_length_m = 0.0;
+  // --exclude: the file, the polygons removed, those of them repaired, the area.
+  std::string exclude_path;
+  std::size_t exclude_num_polygons = 0;
+  std::size_t exclude_num_repaired = 0;
+  double exclude_area_removed_m2 = 0.0;
   // The boundary's open parts (FrontEndResult::open_boundary_parts): how many, how long.
   std::size_t num_open_parts = 0;
   double open_parts_length_m = 0.0;

@@ -61,6 +61,12 @@ std::string format_domain_summary(const DomainSummary& s) {
       os << " (" << s.spikes.num_cut_at_base << " narrower, at the base of a spit)";
     os << ": " << num(s.spikes.area_removed_m2 / 1e6, 4) << " km2 removed\n";
   }
+  if (!s.exclude_path.empty()) {
+    os << "excluded:     " << s.exclude_num_polygons << " polygon(s) of " << s.exclude_path << ": "
+       << num(s.exclude_area_removed_m2 / 1e6, 6) << " km2 removed";
+    if (s.exclude_num_repaired) os << " (" << s.exclude_num_repaired << " repaired)";
+    os << "\n";
+  }
   if (s.num_rings_from_lines) {
     os << "lines:        " << s.num_line_features << " feature(s) of lines made "
        << s.num_rings_from_lines << " ring(s)";
@@ -114,6 +120,11 @@ void add_domain_summary(JsonWriter& j, const DomainSummary& s) {
       .value("num_repaired", s.num_repaired)
       .value("num_rings_closed", s.num_rings_closed)
       .value("num_points_removed", s.num_points_removed);
+  if (!s.exclude_path.empty())
+    j.value("exclude_path", s.exclude_path)
+        .value("exclude_num_polygons", s.exclude_num_polygons)
+        .value("exclude_num_repaired", s.exclude_num_repaired)
+        .value("exclude_area_removed_m2", s.exclude_area_removed_m2);
   if (s.raster) {
     const SourceData::Raster& r = *s.raster;
     j.begin_object("raster");

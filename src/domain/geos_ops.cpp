@@ -203,6 +203,13 @@ GeosGeometry GeosContext::difference(const GeosGeometry& a, const GeosGeometry& 
                "difference");
 }
 
+bool GeosContext::intersects(const GeosGeometry& a, const GeosGeometry& b) {
+  const char r = GEOSIntersects_r(state_->handle, static_cast<GEOSGeometry*>(a.get()),
+                                  static_cast<GEOSGeometry*>(b.get()));
+  if (r == 2) check(nullptr, "intersects");
+  return r == 1;
+}
+
 GeosGeometry GeosContext::clip_by_rect(const GeosGeometry& g, double xmin, double ymin, double xmax,
                                        double ymax) {
   return check(

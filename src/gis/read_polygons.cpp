@@ -143,6 +143,10 @@ class Reader {
       out_.crs = parse_crs(p_.src_crs, "--src-crs");
     } else {
       const OGRSpatialReference* srs = layer_->GetSpatialRef();
+      if (!srs && !p_.default_crs.empty()) {
+        out_.crs = parse_crs(p_.default_crs, "the CRS of " + quote(out_.layer_name));
+        return;
+      }
       if (!srs)
         fail(ErrorClass::crs, "layer " + quote(out_.layer_name) +
                                   " has no CRS; give the CRS of the coordinates with --src-crs");
@@ -260,6 +264,7 @@ class Reader {
                                   " make all miss the selection (" + selection.substr(1) + ")");
     if (out_.num_features == 0) {
       if (selection.empty()) fail(ErrorClass::input, "layer " + quote(out_.layer_name) + " is empty");
+      if (p_.empty_area_ok && (p_.bbox || p_.clip) && where_matches_elsewhere()) return;
       const std::string hint =
           p_.where.empty()
               ? ""
@@ -274,6 +279,12 @@ class Reader {
                                   std::to_string(num_other) + " with point or line geometry, " +
                                   std::to_string(num_empty) + " with none or an empty one" +
                                   (selection.empty() ? "" : ", after" + selection) + ")");
+  }
+
+  // Whether --where (or no --where) selects features of the layer outside the area read.
+  bool where_matches_elsewhere() {
+    layer_->SetSpatialFilter(nullptr);
+    return layer_->GetFeatureCount() > 0;
   }
 
   void add_geometry(long long fid, const OGRGeometry& g) {
@@ -549,6 +560,15 @@ std::vector<SelectionValue> selection_values(const ReadParams& params, const std
   return Reader(params).values(field);
 }
 
+Error read_error_of_option(const Error& e, const std::string& option) {
+  std::string message = e.message();
+  const std::string where = option + "-where";
+  for (std::size_t at = message.find("--where"); at != std::string::npos;
+       at = message.find("--where", at + where.size()))
+    message.replace(at, 7, where);
+  return Error(e.error_class(), e.stage(), option + ": " + message);
+}
+
 Ring read_clip_area(const std::string& path, const std::string& layer, const std::string& where,
                     std::string& crs_wkt) {
   ReadParams params;
@@ -558,12 +578,8 @@ Ring read_clip_area(const std::string& path, const std::string& layer, const std
   SourceData area;
   try {
     area = read_polygons(params);
-  } catch (const Error& e) {  // named as the options it came from
-    std::string message = e.message();
-    for (std::size_t at = message.find("--where"); at != std::string::npos;
-         at = message.find("--where", at + 12))
-      message.replace(at, 7, "--clip-where");
-    throw Error(e.error_class(), e.stage(), "--clip: " + message);
+  } catch (const Error& e) {
+    throw read_error_of_option(e, "--clip");
   }
   const std::string file = "--clip '" + path + "'";
   if (area.polygons.size() != 1)

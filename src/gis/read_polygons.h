@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
 #include "core/geometry.h"
 #include "gis/crs.h"
 
@@ -26,10 +27,14 @@ struct ReadParams {
   std::optional<Ring> clip;
   std::string clip_name;                    // how messages name it: "--clip 'aoi.gpkg'"
   std::string src_crs;                      // assigns the source CRS (overrides the file's)
+  std::string default_crs;                  // the CRS of a file that has none (else an error)
   bool repair = false;                      // accept unclosed and degenerate rings, fixing them
   // A --bbox selection (without --where) that matches no polygon gives no polygons and a
   // warning instead of an error: the water domain of open sea is the whole bbox.
   bool empty_bbox_selection_ok = false;
+  // Features that --where selects but none in the area of --bbox or --clip: no polygons,
+  // without an error (--exclude, where the area holds none of its polygons).
+  bool empty_area_ok = false;
   // A raster INPUT (read_raster_domain): the domain is where its values lie in
   // [zmin, zmax]; at least one is set. A window of more cells is read averaged.
   std::optional<double> zmin, zmax;
@@ -103,6 +108,10 @@ Ring selection_area(const ReadParams& p, const CrsInfo& crs, std::string& what);
 // The bbox rectangle as a ring with `per_side` points per side, so that it bends
 // correctly when projected.
 Ring densified_box(const std::array<double, 4>& bbox, int per_side);
+
+// An error of read_polygons on the file of an option other than INPUT (--clip,
+// --exclude), named as that option: "--clip: ...", its --where as --clip-where.
+Error read_error_of_option(const Error& e, const std::string& option);
 
 // The area of --clip: the one polygon of a vector file (any format with a CRS), of its
 // layer `layer` (empty: the first with polygons) and its features that `where` selects

@@ -1714,6 +1714,79 @@ TEST(CliOutputs, QuadsAsGeoJsonAndFlatGeobuf) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("custom.geojson")));
 }
 
+// --exclude: a breakwater drawn in UTM 30N (3 x 1 km) removed from the water box in
+// lon/lat: a land loop more, no node inside it; one outside the box excludes nothing and
+// changes no byte; a ring that crosses itself is refused, named by its feature.
+TEST(CliOutputs, ExcludeRemovesPolygonsDrawnInAnotherCrs) {
+  TempDir dir;
+  write_file(dir.file("breakwater.geojson"),
+             geojson_polygons(
+                 {"[[[388800,5353000],[391800,5353000],[391800,5354000],"
+                  "[388800,5354000],[388800,5353000]]]",
+                  "[[[300000,5000000],[301000,5000000],[301000,5001000],"
+                  "[300000,5001000],[300000,5000000]]]"},
+                 R"("crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32630"}},)"));
+  CliResult r = mesh_box_800(dir, {"-o", dir.file("plain.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = mesh_box_800(dir, {"--exclude", dir.file("breakwater.geojson"), "-o", dir.file("m.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The second polygon lies far south of the box: not read. 3 km2 (UTM's scale against
+  // the meshing CRS's: within 0.1%).
+  EXPECT_NE(
+      r.err.find("excluded:     1 polygon(s) of " + dir.file("breakwater.geojson") + ": 3.00"),
+      std::string::npos)
+      << r.err;
+  const Gr3 plain = parse_gr3(dir.file("plain.ll")), ll = parse_gr3(dir.file("m.ll"));
+  EXPECT_EQ(ll.land.size(), plain.land.size() + 1);
+  EXPECT_EQ(ll.open.size(), plain.open.size());
+  // The breakwater's corners in lon/lat (its sides stay straight to 1e-6 degree).
+  const std::vector<isoquad::Point2> wall = {{-4.500038, 48.320403},
+                                             {-4.459583, 48.320924},
+                                             {-4.45984, 48.329917},
+                                             {-4.500302, 48.329397}};
+  auto depth_inside = [&](double x, double y) {  // > 0 inside, in degrees from the sides
+    double d = 1e9;
+    for (std::size_t i = 0; i < wall.size(); ++i) {
+      const isoquad::Point2 &a = wall[i], &b = wall[(i + 1) % wall.size()];
+      d = std::min(d, ((b.x - a.x) * (y - a.y) - (b.y - a.y) * (x - a.x)) /
+                          std::hypot(b.x - a.x, b.y - a.y));
+    }
+    return d;
+  };
+  std::size_t on_wall = 0;
+  for (const auto& n : ll.nodes) {
+    const double d = depth_inside(n[0], n[1]);
+    EXPECT_LT(d, 1e-4) << n[0] << " " << n[1];
+    if (std::abs(d) < 1e-4) ++on_wall;
+  }
+  EXPECT_GE(on_wall, 8u);  // the breakwater's edge, 8 km long, meshed at 800 m
+  // Picked away by --exclude-where: nothing excluded, a warning, the same bytes.
+  r = mesh_box_800(dir, {"--exclude", dir.file("breakwater.geojson"), "--exclude-where",
+                         "name = 'f1'", "-o", dir.file("none.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("has no polygon in the area meshed: nothing is excluded"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(read_file(dir.file("none.gr3")), read_file(dir.file("plain.gr3")));
+  // Invalid: refused without --repair, with the feature and where, in the file's CRS.
+  write_file(
+      dir.file("bowtie.geojson"),
+      geojson_polygons({"[[[-4.5,48.32],[-4.46,48.33],[-4.46,48.32],[-4.5,48.33],[-4.5,48.32]]]"}));
+  r = mesh_box_800(dir, {"--exclude", dir.file("bowtie.geojson"), "-o", dir.file("x.gr3")});
+  EXPECT_EQ(r.exit_code, 3);
+  EXPECT_NE(r.err.find("--exclude '" + dir.file("bowtie.geojson") +
+                       "': feature 0 is invalid: Self-intersection at or near (-4.48"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("x.gr3")));
+  r = mesh_box_800(dir,
+                   {"--exclude", dir.file("bowtie.geojson"), "--repair", "-o", dir.file("x.gr3")});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  r = mesh_box_800(dir, {"--exclude-layer", "a", "-o", dir.file("y.gr3")});
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--exclude-layer and --exclude-where need --exclude"), std::string::npos)
+      << r.err;
+}
+
 // --clip: the water within a drawn polygon instead of a bbox. Every vertex of the mesh
 // inside the polygon; the open boundary on its edges, where they cross water; the land
 // inside it land. One polygon only, and not with --bbox.
