@@ -322,6 +322,14 @@ FieldsOptions brittany_water() {
   return o;
 }
 
+// Brittany's water (islands: rings, holes, enclosed tiles) and France at automatic sizes.
+std::vector<FieldsOptions> water_and_france() {
+  FieldsOptions france;
+  france.front.read.path = sample("france.shp");
+  france.sizing.hmax_m = 28000.0;
+  return {brittany_water(), france};
+}
+
 }  // namespace
 
 TEST(Tiling, CoastlineWithIslandsKeepsInvariants) {
@@ -340,10 +348,7 @@ TEST(Tiling, RepairsUpdateTheirStructuresAsTheLabelsWouldGiveThem) {
   // Brittany's water (islands: rings, holes, enclosed tiles) and France, automatic sizes:
   // every round's boundaries, sectors and fragments, updated from the last fix, equal
   // those found from all the labels (RepairParams::verify_updates throws otherwise).
-  FieldsOptions france;
-  france.front.read.path = sample("france.shp");
-  france.sizing.hmax_m = 28000.0;
-  for (const FieldsOptions& o : {brittany_water(), france}) {
+  for (const FieldsOptions& o : water_and_france()) {
     FieldsResult f = build_fields(o);
     tag_corners(f.mesh, f.size, CornerParams());
     TilingParams p;
@@ -381,11 +386,8 @@ TEST(Tiling, ConformingKeepsTheRelocationsOfTilesNothingChangedAround) {
   // The lattice rule computes again only the tiles the last flood changed and their
   // neighbours: on Brittany's water and France (automatic sizes) every iteration's
   // relocations equal those computed over every tile (ConformParams::verify_relocations
-  // throws otherwise), and later iterations change a small part of the tiles.
-  FieldsOptions france;
-  france.front.read.path = sample("france.shp");
-  france.sizing.hmax_m = 28000.0;
-  for (const FieldsOptions& o : {brittany_water(), france}) {
+  // throws otherwise).
+  for (const FieldsOptions& o : water_and_france()) {
     FieldsResult f = build_fields(o);
     tag_corners(f.mesh, f.size, CornerParams());
     TilingParams p;
