@@ -381,7 +381,7 @@ class LatticeRelocator {
         cy_(num_tiles, 0.0),
         relocated_(num_tiles, -1),
         adjacent_(num_tiles),
-        stamp_(geom.num_triangles(), 0) {}
+        seen_(geom.num_triangles(), 0) {}
 
   // changed: the tiles the last flood may have changed (all on the first call).
   std::vector<int> relocate(const Tiling& current, const std::vector<char>& changed) {
@@ -395,81 +395,70 @@ class LatticeRelocator {
         dirty = changed[adjacent_[t][k].first] != 0;
       if (dirty) dirty_.push_back(t);
     }
-    // Their triangles, ascending; the changed tiles' centroids and nearest triangles;
-    // every dirty tile's adjacency, as adjacency_from_labels lists it.
-    member_start_.assign(1, 0);
-    members_.clear();
+    // The changed tiles' centroids and nearest triangles (first: their neighbours'
+    // targets read them).
+    for (int t = 0; t < num_tiles; ++t) {
+      if (!changed[t]) continue;
+      collect(t, current);
+      double w = 0.0, sx = 0.0, sy = 0.0;
+      for (int f : members_) {
+        const double a = geom_.area_m2[f];
+        sx += a * geom_.cx[f];
+        sy += a * geom_.cy[f];
+        w += a;
+      }
+      cx_[t] = sx / w;
+      cy_[t] = sy / w;
+      relocated_[t] = nearest(cx_[t], cy_[t]);
+    }
+    // Every dirty tile's adjacency, as adjacency_from_labels lists it, its target and its
+    // relocation; every other tile keeps its generator.
+    std::vector<int> next = current.generator;
     for (int t : dirty_) {
       collect(t, current);
-      const auto begin = members_.begin() + member_start_.back();
-      std::sort(begin, members_.end());
-      member_start_.push_back(static_cast<int>(members_.size()));
-      const int* first = members_.data() + member_start_[member_start_.size() - 2];
-      const int* last = members_.data() + members_.size();
-      if (changed[t]) {
-        double w = 0.0, sx = 0.0, sy = 0.0;
-        for (const int* f = first; f != last; ++f) {
-          const double a = geom_.area_m2[*f];
-          sx += a * geom_.cx[*f];
-          sy += a * geom_.cy[*f];
-          w += a;
-        }
-        cx_[t] = sx / w;
-        cy_[t] = sy / w;
-        relocated_[t] = nearest(first, last, cx_[t], cy_[t]);
-      }
       adjacent_[t].clear();
-      for (const int* f = first; f != last; ++f)
+      for (int f : members_)
         for (int i = 0; i < 3; ++i) {
-          const int g = mesh_.neighbours[*f][i];
+          const int g = mesh_.neighbours[f][i];
           if (g < 0 || current.label[g] == t) continue;
-          const Point2 &a = mesh_.points[mesh_.triangles[*f][(i + 1) % 3]],
-                       &b = mesh_.points[mesh_.triangles[*f][(i + 2) % 3]];
+          const Point2 &a = mesh_.points[mesh_.triangles[f][(i + 1) % 3]],
+                       &b = mesh_.points[mesh_.triangles[f][(i + 2) % 3]];
           add_shared(adjacent_, t, current.label[g], distance(a, b));
         }
-    }
-    // Their targets and relocations; every other tile keeps its generator.
-    std::vector<int> next = current.generator;
-    for (std::size_t k = 0; k < dirty_.size(); ++k) {
-      const int t = dirty_[k];
       const LatticeShift shift =
           lattice_shift(mesh_, cross_, adjacent_[t], t, relocated_[t], cx_, cy_, params_.shift);
       const double x = cx_[t] + shift.dx, y = cy_[t] + shift.dy;
-      if (settled(geom_, current.generator[t], x, y, params_.settle_h)) continue;
-      next[t] =
-          nearest(members_.data() + member_start_[k], members_.data() + member_start_[k + 1], x, y);
+      if (!settled(geom_, current.generator[t], x, y, params_.settle_h)) next[t] = nearest(x, y);
     }
     return next;
   }
 
  private:
-  // Appends tile t's triangles: a search from its generator (the tiles of a flood are
-  // connected and own their generator).
+  // Tile t's triangles into members_, ascending: a search from its generator (the tiles
+  // of a flood are connected and own their generator), sorted.
   void collect(int t, const Tiling& current) {
-    ++current_;
-    const std::size_t start = members_.size();
-    const int g = current.generator[t];
-    stamp_[g] = current_;
-    members_.push_back(g);
-    for (std::size_t k = start; k < members_.size(); ++k)
+    members_.assign(1, current.generator[t]);
+    seen_[members_[0]] = 1;
+    for (std::size_t k = 0; k < members_.size(); ++k)
       for (int h : mesh_.neighbours[members_[k]])
-        if (h >= 0 && current.label[h] == t && stamp_[h] != current_) {
-          stamp_[h] = current_;
+        if (h >= 0 && !seen_[h] && current.label[h] == t) {
+          seen_[h] = 1;
           members_.push_back(h);
         }
+    for (int f : members_) seen_[f] = 0;
+    std::sort(members_.begin(), members_.end());
   }
 
-  // The first of the triangles [first, last) (ascending) nearest (x, y), as
-  // nearest_triangles_in_tiles finds it.
-  int nearest(const int* first, const int* last, double x, double y) const {
+  // The first of members_ nearest (x, y), as nearest_triangles_in_tiles finds it.
+  int nearest(double x, double y) const {
     int best = -1;
     double best_d2 = std::numeric_limits<double>::infinity();
-    for (const int* f = first; f != last; ++f) {
-      const double dx = geom_.cx[*f] - x, dy = geom_.cy[*f] - y;
+    for (int f : members_) {
+      const double dx = geom_.cx[f] - x, dy = geom_.cy[f] - y;
       const double d2 = dx * dx + dy * dy;
       if (d2 < best_d2) {
         best_d2 = d2;
-        best = *f;
+        best = f;
       }
     }
     return best;
@@ -482,9 +471,8 @@ class LatticeRelocator {
   std::vector<double> cx_, cy_;  // #T centroids
   std::vector<int> relocated_;   // #T the triangle nearest the centroid
   TileAdjacency adjacent_;       // #T
-  std::vector<int> dirty_, member_start_, members_;
-  std::vector<int> stamp_;  // #F
-  int current_ = 0;
+  std::vector<int> dirty_, members_;
+  std::vector<char> seen_;  // #F, 0 between searches
 };
 
 }  // namespace
