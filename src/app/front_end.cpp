@@ -305,8 +305,8 @@ void read_clip(const FrontEndOptions& options, ReadParams& read) {
 
 // --exclude: its polygons in the area read (or all of them), in its CRS or else the
 // INPUT's, removed from the domain (in the meshing CRS).
-void exclude_polygons(const FrontEndOptions& options, const ReadParams& read,
-                      const CrsInfo& source_crs, FrontEndResult& result) {
+std::vector<Polygon> exclude_polygons(const FrontEndOptions& options, const ReadParams& read,
+                                      const CrsInfo& source_crs, FrontEndResult& result) {
   const std::string what = "--exclude '" + options.exclude_path + "'";
   ReadParams rp;
   rp.path = options.exclude_path;
@@ -342,7 +342,7 @@ void exclude_polygons(const FrontEndOptions& options, const ReadParams& read,
     Point2 q = p;
     return to_file.transform(q) ? q : p;
   };
-  const ExcludeResult r = exclude_areas(result.domain, areas.polygons, ep);
+  ExcludeResult r = exclude_areas(result.domain, areas.polygons, ep);
   DomainSummary& s = result.summary;
   s.exclude_path = options.exclude_path;
   s.exclude_num_polygons = r.num_polygons;
@@ -350,6 +350,7 @@ void exclude_polygons(const FrontEndOptions& options, const ReadParams& read,
   s.exclude_area_removed_m2 = r.area_removed_m2;
   if (r.num_polygons == 0)
     s.warnings.push_back(what + " has no polygon in the area meshed: nothing is excluded");
+  return std::move(r.removed);
 }
 
 double open_line_tolerance(const FrontEndResult& result) {
@@ -508,7 +509,9 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     result.embed_point_name = std::move(layer.names);
   }
 
-  if (!options.exclude_path.empty()) exclude_polygons(options, read, source.crs, result);
+  const std::vector<Polygon> excluded = options.exclude_path.empty()
+                                            ? std::vector<Polygon>()
+                                            : exclude_polygons(options, read, source.crs, result);
 
   progress.report("clean", 0.7);
   double h = options.target_size_m;
@@ -675,6 +678,19 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     if (far > 0) s.warnings.push_back("--embed-points: " + outside + ": they get no vertex");
     result.embed_points = std::move(kept);
     result.embed_point_name = std::move(kept_names);
+  }
+  if (!excluded.empty()) {
+    // The cleaning and simplification may give some of it back: say so where they do.
+    const ExcludedMeshed back = excluded_area_meshed(result.domain, excluded);
+    s.exclude_area_meshed_m2 = back.area_m2;
+    s.exclude_num_meshed = back.num_mostly;
+    if (back.num_mostly > 0)
+      s.warnings.push_back(printf_string(
+          "--exclude '%s': %zu of its %zu area(s) lie mostly in the domain after all (%.4g km2 "
+          "of the %.4g removed): holes under --min-island-area (%.4g m2) are dropped and "
+          "pieces narrower than --min-width (%.4g m) filled in; lower those, or the sizes there",
+          options.exclude_path.c_str(), back.num_mostly, back.num_areas, back.area_m2 / 1e6,
+          s.exclude_area_removed_m2 / 1e6, s.min_island_area_m2, s.min_width_m));
   }
   s.num_components = result.domain.polygons.size();
   s.num_holes = num_holes(result.domain);

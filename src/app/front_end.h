@@ -119,6 +119,10 @@ struct DomainSummary {
   std::size_t exclude_num_polygons = 0;
   std::size_t exclude_num_repaired = 0;
   double exclude_area_removed_m2 = 0.0;
+  // Of that, what the domain holds again after its cleaning and simplification, and the
+  // areas that more than half of lies in it.
+  double exclude_area_meshed_m2 = 0.0;
+  std::size_t exclude_num_meshed = 0;
   // The boundary's open parts (FrontEndResult::open_boundary_parts): how many, how long.
   std::size_t num_open_parts = 0;
   double open_parts_length_m = 0.0;

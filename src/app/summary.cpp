@@ -124,7 +124,9 @@ void add_domain_summary(JsonWriter& j, const DomainSummary& s) {
     j.value("exclude_path", s.exclude_path)
         .value("exclude_num_polygons", s.exclude_num_polygons)
         .value("exclude_num_repaired", s.exclude_num_repaired)
-        .value("exclude_area_removed_m2", s.exclude_area_removed_m2);
+        .value("exclude_area_removed_m2", s.exclude_area_removed_m2)
+        .value("exclude_area_meshed_m2", s.exclude_area_meshed_m2)
+        .value("exclude_num_meshed", s.exclude_num_meshed);
   if (s.raster) {
     const SourceData::Raster& r = *s.raster;
     j.begin_object("raster");

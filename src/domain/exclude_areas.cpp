@@ -1,5 +1,7 @@
 #include "domain/exclude_areas.h"
 
+#include <array>
+
 #include "core/error.h"
 #include "domain/geos_ops.h"
 
@@ -37,6 +39,7 @@ ExcludeResult exclude_areas(Domain& domain, const std::vector<SourcePolygon>& ar
   if (parts.empty()) return result;
   GeosGeometry removed = geos.unary_union(geos.collection(std::move(parts)));
   GeosGeometry left = geos.difference(whole, removed);
+  result.removed = geos.polygons(geos.intersection(removed, whole));
   std::vector<Polygon> polygons = geos.polygons(left);
   remove_duplicates_and_spikes(polygons);
   if (polygons.empty())
@@ -51,6 +54,28 @@ ExcludeResult exclude_areas(Domain& domain, const std::vector<SourcePolygon>& ar
   domain.polygons = std::move(polygons);
   result.area_removed_m2 = area_before - area(domain);
   return result;
+}
+
+ExcludedMeshed excluded_area_meshed(const Domain& domain, const std::vector<Polygon>& removed) {
+  ExcludedMeshed out;
+  out.num_areas = removed.size();
+  if (removed.empty() || domain.polygons.empty()) return out;
+  GeosContext geos;
+  std::vector<GeosGeometry> parts;
+  for (const Polygon& p : removed) parts.push_back(geos.polygon_with_holes(p));
+  // One overlay for all, then each area against what came back (little, usually).
+  GeosGeometry back =
+      geos.intersection(geos.domain_multipolygon(domain), geos.multipolygon(std::move(parts)));
+  out.area_m2 = geos.area(back);
+  if (!(out.area_m2 > 0.0)) return out;
+  for (const Polygon& p : removed) {
+    const std::array<double, 4> box = bounding_box(p.outer);
+    GeosGeometry near = geos.clip_by_rect(back, box[0], box[1], box[2], box[3]);
+    if (geos.is_empty(near)) continue;
+    if (geos.area(geos.intersection(near, geos.polygon_with_holes(p))) > 0.5 * area(p))
+      ++out.num_mostly;
+  }
+  return out;
 }
 
 }  // namespace isoquad

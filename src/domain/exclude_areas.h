@@ -25,6 +25,8 @@ struct ExcludeResult {
   std::size_t num_polygons = 0;  // polygons removed: those that reach the domain
   std::size_t num_repaired = 0;  // of the file's polygons, fixed with repair
   double area_removed_m2 = 0.0;
+  // The area removed, as polygons (the polygons' union within the domain's box).
+  std::vector<Polygon> removed;
 };
 
 // Removes `areas` (polygons in the domain's CRS) from `domain`; the result is oriented,
@@ -33,5 +35,15 @@ struct ExcludeResult {
 // (its feature and where), or when nothing of the domain is left.
 ExcludeResult exclude_areas(Domain& domain, const std::vector<SourcePolygon>& areas,
                             const ExcludeParams& params);
+
+// What `domain` holds again of the areas removed (ExcludeResult::removed) once it has
+// been cleaned and simplified: holes under the least area dropped, pieces narrower than
+// min_width filled in, chords across small bends.
+struct ExcludedMeshed {
+  std::size_t num_areas = 0;   // the removed polygons
+  std::size_t num_mostly = 0;  // of which more than half lies in the domain again
+  double area_m2 = 0.0;        // of the removed polygons, in the domain again
+};
+ExcludedMeshed excluded_area_meshed(const Domain& domain, const std::vector<Polygon>& removed);
 
 }  // namespace isoquad

@@ -1767,6 +1767,18 @@ TEST(CliOutputs, ExcludeRemovesPolygonsDrawnInAnotherCrs) {
   EXPECT_NE(r.err.find("has no polygon in the area meshed: nothing is excluded"), std::string::npos)
       << r.err;
   EXPECT_EQ(read_file(dir.file("none.gr3")), read_file(dir.file("plain.gr3")));
+  // A pier of 100 x 100 m under quads of 800 m: a hole under --min-island-area, dropped,
+  // and said so.
+  write_file(dir.file("pier.geojson"),
+             geojson_polygons(
+                 {"[[[390000,5353000],[390100,5353000],[390100,5353100],"
+                  "[390000,5353100],[390000,5353000]]]"},
+                 R"("crs":{"type":"name","properties":{"name":"urn:ogc:def:crs:EPSG::32630"}},)"));
+  r = mesh_box_800(dir, {"--exclude", dir.file("pier.geojson"), "-o", dir.file("pier.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("1 of its 1 area(s) lie mostly in the domain after all"), std::string::npos)
+      << r.err;
+  EXPECT_EQ(parse_gr3(dir.file("pier.ll")).land.size(), plain.land.size());
   // Invalid: refused without --repair, with the feature and where, in the file's CRS.
   write_file(
       dir.file("bowtie.geojson"),

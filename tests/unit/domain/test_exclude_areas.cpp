@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/error.h"
@@ -96,4 +97,26 @@ TEST(ExcludeAreas, NothingLeftIsAnInputError) {
     EXPECT_EQ(e.error_class(), ErrorClass::input);
     EXPECT_NE(e.message().find("nothing is left to mesh"), std::string::npos) << e.message();
   }
+}
+
+TEST(ExcludeAreas, WhatTheDomainHoldsAgainIsMeasured) {
+  Domain d = square_domain(10000);
+  const ExcludeResult r =
+      exclude_areas(d, {box(2000, 2000, 4000, 4000), box(6000, 6000, 6100, 6100)}, {});
+  ASSERT_EQ(r.removed.size(), 2u);
+  ExcludedMeshed m = excluded_area_meshed(d, r.removed);
+  EXPECT_EQ(m.num_areas, 2u);
+  EXPECT_EQ(m.num_mostly, 0u);
+  EXPECT_NEAR(m.area_m2, 0.0, 1e-3);
+  // The small hole dropped (as the cleaning drops holes under the least area): that
+  // area lies in the domain again.
+  Domain filled = d;
+  auto& holes = filled.polygons[0].holes;
+  holes.erase(std::remove_if(holes.begin(), holes.end(),
+                             [](const Ring& h) { return std::abs(signed_area(h)) < 1e5; }),
+              holes.end());
+  ASSERT_EQ(holes.size(), 1u);
+  m = excluded_area_meshed(filled, r.removed);
+  EXPECT_EQ(m.num_mostly, 1u);
+  EXPECT_NEAR(m.area_m2, 1e4, 1e-3);
 }
