@@ -392,6 +392,11 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "region that fails does not stop the others, unless two fail with the same "
                   "usage error (the command's)")
       ->group("Selection");
+  cmd->add_option("--each-clip", m.each_clip,
+                  "A mesh per value of this attribute over the polygons of --clip (each value "
+                  "picks its area, as --clip-where would): one land or sea file, many areas "
+                  "(bays, estuaries, a model's nested domains); {} as with --each")
+      ->group("Selection");
   cmd->add_option("--jobs", m.jobs,
                   "With --each: regions meshed at once, each on its own thread (default 1). Every "
                   "region's files are the same; their summaries print in order as they finish, "

@@ -71,6 +71,7 @@ struct MeshArgs {
   std::string conform_rule = "lattice";
   std::string init = "front";
   std::string each;            // --each FIELD: a mesh per value of the attribute
+  std::string each_clip;       // --each-clip FIELD: a mesh per value over --clip's polygons
   std::string each_table;      // --each-table: the batch's table as CSV
   int jobs = 1;                // --jobs: regions of --each meshed at once
   bool skip_existing = false;  // --skip-existing: nothing to do where every output exists

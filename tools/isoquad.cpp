@@ -372,21 +372,70 @@ struct EachRegion {
   bool skip = false;  // mesh --skip-existing, and every output exists
 };
 
-// The regions of --each `field` over the selected features; Error(usage) for a path
-// without {}, Error(input) when no feature has a value.
+// A region per selected value: {} in the paths replaced by its file name.
+std::vector<EachRegion> regions_of(const CommonArgs& a, const FieldArgs& f,
+                                   const std::string& field,
+                                   const std::vector<SelectionValue>& selected) {
+  std::vector<std::string> values;
+  for (const SelectionValue& v : selected) values.push_back(v.text);
+  const std::vector<std::string> names = each_file_names(field, values);
+  std::vector<EachRegion> regions;
+  for (std::size_t k = 0; k < selected.size(); ++k) {
+    EachRegion r{a, f, values[k], names[k], selected[k].filter};
+    r.a.fe.align_optional = true;  // one file of --align lines for all the regions
+    for (std::string& o : r.a.outputs) o = fill_each_mark(o, names[k]);
+    r.a.report_path = fill_each_mark(r.a.report_path, names[k]);
+    r.f.plot_path = fill_each_mark(r.f.plot_path, names[k]);
+    regions.push_back(std::move(r));
+  }
+  return regions;
+}
+
+// --each-clip: a region per value of `field` over the polygons of --clip (and
+// --clip-where's), each the area that value picks.
+std::vector<EachRegion> each_clip_regions(const CommonArgs& a, const FieldArgs& f,
+                                          const CommonArgs& base, const std::string& field) {
+  if (base.fe.clip_path.empty())
+    throw Error(ErrorClass::usage, "options",
+                "--each-clip makes a mesh per polygon of --clip: give --clip");
+  ReadParams clip;
+  clip.path = base.fe.clip_path;
+  clip.layer = base.fe.clip_layer;
+  clip.where = base.fe.clip_where;
+  std::vector<SelectionValue> selected;
+  try {
+    selected = selection_values(clip, field);
+  } catch (const Error& e) {
+    throw read_error_of_option(e, "--clip");
+  }
+  if (selected.empty())
+    throw Error(ErrorClass::input, "read",
+                "--clip '" + clip.path + "': no selected feature has a value of '" + field + "'");
+  std::vector<EachRegion> regions = regions_of(a, f, field, selected);
+  for (EachRegion& r : regions)
+    r.a.fe.clip_where =
+        a.fe.clip_where.empty() ? r.filter : "(" + a.fe.clip_where + ") AND " + r.filter;
+  return regions;
+}
+
+// The regions of --each `field` over the selected features, or with `over_clip`
+// (--each-clip) over the polygons of --clip; Error(usage) for a path without {},
+// Error(input) when no feature has a value.
 std::vector<EachRegion> each_regions(const CommonArgs& a, const FieldArgs& f,
-                                     const std::string& field) {
+                                     const std::string& field, bool over_clip = false) {
   for (const std::string& o : a.outputs)
     if (!has_each_mark(o))
       throw Error(ErrorClass::usage, "options",
-                  "with --each, every -o needs {} for the value (e.g. -o out/{}.gpkg): '" + o +
-                      "' has none");
+                  "with --each or --each-clip, every -o needs {} for the value (e.g. -o "
+                  "out/{}.gpkg): '" +
+                      o + "' has none");
   if ((!a.report_path.empty() && !has_each_mark(a.report_path)) ||
       (!f.plot_path.empty() && !has_each_mark(f.plot_path)))
     throw Error(ErrorClass::usage, "options",
-                "with --each, --report and --plot need {} for the value");
+                "with --each or --each-clip, --report and --plot need {} for the value");
   CommonArgs base = a;
   finish_front_end_args(base);
+  if (over_clip) return each_clip_regions(a, f, base, field);
   if (is_mesh_file(base.fe.read.path))
     throw Error(ErrorClass::usage, "options",
                 "'" + base.fe.read.path +
@@ -404,26 +453,19 @@ std::vector<EachRegion> each_regions(const CommonArgs& a, const FieldArgs& f,
                 "'" + a.input + "': no selected feature has a value of '" + field + "'");
   std::vector<std::string> values;
   for (const SelectionValue& v : selected) values.push_back(v.text);
-  const std::vector<std::string> names = each_file_names(field, values);
-  std::vector<EachRegion> regions;
-  for (std::size_t k = 0; k < selected.size(); ++k) {
-    EachRegion r{a, f, values[k], names[k], selected[k].filter};
-    r.a.fe.align_optional = true;  // one file of --align lines for all the regions
-    for (std::string& o : r.a.outputs) o = fill_each_mark(o, names[k]);
-    r.a.report_path = fill_each_mark(r.a.report_path, names[k]);
-    r.f.plot_path = fill_each_mark(r.f.plot_path, names[k]);
+  std::vector<EachRegion> regions = regions_of(a, f, field, selected);
+  for (EachRegion& r : regions)
     r.a.fe.read.where =
         a.fe.read.where.empty() ? r.filter : "(" + a.fe.read.where + ") AND " + r.filter;
-    regions.push_back(std::move(r));
-  }
   return regions;
 }
 
 // Runs `run` for every region, `jobs` at once; a failure (Error) is reported in its
 // console and the others go on. Then the table (and with `table_path` its CSV) and the
 // total ("M of N `done`"); the exit code is the first failure's.
-int run_each(const CommonArgs& a, const std::string& field, std::vector<EachRegion>& regions,
-             int jobs, const std::string& done, const std::string& table_path,
+int run_each(const CommonArgs& a, const std::string& option, const std::string& field,
+             std::vector<EachRegion>& regions, int jobs, const std::string& done,
+             const std::string& table_path,
              const std::function<RegionOutcome(EachRegion&, const Console&)>& run) {
   if (has_each_mark(table_path))
     throw Error(ErrorClass::usage, "options",
@@ -455,7 +497,8 @@ int run_each(const CommonArgs& a, const std::string& field, std::vector<EachRegi
     write_text_file(table_path, format_each_csv(field, values, outcomes, done), a.overwrite);
   if (!a.quiet) std::cerr << format_each_table(field, values, outcomes);
   if (!a.quiet || exit)
-    std::cerr << (exit ? "isoquad: " : "") << format_each_total(field, values, outcomes, done);
+    std::cerr << (exit ? "isoquad: " : "")
+              << format_each_total(field, values, outcomes, done, option);
   std::cerr << std::flush;
   return exit;
 }
@@ -467,7 +510,12 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
   if (!m.stop_after.empty())
     throw Error(ErrorClass::usage, "options", "--each meshes: no --stop-after");
   const VectorDatasetPool pool;  // INPUT and the other vector files read once, not per region
-  std::vector<EachRegion> regions = each_regions(a, f, m.each);
+  if (!m.each.empty() && !m.each_clip.empty())
+    throw Error(ErrorClass::usage, "options",
+                "--each runs over INPUT's features, --each-clip over --clip's polygons: give one");
+  const bool over_clip = !m.each_clip.empty();
+  const std::string& field = over_clip ? m.each_clip : m.each;
+  std::vector<EachRegion> regions = each_regions(a, f, field, over_clip);
   // A resumed batch (--skip-existing) writes its table again.
   CommonArgs table_args = a;
   table_args.overwrite = a.overwrite || m.skip_existing;
@@ -479,8 +527,8 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
     if (!r.f.plot_path.empty()) check_output_path(r.f.plot_path, a.overwrite);
     check_mesh_outputs(mesh_outputs(r.a, m), mesh_write_options(m));
   }
-  return run_each(table_args, m.each, regions, m.jobs, "meshed", m.each_table,
-                  [&](EachRegion& r, const Console& console) {
+  return run_each(table_args, over_clip ? "--each-clip" : "--each", field, regions, m.jobs,
+                  "meshed", m.each_table, [&](EachRegion& r, const Console& console) {
                     if (r.skip) {
                       if (!a.quiet)
                         console.out << "skipped: every output exists (--skip-existing)\n";
@@ -489,7 +537,9 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
                       return outcome;
                     }
                     MeshArgs mm = m;
-                    return run_mesh(r.a, r.f, mm, command_line + " [--each: " + r.filter + "]",
+                    return run_mesh(r.a, r.f, mm,
+                                    command_line + (over_clip ? " [--each-clip: " : " [--each: ") +
+                                        r.filter + "]",
                                     console);
                   });
 }
@@ -507,7 +557,7 @@ int run_quality_each(const CommonArgs& a, const FieldArgs& f, const QualityArgs&
   const VectorDatasetPool pool;
   std::vector<EachRegion> regions = each_regions(a, f, q.each);
   if (!q.each_table.empty()) check_output_path(q.each_table, a.overwrite);
-  return run_each(a, q.each, regions, q.jobs, "measured", q.each_table,
+  return run_each(a, "--each", q.each, regions, q.jobs, "measured", q.each_table,
                   [&](EachRegion& r, const Console& console) {
                     QualityArgs qq = q;
                     qq.mesh_path = fill_each_mark(q.mesh_path, r.name);
@@ -612,7 +662,7 @@ int main(int argc, char** argv) {
     if (mesh_cmd->parsed() && mesh_extra.skip_existing && mesh_args.overwrite)
       throw Error(ErrorClass::usage, "options",
                   "--skip-existing keeps existing outputs, --overwrite replaces them: give one");
-    if (mesh_cmd->parsed() && !mesh_extra.each.empty())
+    if (mesh_cmd->parsed() && (!mesh_extra.each.empty() || !mesh_extra.each_clip.empty()))
       return run_mesh_each(mesh_args, mesh_field_args, mesh_extra, joined_command_line(argc, argv));
     if (mesh_cmd->parsed() && mesh_extra.jobs != 1)
       throw Error(ErrorClass::usage, "options",

@@ -148,7 +148,8 @@ std::string format_each_table(const std::string& field, const std::vector<std::s
 }
 
 std::string format_each_total(const std::string& field, const std::vector<std::string>& values,
-                              const std::vector<RegionOutcome>& outcomes, const std::string& done) {
+                              const std::vector<RegionOutcome>& outcomes, const std::string& done,
+                              const std::string& option) {
   std::vector<std::string> failed;
   std::size_t skipped = 0, not_run = 0;
   for (std::size_t k = 0; k < values.size(); ++k)
@@ -158,7 +159,7 @@ std::string format_each_total(const std::string& field, const std::vector<std::s
       ++not_run;
     else if (!outcomes[k].quality)
       failed.push_back(values[k]);
-  std::string line = "--each " + field + ": " +
+  std::string line = option + " " + field + ": " +
                      std::to_string(values.size() - failed.size() - skipped - not_run) + " of " +
                      std::to_string(values.size()) + " " + done;
   if (skipped) line += ", " + std::to_string(skipped) + " skipped (every output exists)";

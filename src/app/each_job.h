@@ -65,10 +65,12 @@ std::vector<RegionOutcome> run_regions(
 std::string format_each_table(const std::string& field, const std::vector<std::string>& values,
                               const std::vector<RegionOutcome>& outcomes);
 // "--each FIELD: M of N meshed[, S skipped (every output exists)][; failed: a, b]" (`done`
-// for "meshed"), and when the batch stopped, how many were not run and why.
+// for "meshed", `option` for "--each"), and when the batch stopped, how many were not run
+// and why.
 std::string format_each_total(const std::string& field, const std::vector<std::string>& values,
                               const std::vector<RegionOutcome>& outcomes,
-                              const std::string& done = "meshed");
+                              const std::string& done = "meshed",
+                              const std::string& option = "--each");
 // The table as CSV (--each-table), for a batch's records and golden files: a header, then
 // a row per region in the regions' order: its value, status (`done`, failed, skipped, not
 // run), exit code, quads, vertices, the quality figures (shares in percent) and the

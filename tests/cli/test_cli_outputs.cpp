@@ -1799,6 +1799,50 @@ TEST(CliOutputs, ExcludeRemovesPolygonsDrawnInAnotherCrs) {
       << r.err;
 }
 
+// --each-clip: a mesh per polygon of --clip from one land file, each the same bytes as
+// the run with --clip-where picking that polygon, every node in its area; the batch's
+// table a row per area.
+TEST(CliOutputs, EachClipMeshesEveryAreaOfTheClipFile) {
+  TempDir dir;
+  write_file(dir.file("areas.geojson"),
+             geojson_polygons({"[[[-4.6,48.2],[-4.35,48.18],[-4.3,48.33],[-4.45,48.4],[-4.62,"
+                               "48.33],[-4.6,48.2]]]",
+                               "[[[-4.58,48.21],[-4.5,48.21],[-4.5,48.26],[-4.58,48.26],[-4.58,"
+                               "48.21]]]"}));
+  CliResult r = run_cli({"mesh", water_input(dir), "--domain", "water", "--clip",
+                         dir.file("areas.geojson"), "--each-clip", "name", "--size", "800", "-q",
+                         "-o", dir.file("m_{}.gr3"), "--each-table", dir.file("areas.csv")},
+                        dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string table = read_file(dir.file("areas.csv"));
+  EXPECT_NE(table.find("\nf0,meshed,0,"), std::string::npos) << table;
+  EXPECT_NE(table.find("\nf1,meshed,0,"), std::string::npos) << table;
+  for (const std::string name : {"f0", "f1"}) {
+    r = run_cli({"mesh", water_input(dir), "--domain", "water", "--clip", dir.file("areas.geojson"),
+                 "--clip-where", "name = '" + name + "'", "--size", "800", "-q", "-o",
+                 dir.file("one_" + name + ".gr3")},
+                dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(read_file(dir.file("m_" + name + ".gr3")),
+              read_file(dir.file("one_" + name + ".gr3")))
+        << name;
+  }
+  // The rectangle's nodes within it (its edges to 1e-4 degree).
+  for (const auto& n : parse_gr3(dir.file("m_f1.ll")).nodes) {
+    EXPECT_GT(n[0], -4.58 - 1e-4);
+    EXPECT_LT(n[0], -4.5 + 1e-4);
+    EXPECT_GT(n[1], 48.21 - 1e-4);
+    EXPECT_LT(n[1], 48.26 + 1e-4);
+  }
+  r = run_cli({"mesh", water_input(dir), "--domain", "water", "--each-clip", "name", "-o",
+               dir.file("x_{}.gr3")},
+              dir);
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_NE(r.err.find("--each-clip makes a mesh per polygon of --clip: give --clip"),
+            std::string::npos)
+      << r.err;
+}
+
 // --clip: the water within a drawn polygon instead of a bbox. Every vertex of the mesh
 // inside the polygon; the open boundary on its edges, where they cross water; the land
 // inside it land. One polygon only, and not with --bbox.
