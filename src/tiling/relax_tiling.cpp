@@ -120,15 +120,6 @@ bool stop_iterating(const std::vector<int>& next, const std::vector<int>& genera
   return false;
 }
 
-double energy_of(const BackgroundMesh& mesh, const TriangleGeometry& geom,
-                 const CrossField& cross, const std::vector<int>& label,
-                 const std::vector<int>& generator) {
-  Tiling t;
-  t.label = label;
-  t.generator = generator;
-  return tiling_energy(mesh, geom, cross, t);
-}
-
 // Shared boundary length between adjacent tiles, per tile.
 using TileAdjacency = std::vector<std::vector<std::pair<int, double>>>;
 
@@ -236,7 +227,7 @@ RelaxResult relax_tiling(const BackgroundMesh& mesh, const TriangleGeometry& geo
   flood.flood(generator, label);
   r.num_flooded += flood.num_flooded();
   if (params.record_energy)
-    r.energy_history.push_back(energy_of(mesh, geom, cross, label, generator));
+    r.energy_history.push_back(tiling_energy(mesh, geom, cross, label, generator));
   std::vector<char> changed(num_tiles, 1);
   GeneratorHistory history;
   history.add(generator);
@@ -251,7 +242,7 @@ RelaxResult relax_tiling(const BackgroundMesh& mesh, const TriangleGeometry& geo
     r.num_flooded += flood.num_flooded();
     // The discrete iterations shuffle a few generators long after the energy stopped
     // falling: stop when it has not improved its best by energy_tol in `patience` floods.
-    const double e = energy_of(mesh, geom, cross, label, generator);
+    const double e = tiling_energy(mesh, geom, cross, label, generator);
     if (params.record_energy) r.energy_history.push_back(e);
     if (e < best_energy * (1.0 - params.energy_tol)) {
       best_energy = e;

@@ -82,11 +82,17 @@ std::vector<int> relocated_generators(const TriangleGeometry& geom, const std::v
 
 double tiling_energy(const BackgroundMesh& mesh, const TriangleGeometry& geom,
                      const CrossField& cross, const Tiling& tiling) {
-  const int num_tiles = tiling.num_tiles();
+  return tiling_energy(mesh, geom, cross, tiling.label, tiling.generator);
+}
+
+double tiling_energy(const BackgroundMesh& mesh, const TriangleGeometry& geom,
+                     const CrossField& cross, const std::vector<int>& label,
+                     const std::vector<int>& generator) {
+  const int num_tiles = static_cast<int>(generator.size());
   std::vector<double> gx(num_tiles, 0.0), gy(num_tiles, 0.0), cu(num_tiles, 1.0),
       su(num_tiles, 0.0);
   for (int t = 0; t < num_tiles; ++t) {
-    const int g = tiling.generator[t];
+    const int g = generator[t];
     if (g < 0) continue;
     gx[t] = geom.cx[g];
     gy[t] = geom.cy[g];
@@ -96,8 +102,8 @@ double tiling_energy(const BackgroundMesh& mesh, const TriangleGeometry& geom,
   }
   double h = 0.0;
   for (int f = 0; f < geom.num_triangles(); ++f) {
-    const int t = tiling.label[f];
-    if (tiling.generator[t] < 0) continue;
+    const int t = label[f];
+    if (generator[t] < 0) continue;
     const double dx = geom.cx[f] - gx[t], dy = geom.cy[f] - gy[t];
     const double d = std::max(std::abs(dx * cu[t] + dy * su[t]), std::abs(dy * cu[t] - dx * su[t]));
     h += geom.area_m2[f] * d;

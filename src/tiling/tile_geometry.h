@@ -64,6 +64,10 @@ std::vector<int> relocated_generators(const TriangleGeometry& geom, const std::v
 // the L-infinity distance in the cross frame of the tile's generator (rho = 1: m^3).
 double tiling_energy(const BackgroundMesh& mesh, const TriangleGeometry& geom,
                      const CrossField& cross, const Tiling& tiling);
+// The same of labels and generators held apart.
+double tiling_energy(const BackgroundMesh& mesh, const TriangleGeometry& geom,
+                     const CrossField& cross, const std::vector<int>& label,
+                     const std::vector<int>& generator);
 
 // Replaces missing (-1), out-of-tile and duplicate generators by the relocated triangle
 // of their tile, so that every tile owns its generator and no two tiles share one.
