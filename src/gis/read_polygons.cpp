@@ -184,7 +184,8 @@ class Reader {
     OGREnvelope ext;
     if (layer_->GetExtent(&ext, TRUE) == OGRERR_NONE) {
       reach_pole(ext);
-      if (std::none_of(filters_.begin(), filters_.end(),
+      if (!p_.empty_area_ok &&
+          std::none_of(filters_.begin(), filters_.end(),
                        [&](const OGREnvelope& f) { return f.Intersects(ext); }))
         fail(ErrorClass::input, what + " misses the data of layer " + quote(out_.layer_name) +
                                     " (extent " + fmt(ext.MinX) + "," + fmt(ext.MinY) + "," +

@@ -32,8 +32,9 @@ struct ReadParams {
   // A --bbox selection (without --where) that matches no polygon gives no polygons and a
   // warning instead of an error: the water domain of open sea is the whole bbox.
   bool empty_bbox_selection_ok = false;
-  // Features that --where selects but none in the area of --bbox or --clip: no polygons,
-  // without an error (--exclude, where the area holds none of its polygons).
+  // Features that --where selects but none in the area of --bbox or --clip (or an area
+  // that misses the layer's extent): no polygons, without an error (--exclude, where the
+  // area holds none of its polygons).
   bool empty_area_ok = false;
   // A raster INPUT (read_raster_domain): the domain is where its values lie in
   // [zmin, zmax]; at least one is set. A window of more cells is read averaged.

@@ -1767,6 +1767,13 @@ TEST(CliOutputs, ExcludeRemovesPolygonsDrawnInAnotherCrs) {
   EXPECT_NE(r.err.find("has no polygon in the area meshed: nothing is excluded"), std::string::npos)
       << r.err;
   EXPECT_EQ(read_file(dir.file("none.gr3")), read_file(dir.file("plain.gr3")));
+  // A file whose every polygon lies far from the box (its extent misses it): the same.
+  write_file(dir.file("far.geojson"),
+             geojson_polygons({"[[[10,10],[11,10],[11,11],[10,11],[10,10]]]"}));
+  r = mesh_box_800(dir, {"--exclude", dir.file("far.geojson"), "-o", dir.file("far.gr3")});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("nothing is excluded"), std::string::npos) << r.err;
+  EXPECT_EQ(read_file(dir.file("far.gr3")), read_file(dir.file("plain.gr3")));
   // A pier of 100 x 100 m under quads of 800 m: a hole under --min-island-area, dropped,
   // and said so.
   write_file(dir.file("pier.geojson"),
