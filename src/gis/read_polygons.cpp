@@ -274,6 +274,8 @@ class Reader {
                                   ") matched no feature in layer " + quote(out_.layer_name) +
                                   (hint.empty() ? "" : ": " + hint));
     }
+    // Polygons whose boxes reach the area but none of whose parts do.
+    if (out_.polygons.empty() && p_.empty_area_ok && (p_.bbox || p_.clip) && num_other == 0) return;
     if (out_.polygons.empty())
       fail(ErrorClass::input, "layer " + quote(out_.layer_name) + " has no polygons (" +
                                   std::to_string(out_.num_features) + " feature(s) read, " +

@@ -1774,6 +1774,27 @@ TEST(CliOutputs, ExcludeRemovesPolygonsDrawnInAnotherCrs) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("nothing is excluded"), std::string::npos) << r.err;
   EXPECT_EQ(read_file(dir.file("far.gr3")), read_file(dir.file("plain.gr3")));
+  // With --clip, a polygon within the area's box but outside the area (a triangle): read
+  // as far as its box, then left out, the same.
+  write_file(dir.file("triangle.geojson"),
+             geojson_polygons({"[[[-4.6,48.2],[-4.3,48.2],[-4.6,48.35],[-4.6,48.2]]]"}));
+  write_file(dir.file("corner.geojson"),
+             geojson_polygons({"[[[-4.33,48.32],[-4.31,48.32],[-4.31,48.34],[-4.33,48.34],"
+                               "[-4.33,48.32]]]"}));
+  const std::vector<std::string> clipped = {"mesh",     water_input(dir),
+                                            "--domain", "water",
+                                            "--clip",   dir.file("triangle.geojson"),
+                                            "--size",   "800",
+                                            "-q"};
+  std::vector<std::string> args = clipped;
+  args.insert(args.end(), {"-o", dir.file("tri.gr3")});
+  r = run_cli(args, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  args = clipped;
+  args.insert(args.end(), {"--exclude", dir.file("corner.geojson"), "-o", dir.file("tri_x.gr3")});
+  r = run_cli(args, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_file(dir.file("tri_x.gr3")), read_file(dir.file("tri.gr3")));
   // A pier of 100 x 100 m under quads of 800 m: a hole under --min-island-area, dropped,
   // and said so.
   write_file(dir.file("pier.geojson"),

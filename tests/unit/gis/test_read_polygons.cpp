@@ -272,6 +272,34 @@ TEST(ReadPolygons, ABboxReadsOnlyThePartsOfAMultipolygonThatReachIt) {
   EXPECT_EQ(d.num_rings_dropped, 0u);
 }
 
+TEST(ReadPolygons, AnAreaThatHoldsNoPolygonIsAnErrorUnlessEmptyAreasAreAllowed) {
+  // Polygons at 65 N; bboxes that miss them: beside their extent, within it but between
+  // them, and north of 60 N, where every feature is read and its parts selected (a
+  // polar bbox). With empty_area_ok (--exclude) each gives no polygons and no error.
+  TempDir dir;
+  const std::string path = dir.file("two.geojson");
+  write_file(path, geojson_polygons({"[[[-20,65],[-19,65],[-19,66],[-20,66],[-20,65]]]",
+                                     "[[[-10,65],[-9,65],[-9,66],[-10,66],[-10,65]]]"}));
+  ReadParams p = params(path);
+  for (const std::array<double, 4>& box :
+       {std::array<double, 4>{0, 40, 1, 41}, std::array<double, 4>{-16, 50, -14, 52},
+        std::array<double, 4>{-16, 65, -14, 66}}) {
+    p.bbox = box;
+    p.empty_area_ok = false;
+    read_error(p);
+    p.empty_area_ok = true;
+    SourceData d;
+    EXPECT_NO_THROW(d = read_polygons(p)) << box[0] << " " << box[1];
+    EXPECT_TRUE(d.polygons.empty());
+  }
+  // A filter that matches features elsewhere gives none; one that matches nothing
+  // anywhere is still an error.
+  p.where = "id = 1";
+  EXPECT_TRUE(read_polygons(p).polygons.empty());
+  p.where = "id = 99";
+  read_error(p);
+}
+
 TEST(ReadPolygons, ABboxAcrossTheAntimeridianReadsWhatLiesBeyondIt) {
   // Longitudes 176 to 182: the part drawn at -179.5 (181.5 the other way round) is read,
   // the one at -170 is not.
