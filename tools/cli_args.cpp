@@ -104,11 +104,13 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
                   "OGR SQL filter picking the area among the polygons of --clip, e.g. \"name = "
                   "'Loire'\"")
       ->group("Selection");
-  cmd->add_option("--exclude", a.fe.exclude_path,
-                  "Vector file (any format; in its CRS, else the INPUT's) of polygons whose area "
-                  "is not meshed: removed from the domain, their edges land (breakwaters, piers "
-                  "and jetties drawn apart from the coast, a lake's islands kept in another "
-                  "layer); with --bbox or --clip, only those in that area are read")
+  cmd->add_option(
+         "--exclude", a.fe.exclude_path,
+         "Vector file (any format; in its CRS, else the INPUT's) of polygons whose area "
+         "is not meshed: removed from the domain, their edges land (breakwaters, piers "
+         "and jetties drawn apart from the coast, a lake's islands kept in another "
+         "layer); only those in the area of --bbox or --clip (else in the domain's box) are "
+         "read")
       ->group("Selection");
   cmd->add_option("--exclude-layer", a.fe.exclude_layer,
                   "Layer of --exclude to read (default: the only one, or its first with polygons)")

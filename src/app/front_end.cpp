@@ -319,6 +319,15 @@ std::vector<Polygon> exclude_polygons(const FrontEndOptions& options, const Read
   rp.clip = read.clip;
   rp.clip_name = read.clip_name;
   rp.bbox_crs = read.bbox_crs.empty() ? source_crs.wkt : read.bbox_crs;
+  if (!rp.bbox && !rp.clip) {
+    // Without either, the domain's box (in the meshing CRS, 1% wider): a world file of
+    // lakes or structures is read only near the domain.
+    const std::array<double, 4> box = bounding_box(result.domain);
+    const double margin = 0.01 * std::hypot(box[2] - box[0], box[3] - box[1]);
+    rp.bbox =
+        std::array<double, 4>{box[0] - margin, box[1] - margin, box[2] + margin, box[3] + margin};
+    rp.bbox_crs = result.domain.crs_wkt;
+  }
   rp.empty_area_ok = true;
   SourceData areas;
   try {
@@ -327,13 +336,25 @@ std::vector<Polygon> exclude_polygons(const FrontEndOptions& options, const Read
     throw read_error_of_option(e, "--exclude");
   }
   const CrsInfo meshing_crs{result.domain.crs_wkt, result.domain.crs_name};
+  // A polygon that does not transform lies far from the domain (the meshing CRS is
+  // local to it: a lake at its antipode in a world file): skipped, and counted.
   const CrsTransform to_meshing(areas.crs, meshing_crs);
-  for (SourcePolygon& sp : areas.polygons)
-    for (Ring& ring : sp.rings)
-      if (to_meshing.transform(ring) >= 0)
-        throw Error(ErrorClass::crs, "read",
-                    what + ": feature " + std::to_string(sp.fid) +
-                        " cannot be transformed into the meshing CRS");
+  std::size_t skipped = 0;
+  std::vector<SourcePolygon> projected;
+  for (SourcePolygon& sp : areas.polygons) {
+    bool ok = true;
+    for (Ring& ring : sp.rings) ok = ok && to_meshing.transform(ring) < 0;
+    if (ok)
+      projected.push_back(std::move(sp));
+    else
+      ++skipped;
+  }
+  if (skipped > 0)
+    result.summary.warnings.push_back(
+        what + ": " + std::to_string(skipped) +
+        " polygon(s) cannot be transformed into the meshing CRS (far from the domain): "
+        "skipped");
+  areas.polygons = std::move(projected);
   ExcludeParams ep;
   ep.repair = options.read.repair;
   ep.what = what;

@@ -54,7 +54,7 @@ struct FrontEndOptions {
   std::string clip_where;  // OGR SQL selecting its polygon among several
   // A vector file of polygons whose area is not meshed (--exclude): removed from the
   // domain, their edges land. In its CRS, else the INPUT's; only those in the area of
-  // --bbox or --clip are read.
+  // --bbox or --clip (else in the domain's box) are read.
   std::string exclude_path;
   std::string exclude_layer;  // its layer (empty: the only one, or the first with polygons)
   std::string exclude_where;  // OGR SQL selecting some of its features
