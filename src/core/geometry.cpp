@@ -256,6 +256,16 @@ void sort_by_area(std::vector<Polygon>& polygons) {
   });
 }
 
+void normalize_polygons(std::vector<Polygon>& polygons) {
+  remove_duplicates_and_spikes(polygons);
+  for (Polygon& p : polygons) {
+    orient_polygon(p);
+    start_at_lowest_vertex(p.outer);
+    for (Ring& h : p.holes) start_at_lowest_vertex(h);
+  }
+  sort_by_area(polygons);
+}
+
 Point2 nearest_on_segment(const Point2& p, const Point2& a, const Point2& b) {
   const double dx = b.x - a.x, dy = b.y - a.y;
   const double len2 = dx * dx + dy * dy;

@@ -123,6 +123,12 @@ std::string format_point(const Point2& p);
 // order is deterministic and the largest comes first.
 void sort_by_area(std::vector<Polygon>& polygons);
 
+// The form every planar domain's polygons take: duplicate points and spikes removed
+// (remove_duplicates_and_spikes), outer rings counter-clockwise and holes clockwise,
+// each ring from its lowest vertex (so that nothing depends on where a source drew its
+// rings from), sorted by area.
+void normalize_polygons(std::vector<Polygon>& polygons);
+
 // Polylines (a closed one repeats its first point at the end), indexed by runs of
 // segments with their bounding boxes in a uniform grid, for "is this point near them"
 // queries. `slack` (empty, or one per line) widens the tolerance of each line by its

@@ -41,16 +41,10 @@ ExcludeResult exclude_areas(Domain& domain, const std::vector<SourcePolygon>& ar
   GeosGeometry left = geos.difference(whole, removed);
   result.removed = geos.polygons(geos.intersection(removed, whole));
   std::vector<Polygon> polygons = geos.polygons(left);
-  remove_duplicates_and_spikes(polygons);
+  normalize_polygons(polygons);
   if (polygons.empty())
     throw Error(ErrorClass::input, "domain",
                 params.what + ": its polygons cover the whole domain; nothing is left to mesh");
-  for (Polygon& p : polygons) {
-    orient_polygon(p);
-    start_at_lowest_vertex(p.outer);
-    for (Ring& h : p.holes) start_at_lowest_vertex(h);
-  }
-  sort_by_area(polygons);
   domain.polygons = std::move(polygons);
   result.area_removed_m2 = area_before - area(domain);
   return result;

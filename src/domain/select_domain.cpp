@@ -289,21 +289,13 @@ SelectResult select_domain(const SourceData& input, const SelectParams& params) 
   }
 
   result.polygons = geos.polygons(domain);
-  remove_duplicates_and_spikes(result.polygons);
-  for (Polygon& p : result.polygons) {
-    orient_polygon(p);
-    // Each ring from its lowest vertex: the domain, and so the mesh, does not depend on
-    // where the source drew its rings from.
-    start_at_lowest_vertex(p.outer);
-    for (Ring& h : p.holes) start_at_lowest_vertex(h);
-  }
+  normalize_polygons(result.polygons);
   if (result.polygons.empty())
     throw Error(ErrorClass::input, "domain",
                 file + ": the " + std::string(params.kind == DomainKind::water ? "water" : "land") +
                     " domain is empty" +
                     (params.kind == DomainKind::water ? " (the area is covered by the polygons)"
                                                       : " (no polygon inside the area)"));
-  sort_by_area(result.polygons);
   return result;
 }
 
