@@ -14,6 +14,7 @@
 #include "fields/align_lines.h"
 #include "fields/feature_size.h"
 #include "fields/size_cache.h"
+#include "gis/map_scale.h"
 #include "gis/raster_field.h"
 #include "mesh/locate.h"
 #include "plot/canvas.h"
@@ -83,6 +84,7 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
   SizingOracle oracle(domain, sizing);
   r.sizing = oracle.summary();
   r.depths = oracle.depths() && oracle.depths()->has_shareable() ? oracle.depths() : nullptr;
+  r.scale = oracle.scale();
   double smallest = std::numeric_limits<double>::infinity();
   const double estimate = estimate_num_quads(domain, [&oracle, &smallest](const Point2& p) {
     const double h = oracle(p);
@@ -268,8 +270,19 @@ FieldsResult build_fields(const FieldsOptions& options, const Progress& progress
   FieldsResult r;
   FrontEndOptions front = options.front;
   const SizingParams sizing = options.sizing;
-  if (front.target_size_m <= 0)
-    front.target_size_for_area = [sizing](double a) { return default_hmin_for_area(sizing, a); };
+  // The cleaning's and simplification's default scale: hmin, or --size, in the CRS's
+  // metres where the sizes are the ground's, at the smallest scale over the domain.
+  front.warn_distortion = !sizing.ground_sizes;
+  front.target_size_for_domain = [sizing, given = front.target_size_m](const Domain& domain) {
+    auto size = [&](double area_m2) {
+      return given > 0 ? given : default_hmin_for_area(sizing, area_m2);
+    };
+    if (const auto scale = sizing.ground_sizes ? domain_map_scale(domain) : nullptr) {
+      if (scale->max_error() > kGroundScaleTolerance)
+        return scale->min() * size(ground_area(domain, *scale));
+    }
+    return size(area(domain));
+  };
   StageClock clock(r.times);
   r.front = build_planar_domain(front, progress.slice(0.0, 0.2));
   clock.lap("front end");
@@ -288,6 +301,12 @@ std::string format_fields_summary(const FieldsResult& r) {
       std::isfinite(r.sizing.hmax_m) ? printf_string("%.6g m", r.sizing.hmax_m) : "none";
   os << "; hmin " << hmin << ", hmax " << hmax
      << printf_string(", gradation %.3g\n", r.sizing.gradation);
+  if (r.sizing.scale_applied)
+    os << printf_string(
+        "map scale:    the meshing CRS's scale is %.4g .. %.4g over the domain: the sizes in "
+        "metres are the ground's, multiplied by it (the size field below is in the CRS's "
+        "metres; --size-scale crs: sizes in its metres)\n",
+        r.sizing.scale_min, r.sizing.scale_max);
   if (r.sizing.num_narrow_sites > 0) {
     std::snprintf(buf, sizeof buf,
                   "narrow sizes: one element across the channels, inlets and spits %.6g to %.6g m "
@@ -349,7 +368,10 @@ void add_sizing_report(JsonWriter& j, const FieldsResult& r) {
       .value("gradation", r.sizing.gradation)
       .array("sources", r.sizing.sources)
       .value("narrow_medial_points", r.sizing.num_narrow_sites)
-      .value("predicted_quads", predicted_num_quads(r.mesh, r.size));
+      .value("predicted_quads", predicted_num_quads(r.mesh, r.size))
+      .value("map_scale_min", r.sizing.scale_min)
+      .value("map_scale_max", r.sizing.scale_max)
+      .value("map_scale_applied", r.sizing.scale_applied);
   if (r.sizing.time_step_s > 0)
     j.value("time_step_s", r.sizing.time_step_s)
         .value("courant", r.sizing.courant)

@@ -77,6 +77,9 @@ struct FieldsResult {
   // mesh, which a later attempt's sizes and the outputs' depths then share
   // (RasterStack's `share`).
   std::shared_ptr<const RasterStack> depths;
+  // The meshing CRS's scale the sizes were multiplied by (SizingOracle::scale), null when
+  // none was: the outputs' time steps measure the quads' widths on the ground with it.
+  std::shared_ptr<const MapScale> scale;
 };
 
 // Front end, then the background mesh refined to the sizing, the sizing field on its

@@ -535,8 +535,8 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
                                             : exclude_polygons(options, read, source.crs, result);
 
   progress.report("clean", 0.7);
-  double h = options.target_size_m;
-  if (h <= 0 && options.target_size_for_area) h = options.target_size_for_area(area(result.domain));
+  double h = options.target_size_for_domain ? options.target_size_for_domain(result.domain)
+                                            : options.target_size_m;
   // A raster knows nothing smaller than its cells: islands, holes and notches under a
   // cell are its noise, cleaned as such.
   if (source.raster) h = std::max(h, source.raster->cell_size_m);
@@ -718,7 +718,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   s.num_rings = s.num_components + s.num_holes;
   s.area_m2 = area(result.domain);
   s.perimeter_m = perimeter(result.domain);
-  if (s.local && s.local->max_distance_km > 2000.0)
+  if (options.warn_distortion && s.local && s.local->max_distance_km > 2000.0)
     s.warnings.push_back("the domain spans " + std::to_string(int(s.local->max_distance_km)) +
                          " km from its centre: the automatic projection distorts lengths by "
                          "more than 1%; consider --dst-crs");

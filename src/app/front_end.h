@@ -34,9 +34,12 @@ struct FrontEndOptions {
   // The smallest target element size in metres when known (0: unknown). It sets the
   // defaults of the two options below.
   double target_size_m = 0.0;
-  // When target_size_m is 0: derives it from the projected domain's area (the
-  // automatic sizing's default scale), or leaves it unknown when empty.
-  std::function<double(double area_m2)> target_size_for_area;
+  // When set, derives target_size_m from the projected domain (the automatic sizing's
+  // default scale from its area; ground sizes in the CRS's metres), in place of it.
+  std::function<double(const Domain& domain)> target_size_for_domain;
+  // Warn when the automatic projection distorts lengths by more than 1% (off where the
+  // sizes are the ground's: SizingParams::ground_sizes).
+  bool warn_distortion = true;
   std::optional<double> simplify_m;          // default: target_size_m / 4, or off
   // How near the simplification may bring two parts of the boundary that were farther
   // apart (SimplifyParams::clearance_m). Default: the simplification's tolerance; 0: off.

@@ -67,8 +67,8 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
                                 bounding_box(r.quads.points), r.fields.depths.get());
       written.depths = vertex_depths(rasters, r.quads, o.min_depth_m, o.depth_average);
       written.depths->kept = rasters.kept_text();
-      written.depths->time_steps =
-          courant_time_steps(r.quads, written.depths->depth, o.courant, o.time_step_s);
+      written.depths->time_steps = courant_time_steps(r.quads, written.depths->depth, o.courant,
+                                                      o.time_step_s, r.fields.scale.get());
       data.depth = std::move(written.depths->depth);
       data.time_step_s = std::move(written.depths->time_steps.per_quad_s);
     }

@@ -9,6 +9,7 @@
 
 #include "core/error.h"
 #include "fields/sizing_field.h"
+#include "gis/map_scale.h"
 
 namespace isoquad {
 
@@ -110,7 +111,7 @@ VertexDepths vertex_depths(const RasterStack& rasters, const QuadMesh& mesh,
 }
 
 TimeSteps courant_time_steps(const QuadMesh& mesh, const std::vector<double>& depth, double courant,
-                             double target_s) {
+                             double target_s, const MapScale* scale) {
   TimeSteps out;
   out.courant = courant;
   out.per_quad_s.assign(mesh.quads.size(), std::numeric_limits<double>::quiet_NaN());
@@ -121,7 +122,8 @@ TimeSteps courant_time_steps(const QuadMesh& mesh, const std::vector<double>& de
       const Point2 &a = mesh.points[c[i]], &b = mesh.points[c[(i + 1) % 4]];
       return Point2{(a.x + b.x) / 2, (a.y + b.y) / 2};
     };
-    const double width = std::min(distance(mid(0), mid(2)), distance(mid(1), mid(3)));
+    double width = std::min(distance(mid(0), mid(2)), distance(mid(1), mid(3)));
+    if (scale) width /= scale->at(quad_centroid(mesh, static_cast<int>(q)));
     double deepest = depth[c[0]];
     for (int v : c) deepest = std::max(deepest, depth[v]);
     if (!(deepest > 0)) continue;

@@ -13,6 +13,8 @@
 
 namespace isoquad {
 
+class MapScale;
+
 // The time step each quad allows an explicit model at a gravity-wave Courant number C:
 // C times its width (the shorter distance between the midpoints of opposite sides) over
 // sqrt(g d), d its deepest vertex's depth. (D-Flow FM's default CFLMax is 0.7.)
@@ -46,7 +48,10 @@ VertexDepths vertex_depths(const RasterStack& rasters, const QuadMesh& mesh,
                            std::optional<double> min_depth_m, bool average = false);
 
 // `depth`: #P, as written. `target_s` > 0: count the wet quads whose time step is under it.
+// `scale`: the meshing CRS's, by which the widths are divided (their length on the ground)
+// where the sizes were multiplied by it.
 TimeSteps courant_time_steps(const QuadMesh& mesh, const std::vector<double>& depth,
-                             double courant = 1.0, double target_s = 0.0);
+                             double courant = 1.0, double target_s = 0.0,
+                             const MapScale* scale = nullptr);
 
 }  // namespace isoquad

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "gis/map_scale.h"
 
 namespace isoquad {
 
@@ -210,10 +211,14 @@ BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSize
     if (CGAL::determinant(b.x() - a.x(), b.y() - a.y(), c.x() - a.x(), c.y() - a.y()) == 0.0)
       continue;
     const double spread = enclosing_radius(a, b, c);
-    if (spread >= params.lambda_m) {
+    // The widths are the ground's: in the CRS, times its scale there.
+    const double scale =
+        params.scale ? params.scale->at({(a.x() + b.x() + c.x()) / 3, (a.y() + b.y() + c.y()) / 3})
+                     : 1.0;
+    if (spread >= params.lambda_m * scale) {
       medial.push_back(CGAL::circumcenter(a, b, c));
       medial_radius.push_back(std::sqrt(CGAL::squared_radius(a, b, c)));
-    } else if (with_narrow && spread >= params.narrow_lambda_m) {
+    } else if (with_narrow && spread >= params.narrow_lambda_m * scale) {
       // A narrow channel or inlet of the domain (not of its outside: a land domain's
       // estuaries are no place for its quads): the triangle is on the inner side of the
       // samples' segments, for two of its three vertices at least.
@@ -229,7 +234,7 @@ BoundaryFeatureSize::BoundaryFeatureSize(const Domain& domain, const FeatureSize
       const double apart = std::max({along(ia, ib), along(ib, ic), along(ic, ia)});
       if (apart < 6.0 * spread) continue;
       const K::Point_2 centre = CGAL::circumcenter(a, b, c);
-      const double h = std::max(params.narrow_floor_m,
+      const double h = std::max(params.narrow_floor_m * scale,
                                 size_per_lfs_one * std::sqrt(CGAL::squared_radius(a, b, c)));
       // On the centre line and on both banks, as the samples and medial points below.
       narrow_sites.push_back({centre.x(), centre.y(), h});

@@ -19,6 +19,8 @@
 
 namespace isoquad {
 
+class MapScale;
+
 struct FeatureSizeParams {
   double lambda_m = 0.0;          // medial-axis filter radius (> 0)
   double sample_spacing_m = 0.0;  // boundary resampling; 0: lambda / 2
@@ -29,6 +31,10 @@ struct FeatureSizeParams {
   // get sizes of their own, one element across, down to narrow_floor_m: narrow() below.
   double narrow_lambda_m = 0.0;
   double narrow_floor_m = 0.0;
+  // The meshing CRS's scale where sizes are the ground's (map_scale.h; null: 1): the
+  // widths above are the ground's, times the scale where a feature is; spacing, grid and
+  // max_size_m are the CRS's own.
+  const MapScale* scale = nullptr;
 };
 
 class BoundaryFeatureSize {

@@ -14,6 +14,7 @@
 #include "core/text.h"
 #include "fields/feature_size.h"
 #include "fields/size_features.h"
+#include "gis/map_scale.h"
 #include "gis/mesh_field.h"
 #include "gis/raster_field.h"
 #include "gis/read_size_features.h"
@@ -87,13 +88,22 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
   const CrsInfo crs{domain.crs_wkt, domain.crs_name, false, true, 1.0};
   const std::array<double, 4> extent = bounding_box(domain);  // rasters: only that part read
 
+  if (auto scale = params.ground_sizes ? domain_map_scale(domain) : nullptr) {
+    summary_.scale_min = scale->min();
+    summary_.scale_max = scale->max();
+    summary_.scale_applied = scale->max_error() > kGroundScaleTolerance;
+    if (summary_.scale_applied) scale_ = std::move(scale);
+  }
+
   const bool automatic = params.automatic || !has_explicit_source(params);
   hmax_ = params.hmax_m > 0 ? params.hmax_m : std::numeric_limits<double>::infinity();
   hmin_ = params.hmin_m;
   if (automatic) {
     // Without a bound the automatic field has no scale: default to the size that would
-    // give about 2000 quads over the domain, and hmin a tenth of hmax.
-    if (!std::isfinite(hmax_)) hmax_ = std::sqrt(area(domain) / 2000.0);
+    // give about 2000 quads over the domain (its area on the ground), and hmin a tenth of
+    // hmax.
+    if (!std::isfinite(hmax_))
+      hmax_ = std::sqrt((scale_ ? ground_area(domain, *scale_) : area(domain)) / 2000.0);
     if (hmin_ <= 0) hmin_ = hmax_ / 10.0;
   }
   summary_.hmin_m = hmin_;
@@ -195,7 +205,7 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
     FeatureSizeParams fp;
     fp.cells_across = params.cells_across;
     fp.gradation = params.gradation;
-    fp.max_size_m = hmax_;
+    fp.max_size_m = hmax_ * (scale_ ? scale_->max() : 1.0);  // the CRS's metres
     // Channels narrower than cells_across * hmin cannot be resolved at hmin: the medial
     // axis below that scale is left out of the feature size. Without more, such a
     // channel takes the sizes around it, up to hmax, and quads wider than it fold across
@@ -204,6 +214,10 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
     fp.lambda_m = 0.5 * params.cells_across * hmin_;
     fp.narrow_lambda_m = params.narrow_sizes ? 0.25 * hmin_ : 0.0;
     fp.narrow_floor_m = 0.5 * hmin_;
+    if (scale_) {
+      fp.scale = scale_.get();
+      fp.sample_spacing_m = 0.5 * fp.lambda_m * scale_->min();
+    }
     automatic_ = std::make_unique<BoundaryFeatureSize>(domain, fp);
     summary_.num_boundary_samples = automatic_->samples().size();
     summary_.num_narrow_sites = automatic_->num_narrow_sites();
@@ -221,17 +235,55 @@ bool SizingOracle::is_uniform() const {
          !bathymetry_ && !features_ && params_.refinements.empty();
 }
 
+std::shared_ptr<const MapScale> domain_map_scale(const Domain& domain) {
+  if (domain.crs_wkt.empty()) return nullptr;  // a plane (tests' domains)
+  const CrsInfo crs{domain.crs_wkt, domain.crs_name, false, true, 1.0};
+  const std::array<double, 4> box = bounding_box(domain);
+  // A coarse look first: the fine grid only where the scale may matter.
+  auto scale = std::make_shared<const MapScale>(crs, box, 8);
+  if (scale->max_error() > 0.5 * kGroundScaleTolerance)
+    scale = std::make_shared<const MapScale>(crs, box, 64);
+  return scale;
+}
+
+double ground_area(const Domain& domain, const MapScale& scale) {
+  // The mean of 1 / k^2 over the grid's cells inside the domain, times its area in the
+  // CRS; a domain of parts smaller than the cells (islands spread over an ocean) has none
+  // inside: each part's area over the square of the scale at its box's centre.
+  const double cells = estimate_num_quads(domain, [](const Point2&) { return 1.0; });
+  if (cells > 0)
+    return area(domain) *
+           estimate_num_quads(domain, [&scale](const Point2& p) { return scale.at(p); }) / cells;
+  double sum = 0.0;
+  for (const Polygon& polygon : domain.polygons) {
+    double x0 = INFINITY, y0 = INFINITY, x1 = -INFINITY, y1 = -INFINITY;
+    for (const Point2& p : polygon.outer)
+      x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x),
+      y1 = std::max(y1, p.y);
+    const double k = scale.at({0.5 * (x0 + x1), 0.5 * (y0 + y1)});
+    sum += area(polygon) / (k * k);
+  }
+  return sum;
+}
+
+double SizingOracle::scale_at(const Point2& p) const {
+  return scale_ ? scale_->at(p) : 1.0;
+}
+
 double SizingOracle::operator()(const Point2& p) const {
+  // Sizes on the ground until the end; the automatic ones are the CRS's, divided by its
+  // scale k.
+  const double k = scale_at(p);
   double h = std::numeric_limits<double>::infinity();
   if (params_.constant_m) h = std::min(h, *params_.constant_m);
-  if (automatic_) h = std::min(h, (*automatic_)(p));
+  if (automatic_) h = std::min(h, (*automatic_)(p) / k);
   const double raw = depth_at(p);
   // An expression in the depth holds where a raster gives one.
   if (expression_ && !(expression_->uses_depth && std::isnan(raw))) {
     expression_->x = p.x;
     expression_->y = p.y;
     expression_->d = raw;
-    if (coast_) expression_->c = (*coast_)(p);
+    if (coast_) expression_->c = (*coast_)(p) / k;  // on the ground, at the scale here
     if (expression_->to_lonlat) {
       Point2 q = p;
       if (!expression_->to_lonlat->transform(q))
@@ -266,8 +318,8 @@ double SizingOracle::operator()(const Point2& p) const {
     }
   }
   if (mesh_sizes_) {
-    const double v = mesh_sizes_->sample(p);
-    if (v > 0) h = std::min(h, v);
+    const double v = mesh_sizes_->sample(p);  // its sides in the CRS
+    if (v > 0) h = std::min(h, v / k);
   }
   if (bathymetry_) {
     if (!std::isnan(raw)) {
@@ -279,7 +331,7 @@ double SizingOracle::operator()(const Point2& p) const {
         const double s = gradient_step_m_;
         const double dx = bathymetry_->sample({p.x + s, p.y}) - bathymetry_->sample({p.x - s, p.y});
         const double dy = bathymetry_->sample({p.x, p.y + s}) - bathymetry_->sample({p.x, p.y - s});
-        const double grad = std::hypot(dx, dy) / (2 * s);
+        const double grad = std::hypot(dx, dy) / (2 * s) * k;  // per metre on the ground
         if (std::isfinite(grad) && grad > 0)
           h = std::min(h, 2 * M_PI * d / (params_.slope_factor * grad));
       }
@@ -291,8 +343,8 @@ double SizingOracle::operator()(const Point2& p) const {
                 "no size at " + format_point(p) +
                     " (outside every raster or mesh of sizes); give --hmax or --size");
   h = std::clamp(h, hmin_, hmax_);
-  if (automatic_) h = std::min(h, automatic_->narrow(p));
-  return limit_locally(p, std::max(h, raw_time_step_floor(raw)));
+  if (automatic_) h = std::min(h, automatic_->narrow(p) / k);
+  return limit_locally(p, k * std::max(h, raw_time_step_floor(raw)), k);
 }
 
 double SizingOracle::depth_at(const Point2& p) const {
@@ -307,11 +359,13 @@ double SizingOracle::raw_time_step_floor(double depth) const {
 
 double SizingOracle::time_step_floor(const Point2& p) const {
   const double floor = raw_time_step_floor(depth_at(p));
-  return floor > 0 ? limit_locally(p, floor) : 0.0;
+  if (!(floor > 0)) return 0.0;
+  const double k = scale_at(p);
+  return limit_locally(p, k * floor, k);
 }
 
-double SizingOracle::limit_locally(const Point2& p, double h) const {
-  if (features_) h = features_->limit(p, h);
+double SizingOracle::limit_locally(const Point2& p, double h, double k) const {
+  if (features_) h = k * features_->limit(p, h / k);
   for (const LocalRefinement& r : params_.refinements) {
     const double d = std::hypot(p.x - r.centre.x, p.y - r.centre.y);
     h = std::min(h, r.size_m + gradation_ * std::max(0.0, d - r.radius_m));

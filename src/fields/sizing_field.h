@@ -21,6 +21,7 @@ struct BackgroundMesh;
 class BoundaryFeatureSize;
 class CoastDistance;
 class FeatureSizes;
+class MapScale;
 
 constexpr double kGravity = 9.81;  // m/s2 (the wavelength rule, the time steps of the outputs)
 
@@ -86,7 +87,26 @@ struct SizingParams {
   double hmax_m = 0.0;        // --hmax (0: none, or the automatic default)
   double gradation = 0.2;     // --gradation K: |h(x) - h(y)| <= K |x - y|
   std::vector<LocalRefinement> refinements;
+  // --size-scale: true (ground), sizes in metres are lengths on the ground, multiplied by
+  // the meshing CRS's scale (map_scale.h) where it differs from 1 by more than
+  // kGroundScaleTolerance somewhere in the domain's box; false (crs), the CRS's metres.
+  // The gradation and the local refinements are the CRS's either way.
+  bool ground_sizes = true;
 };
+
+// Under this largest |k - 1|, the meshing CRS's metres are taken for the ground's (a
+// domain within about 1,300 km of the automatic projection's centre): sizes change by
+// less than the quads' own spread, and the meshes of regional domains stay as they were.
+constexpr double kGroundScaleTolerance = 0.005;
+
+// The meshing CRS's scale over the domain's box (its CRS: domain.crs_wkt), sampled
+// coarsely first and finely where it may stray from 1 by more than the tolerance; null
+// for a domain without a CRS (a plane).
+std::shared_ptr<const MapScale> domain_map_scale(const Domain& domain);
+// The domain's area on the ground: its area in the CRS times the mean of 1 / k^2 over it
+// (on a grid of 128 x 128 cells over its box; parts smaller than the cells, each at the
+// scale at its centre).
+double ground_area(const Domain& domain, const MapScale& scale);
 
 // A size source besides the automatic one: --size, --size-expr, --size-raster, --size-mesh, or
 // --bathymetry with the wavelength or slope rule (the time step rule only bounds sizes).
@@ -112,6 +132,10 @@ struct SizingSummary {
   double narrow_floor_m = 0.0;  // their smallest size
   double time_step_s = 0.0;     // --time-step (0: off) and --courant
   double courant = 1.0;
+  // The meshing CRS's scale over the domain's box (1 and 1 with --size-scale crs), and
+  // whether the sizes were multiplied by it (SizingParams::ground_sizes).
+  double scale_min = 1.0, scale_max = 1.0;
+  bool scale_applied = false;
 };
 
 // h(x) before gradation: the minimum of the sources, clamped to [hmin, hmax], then of the
@@ -137,6 +161,8 @@ class SizingOracle {
   bool is_uniform() const;
   // The depths the sizes read (--bathymetry, --elevation), null when they read none.
   std::shared_ptr<const RasterStack> depths() const { return bathymetry_; }
+  // The scale the ground's sizes were multiplied by, null when none was.
+  std::shared_ptr<const MapScale> scale() const { return scale_; }
 
  private:
   friend bool expression_uses_depth(const std::string& expression);
@@ -152,10 +178,14 @@ class SizingOracle {
   std::shared_ptr<const RasterStack> bathymetry_;
   std::unique_ptr<FeatureSizes> features_;
   std::unique_ptr<CoastDistance> coast_;  // an expression in c
+  std::shared_ptr<const MapScale> scale_;
+  double scale_at(const Point2& x) const;
   double gradient_step_m_ = 1.0;
   double depth_at(const Point2& x) const;                 // NaN: none
   double raw_time_step_floor(double depth) const;         // 0 for NaN
-  double limit_locally(const Point2& x, double h) const;  // features and refinements
+  // The --refine features (ground sizes) and the local refinements (the CRS's), on h in
+  // the CRS's metres at x, whose scale is k.
+  double limit_locally(const Point2& x, double h, double k) const;
 };
 
 // Sizes at the background mesh vertices, made K-Lipschitz along every background edge.

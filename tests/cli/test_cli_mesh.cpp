@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <sstream>
 #include <string>
@@ -1358,4 +1359,71 @@ TEST(CliMesh, WithEachARegionNoAlignLineReachesIsMeshedWithAWarning) {
   EXPECT_NE(p.err.find("points:       none of the file's points lies in or next to the domain"),
             std::string::npos)
       << p.err;
+}
+
+// Sizes are lengths on the ground (--size-scale ground, the default): on World Mercator
+// from the equator to 70 N, whose scale grows from 1 to 2.9, --size 100 km gives quads of
+// about 100 km on the ground at every latitude (their sides measured by the haversine
+// from the GeoJSON's longitudes and latitudes); --size-scale crs gives 100 km of the CRS,
+// half that on the ground at 60 N.
+TEST(CliMesh, SizesAreLengthsOnTheGroundWhateverTheCrsScale) {
+  TempDir dir;
+  const std::string input = dir.file("band.geojson");
+  std::string ring;
+  const double corners[5][2] = {{0, 0}, {20, 0}, {20, 70}, {0, 70}, {0, 0}};
+  for (int i = 0; i < 4; ++i)
+    for (int k = 0; k < 20; ++k)
+      ring += "[" + std::to_string(corners[i][0] + (corners[i + 1][0] - corners[i][0]) * k / 20) +
+              "," + std::to_string(corners[i][1] + (corners[i + 1][1] - corners[i][1]) * k / 20) +
+              "],";
+  write_file(input,
+             "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{}"
+             ",\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[[" +
+                 ring + "[0,0]]]}}]}");
+  const std::string script = dir.file("sides.py");
+  write_file(script,
+             "import sys, math\n"
+             "from osgeo import ogr\n"
+             "def hav(a, b):\n"
+             "    l1, p1, l2, p2 = map(math.radians, (a[0], a[1], b[0], b[1]))\n"
+             "    d = math.sin((p2 - p1) / 2) ** 2 + math.cos(p1) * math.cos(p2) * "
+             "math.sin((l2 - l1) / 2) ** 2\n"
+             "    return 2 * 6371008.8 * math.asin(math.sqrt(d))\n"
+             "bands = {'south': [], 'north': []}\n"
+             "ds = ogr.Open(sys.argv[1])  # kept: its layer dies with it\n"
+             "for f in ds.GetLayer(0):\n"
+             "    r = f.GetGeometryRef().GetGeometryRef(0)\n"
+             "    p = [r.GetPoint_2D(i) for i in range(4)]\n"
+             "    lat = sum(q[1] for q in p) / 4\n"
+             "    side = sum(hav(p[i], p[(i + 1) % 4]) for i in range(4)) / 4\n"
+             "    if lat < 15: bands['south'].append(side)\n"
+             "    if lat > 55: bands['north'].append(side)\n"
+             "for k in ('south', 'north'):\n"
+             "    v = sorted(bands[k]); print(k, len(v), v[len(v) // 2] / 1e5)\n");
+  auto medians = [&](const std::string& scale) {
+    const std::string out = dir.file("mesh_" + scale + ".geojson");
+    const CliResult r = run_cli({"mesh", input, "--dst-crs", "EPSG:3395", "--size", "100000",
+                                 "--size-scale", scale, "-o", out},
+                                dir);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.find("map scale:") != std::string::npos, scale == "ground") << r.err;
+    const CliResult py = run_cli_program("/usr/bin/python3", {script, out}, dir);
+    EXPECT_EQ(py.exit_code, 0) << py.err;
+    std::istringstream in(py.out);
+    std::map<std::string, double> median;
+    std::string band;
+    int count = 0;
+    double m = 0;
+    while (in >> band >> count >> m) {
+      EXPECT_GT(count, 10) << band;
+      median[band] = m;
+    }
+    return median;
+  };
+  const auto ground = medians("ground");
+  EXPECT_NEAR(ground.at("south"), 1.0, 0.12);
+  EXPECT_NEAR(ground.at("north"), 1.0, 0.12);
+  const auto crs = medians("crs");
+  EXPECT_NEAR(crs.at("south"), 1.0, 0.12);
+  EXPECT_LT(crs.at("north"), 0.65);
 }

@@ -9,7 +9,9 @@
 #include <optional>
 
 #include "core/error.h"
+#include "gis/crs.h"
 #include "gis/gdal_env.h"
+#include "gis/map_scale.h"
 #include "support/test_support.h"
 #include "support/write_raster.h"
 
@@ -259,4 +261,25 @@ TEST(VertexDepths, TimeStepsAreTheWidthOverTheCelerity) {
   EXPECT_LT(under, wet);
   EXPECT_EQ(t.num_under_target, 0u);  // no target
   EXPECT_NEAR(c.min_s, 0.7 * t.min_s, 1e-12);
+}
+
+// Where the sizes are the ground's, so are the widths: the same quads on World Mercator
+// at 60 N, whose scale is about 2, allow half the time step they would in its metres.
+TEST(VertexDepths, TimeStepsTakeTheWidthsOnTheGround) {
+  QuadMesh m = grid();  // 100 m squares from the origin
+  const CrsInfo mercator = parse_crs("EPSG:3395", "test");
+  Point2 at60{0, 60};
+  ASSERT_TRUE(CrsTransform(parse_crs("EPSG:4326", "test"), mercator).transform(at60));
+  for (Point2& p : m.points) p.y += at60.y;
+  const std::vector<double> depth(m.points.size(), 40.0);
+  const MapScale scale(mercator, {-1000, at60.y - 1000, 2000, at60.y + 2000}, 8);
+  const double k = scale.at({500, at60.y + 500});
+  ASSERT_NEAR(k, 2.0, 0.01);
+  const TimeSteps crs = courant_time_steps(m, depth);
+  const TimeSteps ground = courant_time_steps(m, depth, 1.0, 0.0, &scale);
+  for (std::size_t q = 0; q < m.quads.size(); ++q)
+    EXPECT_NEAR(ground.per_quad_s[q] * scale.at(quad_centroid(m, static_cast<int>(q))),
+                crs.per_quad_s[q], 1e-9)
+        << q;
+  EXPECT_NEAR(ground.width_m * k, crs.width_m, 0.01 * crs.width_m);
 }

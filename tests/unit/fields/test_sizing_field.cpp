@@ -604,3 +604,61 @@ TEST(SizingField, TimeStepRuleRaisesSizesToItsFloorOverEverySourceButLocalOnes) 
   zero.courant = 0;
   EXPECT_EQ(error_of([&] { SizingOracle o(d, zero); }).error_class(), ErrorClass::usage);
 }
+
+// Sizes in metres are the ground's: on World Mercator from the equator to 70 N, --size
+// 10 km is 10 km times the scale in the CRS (twice that at 60 N), and the automatic
+// hmax's area is the ground's. With ground_sizes off (--size-scale crs), the CRS's metres.
+// A domain whose scale stays within kGroundScaleTolerance of 1 keeps its sizes exactly.
+TEST(SizingField, SizesAreTheGroundsTimesTheCrsScale) {
+  const CrsInfo wgs = parse_crs("EPSG:4326", "src"), mercator = parse_crs("EPSG:3395", "dst");
+  Ring outer{{0, 0}, {10, 0}, {10, 70}, {0, 70}};
+  Ring dense;  // lon/lat edges densified, so that the planar ring follows them
+  for (std::size_t i = 0; i < outer.size(); ++i)
+    for (int k = 0; k < 20; ++k) {
+      const Point2 &a = outer[i], &b = outer[(i + 1) % outer.size()];
+      dense.push_back({a.x + (b.x - a.x) * k / 20, a.y + (b.y - a.y) * k / 20});
+    }
+  ASSERT_EQ(CrsTransform(wgs, mercator).transform(dense), -1);
+  Domain d;
+  d.polygons.push_back({dense, {}});
+  d.crs_wkt = mercator.wkt;
+  d.crs_name = mercator.name;
+  auto at = [&](double lon, double lat) {
+    Point2 p{lon, lat};
+    EXPECT_TRUE(CrsTransform(wgs, mercator).transform(p));
+    return p;
+  };
+  const double k60 = std::sqrt(1 - 0.00669438 * 0.75) / 0.5;
+
+  SizingParams p;
+  p.automatic = false;
+  p.constant_m = 10000.0;
+  const SizingOracle ground(d, p);
+  EXPECT_TRUE(ground.summary().scale_applied);
+  EXPECT_NEAR(ground.summary().scale_min, 1.0, 1e-6);
+  EXPECT_NEAR(ground(at(5, 0.5)), 10000.0, 10.0);
+  EXPECT_NEAR(ground(at(5, 60)) / (10000.0 * k60), 1.0, 1e-3);
+  p.ground_sizes = false;
+  const SizingOracle crs(d, p);
+  EXPECT_FALSE(crs.summary().scale_applied);
+  EXPECT_EQ(crs(at(5, 60)), 10000.0);
+
+  // The automatic hmax: about 2000 quads of it on the ground, far fewer in the CRS.
+  SizingParams automatic;
+  const SizingOracle a(d, automatic);
+  const double ground_area = 6.66e12;  // 10 x 70 degrees: R^2 (pi / 18) sin 70, about
+  EXPECT_NEAR(a.summary().hmax_m / std::sqrt(ground_area / 2000.0), 1.0, 0.03);
+  EXPECT_NEAR(a(at(5, 60)) / a(at(5, 1)), k60, 0.3) << "the same sizes on the ground";
+
+  // 100 km of UTM round its central meridian: the scale is 0.9996 to 0.9997, not applied.
+  Domain utm;
+  utm.polygons.push_back(
+      {{{450000, 4950000}, {550000, 4950000}, {550000, 5050000}, {450000, 5050000}}, {}});
+  utm.crs_wkt = parse_crs("EPSG:32631", "dst").wkt;
+  utm.crs_name = "utm";
+  p.ground_sizes = true;
+  const SizingOracle u(utm, p);
+  EXPECT_FALSE(u.summary().scale_applied);
+  EXPECT_LT(u.summary().scale_min, 0.9997);
+  EXPECT_EQ(u({500000, 5000000}), 10000.0);
+}

@@ -1,4 +1,5 @@
 #include "gis/crs.h"
+#include "gis/map_scale.h"
 
 #include <gtest/gtest.h>
 
@@ -112,4 +113,45 @@ TEST(Crs, ACrsWithoutANameIsShownByItsProjString) {
   EXPECT_EQ(utm.name.rfind("+proj=utm +zone=31", 0), 0u) << utm.name;
   EXPECT_EQ(parse_crs(utm.wkt, "test").name, utm.name);
   EXPECT_EQ(parse_crs("EPSG:32631", "test").name, "WGS 84 / UTM zone 31N");
+}
+
+// The scale of World Mercator (EPSG:3395, conformal on the ellipsoid) is known in closed
+// form: sqrt(1 - e^2 sin^2 lat) / cos lat. MapScale measures it by geodesics.
+TEST(MapScale, MercatorsScaleGrowsAsTheSecantOfTheLatitude) {
+  const CrsInfo wgs = parse_crs("EPSG:4326", "src"), mercator = parse_crs("EPSG:3395", "dst");
+  std::vector<Point2> corners{{0, 0}, {20, 70}};
+  ASSERT_EQ(CrsTransform(wgs, mercator).transform(corners), -1);
+  const MapScale scale(mercator, {corners[0].x, corners[0].y, corners[1].x, corners[1].y});
+  const double e2 = 0.00669437999014;  // WGS 84
+  for (const double lat : {0.0, 30.0, 60.0, 69.0}) {
+    Point2 p{7.5, lat};
+    ASSERT_TRUE(CrsTransform(wgs, mercator).transform(p));
+    const double phi = lat * M_PI / 180;
+    const double expected = std::sqrt(1 - e2 * std::sin(phi) * std::sin(phi)) / std::cos(phi);
+    // Bilinear between nodes 0.27 degrees of latitude apart at 60 N.
+    EXPECT_NEAR(scale.at(p) / expected, 1.0, 2e-4) << lat;
+  }
+  EXPECT_NEAR(scale.min(), 1.0, 1e-6);
+  EXPECT_NEAR(scale.max() * std::cos(70 * M_PI / 180), std::sqrt(1 - e2 * 0.883), 1e-4);
+  EXPECT_GT(scale.max_error(), 1.9);
+}
+
+// UTM is 0.9996 on its central meridian and grows away from it; the automatic projection
+// is its own scale factor at its centre.
+TEST(MapScale, UtmAndTheLocalProjectionHaveTheirScaleFactorAtTheirCentre) {
+  const CrsInfo wgs = parse_crs("EPSG:4326", "src"), utm = parse_crs("EPSG:32631", "dst");
+  const MapScale u(utm, {400000, 4800000, 600000, 5200000}, 8);
+  EXPECT_NEAR(u.at({500000, 5000000}), 0.9996, 1e-6);
+  EXPECT_GT(u.at({600000, 5000000}), u.at({500000, 5000000}));
+  EXPECT_LT(u.max_error(), 0.0005);
+
+  Ring lonlat{{-4, 42.5}, {8, 42.5}, {8, 51}, {-4, 51}};
+  const LocalProjection lp = choose_local_projection(wgs, lonlat);
+  const MapScale s(lp.crs, {-600000, -600000, 600000, 600000});
+  EXPECT_NEAR(s.at({0, 0}), lp.scale_factor, 1e-6);
+  // Balanced: the centre under 1, the domain's farthest points as much over it, and the
+  // box's corners (850 km out, the farthest 750 km) about twice that.
+  EXPECT_LT(s.min(), 1.0);
+  EXPECT_GT(s.max() - 1.0, 1.0 - s.min());
+  EXPECT_LT(s.max() - 1.0, 3 * (1.0 - s.min()));
 }
