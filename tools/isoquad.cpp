@@ -163,13 +163,14 @@ int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
   // complete. Writing the fields and the plot is the stage "output".
   StageClock clock(r.times);
   OutputSet set;
-  write_fields(r.mesh, r.size, r.cross, r.front.domain.crs_wkt, set.add(a.output, a.overwrite),
+  const SizingField ground = ground_size_field(r);  // the sizes as the options gave them
+  write_fields(r.mesh, ground, r.cross, r.front.domain.crs_wkt, set.add(a.output, a.overwrite),
                true);
   if (!f.plot_path.empty()) {
     PlotFieldsParams pp;
     pp.path = set.add(f.plot_path, a.overwrite);
     pp.overwrite = true;
-    plot_fields(r.mesh, r.size, r.cross, r.singularities, pp);
+    plot_fields(r.mesh, ground, r.cross, r.singularities, pp);
   }
   clock.lap("output");
   const std::string report = fields_report_json(r, command_line);

@@ -290,6 +290,14 @@ FieldsResult build_fields(const FieldsOptions& options, const Progress& progress
   return r;
 }
 
+SizingField ground_size_field(const FieldsResult& r) {
+  SizingField ground = r.size;
+  if (r.scale)
+    for (std::size_t v = 0; v < ground.size_m.size(); ++v)
+      ground.size_m[v] /= r.scale->at(r.mesh.points[v]);
+  return ground;
+}
+
 std::string format_fields_summary(const FieldsResult& r) {
   std::ostringstream os;
   char buf[256];
@@ -304,8 +312,8 @@ std::string format_fields_summary(const FieldsResult& r) {
   if (r.sizing.scale_applied)
     os << printf_string(
         "map scale:    the meshing CRS's scale is %.4g .. %.4g over the domain: the sizes in "
-        "metres are the ground's, multiplied by it (the size field below is in the CRS's "
-        "metres; --size-scale crs: sizes in its metres)\n",
+        "metres are the ground's, multiplied by it in the CRS (--size-scale crs: sizes in "
+        "its metres)\n",
         r.sizing.scale_min, r.sizing.scale_max);
   if (r.sizing.num_narrow_sites > 0) {
     std::snprintf(buf, sizeof buf,
@@ -316,10 +324,12 @@ std::string format_fields_summary(const FieldsResult& r) {
     os << buf;
   }
   if (!r.size.size_m.empty()) {
-    const auto [lo, hi] = std::minmax_element(r.size.size_m.begin(), r.size.size_m.end());
+    const std::vector<double> ground = ground_size_field(r).size_m;
+    const auto [lo, hi] = std::minmax_element(ground.begin(), ground.end());
     std::snprintf(buf, sizeof buf,
-                  "size field:   %.6g .. %.6g m on %zu background vertices; about %.0f quads\n",
-                  *lo, *hi, r.size.size_m.size(), predicted_num_quads(r.mesh, r.size));
+                  "size field:   %.6g .. %.6g m%s on %zu background vertices; about %.0f quads\n",
+                  *lo, *hi, r.scale ? " on the ground" : "", ground.size(),
+                  predicted_num_quads(r.mesh, r.size));
     os << buf;
   }
   if (r.sizing.time_step_s > 0) {
@@ -378,7 +388,8 @@ void add_sizing_report(JsonWriter& j, const FieldsResult& r) {
         .value("num_set_by_time_step", r.size.num_set_by_time_step)
         .value("max_time_step_size_m", r.size.max_time_step_size_m);
   if (!r.size.size_m.empty()) {
-    const auto [lo, hi] = std::minmax_element(r.size.size_m.begin(), r.size.size_m.end());
+    const std::vector<double> ground = ground_size_field(r).size_m;
+    const auto [lo, hi] = std::minmax_element(ground.begin(), ground.end());
     j.value("size_min_m", *lo).value("size_max_m", *hi);
   }
 }

@@ -92,6 +92,11 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options,
 
 std::string format_fields_summary(const FieldsResult& r);
 
+// The sizes at the background vertices on the ground: r.size in the CRS's metres divided
+// by its scale where the sizes were multiplied by it (r.scale), else r.size itself. As
+// the summary, the report and `isoquad fields`'s files give them.
+SizingField ground_size_field(const FieldsResult& r);
+
 // The report's sections on the fields, shared by `isoquad fields` and `isoquad mesh`:
 // the values of the "sizing" object (the caller opens and closes it), the whole
 // "background" and "cross_field" objects, and the "stages" array.

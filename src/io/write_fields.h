@@ -1,5 +1,6 @@
 // Writers of the background mesh with its fields, for inspection in ParaView (.vtu) or
-// QGIS (.gpkg). Point data: size (metres) and cross_angle (degrees, in [0, 90)).
+// QGIS (.gpkg). Point data: size (metres: as given, the `isoquad fields` job passes them
+// on the ground) and cross_angle (degrees, in [0, 90)).
 #pragma once
 
 #include <string>

@@ -1426,4 +1426,24 @@ TEST(CliMesh, SizesAreLengthsOnTheGroundWhateverTheCrsScale) {
   const auto crs = medians("crs");
   EXPECT_NEAR(crs.at("south"), 1.0, 0.12);
   EXPECT_LT(crs.at("north"), 0.65);
+
+  // `isoquad fields` writes the sizes on the ground: none over --hmax, though the CRS's
+  // reach 2.9 times it at 70 N.
+  const std::string vtu = dir.file("fields.vtu");
+  const CliResult f = run_cli(
+      {"fields", input, "--dst-crs", "EPSG:3395", "--hmax", "100000", "-o", vtu, "-q"}, dir);
+  ASSERT_EQ(f.exit_code, 0) << f.err;
+  const CliResult py =
+      run_cli_program("/usr/bin/python3",
+                      {"-c",
+                       "import sys, meshio; s = meshio.read(sys.argv[1]).point_data['size']; "
+                       "print(s.min(), s.max())",
+                       vtu},
+                      dir);
+  ASSERT_EQ(py.exit_code, 0) << py.err;
+  double lo = 0, hi = 0;
+  std::istringstream(py.out) >> lo >> hi;
+  EXPECT_GT(lo, 0.0);
+  EXPECT_LE(hi, 100000.0 * (1 + 1e-9));
+  EXPECT_GT(hi, 0.9 * 100000.0);
 }
