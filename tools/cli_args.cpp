@@ -331,8 +331,8 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
   cmd->add_option_function<std::string>(
          "--size-scale", [&f](const std::string& v) { f.sizing.ground_sizes = v == "ground"; },
          "ground (default): sizes in metres are lengths on the ground, multiplied by the meshing "
-         "CRS's scale where it strays from 1 by more than 0.5% (a domain more than about "
-         "1,300 km across from the automatic projection's centre, an ocean basin, a "
+         "CRS's scale where it strays from 1 by more than 0.5% (a domain reaching more than "
+         "about 1,300 km from the automatic projection's centre, an ocean basin, a "
          "Mercator map): quads of the same size on the ground everywhere; crs: lengths in the "
          "meshing CRS's metres, as a model run in those coordinates measures them")
       ->check(CLI::IsMember({"ground", "crs"}))
