@@ -252,12 +252,13 @@ SourceData read_mesh_source(const FrontEndOptions& options,
                   "give the open boundaries once: --open-boundary or --open-groups");
     open_boundaries_from_groups(mesh, options.open_groups, read.path);
   }
+  std::vector<Point2> nodes;  // in the outline's CRS
+  SourceData source = outline_source(mesh, read.path, read.src_crs, "--src-crs", &nodes);
   for (const std::vector<int>& segment : mesh.open_boundaries) {
     std::vector<Point2> line;
-    for (int v : segment) line.push_back(mesh.points[v]);
+    for (int v : segment) line.push_back(nodes[v]);
     if (line.size() >= 2) open_lines.push_back(std::move(line));
   }
-  SourceData source = outline_source(mesh, read.path, read.src_crs, "--src-crs");
   for (const std::string& note : mesh.notes) source.warnings.push_back(note);
   if (mesh.num_flux_boundaries > 0 && options.open_boundary_path.empty())
     source.warnings.push_back(std::to_string(mesh.num_flux_boundaries) +

@@ -49,6 +49,22 @@ void split_at_repeated_nodes(const std::vector<int>& walk, std::vector<std::vect
   for (auto& loop : cut) loops.push_back(std::move(loop));
 }
 
+// In longitudes, whether an element has a side across more than 180 degrees: the mesh
+// crosses the cut of its longitudes (a grid round the globe, which no choice of the
+// cut avoids, or one across the antimeridian written in [-180, 180)).
+bool crosses_the_cut(const ReadMesh& mesh) {
+  auto across = [&](const int* v, int k) {
+    for (int i = 0; i < k; ++i)
+      if (std::abs(mesh.points[v[i]].x - mesh.points[v[(i + 1) % k]].x) > 180.0) return true;
+    return false;
+  };
+  for (const auto& q : mesh.quads)
+    if (across(q.data(), 4)) return true;
+  for (const auto& t : mesh.triangles)
+    if (across(t.data(), 3)) return true;
+  return false;
+}
+
 }  // namespace
 
 std::vector<std::vector<int>> mesh_outline(const std::vector<Point2>& points,
@@ -126,7 +142,8 @@ std::vector<std::vector<int>> mesh_outline(const std::vector<Point2>& points,
 }
 
 SourceData outline_source(const ReadMesh& mesh, const std::string& path,
-                          const std::string& crs_text, const std::string& option) {
+                          const std::string& crs_text, const std::string& option,
+                          std::vector<Point2>* nodes) {
   const std::string given = !crs_text.empty() ? crs_text : mesh.crs;
   if (given.empty())
     throw Error(ErrorClass::crs, "read",
@@ -136,13 +153,25 @@ SourceData outline_source(const ReadMesh& mesh, const std::string& path,
                     "in, e.g. EPSG:32631)");
   SourceData source;
   source.crs = parse_crs(given, crs_text.empty() ? "'" + path + "' (its projection)" : option);
+  // A band round the globe is an annulus only round a pole.
+  std::vector<Point2> points = mesh.points;
+  if (source.crs.geographic && crosses_the_cut(mesh)) {
+    const LocalProjection local = choose_local_projection(geographic_base(source.crs), points);
+    const long failed = CrsTransform(source.crs, local.crs).transform(points);
+    if (failed >= 0)
+      throw Error(ErrorClass::crs, "read",
+                  "'" + path + "': node " + std::to_string(failed + 1) + " " +
+                      format_point(mesh.points[static_cast<std::size_t>(failed)]) +
+                      " cannot be transformed to '" + local.crs.name + "'");
+    source.crs = local.crs;
+  }
   const std::vector<std::vector<int>> loops =
-      mesh_outline(mesh.points, mesh.quads, mesh.triangles, path);
+      mesh_outline(points, mesh.quads, mesh.triangles, path);
   std::vector<SourceLine> lines;
   for (const std::vector<int>& loop : loops) {
     SourceLine line;
     line.fid = static_cast<long long>(lines.size());
-    for (int v : loop) line.points.push_back(mesh.points[v]);
+    for (int v : loop) line.points.push_back(points[v]);
     line.points.push_back(line.points.front());
     lines.push_back(std::move(line));
   }
@@ -151,6 +180,7 @@ SourceData outline_source(const ReadMesh& mesh, const std::string& path,
   } catch (const LinesError& e) {
     throw Error(ErrorClass::input, "read", "'" + path + "': its outline: " + e.what());
   }
+  if (nodes) *nodes = std::move(points);
   source.layer_name = "its outline";
   source.num_features = loops.size();
   return source;

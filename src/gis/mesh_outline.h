@@ -30,8 +30,13 @@ std::vector<std::vector<int>> mesh_outline(const std::vector<Point2>& points,
 // holes by containment (rings_from_lines), in the CRS `crs_text` gives (as `option`,
 // for messages) or else the file's own; layer "its outline", a feature per loop.
 // Error(crs) when neither says the CRS, Error(input) as mesh_outline, or for loops that
-// do not nest.
+// do not nest. A mesh in longitudes with elements across the cut of its longitudes (a
+// grid round the globe, or one across the antimeridian in [-180, 180)) has no outline in
+// them: its nodes are first projected into the automatic projection of a domain of them
+// (choose_local_projection), the outline's CRS then. `nodes`, when given, receives the
+// mesh's nodes in the outline's CRS.
 SourceData outline_source(const ReadMesh& mesh, const std::string& path,
-                          const std::string& crs_text, const std::string& option);
+                          const std::string& crs_text, const std::string& option,
+                          std::vector<Point2>* nodes = nullptr);
 
 }  // namespace isoquad

@@ -8,6 +8,9 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <iomanip>
+#include <sstream>
+
 #include "gis/gdal_env.h"
 #include "support/test_support.h"
 #include "support/write_raster.h"
@@ -392,4 +395,108 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
   const CliResult each = run_cli({"quality", "--mesh", dir.file("{}.gpkg"), "--each", "name"}, dir);
   EXPECT_EQ(each.exit_code, 2);
   EXPECT_NE(each.err.find("give INPUT"), std::string::npos) << each.err;
+}
+
+// A lon/lat grid across the antimeridian is read whichever way its longitudes run: the
+// water from 176 E to 176 W written as hgrid.ll in [0, 360) (isoquad's way) and again in
+// [-180, 180) (where two columns of quads cross the cut) measures the same, and meshes
+// again along its open boundary.
+TEST(CliQuality, AGridAcrossTheAntimeridianInEitherLongitudes) {
+  TempDir dir;
+  const CliResult made = run_cli({"mesh", source_dir() + "/tests/data/arctic_110m.geojson",
+                                  "--domain", "water", "--bbox", "176,-20,184,-14", "--hmax",
+                                  "40000", "-o", dir.file("m.gr3"), "--report", dir.file("r.json")},
+                                 dir);
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string mesh_report = read_file(dir.file("r.json"));
+  std::istringstream in(read_file(dir.file("m.ll")));
+  std::ostringstream out;
+  std::string line;
+  int num_nodes = 0, across = 0;
+  for (int i = 0; std::getline(in, line); ++i) {
+    int num_elements = 0;
+    if (i == 1) std::istringstream(line) >> num_elements >> num_nodes;
+    if (i >= 2 && i < 2 + num_nodes) {
+      std::istringstream node(line);
+      int id = 0;
+      double lon = 0, lat = 0, depth = 0;
+      node >> id >> lon >> lat >> depth;
+      if (lon >= 180) lon -= 360, ++across;
+      out << id << " " << std::setprecision(15) << lon << " " << lat << " " << depth << "\n";
+      continue;
+    }
+    out << line << "\n";
+  }
+  ASSERT_GT(across, 0);
+  ASSERT_LT(across, num_nodes);
+  write_file(dir.file("m180.ll"), out.str());
+  for (const char* file : {"m.ll", "m180.ll"}) {
+    const std::string report = dir.file(std::string(file) + ".json");
+    const CliResult r =
+        run_cli({"quality", "--mesh", dir.file(file), "--hmax", "40000", "--report", report}, dir);
+    ASSERT_EQ(r.exit_code, 0) << file << r.err;
+    const std::string q = read_file(report);
+    EXPECT_EQ(report_number(q, "num_outline_loops"), 1) << file;
+    EXPECT_EQ(report_number(q, "num_quads"), report_number(mesh_report, "num_quads")) << file;
+    EXPECT_EQ(report_number(q, "num_boundary_vertices_off_domain"), 0) << file;
+    // In a projection centred on the outline (to 2e-6 of the mesh's).
+    EXPECT_NEAR(report_number(q, "mesh_area_m2") / report_number(mesh_report, "mesh_area_m2"), 1.0,
+                1e-4)
+        << file;
+    EXPECT_NEAR(report_number(q, "min_angle_deg"), report_number(mesh_report, "min_angle_deg"),
+                1e-3)
+        << file;
+
+    const CliResult again = run_cli(
+        {"mesh", dir.file(file), "--hmax", "40000", "-o", dir.file(std::string(file) + ".gpkg"),
+         "--report", dir.file(std::string(file) + ".again.json")},
+        dir);
+    ASSERT_EQ(again.exit_code, 0) << file << again.err;
+    const std::string a = read_file(dir.file(std::string(file) + ".again.json"));
+    EXPECT_EQ(report_number(a, "num_open_parts"), 1) << file;
+    // Open all round but the edge that closes hgrid.gr3's segment (one of 130 or so).
+    EXPECT_NEAR(report_number(a, "open_parts_length_m") / report_number(a, "perimeter_m"), 1.0,
+                0.01)
+        << file;
+    EXPECT_NEAR(report_number(a, "num_quads") / report_number(mesh_report, "num_quads"), 1.0, 0.1)
+        << file;
+  }
+}
+
+// A grid round the globe (the water from 60 S to 60 N at 1,000 km) has no outline in
+// longitudes, whatever the cut: its hgrid.ll is read as an annulus round the North Pole,
+// measured as its mesh report says and meshed again.
+TEST(CliQuality, AGridRoundTheGlobe) {
+  TempDir dir;
+  const CliResult made =
+      run_cli({"mesh", source_dir() + "/tests/data/arctic_110m.geojson", "--domain", "water",
+               "--bbox", "-180,-60,180,60", "--size", "1000000", "-o", dir.file("m.gr3"),
+               "--report", dir.file("r.json")},
+              dir);
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  const std::string mesh_report = read_file(dir.file("r.json"));
+  ASSERT_EQ(report_number(mesh_report, "num_holes"), 1);
+  const CliResult r = run_cli(
+      {"quality", "--mesh", dir.file("m.ll"), "--size", "1000000", "--report", dir.file("q.json")},
+      dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("CRS isoquad local oblique stereographic"), std::string::npos) << r.err;
+  const std::string q = read_file(dir.file("q.json"));
+  EXPECT_EQ(report_number(q, "num_outline_loops"), 2);
+  EXPECT_EQ(report_number(q, "num_holes"), 1);
+  EXPECT_EQ(report_number(q, "num_boundary_vertices_off_domain"), 0);
+  EXPECT_NEAR(report_number(q, "mesh_area_m2") / report_number(q, "domain_area_m2"), 1.0, 1e-9);
+  for (const char* key : {"num_quads", "num_boundary_vertices", "min_angle_deg",
+                          "share_angles_75_105", "share_regular_interior"})
+    EXPECT_NEAR(report_number(q, key), report_number(mesh_report, key),
+                1e-3 * std::max(1.0, report_number(mesh_report, key)))
+        << key;
+  const CliResult again = run_cli({"mesh", dir.file("m.ll"), "--size", "1000000", "-o",
+                                   dir.file("again.gpkg"), "--report", dir.file("a.json")},
+                                  dir);
+  ASSERT_EQ(again.exit_code, 0) << again.err;
+  const std::string a = read_file(dir.file("a.json"));
+  EXPECT_EQ(report_number(a, "num_holes"), 1);
+  EXPECT_EQ(report_number(a, "num_nonconvex"), 0);
+  EXPECT_NEAR(report_number(a, "num_quads") / report_number(mesh_report, "num_quads"), 1.0, 0.15);
 }

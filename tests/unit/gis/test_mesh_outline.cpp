@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 
 #include "core/error.h"
 #include "gis/mesh_outline.h"
@@ -125,4 +126,79 @@ TEST(MeshOutline, ErrorsNameTheFileAndTheNodes) {
   std::reverse(g.quads[1].begin(), g.quads[1].end());
   EXPECT_NE(outline_error(g).find("does not close at node 2"), std::string::npos)
       << outline_error(g);
+}
+
+namespace {
+
+// A ring of quads round the globe in longitudes, from `south` to `north` degrees of
+// latitude, `n` quads each `360 / n` wide from `west`, longitudes as a file writes them
+// in [lo, lo + 360): the last quad (or one in the middle) crosses the cut.
+ReadMesh globe_band(int n, double south, double north, double west, double lo) {
+  ReadMesh m;
+  m.crs = "EPSG:4326";
+  auto lon = [&](int i) {
+    double x = west + 360.0 * i / n;
+    while (x >= lo + 360.0) x -= 360.0;
+    while (x < lo) x += 360.0;
+    return x;
+  };
+  for (int i = 0; i < n; ++i)
+    m.points.push_back({lon(i), south}), m.points.push_back({lon(i), north});
+  for (int i = 0; i < n; ++i) {
+    const int a = 2 * i, b = 2 * ((i + 1) % n);
+    m.quads.push_back({a, b, b + 1, a + 1});
+  }
+  return m;
+}
+
+// Rings after the first are holes.
+double polygon_area(const SourcePolygon& p) {
+  double a = 0;
+  for (const Ring& r : p.rings) a += signed_area(r);
+  return a;
+}
+
+}  // namespace
+
+TEST(MeshOutline, AGridRoundTheGlobeIsAnAnnulusRoundAPole) {
+  // Between 20 S and 40 N, in [0, 360): no cut in longitudes avoids a quad across it.
+  const ReadMesh band = globe_band(36, -20.0, 40.0, 0.0, 0.0);
+  std::vector<Point2> nodes;
+  const SourceData source = outline_source(band, "band.ll", "", "--src-crs", &nodes);
+  EXPECT_TRUE(source.crs.projected) << source.crs.name;
+  ASSERT_EQ(source.polygons.size(), 1u);
+  const std::vector<Ring>& annulus = source.polygons[0].rings;
+  ASSERT_EQ(annulus.size(), 2u);
+  EXPECT_EQ(annulus[0].size(), 36u);  // the 20 S circle round the 40 N one
+  EXPECT_EQ(annulus[1].size(), 36u);
+  EXPECT_GT(signed_area(annulus[0]), -signed_area(annulus[1]));
+  EXPECT_GT(-signed_area(annulus[1]), 0.0);
+  ASSERT_EQ(nodes.size(), band.points.size());
+  // Every node at its latitude's distance from the North Pole, the projection's centre;
+  // `nodes` in the outline's CRS.
+  for (std::size_t v = 2; v < nodes.size(); ++v)
+    EXPECT_NEAR(std::hypot(nodes[v].x, nodes[v].y), std::hypot(nodes[v % 2].x, nodes[v % 2].y),
+                1e-6 * std::hypot(nodes[v].x, nodes[v].y));
+}
+
+TEST(MeshOutline, AGridAcrossTheAntimeridianInEitherLongitudes) {
+  // Ten quads of 2 degrees from 175 E to 175 W (at 10 S to 5 S), written in [0, 360) (no quad
+  // across the cut: the outline is traced in longitudes) and in [-180, 180) (projected first): the
+  // same rectangle.
+  ReadMesh east = globe_band(180, -10.0, -5.0, 175.0, 0.0),
+           west = globe_band(180, -10.0, -5.0, 175.0, -180.0);
+  for (ReadMesh* m : {&east, &west}) {  // only the quads from 175 E to 175 W
+    m->quads.resize(10);
+    m->points.resize(22);
+  }
+  const SourceData in_degrees = outline_source(east, "east.ll", "", "--src-crs");
+  EXPECT_TRUE(in_degrees.crs.geographic);
+  ASSERT_EQ(in_degrees.polygons.size(), 1u);
+  EXPECT_NEAR(polygon_area(in_degrees.polygons[0]), 100.0, 1e-9);  // 20 x 5 degrees
+  const SourceData projected = outline_source(west, "west.ll", "", "--src-crs");
+  EXPECT_TRUE(projected.crs.projected);
+  ASSERT_EQ(projected.polygons.size(), 1u);
+  EXPECT_EQ(projected.polygons[0].rings.size(), 1u);
+  // 20 x 5 degrees at 7.5 S: about 2,207 x 553 km on the ground.
+  EXPECT_NEAR(polygon_area(projected.polygons[0]) / 1e6, 2207.0 * 553.0, 0.01 * 2207.0 * 553.0);
 }
