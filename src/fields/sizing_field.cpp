@@ -152,9 +152,15 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
         std::make_unique<MeshNodeField>(params.size_mesh_path, "--size-mesh", crs,
                                         params.size_mesh_crs, MeshNodeField::Values::element_sizes);
     summary_.sources.push_back("mesh " + params.size_mesh_path + " (its elements' sides)");
-    // Off the mesh, without --hmax: its largest elements' size (on the ground, at most).
-    if (!std::isfinite(hmax_))
-      hmax_ = summary_.hmax_m = mesh_sizes_->max_value() / (scale_ ? scale_->min() : 1.0);
+    // Off the mesh, without --hmax: its largest elements' size on the ground (the
+    // refinement's size cache takes that off the mesh, round the domain).
+    if (!std::isfinite(hmax_)) {
+      const MapScale* scale = scale_.get();
+      hmax_ = summary_.hmax_m =
+          mesh_sizes_->max_value(scale ? std::function<double(const Point2&)>(
+                                             [scale](const Point2& p) { return scale->at(p); })
+                                       : std::function<double(const Point2&)>());
+    }
   }
   if (!(params.courant > 0)) usage("--courant must be positive");
   if (params.time_step_s < 0) usage("--time-step must be positive");

@@ -213,8 +213,11 @@ std::string MeshNodeField::kept_text() const {
          " nodes, those round the domain";
 }
 
-double MeshNodeField::max_value() const {
-  return values_.empty() ? 0.0 : *std::max_element(values_.begin(), values_.end());
+double MeshNodeField::max_value(const std::function<double(const Point2&)>& divisor) const {
+  double v = 0.0;
+  for (std::size_t i = 0; i < values_.size(); ++i)
+    v = std::max(v, divisor ? values_[i] / divisor(points_[i]) : values_[i]);
+  return v;
 }
 
 double MeshNodeField::sample(const Point2& p) const {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -43,8 +44,9 @@ class MeshNodeField : public PointField {
   // mesh; else sample(p).
   double mean_over(const Point2& p, double half_width) const override;
   static constexpr int kMinAveraged = 4;
-  // The largest node value.
-  double max_value() const;
+  // The largest node value, each divided by `divisor` at its node when given (a map's
+  // scale: element sizes on the ground).
+  double max_value(const std::function<double(const Point2&)>& divisor = {}) const;
   std::string kept_text() const override;
 
  private:

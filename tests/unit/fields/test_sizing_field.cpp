@@ -5,7 +5,9 @@
 #include <gdal_priv.h>
 
 #include <cmath>
+#include <fstream>
 #include <functional>
+#include <iomanip>
 #include <limits>
 #include <set>
 #include <string>
@@ -661,4 +663,30 @@ TEST(SizingField, SizesAreTheGroundsTimesTheCrsScale) {
   EXPECT_FALSE(u.summary().scale_applied);
   EXPECT_LT(u.summary().scale_min, 0.9997);
   EXPECT_EQ(u({500000, 5000000}), 10000.0);
+
+  // A mesh of sizes (--size-mesh) of 10 x 10 degree quads over the Mercator domain: its
+  // sides are longest in the CRS at 60 to 70 N (a node's mean side about 1,800 km there),
+  // on the ground at the equator (about 1,110 km). Without --hmax, its largest size on the
+  // ground bounds the sizes off it.
+  TempDir dir;
+  const std::string mesh_path = dir.file("sizes.gr3");
+  {
+    std::ofstream gr3(mesh_path);
+    gr3 << "sizes\n7 16\n";
+    for (int j = 0; j <= 7; ++j)
+      for (int i = 0; i <= 1; ++i) {
+        const Point2 q = at(10.0 * i, 10.0 * j);
+        gr3 << 2 * j + i + 1 << " " << std::setprecision(12) << q.x << " " << q.y << " 0\n";
+      }
+    for (int j = 0; j < 7; ++j)
+      gr3 << j + 1 << " 4 " << 2 * j + 1 << " " << 2 * j + 2 << " " << 2 * j + 4 << " " << 2 * j + 3
+          << "\n";
+  }
+  SizingParams m;
+  m.automatic = false;
+  m.size_mesh_path = mesh_path;
+  m.size_mesh_crs = "EPSG:3395";
+  const SizingOracle sized(d, m);
+  EXPECT_GT(sized.summary().hmax_m, 1.0e6);
+  EXPECT_LT(sized.summary().hmax_m, 1.25e6);
 }
