@@ -23,6 +23,35 @@ std::vector<char> split_quads(const QuadMesh& m, bool schism_split, std::size_t&
   return split;
 }
 
+// The boundary segments as SCHISM takes them: nodes in order and the land flag. A whole
+// loop open, or land on the exterior boundary, is written as two segments that share
+// their ends: SCHISM stops on an open segment whose first node is its last ("Looped
+// open bnd"), and its developers ask for at least two segments round the exterior
+// boundary; an island's whole loop stays one segment (flag 1), which SCHISM closes.
+struct SchismSegment {
+  std::vector<int> nodes;
+  bool island = false;
+};
+
+std::vector<SchismSegment> schism_segments(const std::vector<const BoundarySegment*>& segments) {
+  std::vector<SchismSegment> out;
+  for (const BoundarySegment* s : segments) {
+    const std::size_t n = s->nodes.size();
+    if (!s->closed || (s->kind == BoundaryKind::land && s->island) || n < 3) {
+      out.push_back({s->nodes, s->island});
+      continue;
+    }
+    const std::size_t half = n / 2;
+    std::vector<int> first(s->nodes.begin(),
+                           s->nodes.begin() + static_cast<std::ptrdiff_t>(half) + 1);
+    std::vector<int> second(s->nodes.begin() + static_cast<std::ptrdiff_t>(half), s->nodes.end());
+    second.push_back(s->nodes.front());
+    out.push_back({std::move(first), s->island});
+    out.push_back({std::move(second), s->island});
+  }
+  return out;
+}
+
 }  // namespace
 
 void write_prop_file(const MeshView& v, const std::string& path, const std::string& what,
@@ -68,26 +97,28 @@ void write_gr3_file(const MeshView& v, const std::vector<Point2>& points, const 
       std::fprintf(raw, "%zu 4 %d %d %d %d\n", ++e, c[0] + 1, c[1] + 1, c[2] + 1, c[3] + 1);
     }
   }
-  std::vector<const BoundarySegment*> open, land;
+  std::vector<const BoundarySegment*> open_runs, land_runs;
   for (const auto& s : v.data->boundary.segments)
-    (s.kind == BoundaryKind::open ? open : land).push_back(&s);
-  auto total = [](const std::vector<const BoundarySegment*>& ss) {
+    (s.kind == BoundaryKind::open ? open_runs : land_runs).push_back(&s);
+  const std::vector<SchismSegment> open = schism_segments(open_runs),
+                                   land = schism_segments(land_runs);
+  auto total = [](const std::vector<SchismSegment>& ss) {
     std::size_t n = 0;
-    for (const auto* s : ss) n += s->nodes.size();
+    for (const auto& s : ss) n += s.nodes.size();
     return n;
   };
   std::fprintf(raw, "%zu = Number of open boundaries\n", open.size());
   std::fprintf(raw, "%zu = Total number of open boundary nodes\n", total(open));
   for (std::size_t k = 0; k < open.size(); ++k) {
-    std::fprintf(raw, "%zu = Number of nodes for open boundary %zu\n", open[k]->nodes.size(), k + 1);
-    for (int n : open[k]->nodes) std::fprintf(raw, "%d\n", n + 1);
+    std::fprintf(raw, "%zu = Number of nodes for open boundary %zu\n", open[k].nodes.size(), k + 1);
+    for (int n : open[k].nodes) std::fprintf(raw, "%d\n", n + 1);
   }
   std::fprintf(raw, "%zu = Number of land boundaries\n", land.size());
   std::fprintf(raw, "%zu = Total number of land boundary nodes\n", total(land));
   for (std::size_t k = 0; k < land.size(); ++k) {
-    std::fprintf(raw, "%zu %d = Number of nodes for land boundary %zu\n", land[k]->nodes.size(),
-                 land[k]->island ? 1 : 0, k + 1);
-    for (int n : land[k]->nodes) std::fprintf(raw, "%d\n", n + 1);
+    std::fprintf(raw, "%zu %d = Number of nodes for land boundary %zu\n", land[k].nodes.size(),
+                 land[k].island ? 1 : 0, k + 1);
+    for (int n : land[k].nodes) std::fprintf(raw, "%d\n", n + 1);
   }
   f.close();
 }

@@ -226,6 +226,30 @@ TEST(MeshBoundary, AnEdgeAcrossACornerOfTheLinesIsOpenWithItsChordShare) {
             0u);
 }
 
+// Each boundary edge of the gr3's elements, once, as its segments cover them (an
+// island's land segment, flag 1, closed by its last edge), or a failure.
+void expect_segments_cover_the_boundary(const Gr3& g) {
+  std::map<std::pair<int, int>, int> edges;
+  for (const auto& el : g.elements)
+    for (std::size_t k = 0; k < el.size(); ++k)
+      ++edges[{std::min(el[k], el[(k + 1) % el.size()]), std::max(el[k], el[(k + 1) % el.size()])}];
+  std::set<std::pair<int, int>> boundary, covered;
+  for (const auto& [e, n] : edges)
+    if (n == 1) boundary.insert(e);
+  auto cover = [&covered](const std::vector<int>& s, bool closed) {
+    for (std::size_t i = 0; i + 1 < s.size() + (closed ? 1 : 0); ++i) {
+      const int a = s[i], b = s[(i + 1) % s.size()];
+      EXPECT_TRUE(covered.insert({std::min(a, b), std::max(a, b)}).second) << a << "-" << b;
+    }
+  };
+  for (const auto& s : g.open) {
+    EXPECT_NE(s.front(), s.back()) << "SCHISM stops on a looped open boundary";
+    cover(s, false);
+  }
+  for (const auto& [flag, s] : g.land) cover(s, flag == 1);
+  EXPECT_EQ(covered, boundary);
+}
+
 TEST(MeshOutputs, Gr3MatchesGoldenAndParses) {
   const Fixture f;
   TempDir dir;
@@ -257,22 +281,7 @@ TEST(MeshOutputs, Gr3MatchesGoldenAndParses) {
   EXPECT_EQ(g.land[0].first, 0);  // exterior
   EXPECT_EQ(g.land[1].first, 1);  // island
   // The segments' edges are exactly the mesh's boundary edges.
-  std::map<std::pair<int, int>, int> edges;
-  for (const auto& el : g.elements)
-    for (int k = 0; k < 4; ++k) ++edges[{std::min(el[k], el[(k + 1) % 4]), std::max(el[k], el[(k + 1) % 4])}];
-  std::set<std::pair<int, int>> boundary, covered;
-  for (const auto& [e, n] : edges)
-    if (n == 1) boundary.insert(e);
-  auto cover = [&covered](const std::vector<int>& s, bool closed) {
-    for (std::size_t i = 0; i + 1 < s.size() + (closed ? 1 : 0); ++i) {
-      const int a = s[i], b = s[(i + 1) % s.size()];
-      EXPECT_TRUE(covered.insert({std::min(a, b), std::max(a, b)}).second);
-    }
-  };
-  cover(g.open[0], false);
-  cover(g.land[0].second, false);
-  cover(g.land[1].second, true);
-  EXPECT_EQ(covered, boundary);
+  expect_segments_cover_the_boundary(g);
 
   // hgrid.ll: the same nodes in lon/lat (UTM 31N is centred on 3 E).
   const Gr3 ll = parse_gr3(read_file(dir.file("hgrid.ll")));
@@ -286,6 +295,40 @@ TEST(MeshOutputs, Gr3MatchesGoldenAndParses) {
   }
   EXPECT_EQ(ll.elements, g.elements);
   EXPECT_EQ(ll.open, g.open);
+}
+
+// A whole loop of the exterior boundary, open (a box of sea) or land (a lake), is two
+// segments that share their ends, as SCHISM wants; the island's loop stays one (flag 1).
+TEST(MeshOutputs, Gr3WritesAWholeLoopOfTheExteriorAsTwoSegments) {
+  const Fixture f;
+  TempDir dir;
+  for (const bool open : {true, false}) {
+    MeshOutputData d = f.data();
+    const std::vector<Point2> round{{kX0 - 10, kY0 - 10},
+                                    {kX0 + 3010, kY0 - 10},
+                                    {kX0 + 3010, kY0 + 3010},
+                                    {kX0 - 10, kY0 + 3010},
+                                    {kX0 - 10, kY0 - 10}};
+    d.boundary = extract_boundary(f.mesh, open ? PolylineIndex({round}) : PolylineIndex(), 20.0);
+    const std::string gr3 = dir.file(open ? "open.gr3" : "lake.gr3");
+    write_mesh_outputs(d, {{gr3, "", false}});
+    const Gr3 g = parse_gr3(read_file(gr3));
+    ASSERT_EQ(g.open.size(), open ? 2u : 0u);
+    ASSERT_EQ(g.land.size(), open ? 1u : 3u);
+    EXPECT_EQ(g.land.back().first, 1);  // the island
+    EXPECT_EQ(g.land.back().second.size(), 4u);
+    const auto& halves =
+        open ? g.open : std::vector<std::vector<int>>{g.land[0].second, g.land[1].second};
+    if (!open) {
+      EXPECT_EQ(g.land[0].first, 0);
+      EXPECT_EQ(g.land[1].first, 0);
+    }
+    ASSERT_EQ(halves.size(), 2u);
+    EXPECT_EQ(halves[0].back(), halves[1].front());
+    EXPECT_EQ(halves[1].back(), halves[0].front());
+    EXPECT_EQ(halves[0].size() + halves[1].size(), 12u + 2u);  // the 12 nodes round, 2 shared
+    expect_segments_cover_the_boundary(g);
+  }
 }
 
 // --schism-split: the quad that fails SCHISM's checks (its south-west corner slid east:
