@@ -182,10 +182,17 @@ std::string check_tiling(const BackgroundMesh& mesh, const Tiling& tiling, const
     if (!tile_seen[t]) return "tile " + std::to_string(t) + " is empty";
 
   for (int t = 0; t < num_tiles; ++t)
-    if (b.tile_num_cycles[t] != 1)
-      return "tile " + std::to_string(t) + " is not a disk: " +
-             std::to_string(b.tile_num_cycles[t]) +
+    if (b.tile_num_cycles[t] != 1) {
+      // Where: on a cycle other than its outer one, round what it wraps (the retry's
+      // smaller sizes there give tiles that do not).
+      std::string near;
+      for (int c = 0; c < b.num_cycles() && near.empty(); ++c)
+        if (b.cycle_tile[c] == t && c != b.tile_outer_cycle[t])
+          near = " near " + at(mesh.points[halfedge_from(mesh, b.halfedges[b.cycle_begin[c]])]);
+      return "tile " + std::to_string(t) + near +
+             " is not a disk: " + std::to_string(b.tile_num_cycles[t]) +
              " boundary cycles (it wraps an island or another tile)";
+    }
   for (int c = 0; c < b.num_cycles(); ++c)
     if (b.cycle_pinch[c] >= 0)
       return "tile " + std::to_string(b.cycle_tile[c]) + " is not a disk: it touches itself at " +

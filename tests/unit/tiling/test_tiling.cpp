@@ -233,6 +233,14 @@ TEST(Tiling, RepairCutsATileThatWrapsAHole) {
     if (chain.ring > 0) hole.insert(hole.end(), chain.vertices.begin(), chain.vertices.end());
   ASSERT_FALSE(hole.empty());
   Tiling broken = given_to_one_tile(f.mesh, r.tiling, hole);
+  // Unrepaired, the check names it and where: on the hole it wraps, where a retried
+  // tiling has smaller sizes.
+  std::optional<Point2> where;
+  const std::string problem =
+      check_tiling(f.mesh, broken, build_meta_graph(f.mesh, broken, MetaGraphParams()), &where);
+  EXPECT_NE(problem.find("is not a disk: 2 boundary cycles"), std::string::npos) << problem;
+  ASSERT_TRUE(where.has_value()) << problem;
+  EXPECT_NEAR(std::hypot(where->x, where->y), 400.0, 1.0);
   const RepairStats stats = repair_tiling(f.mesh, triangle_geometry(f.mesh, f.size), broken);
   EXPECT_GE(stats.rings_cut, 1);
   const MetaGraph g = build_meta_graph(f.mesh, broken, MetaGraphParams());
