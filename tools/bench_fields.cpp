@@ -28,7 +28,7 @@ const Domain& france_domain() {
     FieldsOptions o = france_options();
     // The simplification the mesh job applies: its automatic hmin, hmax / 10.
     const double hmin = o.sizing.hmax_m / 10.0;
-    o.front.target_size_for_domain = [hmin](const Domain&) { return hmin; };
+    o.front.target_size_for_domain = [hmin](const Domain&, const MapScale*) { return hmin; };
     r.front = build_planar_domain(o.front);
     return r;
   }();

@@ -273,14 +273,17 @@ FieldsResult build_fields(const FieldsOptions& options, const Progress& progress
   // The cleaning's and simplification's default scale: hmin, or --size, in the CRS's
   // metres where the sizes are the ground's, at the smallest scale over the domain.
   front.warn_distortion = !sizing.ground_sizes;
-  front.target_size_for_domain = [sizing, given = front.target_size_m](const Domain& domain) {
+  front.map_scale_for_domain = [sizing](const Domain& domain) {
+    std::shared_ptr<const MapScale> scale =
+        sizing.ground_sizes ? domain_map_scale(domain) : nullptr;
+    return scale && scale->max_error() > kGroundScaleTolerance ? scale : nullptr;
+  };
+  front.target_size_for_domain = [sizing, given = front.target_size_m](const Domain& domain,
+                                                                       const MapScale* scale) {
     auto size = [&](double area_m2) {
       return given > 0 ? given : default_hmin_for_area(sizing, area_m2);
     };
-    if (const auto scale = sizing.ground_sizes ? domain_map_scale(domain) : nullptr) {
-      if (scale->max_error() > kGroundScaleTolerance)
-        return scale->min() * size(ground_area(domain, *scale));
-    }
+    if (scale) return scale->min() * size(ground_area(domain, *scale));
     return size(area(domain));
   };
   StageClock clock(r.times);

@@ -536,8 +536,11 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
                                             : exclude_polygons(options, read, source.crs, result);
 
   progress.report("clean", 0.7);
-  double h = options.target_size_for_domain ? options.target_size_for_domain(result.domain)
-                                            : options.target_size_m;
+  const std::shared_ptr<const MapScale> scale =
+      options.map_scale_for_domain ? options.map_scale_for_domain(result.domain) : nullptr;
+  double h = options.target_size_for_domain
+                 ? options.target_size_for_domain(result.domain, scale.get())
+                 : options.target_size_m;
   // A raster knows nothing smaller than its cells: islands, holes and notches under a
   // cell are its noise, cleaned as such.
   if (source.raster) h = std::max(h, source.raster->cell_size_m);
@@ -546,6 +549,11 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   cp.largest = options.largest;
   cp.min_island_area_m2 = options.min_island_area_m2.value_or(h > 0 ? h * h : 0.0);
   cp.min_hole_area_m2 = cp.min_island_area_m2;
+  if (scale)
+    cp.area_factor = [scale, k_min = scale->min()](const Point2& p) {
+      const double r = k_min / scale->at(p);
+      return r * r;
+    };
   if (cp.min_island_area_m2 < 0)
     throw Error(ErrorClass::usage, "clean", "--min-island-area must not be negative");
   s.min_island_area_m2 = cp.min_island_area_m2;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -11,10 +12,11 @@
 #include "core/progress.h"
 #include "domain/clean_domain.h"
 #include "domain/narrow_features.h"
-#include "domain/spike_tips.h"
 #include "domain/project_domain.h"
 #include "domain/select_domain.h"
 #include "domain/simplify_domain.h"
+#include "domain/spike_tips.h"
+#include "gis/map_scale.h"
 #include "gis/read_polygons.h"
 
 namespace isoquad {
@@ -36,7 +38,12 @@ struct FrontEndOptions {
   double target_size_m = 0.0;
   // When set, derives target_size_m from the projected domain (the automatic sizing's
   // default scale from its area; ground sizes in the CRS's metres), in place of it.
-  std::function<double(const Domain& domain)> target_size_for_domain;
+  // `scale`: map_scale_for_domain's, or null.
+  std::function<double(const Domain& domain, const MapScale* scale)> target_size_for_domain;
+  // When set, the meshing CRS's scale over the projected domain where sizes are the
+  // ground's (null where its metres are taken for the ground's): islands and holes are
+  // then measured as at its smallest scale (CleanParams::area_factor).
+  std::function<std::shared_ptr<const MapScale>(const Domain& domain)> map_scale_for_domain;
   // Warn when the automatic projection distorts lengths by more than 1% (off where the
   // sizes are the ground's: SizingParams::ground_sizes).
   bool warn_distortion = true;
