@@ -155,11 +155,9 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
     // Off the mesh, without --hmax: its largest elements' size on the ground (the
     // refinement's size cache takes that off the mesh, round the domain).
     if (!std::isfinite(hmax_)) {
-      const MapScale* scale = scale_.get();
-      hmax_ = summary_.hmax_m =
-          mesh_sizes_->max_value(scale ? std::function<double(const Point2&)>(
-                                             [scale](const Point2& p) { return scale->at(p); })
-                                       : std::function<double(const Point2&)>());
+      std::function<double(const Point2&)> ground;
+      if (scale_) ground = [scale = scale_.get()](const Point2& p) { return scale->at(p); };
+      hmax_ = summary_.hmax_m = mesh_sizes_->max_value(ground);
     }
   }
   if (!(params.courant > 0)) usage("--courant must be positive");
