@@ -117,6 +117,14 @@ int run_domain(CommonArgs& a) {
                     "': the domain is written as a GeoPackage (.gpkg), a FlatGeobuf (.fgb) or a "
                     "GeoJSON in longitudes and latitudes (.geojson, .json)");
 
+  // With --size, cleaned as `mesh --size` cleans (at the ground's sizes over a large
+  // domain); without it, the cleaning's options alone.
+  if (a.fe.target_size_m > 0) {
+    SizingParams sizing;
+    sizing.automatic = false;
+    sizing.constant_m = a.fe.target_size_m;
+    clean_at_sizes(a.fe, sizing);
+  }
   const auto t0 = std::chrono::steady_clock::now();
   FrontEndResult r = build_planar_domain(a.fe, Progress(make_progress(a.quiet)));
   // The domain and the report are moved into place together, when both are complete.

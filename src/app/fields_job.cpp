@@ -266,12 +266,7 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options, 
   progress.report("fields", 1.0);
 }
 
-FieldsResult build_fields(const FieldsOptions& options, const Progress& progress) {
-  FieldsResult r;
-  FrontEndOptions front = options.front;
-  const SizingParams sizing = options.sizing;
-  // The cleaning's and simplification's default scale: hmin, or --size, in the CRS's
-  // metres where the sizes are the ground's, at the smallest scale over the domain.
+void clean_at_sizes(FrontEndOptions& front, const SizingParams& sizing) {
   front.warn_distortion = !sizing.ground_sizes;
   front.map_scale_for_domain = [sizing](const Domain& domain) {
     std::shared_ptr<const MapScale> scale =
@@ -286,6 +281,12 @@ FieldsResult build_fields(const FieldsOptions& options, const Progress& progress
     if (scale) return scale->min() * size(ground_area(domain, *scale));
     return size(area(domain));
   };
+}
+
+FieldsResult build_fields(const FieldsOptions& options, const Progress& progress) {
+  FieldsResult r;
+  FrontEndOptions front = options.front;
+  clean_at_sizes(front, options.sizing);
   StageClock clock(r.times);
   r.front = build_planar_domain(front, progress.slice(0.0, 0.2));
   clock.lap("front end");

@@ -82,6 +82,13 @@ struct FieldsResult {
   std::shared_ptr<const MapScale> scale;
 };
 
+// The front end's cleaning at the sizes `sizing` gives: its default scale hmin (or
+// --size), in the CRS's metres at the smallest scale over the domain where the sizes
+// are the ground's, and islands and holes measured as at that scale
+// (FrontEndOptions::target_size_for_domain, map_scale_for_domain). `isoquad domain
+// --size` so cleans as `mesh --size` does.
+void clean_at_sizes(FrontEndOptions& front, const SizingParams& sizing);
+
 // Front end, then the background mesh refined to the sizing, the sizing field on its
 // vertices (graded), and the cross field.
 FieldsResult build_fields(const FieldsOptions& options, const Progress& progress = Progress());
