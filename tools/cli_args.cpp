@@ -95,7 +95,8 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
   cmd->add_option("--clip", a.fe.clip_path,
                   "Vector file (any format, with a CRS) of one polygon, the area to mesh, in place "
                   "of --bbox: land inside it, or water: it minus the polygons, its edge open (sea) "
-                  "where it is not land")
+                  "where it is not land, or sea: the polygons inside it, its edge open where it "
+                  "cuts them")
       ->group("Selection");
   cmd->add_option("--clip-layer", a.fe.clip_layer,
                   "Layer of --clip to read (default: its first layer with polygons)")
@@ -121,8 +122,10 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
       ->group("Selection");
   cmd->add_option("--domain", a.domain_kind,
                   "land: inside the polygons (clipped to --bbox or --clip); water: --bbox (or "
-                  "--clip) minus the polygons")
-      ->check(CLI::IsMember({"land", "water"}))
+                  "--clip) minus the polygons, open where it is not land; sea: inside the "
+                  "polygons, which are water (sea areas, an ocean layer), open where --bbox "
+                  "or --clip cuts them")
+      ->check(CLI::IsMember({"land", "water", "sea"}))
       ->group("Selection");
   cmd->add_option("--zmin", a.fe.read.zmin,
                   "With a raster INPUT (a DEM): the domain is where its values are at least "
@@ -618,7 +621,9 @@ void finish_front_end_args(CommonArgs& a) {
   if (!a.fe.open_boundary_layer.empty() && a.fe.open_boundary_path.empty())
     throw Error(ErrorClass::usage, "options", "--open-boundary-layer needs --open-boundary");
   if (!a.bbox.empty()) a.fe.read.bbox = parse_bbox(a.bbox);
-  a.fe.kind = a.domain_kind == "water" ? DomainKind::water : DomainKind::land;
+  a.fe.kind = a.domain_kind == "water" ? DomainKind::water
+              : a.domain_kind == "sea" ? DomainKind::sea
+                                       : DomainKind::land;
   a.fe.kind_given = !a.domain_kind.empty();
   if (a.simplify_m >= 0) a.fe.simplify_m = a.simplify_m;
   if (a.min_island_area_m2 >= 0) a.fe.min_island_area_m2 = a.min_island_area_m2;

@@ -211,14 +211,14 @@ RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::stri
   else check_output_path(a.output, a.overwrite);
   const bool has_open_boundary =
       !a.fe.open_boundary_path.empty() ||
-      (a.fe.kind == DomainKind::water && (!a.bbox.empty() || !a.fe.clip_path.empty())) ||
+      (a.fe.kind != DomainKind::land && (!a.bbox.empty() || !a.fe.clip_path.empty())) ||
       a.fe.read.zmin || a.fe.read.zmax;
   for (const MeshOutput& o : outputs)
     if (!tiling_only && !has_open_boundary && mesh_output_format(o) == MeshFormat::pli)
       throw Error(ErrorClass::usage, "options",
                   "'" + o.path +
                       "': a .pli holds the open boundary, and this domain has none: give "
-                      "--open-boundary FILE, or --domain water with --bbox or --clip");
+                      "--open-boundary FILE, or --domain water (or sea) with --bbox or --clip");
   // --bathymetry alone gives the depths of the outputs; with a wavelength, slope or time
   // step rule, or a --size-expr in d, it also sets the sizing.
   finish_depth_options(a, f);

@@ -234,12 +234,12 @@ std::vector<std::vector<Point2>> open_parts(const FrontEndResult& result) {
 SourceData read_mesh_source(const FrontEndOptions& options,
                             std::vector<std::vector<Point2>>& open_lines) {
   const ReadParams& read = options.read;
-  const std::pair<bool, const char*> selections[] = {
-      {!read.layer.empty(), "--layer"},
-      {!read.where.empty(), "--where"},
-      {read.bbox.has_value(), "--bbox"},
-      {!options.clip_path.empty(), "--clip"},
-      {options.kind != DomainKind::land, "--domain water"}};
+  const std::string kind = std::string("--domain ") + domain_kind_name(options.kind);
+  const std::pair<bool, std::string> selections[] = {{!read.layer.empty(), "--layer"},
+                                                     {!read.where.empty(), "--where"},
+                                                     {read.bbox.has_value(), "--bbox"},
+                                                     {!options.clip_path.empty(), "--clip"},
+                                                     {options.kind != DomainKind::land, kind}};
   for (const auto& [given, option] : selections)
     if (given)
       throw Error(ErrorClass::usage, "read",
@@ -488,7 +488,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     result.open_boundary_line_group = p.line_of;
     for (double sag : p.sag_m) result.open_boundary_slack_m.push_back(0.7 * sag);
     result.open_boundary_chord_share = 0.2;
-  } else if (kind == DomainKind::water && source.bbox_ring) {
+  } else if ((kind == DomainKind::water || kind == DomainKind::sea) && source.bbox_ring) {
     Ring box = *source.bbox_ring;
     box.push_back(box.front());
     const ProjectedLines p = project_lines({box}, source.crs, meshing_crs, false);
@@ -498,6 +498,10 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
       result.open_boundary_tolerance_m =
           2.0 * p.sag_m[0];  // the simplification tolerance added below
     }
+  } else if (kind == DomainKind::sea) {
+    s.warnings.push_back(
+        "--domain sea without --bbox or --clip: nothing cuts the polygons, so their whole "
+        "edge is land; mark its open parts with --open-boundary");
   }
 
   if (!options.align_path.empty()) {

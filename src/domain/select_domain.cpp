@@ -206,6 +206,18 @@ std::optional<Rectangle> read_rectangle(const SourceData& source) {
 
 }  // namespace
 
+const char* domain_kind_name(DomainKind kind) {
+  switch (kind) {
+    case DomainKind::water:
+      return "water";
+    case DomainKind::sea:
+      return "sea";
+    case DomainKind::land:
+      break;
+  }
+  return "land";
+}
+
 SelectResult select_domain(const SourceData& input, const SelectParams& params) {
   const std::string file = "'" + params.source_name + "'";
   SourceData unwrapped;
@@ -292,8 +304,7 @@ SelectResult select_domain(const SourceData& input, const SelectParams& params) 
   normalize_polygons(result.polygons);
   if (result.polygons.empty())
     throw Error(ErrorClass::input, "domain",
-                file + ": the " + std::string(params.kind == DomainKind::water ? "water" : "land") +
-                    " domain is empty" +
+                file + ": the " + domain_kind_name(params.kind) + " domain is empty" +
                     (params.kind == DomainKind::water ? " (the area is covered by the polygons)"
                                                       : " (no polygon inside the area)"));
   return result;

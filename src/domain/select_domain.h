@@ -1,5 +1,5 @@
 // From the polygons read to one planar domain: validity (repair or report), union,
-// land or water selection within the bbox.
+// land, water or sea selection within the bbox.
 #pragma once
 
 #include <string>
@@ -10,7 +10,14 @@
 
 namespace isoquad {
 
-enum class DomainKind { land, water };
+// land: the inside of the polygons (clipped to the bbox or area); water: the bbox (or
+// area) minus the polygons; sea: the inside of the polygons as land, the polygons being
+// water (sea areas, an ocean layer, a model's domain), so that the bbox's (or area's)
+// sides that cut them are open boundary, as a water domain's are.
+enum class DomainKind { land, water, sea };
+
+// "water", "land" or "sea", as --domain names them.
+const char* domain_kind_name(DomainKind kind);
 
 struct SelectParams {
   DomainKind kind = DomainKind::land;

@@ -109,15 +109,15 @@ TEST(Cli, UsageErrorsExitWithTwo) {
   TempDir dir;
   const std::string input = good_geojson(dir);
   const std::string out = dir.file("out.gpkg");
-  for (const auto& args : std::vector<std::vector<std::string>>{
-           {"domain", input, "-o", out, "--no-such-option"},
-           {"domain", input, "-o", out, "--bbox", "1,2,3"},
-           {"domain", input, "-o", out, "--bbox", "1,2,x,4"},
-           {"domain", input, "-o", out, "--domain", "sea"},
-           {"domain", input, "-o", out, "--simplify", "-5"},
-           {"domain", input, "-o", dir.file("out.shp")},
-           {"domain", input},
-           {}}) {
+  for (const auto& args :
+       std::vector<std::vector<std::string>>{{"domain", input, "-o", out, "--no-such-option"},
+                                             {"domain", input, "-o", out, "--bbox", "1,2,3"},
+                                             {"domain", input, "-o", out, "--bbox", "1,2,x,4"},
+                                             {"domain", input, "-o", out, "--domain", "ocean"},
+                                             {"domain", input, "-o", out, "--simplify", "-5"},
+                                             {"domain", input, "-o", dir.file("out.shp")},
+                                             {"domain", input},
+                                             {}}) {
     const CliResult r = run_cli(args, dir);
     EXPECT_EQ(r.exit_code, 2) << r.err;
     EXPECT_NE(r.err.find("isoquad: "), std::string::npos) << r.err;

@@ -449,6 +449,48 @@ TEST(CliOutputs, OpenBoundaryLinesGiveTheSeaBoundary) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("n.gpkg")));
 }
 
+// --domain sea: a polygon of sea (the water round the island and the peninsula, cut out
+// of a larger box) within the bbox is the bbox's water, open where the bbox cuts it: the
+// same grid, byte for byte, as --domain water gives from the land. Without a bbox
+// nothing is open: a warning says so, and a .pli is refused before meshing.
+TEST(CliOutputs, ASeaPolygonCutByTheBboxIsOpenAlongIt) {
+  TempDir dir;
+  const std::string land = water_input(dir);
+  const std::string sea = dir.file("sea.geojson");
+  write_file(sea,
+             geojson_polygons(
+                 {"[[[-4.8,48.0],[-4.2,48.0],[-4.2,48.5],[-4.8,48.5],[-4.8,48.0]],"
+                  "[[-4.45,48.25],[-4.45,48.3],[-4.3,48.3],[-4.3,48.25],[-4.45,48.25]],"
+                  "[[-4.55,48.22],[-4.55,48.25],[-4.52,48.25],[-4.52,48.22],[-4.55,48.22]]]"}));
+  const std::string bbox = "--bbox=-4.6,48.2,-4.4,48.35";
+  CliResult r = run_cli(
+      {"mesh", land, "--domain", "water", bbox, "--size", "800", "-q", "-o", dir.file("water.gr3")},
+      dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  r = run_cli(
+      {"mesh", sea, "--domain", "sea", bbox, "--size", "800", "-q", "-o", dir.file("sea.gr3")},
+      dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_file(dir.file("sea.gr3")), read_file(dir.file("water.gr3")));
+  const Gr3 g = parse_gr3(dir.file("sea.ll"));
+  ASSERT_EQ(g.open.size(), 1u);
+  ASSERT_GE(g.open[0].size(), 20u);
+  for (int n : g.open[0]) EXPECT_TRUE(on_bbox(g.nodes[n - 1][0], g.nodes[n - 1][1], 1e-4)) << n;
+  // The same polygon read as land: the bbox's sides are land.
+  r = run_cli({"mesh", sea, bbox, "--size", "800", "-q", "-o", dir.file("land.gr3")}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(parse_gr3(dir.file("land.gr3")).open.empty());
+
+  r = run_cli({"mesh", sea, "--domain", "sea", "--size", "2000", "-o", dir.file("whole.gr3")}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("--domain sea without --bbox or --clip"), std::string::npos) << r.err;
+  EXPECT_TRUE(parse_gr3(dir.file("whole.gr3")).open.empty());
+  r = run_cli({"mesh", sea, "--domain", "sea", "--size", "2000", "-o", dir.file("whole.pli")}, dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--domain water (or sea) with --bbox or --clip"), std::string::npos)
+      << r.err;
+}
+
 TEST(CliOutputs, AnOpenBoundaryDenserThanTheDomainsEdgeTakesTheWholeEdge) {
   // A 2 x 1.5 degree box whose south side is one edge of 151 km, projected as a chord
   // that the side's curved image leaves by 470 m; the open boundary drawn along it in

@@ -94,6 +94,44 @@ TEST(SelectDomain, WaterIsTheBboxMinusTheLandWithIslandsAsHoles) {
   for (const Ring& h : sea.holes) EXPECT_LT(signed_area(h), 0.0);
 }
 
+// A sea polygon (the water above a coast, islands as holes) cut to a bbox is the same
+// domain as the bbox minus the land: --domain sea only reads the polygons the other way.
+TEST(SelectDomain, TheSeaInABboxIsTheBboxMinusTheLand) {
+  const Ring coast = {{-10, -10}, {110, -10}, {110, 10}, {-10, 10}};
+  SourceData land = source({{coast}, {square(20, 40, 10)}, {square(60, 60, 5)}});
+  land.bbox_ring = square(0, 0, 100);
+  const SelectResult water = select_domain(land, params(DomainKind::water));
+  auto hole = [](Ring r) {
+    std::reverse(r.begin(), r.end());
+    return r;
+  };
+  SourceData sea = source({{{{-20, 10}, {120, 10}, {120, 120}, {-20, 120}},
+                            hole(square(20, 40, 10)),
+                            hole(square(60, 60, 5))}});
+  sea.bbox_ring = land.bbox_ring;
+  const SelectResult r = select_domain(sea, params(DomainKind::sea));
+  ASSERT_EQ(r.polygons.size(), 1u);
+  ASSERT_EQ(water.polygons.size(), 1u);
+  EXPECT_TRUE(r.polygons[0].outer == water.polygons[0].outer);
+  ASSERT_EQ(r.polygons[0].holes.size(), 2u);
+  EXPECT_TRUE(r.polygons[0].holes == water.polygons[0].holes);
+  EXPECT_DOUBLE_EQ(area(r.polygons[0]), 100.0 * 90.0 - 100.0 - 25.0);
+
+  // Without a bbox the sea is the polygons themselves, as land would be; a bbox that
+  // misses them leaves nothing, said so.
+  sea.bbox_ring.reset();
+  EXPECT_DOUBLE_EQ(area(select_domain(sea, params(DomainKind::sea)).polygons[0]),
+                   140.0 * 110.0 - 125.0);
+  sea.bbox_ring = square(0, -8, 5);
+  try {
+    select_domain(sea, params(DomainKind::sea));
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::input);
+    EXPECT_NE(std::string(e.what()).find("the sea domain is empty"), std::string::npos) << e.what();
+  }
+}
+
 TEST(SelectDomain, WaterWithoutBboxIsAUsageError) {
   const SourceData d = source({{square(0, 0, 10)}});
   try {
