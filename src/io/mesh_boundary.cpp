@@ -119,4 +119,12 @@ MeshBoundary extract_boundary(const QuadMesh& mesh, const PolylineIndex& open_li
   return b;
 }
 
+std::array<std::vector<int>, 2> loop_halves(const std::vector<int>& loop) {
+  const auto half = loop.begin() + static_cast<std::ptrdiff_t>(loop.size() / 2);
+  std::array<std::vector<int>, 2> out{std::vector<int>(loop.begin(), half + 1),
+                                      std::vector<int>(half, loop.end())};
+  out[1].push_back(loop.front());
+  return out;
+}
+
 }  // namespace isoquad

@@ -3,6 +3,7 @@
 // (a coastline), and cut into segments of one kind, as SCHISM and Gmsh want them.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "core/geometry.h"
@@ -47,5 +48,11 @@ struct MeshBoundary {
 MeshBoundary extract_boundary(const QuadMesh& mesh, const PolylineIndex& open_lines,
                               double tolerance_m, double chord_share = 0.01,
                               const std::vector<int>* line_group = nullptr);
+
+// A whole loop (its first node not repeated, at least 3) as two runs that share their
+// ends: the first half of its nodes, then the rest back to its first node. For the
+// models whose segments may not close on themselves (SCHISM's open boundaries; ADCIRC's
+// as hgrid.gr3's).
+std::array<std::vector<int>, 2> loop_halves(const std::vector<int>& loop);
 
 }  // namespace isoquad

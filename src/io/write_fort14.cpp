@@ -4,9 +4,13 @@
 // the flux boundaries (NBOU, NVEL): the outer loops' land segments first, in order
 // round the domain, then the islands', as ADCIRC's manual asks; mainland segments are
 // IBTYPE 20, islands 21 (no normal flow, natural: the types the manual recommends over
-// 0 and 1), and a whole loop of land lists its first node again at its end.
+// 0 and 1), and a whole loop of land lists its first node again at its end. The open
+// segments are hgrid.gr3's: a whole loop open (a box of sea) is two that share their
+// ends, so that every edge of it is in one (an elevation boundary is a run of nodes, not
+// a loop).
 #include <cstdio>
 
+#include "io/mesh_boundary.h"
 #include "io/mesh_formats.h"
 #include "io/output_file.h"
 
@@ -27,21 +31,26 @@ void write_fort14_file(const MeshView& v, const std::string& path, const std::st
     std::fprintf(raw, "%zu 3 %d %d %d\n", e + 1, triangles[e][0] + 1, triangles[e][1] + 1,
                  triangles[e][2] + 1);
 
-  std::vector<const BoundarySegment*> open, land;
-  for (const BoundarySegment& s : v.data->boundary.segments)
-    if (s.kind == BoundaryKind::open) open.push_back(&s);
+  std::vector<std::vector<int>> open;
+  std::vector<const BoundarySegment*> land;
+  for (const BoundarySegment& s : v.data->boundary.segments) {
+    if (s.kind != BoundaryKind::open) continue;
+    if (s.closed && s.nodes.size() >= 3)
+      for (std::vector<int>& half : loop_halves(s.nodes)) open.push_back(std::move(half));
+    else
+      open.push_back(s.nodes);
+  }
   for (const bool island : {false, true})
     for (const BoundarySegment& s : v.data->boundary.segments)
       if (s.kind == BoundaryKind::land && s.island == island) land.push_back(&s);
   auto count = [](const BoundarySegment& s) { return s.nodes.size() + (s.closed ? 1 : 0); };
   std::size_t total = 0;
-  for (const auto* s : open) total += s->nodes.size();
+  for (const auto& s : open) total += s.size();
   std::fprintf(raw, "%zu = Number of open boundaries\n", open.size());
   std::fprintf(raw, "%zu = Total number of open boundary nodes\n", total);
   for (std::size_t k = 0; k < open.size(); ++k) {
-    std::fprintf(raw, "%zu 0 = Number of nodes for open boundary %zu\n", open[k]->nodes.size(),
-                 k + 1);
-    for (int n : open[k]->nodes) std::fprintf(raw, "%d\n", n + 1);
+    std::fprintf(raw, "%zu 0 = Number of nodes for open boundary %zu\n", open[k].size(), k + 1);
+    for (int n : open[k]) std::fprintf(raw, "%d\n", n + 1);
   }
   total = 0;
   for (const auto* s : land) total += count(*s);

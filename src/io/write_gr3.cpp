@@ -41,13 +41,8 @@ std::vector<SchismSegment> schism_segments(const std::vector<const BoundarySegme
       out.push_back({s->nodes, s->island});
       continue;
     }
-    const std::size_t half = n / 2;
-    std::vector<int> first(s->nodes.begin(),
-                           s->nodes.begin() + static_cast<std::ptrdiff_t>(half) + 1);
-    std::vector<int> second(s->nodes.begin() + static_cast<std::ptrdiff_t>(half), s->nodes.end());
-    second.push_back(s->nodes.front());
-    out.push_back({std::move(first), s->island});
-    out.push_back({std::move(second), s->island});
+    for (std::vector<int>& half : loop_halves(s->nodes))
+      out.push_back({std::move(half), s->island});
   }
   return out;
 }

@@ -299,6 +299,7 @@ TEST(MeshOutputs, Gr3MatchesGoldenAndParses) {
 
 // A whole loop of the exterior boundary, open (a box of sea) or land (a lake), is two
 // segments that share their ends, as SCHISM wants; the island's loop stays one (flag 1).
+// The fort.14's open segments are the same (every edge of the loop in one of them).
 TEST(MeshOutputs, Gr3WritesAWholeLoopOfTheExteriorAsTwoSegments) {
   const Fixture f;
   TempDir dir;
@@ -311,8 +312,10 @@ TEST(MeshOutputs, Gr3WritesAWholeLoopOfTheExteriorAsTwoSegments) {
                                     {kX0 - 10, kY0 - 10}};
     d.boundary = extract_boundary(f.mesh, open ? PolylineIndex({round}) : PolylineIndex(), 20.0);
     const std::string gr3 = dir.file(open ? "open.gr3" : "lake.gr3");
-    write_mesh_outputs(d, {{gr3, "", false}});
+    const std::string fort14 = dir.file(open ? "open.14" : "lake.14");
+    write_mesh_outputs(d, {{gr3, "", false}, {fort14, "", false}});
     const Gr3 g = parse_gr3(read_file(gr3));
+    EXPECT_EQ(parse_gr3(read_file(fort14)).open, g.open);
     ASSERT_EQ(g.open.size(), open ? 2u : 0u);
     ASSERT_EQ(g.land.size(), open ? 1u : 3u);
     EXPECT_EQ(g.land.back().first, 1);  // the island
