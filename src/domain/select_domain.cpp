@@ -48,11 +48,16 @@ bool unwrap_narrows(const SourceData& source) {
 }
 
 // Whether a ring of these crosses the antimeridian as written: an edge more than 180
-// degrees long (179.9 then -179.9), which is meant the short way round.
+// degrees long (179.9 then -179.9), which is meant the short way round. An edge along a
+// pole (both ends at 90 degrees of latitude, -180 then 180: a polygon of the world's sea
+// drawn up to the top of the map) is a point on the globe, and crosses nothing.
 bool crosses_antimeridian(const std::vector<Ring>& rings) {
+  auto at_pole = [](const Point2& p) { return std::abs(p.y) >= 90.0; };
   for (const Ring& r : rings)
-    for (std::size_t i = 0; i < r.size(); ++i)
-      if (std::abs(r[(i + 1) % r.size()].x - r[i].x) > 180.0) return true;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const Point2 &a = r[i], &b = r[(i + 1) % r.size()];
+      if (std::abs(b.x - a.x) > 180.0 && !(at_pole(a) && at_pole(b))) return true;
+    }
   return false;
 }
 

@@ -381,3 +381,27 @@ TEST(SelectDomain, ALandmassRoundAPoleIsClosedThroughThePole) {
   for (const Polygon& p : r.polygons) water += area(p);
   EXPECT_NEAR(water, 360.0 * 10.0 + 10.0 * 5.0, 1e-6);
 }
+
+// A polygon of sea drawn as a map's lon/lat rectangle up to the top of the map (as
+// geo-maps' earth-seas is): its edge along 90 N from 180 back to -180 is the pole, not a
+// crossing of the antimeridian. Read as drawn, with or without a bbox; an island in it
+// stays a hole.
+TEST(SelectDomain, AnEdgeAlongThePoleCrossesNoAntimeridian) {
+  SourceData d;
+  d.crs = parse_crs("EPSG:4326", "test");
+  SourcePolygon sea;
+  sea.fid = 0;
+  Ring island = box_ring(10, 40, 20, 50);
+  std::reverse(island.begin(), island.end());
+  sea.rings = {{{-180, 0}, {-90, 0}, {0, 0}, {90, 0}, {180, 0}, {180, 90}, {-180, 90}}, island};
+  d.polygons = {sea};
+  SelectResult r = select_domain(d, params(DomainKind::sea));
+  ASSERT_EQ(r.polygons.size(), 1u);
+  EXPECT_EQ(r.polygons[0].holes.size(), 1u);
+  EXPECT_NEAR(area(r.polygons[0]), 360.0 * 90.0 - 100.0, 1e-6);
+  d.bbox_ring = box_ring(-180, -90, 180, 90);
+  r = select_domain(d, params(DomainKind::sea));
+  double total = 0.0;
+  for (const Polygon& p : r.polygons) total += area(p);
+  EXPECT_NEAR(total, 360.0 * 90.0 - 100.0, 1e-6);
+}
