@@ -141,8 +141,11 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
                   "CRS of the input coordinates (required when the input has none; overrides it)")
       ->group("Projection");
   cmd->add_option("--dst-crs", a.fe.project.dst_crs,
-                  "Meshing CRS, projected in metres (default: a local oblique stereographic "
-                  "projection centred on the domain)")
+                  "Meshing CRS, projected in metres. Default: the input's own CRS when it is "
+                  "projected in metres, conformal and within 1% of the ground's scale over the "
+                  "domain (UTM in its zone, a national conformal CRS), else a local oblique "
+                  "stereographic projection centred on the domain, which 'local' asks for "
+                  "whatever the input")
       ->group("Projection");
   cmd->add_flag("--repair", a.fe.read.repair,
                 "Repair invalid geometry (self-intersections, unclosed or degenerate rings) "

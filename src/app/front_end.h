@@ -93,6 +93,8 @@ struct DomainSummary {
   std::string meshing_crs_name;
   std::string meshing_crs_proj;  // PROJ string of the meshing CRS
   bool automatic_crs = false;
+  bool input_crs_kept = false;     // the INPUT's projected CRS is the meshing CRS
+  std::string input_crs_not_kept;  // why a projected INPUT's CRS was not (ProjectResult)
   std::optional<LocalProjection> local;
   std::size_t num_features = 0;
   std::size_t num_source_polygons = 0;

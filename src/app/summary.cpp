@@ -32,7 +32,13 @@ std::string format_domain_summary(const DomainSummary& s) {
        << " feature(s), " << s.num_source_polygons << " polygon(s), CRS " << s.source_crs_name
        << ")\n";
   }
-  os << "meshing CRS:  " << s.meshing_crs_name << (s.automatic_crs ? " (automatic)" : "") << "\n";
+  os << "meshing CRS:  " << s.meshing_crs_name
+     << (s.automatic_crs    ? " (automatic)"
+         : s.input_crs_kept ? " (the input's)"
+                            : "")
+     << "\n";
+  if (!s.input_crs_not_kept.empty())
+    os << "              not the input's CRS: " << s.input_crs_not_kept << "\n";
   if (!s.meshing_crs_proj.empty()) os << "              " << s.meshing_crs_proj << "\n";
   os << "domain:       " << s.num_components << " component(s), " << s.num_rings << " ring(s), "
      << s.num_holes << " hole(s)\n";
@@ -95,6 +101,8 @@ void add_domain_summary(JsonWriter& j, const DomainSummary& s) {
       .value("meshing_crs", s.meshing_crs_name)
       .value("meshing_crs_proj", s.meshing_crs_proj)
       .value("automatic_crs", s.automatic_crs)
+      .value("input_crs_kept", s.input_crs_kept)
+      .value("input_crs_not_kept", s.input_crs_not_kept)
       .value("num_features", s.num_features)
       .value("num_source_polygons", s.num_source_polygons)
       .value("num_components", s.num_components)

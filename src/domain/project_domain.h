@@ -11,12 +11,20 @@
 namespace isoquad {
 
 struct ProjectParams {
-  std::string dst_crs;  // --dst-crs; empty: an automatic local projection
+  // --dst-crs. Empty: the source's own CRS when it is projected in metres, conformal over
+  // the domain and within 1% of the ground's scale there (UTM, a national conformal CRS:
+  // the mesh in the coordinates of the user's other data), else an automatic local
+  // projection; "local": that local projection whatever the source.
+  std::string dst_crs;
 };
 
 struct ProjectResult {
   Domain domain;                          // in the meshing CRS, metres
   std::optional<LocalProjection> local;   // set when the projection was chosen here
+  bool source_kept = false;               // the source's projected CRS is the meshing CRS
+  // Why a projected source's CRS was not kept ("its scale strays by 49% from the
+  // ground's over the domain"); empty otherwise.
+  std::string source_not_kept;
 };
 
 // Throws Error(crs) when the target CRS is not projected in metres or a point cannot be

@@ -100,4 +100,29 @@ double MapScale::max_error() const {
   return std::max(max_ - 1.0, 1.0 - min_);
 }
 
+CrsDistortion crs_distortion(const CrsInfo& crs, const std::vector<Point2>& points) {
+  CrsDistortion d;
+  if (points.empty()) return d;
+  const std::size_t stride = std::max<std::size_t>(1, points.size() / 1000);
+  constexpr double kStep = 1.0;  // metres of the CRS
+  const CrsTransform to_lonlat(crs, geographic_base(crs));
+  const GeographicLib::Geodesic& geod = GeographicLib::Geodesic::WGS84();
+  for (std::size_t i = 0; i < points.size(); i += stride) {
+    Point2 p = points[i], px{p.x + kStep, p.y}, py{p.x, p.y + kStep};
+    if (!to_lonlat.transform(p) || !to_lonlat.transform(px) || !to_lonlat.transform(py)) continue;
+    double sx = 0.0, sy = 0.0, ax = 0.0, ay = 0.0, a2 = 0.0;
+    geod.Inverse(p.y, p.x, px.y, px.x, sx, ax, a2);
+    geod.Inverse(p.y, p.x, py.y, py.x, sy, ay, a2);
+    if (!(sx > 0) || !(sy > 0)) continue;
+    d.measured = true;
+    const double kx = kStep / sx, ky = kStep / sy;
+    d.max_scale_error = std::max(d.max_scale_error, std::abs(std::sqrt(kx * ky) - 1.0));
+    d.max_anisotropy = std::max(d.max_anisotropy, std::abs(kx / ky - 1.0));
+    // The x step's azimuth is the y step's plus 90 degrees (clockwise from north).
+    const double skew = std::remainder(ax - ay - 90.0, 360.0);
+    d.max_skew_deg = std::max(d.max_skew_deg, std::abs(skew));
+  }
+  return d;
+}
+
 }  // namespace isoquad

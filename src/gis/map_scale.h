@@ -41,4 +41,20 @@ class MapScale {
   double min_ = 1.0, max_ = 1.0;
 };
 
+// How far a projected CRS (in metres) strays from the ground at some of its points
+// (`points` in it; at most about 1,000 of them are measured, evenly through the list):
+// at each, two short steps along x and y measured on the ellipsoid (GeographicLib's
+// geodesics on WGS 84). A conformal CRS scales both alike (`max_anisotropy`, the largest
+// |kx / ky - 1|, is 0) and keeps them square (`max_skew_deg`, the largest departure of
+// the angle between their images from 90 degrees, is 0); `max_scale_error` is the
+// largest |k - 1| (k the two ratios' geometric mean). `measured` is false when no point
+// could be transformed to longitude and latitude.
+struct CrsDistortion {
+  bool measured = false;
+  double max_scale_error = 0.0;
+  double max_anisotropy = 0.0;
+  double max_skew_deg = 0.0;
+};
+CrsDistortion crs_distortion(const CrsInfo& crs, const std::vector<Point2>& points);
+
 }  // namespace isoquad

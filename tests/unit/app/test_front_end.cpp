@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
@@ -61,6 +63,37 @@ TEST(FrontEnd, FranceInLambert93) {
   EXPECT_NE(r.summary.meshing_crs_name.find("Lambert-93"), std::string::npos);
   // Lambert-93 is conformal with a scale error below 0.1% over France.
   EXPECT_NEAR(r.summary.area_m2 / 1e6, 538392.0, 538392.0 * 0.002);
+}
+
+// An input in a projected CRS is meshed in it where that CRS is conformal and true to
+// the ground's scale within 1% (UTM in its zone), so that the mesh's coordinates are its
+// other data's; Web Mercator (not conformal on the ellipsoid) is not kept, and the
+// summary says why; --dst-crs local asks for the automatic projection.
+TEST(FrontEnd, AProjectedInputIsMeshedInItsCrsWhereThatIsTrueToTheGround) {
+  FrontEndOptions o;
+  o.read.path = source_dir() + "/tests/golden/graded_rectangle/input.geojson";
+  o.read.src_crs = "EPSG:32631";
+  FrontEndResult r = build_planar_domain(o);
+  EXPECT_TRUE(r.summary.input_crs_kept);
+  EXPECT_FALSE(r.summary.automatic_crs);
+  EXPECT_EQ(r.summary.meshing_crs_name, "WGS 84 / UTM zone 31N");
+  EXPECT_EQ(r.summary.input_crs_not_kept, "");
+  const Ring drawn = read_polygons(o.read).polygons[0].rings[0];
+  for (const Point2& p : r.domain.polygons[0].outer)  // the input's coordinates, untouched
+    EXPECT_NE(std::find(drawn.begin(), drawn.end(), p), drawn.end()) << p.x << " " << p.y;
+  o.project.dst_crs = "local";
+  r = build_planar_domain(o);
+  EXPECT_FALSE(r.summary.input_crs_kept);
+  EXPECT_TRUE(r.summary.automatic_crs);
+  EXPECT_EQ(r.summary.input_crs_not_kept, "");
+
+  o = FrontEndOptions();
+  o.read.path = source_dir() + "/tests/golden/annulus/input.geojson";
+  r = build_planar_domain(o);
+  EXPECT_FALSE(r.summary.input_crs_kept);
+  EXPECT_TRUE(r.summary.automatic_crs);
+  EXPECT_NE(r.summary.input_crs_not_kept.find("not conformal"), std::string::npos)
+      << r.summary.input_crs_not_kept;
 }
 
 TEST(FrontEnd, SimplificationKeepsHolesAndNeverCrossesAndShrinksMonotonically) {

@@ -155,3 +155,31 @@ TEST(MapScale, UtmAndTheLocalProjectionHaveTheirScaleFactorAtTheirCentre) {
   EXPECT_GT(s.max() - 1.0, 1.0 - s.min());
   EXPECT_LT(s.max() - 1.0, 3 * (1.0 - s.min()));
 }
+
+// What crs_distortion measures, on CRSs whose distortion is known: UTM conformal and
+// within 0.1% of the ground in its zone; World Mercator conformal, its scale the secant
+// of the latitude (1.5 at 48 N); Europe's equal-area CRS (EPSG:3035) about true to
+// scale at its centre (52 N, 10 E) but not conformal 1,000 km from it.
+TEST(CrsDistortion, ConformalOrNotAndHowFarFromTheGroundsScale) {
+  const CrsInfo wgs = parse_crs("EPSG:4326", "src");
+  auto measured = [&wgs](const char* code, std::vector<Point2> lonlat) {
+    const CrsInfo crs = parse_crs(code, "dst");
+    EXPECT_EQ(CrsTransform(wgs, crs).transform(lonlat), -1) << code;
+    return crs_distortion(crs, lonlat);
+  };
+  CrsDistortion d = measured("EPSG:32631", {{0.5, 43}, {3, 45}, {5.5, 50}});
+  EXPECT_TRUE(d.measured);
+  EXPECT_LT(d.max_scale_error, 0.001);
+  EXPECT_LT(d.max_anisotropy, 1e-5);
+  EXPECT_LT(d.max_skew_deg, 1e-3);
+  d = measured("EPSG:3395", {{-4, 48}, {0, 48}});
+  EXPECT_NEAR(d.max_scale_error, 0.49, 0.01);
+  EXPECT_LT(d.max_anisotropy, 1e-5);
+  EXPECT_LT(d.max_skew_deg, 1e-3);
+  d = measured("EPSG:3035", {{10, 52}});
+  EXPECT_LT(d.max_anisotropy, 1e-3);  // on the ellipsoid, 0.03% at its very centre
+  EXPECT_LT(d.max_scale_error, 1e-3);
+  d = measured("EPSG:3035", {{-5, 45}, {25, 60}});
+  EXPECT_GT(d.max_anisotropy + d.max_skew_deg / 57.3, 0.005);
+  EXPECT_FALSE(crs_distortion(parse_crs("EPSG:32631", "dst"), {}).measured);
+}
