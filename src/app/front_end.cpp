@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 
 #include "core/error.h"
 #include "core/text.h"
@@ -290,6 +291,47 @@ void check_raster_selection(const FrontEndOptions& options) {
                       option + " is for a vector file's polygons");
 }
 
+// --domain sea with --where (or --each): the rings of the layer's other polygons near the
+// selected ones (in the source CRS, closed), each polygon's rings with its index in
+// `polygon_of`. Sea areas that border the one meshed meet it in open water: its edges on
+// their rings are open, its coast land.
+std::vector<std::vector<Point2>> neighbour_rings(const ReadParams& read, const SourceData& selected,
+                                                 std::vector<int>& polygon_of) {
+  std::vector<std::vector<Point2>> rings;
+  std::set<long long> fids;
+  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  for (const SourcePolygon& p : selected.polygons) {
+    fids.insert(p.fid);
+    for (const Ring& r : p.rings)
+      for (const Point2& q : r)
+        x0 = std::min(x0, q.x), y0 = std::min(y0, q.y), x1 = std::max(x1, q.x),
+        y1 = std::max(y1, q.y);
+  }
+  if (fids.empty()) return rings;
+  const double margin = 0.01 * std::hypot(x1 - x0, y1 - y0);
+  ReadParams all = read;
+  all.where.clear();
+  const SourceData others = read_polygons(all);
+  int polygon = 0;
+  for (const SourcePolygon& p : others.polygons) {
+    if (fids.count(p.fid)) continue;
+    bool near = false;
+    for (const Ring& r : p.rings)
+      for (const Point2& q : r)
+        near = near || (q.x >= x0 - margin && q.x <= x1 + margin && q.y >= y0 - margin &&
+                        q.y <= y1 + margin);
+    if (!near) continue;
+    for (const Ring& r : p.rings) {
+      if (r.size() < 3) continue;
+      rings.push_back(r);
+      rings.back().push_back(r.front());
+      polygon_of.push_back(polygon);
+    }
+    ++polygon;
+  }
+  return rings;
+}
+
 }  // namespace
 
 void read_clip(const FrontEndOptions& options, ReadParams& read) {
@@ -457,6 +499,12 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   // Lines along the domain's edge that make it open there: --open-boundary's, or else a
   // mesh's own open boundaries (each segment on its own, as --open-boundary's).
   const bool open_lines_given = !options.open_boundary_path.empty() || !mesh_open_lines.empty();
+  std::vector<int> neighbour_of;
+  const std::vector<std::vector<Point2>> neighbours =
+      kind == DomainKind::sea && !open_lines_given && !options.source && !from_mesh &&
+              !from_raster && !read.where.empty()
+          ? neighbour_rings(read, source, neighbour_of)
+          : std::vector<std::vector<Point2>>();
   const std::string open_lines_name = !options.open_boundary_path.empty()
                                           ? "'" + options.open_boundary_path + "'"
                                           : "the open boundaries of '" + read.path + "'";
@@ -490,6 +538,31 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     result.open_boundary_line_group = p.line_of;
     for (double sag : p.sag_m) result.open_boundary_slack_m.push_back(0.7 * sag);
     result.open_boundary_chord_share = 0.2;
+  } else if (!neighbours.empty()) {
+    // The other polygons' rings, and the bbox's (or area's) when there is one, each
+    // polygon and the bbox a group of its own (a segment each), as --open-boundary's.
+    std::vector<std::vector<Point2>> lines = neighbours;
+    std::vector<int> group = neighbour_of;
+    const int num_neighbours = neighbour_of.back() + 1;
+    if (source.bbox_ring) {
+      lines.push_back(*source.bbox_ring);
+      lines.back().push_back(lines.back().front());
+      group.push_back(num_neighbours);
+    }
+    const ProjectedLines p = project_lines(lines, source.crs, meshing_crs, true);
+    if (p.failed_line >= 0)
+      throw Error(ErrorClass::crs, "open boundary",
+                  "'" + read.path +
+                      "': a point of a polygon next to the selection cannot be "
+                      "transformed into the meshing CRS");
+    s.open_boundary_path = read.path + " (its " + std::to_string(num_neighbours) +
+                           " other polygon(s) next to the selection" +
+                           (source.bbox_ring ? std::string(", and the area's edge)") : ")");
+    s.open_boundary_num_lines = lines.size();
+    result.open_boundary_lines = p.lines;
+    for (int l : p.line_of) result.open_boundary_line_group.push_back(group[l]);
+    for (double sag : p.sag_m) result.open_boundary_slack_m.push_back(0.7 * sag);
+    result.open_boundary_chord_share = 0.2;
   } else if ((kind == DomainKind::water || kind == DomainKind::sea) && source.bbox_ring) {
     Ring box = *source.bbox_ring;
     box.push_back(box.front());
@@ -502,8 +575,9 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     }
   } else if (kind == DomainKind::sea) {
     s.warnings.push_back(
-        "--domain sea without --bbox or --clip: nothing cuts the polygons, so their whole "
-        "edge is land; mark its open parts with --open-boundary");
+        "--domain sea without --bbox or --clip, and no other polygon of the layer next to "
+        "the selection: the polygons' whole edge is land; mark its open parts with "
+        "--open-boundary");
   }
 
   if (!options.align_path.empty()) {
@@ -665,14 +739,14 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   }
   if (!result.open_boundary_lines.empty())
     result.open_boundary_tolerance_m += 1.01 * simp.tolerance_m;
-  if (open_lines_given) {
+  if (open_lines_given || !neighbours.empty()) {
     // Lines that follow none of the domain's boundary would leave it all land: an
     // ocean model without a sea boundary. The length they follow: that of the boundary's
-    // open parts (open_parts).
+    // open parts (open_parts). (Polygons next to a sea area may touch it at points only.)
     add_domain_chords(result, source.crs, meshing_crs);
     const double tolerance = open_line_tolerance(result);
     for (const auto& part : open_parts(result)) s.open_boundary_length_m += polyline_length(part);
-    if (!(s.open_boundary_length_m > 0.0)) {
+    if (!(s.open_boundary_length_m > 0.0) && open_lines_given) {
       char text[32];
       std::snprintf(text, sizeof text, "%.4g", tolerance);
       throw Error(ErrorClass::input, "open boundary",

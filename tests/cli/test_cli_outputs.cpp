@@ -491,6 +491,57 @@ TEST(CliOutputs, ASeaPolygonCutByTheBboxIsOpenAlongIt) {
       << r.err;
 }
 
+// A file of sea areas that border each other: one of them (--where, or each with --each)
+// meshed with --domain sea is open along its borders with the others, a segment per
+// neighbour, and land along the rest (the coast); as land it is all land.
+TEST(CliOutputs, SeaAreasAreOpenWhereTheyBorderEachOther) {
+  TempDir dir;
+  const std::string areas = dir.file("areas.geojson");
+  write_file(areas,
+             "{\"type\":\"FeatureCollection\",\"features\":["
+             "{\"type\":\"Feature\",\"properties\":{\"name\":\"west\"},\"geometry\":{\"type\":"
+             "\"Polygon\",\"coordinates\":[[[-5,47],[-4,47],[-4,47.5],[-4,48],[-5,48],[-5,47]]]}},"
+             "{\"type\":\"Feature\",\"properties\":{\"name\":\"east\"},\"geometry\":{\"type\":"
+             "\"Polygon\",\"coordinates\":[[[-4,47],[-3,47],[-3,48],[-4,48],[-4,47.5],[-4,47]]]}},"
+             "{\"type\":\"Feature\",\"properties\":{\"name\":\"north\"},\"geometry\":{\"type\":"
+             "\"Polygon\",\"coordinates\":[[[-5,48],[-3,48],[-3,48.5],[-5,48.5],[-5,48]]]}}]}");
+  CliResult r = run_cli({"mesh", areas, "--domain", "sea", "--where", "name = 'west'", "--size",
+                         "5000", "-q", "-o", dir.file("west.gr3")},
+                        dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 g = parse_gr3(dir.file("west.ll"));
+  ASSERT_EQ(g.open.size(), 2u);  // the border with the east, then with the north
+  ASSERT_EQ(g.land.size(), 1u);  // the coast, west and south
+  // Within 0.002 degrees: the domain's sides are the chords of the areas' one-degree
+  // edges (a parallel's, 0.0011 degrees from it at its middle), and the quads' sides lie
+  // along them. The two borders and the coast are a degree apart.
+  std::set<int> open_nodes;
+  for (const auto& segment : g.open) {
+    for (int n : segment) {
+      const double lon = g.nodes[n - 1][0], lat = g.nodes[n - 1][1];
+      EXPECT_TRUE(std::abs(lon + 4) < 2e-3 || std::abs(lat - 48) < 2e-3) << lon << " " << lat;
+      open_nodes.insert(n);
+    }
+  }
+  for (int n : g.land[0]) {
+    const double lon = g.nodes[n - 1][0], lat = g.nodes[n - 1][1];
+    if (open_nodes.count(n)) continue;  // the land segment's two ends
+    EXPECT_TRUE(std::abs(lon + 5) < 2e-3 || std::abs(lat - 47) < 2e-3) << lon << " " << lat;
+  }
+  // --each: the same region, the same grid.
+  r = run_cli({"mesh", areas, "--domain", "sea", "--each", "name", "--size", "5000", "-q", "-o",
+               dir.file("each_{}.gr3")},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(read_file(dir.file("each_west.gr3")), read_file(dir.file("west.gr3")));
+  EXPECT_EQ(parse_gr3(dir.file("each_north.ll")).open.size(), 2u);
+  r = run_cli({"mesh", areas, "--where", "name = 'west'", "--size", "5000", "-q", "-o",
+               dir.file("land.gr3")},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(parse_gr3(dir.file("land.gr3")).open.empty());
+}
+
 TEST(CliOutputs, AnOpenBoundaryDenserThanTheDomainsEdgeTakesTheWholeEdge) {
   // A 2 x 1.5 degree box whose south side is one edge of 151 km, projected as a chord
   // that the side's curved image leaves by 470 m; the open boundary drawn along it in
