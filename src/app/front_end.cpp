@@ -291,45 +291,59 @@ void check_raster_selection(const FrontEndOptions& options) {
                       option + " is for a vector file's polygons");
 }
 
-// --domain sea with --where (or --each): the rings of the layer's other polygons near the
-// selected ones (in the source CRS, closed), each polygon's rings with its index in
+// --domain sea with --where (or --each): the runs of the rings of the layer's other
+// polygons that come near the selected ones (in the source CRS; a segment across the
+// antimeridian, meant the short way, ends a run), each with the index of its polygon in
 // `polygon_of`. Sea areas that border the one meshed meet it in open water: its edges on
-// their rings are open, its coast land.
+// their rings are open, its coast land. Only the runs near it are kept: Russia's ring,
+// next to Azerbaijan, holds 10,000 points round half the globe.
 std::vector<std::vector<Point2>> neighbour_rings(const ReadParams& read, const SourceData& selected,
                                                  std::vector<int>& polygon_of) {
-  std::vector<std::vector<Point2>> rings;
+  std::vector<std::vector<Point2>> runs;
   std::set<long long> fids;
-  double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+  std::array<double, 4> box{1e300, 1e300, -1e300, -1e300};
   for (const SourcePolygon& p : selected.polygons) {
     fids.insert(p.fid);
     for (const Ring& r : p.rings)
       for (const Point2& q : r)
-        x0 = std::min(x0, q.x), y0 = std::min(y0, q.y), x1 = std::max(x1, q.x),
-        y1 = std::max(y1, q.y);
+        box = {std::min(box[0], q.x), std::min(box[1], q.y), std::max(box[2], q.x),
+               std::max(box[3], q.y)};
   }
-  if (fids.empty()) return rings;
-  const double margin = 0.01 * std::hypot(x1 - x0, y1 - y0);
+  if (fids.empty()) return runs;
+  const double margin = 0.01 * std::hypot(box[2] - box[0], box[3] - box[1]);
   ReadParams all = read;
   all.where.clear();
   const SourceData others = read_polygons(all);
   int polygon = 0;
   for (const SourcePolygon& p : others.polygons) {
     if (fids.count(p.fid)) continue;
-    bool near = false;
-    for (const Ring& r : p.rings)
-      for (const Point2& q : r)
-        near = near || (q.x >= x0 - margin && q.x <= x1 + margin && q.y >= y0 - margin &&
-                        q.y <= y1 + margin);
-    if (!near) continue;
+    std::vector<std::vector<Point2>> lines;
     for (const Ring& r : p.rings) {
       if (r.size() < 3) continue;
-      rings.push_back(r);
-      rings.back().push_back(r.front());
-      polygon_of.push_back(polygon);
+      std::vector<Point2> line;
+      auto cut = [&lines, &line] {
+        if (line.size() >= 2) lines.push_back(std::move(line));
+        line.clear();
+      };
+      for (std::size_t i = 0; i < r.size(); ++i) {
+        const Point2 &a = r[i], &b = r[(i + 1) % r.size()];
+        if (others.crs.geographic && std::abs(b.x - a.x) > 180.0) {
+          cut();
+          continue;
+        }
+        if (line.empty()) line.push_back(a);
+        line.push_back(b);
+      }
+      cut();
     }
+    std::vector<int> line_of;
+    const std::size_t before = runs.size();
+    keep_near_box(lines, box, margin, runs, line_of);
+    if (runs.size() == before) continue;
+    polygon_of.resize(runs.size(), polygon);
     ++polygon;
   }
-  return rings;
+  return runs;
 }
 
 }  // namespace
