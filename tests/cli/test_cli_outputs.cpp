@@ -504,7 +504,11 @@ TEST(CliOutputs, SeaAreasAreOpenWhereTheyBorderEachOther) {
              "{\"type\":\"Feature\",\"properties\":{\"name\":\"east\"},\"geometry\":{\"type\":"
              "\"Polygon\",\"coordinates\":[[[-4,47],[-3,47],[-3,48],[-4,48],[-4,47.5],[-4,47]]]}},"
              "{\"type\":\"Feature\",\"properties\":{\"name\":\"north\"},\"geometry\":{\"type\":"
-             "\"Polygon\",\"coordinates\":[[[-5,48],[-3,48],[-3,48.5],[-5,48.5],[-5,48]]]}}]}");
+             "\"Polygon\",\"coordinates\":[[[-5,48],[-3,48],[-3,48.5],[-5,48.5],[-5,48]]]}},"
+             // Far away, drawn across the antimeridian: its edge from 179 to -179 E along
+             // 47 N is 2 degrees long, not the parallel through the west area's coast.
+             "{\"type\":\"Feature\",\"properties\":{\"name\":\"far\"},\"geometry\":{\"type\":"
+             "\"Polygon\",\"coordinates\":[[[179,47],[-179,47],[-179,48],[179,48],[179,47]]]}}]}");
   CliResult r = run_cli({"mesh", areas, "--domain", "sea", "--where", "name = 'west'", "--size",
                          "5000", "-q", "-o", dir.file("west.gr3")},
                         dir);
