@@ -145,7 +145,8 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
                   "projected in metres, conformal and within 1% of the ground's scale over the "
                   "domain (UTM in its zone, a national conformal CRS), else a local oblique "
                   "stereographic projection centred on the domain, which 'local' asks for "
-                  "whatever the input")
+                  "whatever the input; 'utm': the UTM zone of the domain's centre (WGS 84), "
+                  "with a warning where the domain reaches beyond the zone's 1% of scale")
       ->group("Projection");
   cmd->add_flag("--repair", a.fe.read.repair,
                 "Repair invalid geometry (self-intersections, unclosed or degenerate rings) "

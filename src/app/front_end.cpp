@@ -507,6 +507,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   s.automatic_crs = projected.local.has_value();
   s.input_crs_kept = projected.source_kept;
   s.input_crs_not_kept = projected.source_not_kept;
+  if (!projected.warning.empty()) s.warnings.push_back(projected.warning);
   s.local = projected.local;
   s.meshing_crs_proj = crs_proj_string(CrsInfo{result.domain.crs_wkt, result.domain.crs_name});
   const CrsInfo meshing_crs{result.domain.crs_wkt, result.domain.crs_name};

@@ -1,5 +1,7 @@
 #include "domain/project_domain.h"
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "core/error.h"
@@ -68,8 +70,30 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
     result.source_not_kept = why_not_kept(source_crs, outer_points);
     result.source_kept = result.source_not_kept.empty();
   }
+  // The domain in the source's own geographic CRS, for the automatic projections.
+  const CrsInfo geog = geographic_base(source_crs);
+  auto lonlat_points = [&] {
+    std::vector<Point2> lonlat = outer_points;
+    if (CrsTransform(source_crs, geog).transform(lonlat) >= 0)
+      throw Error(ErrorClass::crs, "crs", "cannot convert the domain to longitude and latitude");
+    return lonlat;
+  };
   if (result.source_kept) {
     target = source_crs;
+  } else if (params.dst_crs == "utm") {
+    // The zone of the domain's centre (as the local projection finds it: across the
+    // antimeridian, round a pole), on WGS 84.
+    const LocalProjection centre = choose_local_projection(geog, lonlat_points());
+    if (centre.lat0_deg > 84.0 || centre.lat0_deg < -80.0)
+      throw Error(ErrorClass::crs, "crs",
+                  printf_string("--dst-crs utm: the domain's centre lies at %.4g degrees of "
+                                "latitude, beyond UTM's 80 S to 84 N; give a polar CRS "
+                                "(EPSG:3413, EPSG:3031) or --dst-crs local",
+                                centre.lat0_deg));
+    const int zone =
+        std::clamp(static_cast<int>(std::floor((centre.lon0_deg + 180.0) / 6.0)) + 1, 1, 60);
+    target = parse_crs("EPSG:" + std::to_string((centre.lat0_deg >= 0.0 ? 32600 : 32700) + zone),
+                       "--dst-crs utm");
   } else if (!params.dst_crs.empty() && params.dst_crs != "local") {
     target = parse_crs(params.dst_crs, "--dst-crs");
     if (!target.projected)
@@ -81,13 +105,8 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
                   "--dst-crs '" + params.dst_crs + "' (" + target.name +
                       ") is not in metres; choose a projected CRS in metres");
   } else {
-    // Centre the projection on the domain, in the source's own geographic CRS.
-    const CrsInfo geog = geographic_base(source_crs);
-    CrsTransform to_geog(source_crs, geog);
-    std::vector<Point2> lonlat = outer_points;
-    if (to_geog.transform(lonlat) >= 0)
-      throw Error(ErrorClass::crs, "crs", "cannot convert the domain to longitude and latitude");
-    result.local = choose_local_projection(geog, lonlat);
+    // Centred on the domain.
+    result.local = choose_local_projection(geog, lonlat_points());
     target = result.local->crs;
   }
 
@@ -114,6 +133,16 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
   // Points that are one once projected (every point at a pole; see above for the
   // antimeridian) leave duplicates and spikes.
   remove_duplicates_and_spikes(projected);
+  if (params.dst_crs == "utm") {
+    std::vector<Point2> points;
+    for (const Polygon& p : projected) points.insert(points.end(), p.outer.begin(), p.outer.end());
+    const CrsDistortion d = crs_distortion(target, points);
+    if (d.max_scale_error > kKeptScaleError)
+      result.warning = printf_string(
+          "--dst-crs utm (%s): the domain reaches where that zone's scale strays by up to "
+          "%.2g%% from the ground's; consider --dst-crs local",
+          target.name.c_str(), 100.0 * d.max_scale_error);
+  }
   for (Polygon& p : projected) orient_polygon(p);
   sort_by_area(projected);
   result.domain.polygons = std::move(projected);

@@ -14,7 +14,8 @@ struct ProjectParams {
   // --dst-crs. Empty: the source's own CRS when it is projected in metres, conformal over
   // the domain and within 1% of the ground's scale there (UTM, a national conformal CRS:
   // the mesh in the coordinates of the user's other data), else an automatic local
-  // projection; "local": that local projection whatever the source.
+  // projection; "local": that local projection whatever the source; "utm": the UTM zone
+  // of the domain's centre (WGS 84).
   std::string dst_crs;
 };
 
@@ -25,6 +26,7 @@ struct ProjectResult {
   // Why a projected source's CRS was not kept ("its scale strays by 49% from the
   // ground's over the domain"); empty otherwise.
   std::string source_not_kept;
+  std::string warning;  // "utm": the domain reaches where the zone's scale strays by over 1%
 };
 
 // Throws Error(crs) when the target CRS is not projected in metres or a point cannot be

@@ -96,6 +96,38 @@ TEST(FrontEnd, AProjectedInputIsMeshedInItsCrsWhereThatIsTrueToTheGround) {
       << r.summary.input_crs_not_kept;
 }
 
+// --dst-crs utm: the UTM zone of the domain's centre; a warning where the domain reaches
+// beyond the zone's 1%; none for a polar domain.
+TEST(FrontEnd, DstCrsUtmIsTheZoneOfTheDomainsCentre) {
+  FrontEndOptions o = france(0.0);
+  o.project.dst_crs = "utm";
+  FrontEndResult r = build_planar_domain(o);
+  EXPECT_EQ(r.summary.meshing_crs_name, "WGS 84 / UTM zone 31N");  // centred at 1.7 E
+  for (const std::string& w : r.summary.warnings)
+    EXPECT_EQ(w.find("--dst-crs utm"), std::string::npos) << w;
+  TempDir dir;
+  const std::string wide = dir.file("wide.geojson"), polar = dir.file("polar.geojson");
+  write_file(wide, geojson_polygons({"[[[-25,40],[25,40],[25,50],[-25,50],[-25,40]]]"}));
+  write_file(polar, geojson_polygons({"[[[-10,85],[10,85],[10,88],[-10,88],[-10,85]]]"}));
+  o = FrontEndOptions();
+  o.read.path = wide;
+  o.project.dst_crs = "utm";
+  r = build_planar_domain(o);
+  EXPECT_EQ(r.summary.meshing_crs_name, "WGS 84 / UTM zone 31N");
+  bool warned = false;
+  for (const std::string& w : r.summary.warnings) warned = warned || w.find("--dst-crs utm (") == 0;
+  EXPECT_TRUE(warned);
+  o.read.path = polar;
+  try {
+    build_planar_domain(o);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::crs);
+    EXPECT_NE(std::string(e.what()).find("beyond UTM's 80 S to 84 N"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(FrontEnd, SimplificationKeepsHolesAndNeverCrossesAndShrinksMonotonically) {
   std::size_t previous = SIZE_MAX;
   for (double tol : {0.0, 100.0, 1000.0, 5000.0, 20000.0}) {
