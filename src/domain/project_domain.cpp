@@ -70,9 +70,9 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
     result.source_not_kept = why_not_kept(source_crs, outer_points);
     result.source_kept = result.source_not_kept.empty();
   }
-  // The domain in the source's own geographic CRS, for the automatic projections.
-  const CrsInfo geog = geographic_base(source_crs);
-  auto lonlat_points = [&] {
+  // The domain in the source's own geographic CRS `geog`, for the automatic projections
+  // (only they need one: an explicit --dst-crs asks nothing of the source's base).
+  auto lonlat_points = [&](const CrsInfo& geog) {
     std::vector<Point2> lonlat = outer_points;
     if (CrsTransform(source_crs, geog).transform(lonlat) >= 0)
       throw Error(ErrorClass::crs, "crs", "cannot convert the domain to longitude and latitude");
@@ -83,7 +83,8 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
   } else if (params.dst_crs == "utm") {
     // The zone of the domain's centre (as the local projection finds it: across the
     // antimeridian, round a pole), on WGS 84.
-    const LocalProjection centre = choose_local_projection(geog, lonlat_points());
+    const CrsInfo geog = geographic_base(source_crs);
+    const LocalProjection centre = choose_local_projection(geog, lonlat_points(geog));
     if (centre.lat0_deg > 84.0 || centre.lat0_deg < -80.0)
       throw Error(ErrorClass::crs, "crs",
                   printf_string("--dst-crs utm: the domain's centre lies at %.4g degrees of "
@@ -106,7 +107,8 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
                       ") is not in metres; choose a projected CRS in metres");
   } else {
     // Centred on the domain.
-    result.local = choose_local_projection(geog, lonlat_points());
+    const CrsInfo geog = geographic_base(source_crs);
+    result.local = choose_local_projection(geog, lonlat_points(geog));
     target = result.local->crs;
   }
 
