@@ -60,6 +60,23 @@ void check_quad_budget(double quads, const char* how, double smallest, const Dom
   throw Error(ErrorClass::usage, "sizing", buf);
 }
 
+// Quads of size h cover about h^2 each (France at a uniform 11 km: 0.95 of its area over
+// h^2): no mesh with every size at most hmax comes under half its area over hmax^2.
+constexpr double kQuadsPerAreaOverHmax2 = 0.5;
+
+// Error(usage) as soon as the domain is projected when --hmax alone asks for more quads
+// than options.max_quads: a size meant in km (--hmax 8 over Brittany's water) would
+// otherwise first sample the boundary at hmin (tens of seconds and gigabytes) before the
+// estimate on the sizes stops it. Only --time-step raises sizes over hmax. `scale`: the
+// meshing CRS's where the sizes are the ground's (hmax then holds on the ground).
+void check_hmax_budget(const Domain& domain, const MapScale* scale, const FieldsOptions& options) {
+  const SizingParams& sizing = options.sizing;
+  if (!(sizing.hmax_m > 0) || sizing.time_step_s > 0) return;
+  const double ground = scale ? ground_area(domain, *scale) : area(domain);
+  check_quad_budget(kQuadsPerAreaOverHmax2 * ground / (sizing.hmax_m * sizing.hmax_m),
+                    "at least that: every size is at most --hmax", sizing.hmax_m, domain, options);
+}
+
 // Edges of the coarse mesh the cross field is solved on, for large background meshes
 // (FieldsOptions::coarse_cross_above), in sizes h (the background mesh's are 0.5 by
 // default). Against the field solved on the background mesh, Corsica automatic at hmax 8
@@ -287,6 +304,11 @@ FieldsResult build_fields(const FieldsOptions& options, const Progress& progress
   FieldsResult r;
   FrontEndOptions front = options.front;
   clean_at_sizes(front, options.sizing);
+  front.target_size_for_domain = [target = front.target_size_for_domain, &options](
+                                     const Domain& domain, const MapScale* scale) {
+    check_hmax_budget(domain, scale, options);
+    return target(domain, scale);
+  };
   StageClock clock(r.times);
   r.front = build_planar_domain(front, progress.slice(0.0, 0.2));
   clock.lap("front end");

@@ -444,6 +444,39 @@ TEST(MeshJob, SizesThatAskForTooManyQuadsStopTheJobBeforeTheMeshing) {
   EXPECT_EQ(message(1.01 * predicted), "no error");
 }
 
+// --hmax alone bounds the quads from below (every size is at most hmax): a bound over
+// --max-quads stops the job as soon as the domain is projected, before the boundary is
+// sampled at hmin (a size meant in km took tens of seconds and gigabytes to get to the
+// estimate). The bound is one: Corsica's mesh at hmax 8 km has more quads.
+TEST(MeshJob, AnHmaxThatAsksForTooManyQuadsStopsTheJobBeforeTheSizes) {
+  MeshOptions o = corsica(8000.0);
+  const MeshResult mesh = build_mesh(o);
+  const double bound = 0.5 * area(mesh.fields.front.domain) / (8000.0 * 8000.0);
+  EXPECT_GT(static_cast<double>(mesh.quads.quads.size()), 1.5 * bound);
+  auto message = [&o](double max_quads) {
+    o.fields.max_quads = max_quads;
+    try {
+      build_fields(o.fields);
+    } catch (const Error& e) {
+      EXPECT_EQ(e.error_class(), ErrorClass::usage);
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  const std::string below = message(0.99 * bound);
+  EXPECT_NE(below.find("every size is at most --hmax"), std::string::npos) << below;
+  EXPECT_NE(below.find("--max-quads"), std::string::npos) << below;
+  // Just over the bound: the estimate on the sizes stops the job later.
+  const std::string above = message(1.01 * bound);
+  EXPECT_NE(above.find("estimated on a grid"), std::string::npos) << above;
+  // --time-step raises sizes over hmax: no bound then (the sizes' estimate still holds).
+  o.fields.sizing.hmax_m = 8.0;
+  o.fields.sizing.time_step_s = 1.0;
+  const std::string with_time_step = message(1e6);
+  EXPECT_EQ(with_time_step.find("every size is at most --hmax"), std::string::npos)
+      << with_time_step;
+}
+
 namespace {
 
 // The fields of `o` with the cross field solved on the background mesh, then on a
