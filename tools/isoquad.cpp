@@ -387,10 +387,11 @@ std::vector<EachRegion> regions_of(const CommonArgs& a, const FieldArgs& f,
                                    const std::vector<SelectionValue>& selected) {
   std::vector<std::string> values;
   for (const SelectionValue& v : selected) values.push_back(v.text);
+  // The features without a value: their file name that of an empty value, "_".
   const std::vector<std::string> names = each_file_names(field, values);
   std::vector<EachRegion> regions;
   for (std::size_t k = 0; k < selected.size(); ++k) {
-    EachRegion r{a, f, values[k], names[k], selected[k].filter};
+    EachRegion r{a, f, selected[k].null ? "NULL" : values[k], names[k], selected[k].filter};
     r.a.fe.align_optional = true;  // one file of --align lines for all the regions
     for (std::string& o : r.a.outputs) o = fill_each_mark(o, names[k]);
     r.a.report_path = fill_each_mark(r.a.report_path, names[k]);

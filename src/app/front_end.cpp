@@ -472,6 +472,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
                       : from_raster  ? read_raster_domain(read)
                                      : read_polygons(read);
   s.layer_name = source.layer_name;
+  s.other_polygon_layers = source.other_polygon_layers;
   s.source_crs_name = source.crs.name;
   s.num_features = source.num_features;
   s.num_source_polygons = source.polygons.size();

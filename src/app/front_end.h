@@ -89,6 +89,7 @@ struct FrontEndOptions {
 struct DomainSummary {
   std::string input_path;
   std::string layer_name;
+  std::vector<std::string> other_polygon_layers;  // SourceData's: not read (--layer)
   std::string source_crs_name;
   std::string meshing_crs_name;
   std::string meshing_crs_proj;  // PROJ string of the meshing CRS

@@ -31,6 +31,12 @@ std::string format_domain_summary(const DomainSummary& s) {
     os << "input:        " << s.input_path << " (layer '" << s.layer_name << "', " << s.num_features
        << " feature(s), " << s.num_source_polygons << " polygon(s), CRS " << s.source_crs_name
        << ")\n";
+    if (!s.other_polygon_layers.empty()) {
+      os << "              its first layer of polygons; the others (--layer):";
+      for (std::size_t i = 0; i < s.other_polygon_layers.size(); ++i)
+        os << (i ? ", '" : " '") << s.other_polygon_layers[i] << "'";
+      os << "\n";
+    }
   }
   os << "meshing CRS:  " << s.meshing_crs_name
      << (s.automatic_crs    ? " (automatic)"
@@ -97,6 +103,7 @@ std::string format_domain_summary(const DomainSummary& s) {
 void add_domain_summary(JsonWriter& j, const DomainSummary& s) {
   j.value("input", s.input_path)
       .value("layer", s.layer_name)
+      .array("other_polygon_layers", s.other_polygon_layers)
       .value("source_crs", s.source_crs_name)
       .value("meshing_crs", s.meshing_crs_name)
       .value("meshing_crs_proj", s.meshing_crs_proj)

@@ -81,18 +81,22 @@ class Reader {
     const OGRFieldType type = defn->GetFieldDefn(index)->GetType();
     const bool number = type == OFTInteger || type == OFTInteger64 || type == OFTReal;
     std::map<std::pair<double, std::string>, SelectionValue> sorted;
+    std::string quoted = "\"";
+    for (char c : field) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    quoted += "\"";
+    bool any_null = false;
     layer_->ResetReading();
     for (auto& feature : *layer_) {
-      if (!feature->IsFieldSetAndNotNull(index)) continue;
+      if (!feature->IsFieldSetAndNotNull(index)) {
+        any_null = true;
+        continue;
+      }
       SelectionValue v;
       v.text = feature->GetFieldAsString(index);
-      std::string quoted = "\"";
-      for (char c : field) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
-      quoted += "\" = ";
       if (number) {
-        v.filter = quoted + v.text;
+        v.filter = quoted + " = " + v.text;
       } else {
-        v.filter = quoted + "'";
+        v.filter = quoted + " = '";
         for (char c : v.text) v.filter += c == '\'' ? std::string("''") : std::string(1, c);
         v.filter += "'";
       }
@@ -100,6 +104,7 @@ class Reader {
     }
     std::vector<SelectionValue> out;
     for (auto& [key, v] : sorted) out.push_back(std::move(v));
+    if (any_null) out.push_back(SelectionValue{"", quoted + " IS NULL", true});
     return out;
   }
 
@@ -131,11 +136,33 @@ class Reader {
     } else if (ds_->GetLayerCount() == 1) {
       layer_ = ds_->GetLayer(0);
     } else {
-      for (int i = 0; i < ds_->GetLayerCount() && !layer_; ++i)
-        if (is_polygonal(ds_->GetLayer(i)->GetGeomType())) layer_ = ds_->GetLayer(i);
+      // The first layer of polygons; the others are named in the summary.
+      for (int i = 0; i < ds_->GetLayerCount(); ++i) {
+        OGRLayer* layer = ds_->GetLayer(i);
+        if (!holds_polygons(*layer)) continue;
+        if (!layer_)
+          layer_ = layer;
+        else
+          out_.other_polygon_layers.push_back(layer->GetName());
+      }
       if (!layer_) layer_ = ds_->GetLayer(0);
     }
     out_.layer_name = layer_->GetName();
+  }
+
+  // Whether `layer` is one of polygons: by its declared type, or by its first geometry
+  // where it declares none (a TopoJSON's objects, a GeoJSON of mixed types).
+  static bool holds_polygons(OGRLayer& layer) {
+    const OGRwkbGeometryType type = layer.GetGeomType();
+    if (wkbFlatten(type) != wkbUnknown) return is_polygonal(type);
+    layer.ResetReading();
+    for (auto& feature : layer)
+      if (const OGRGeometry* g = feature->GetGeometryRef()) {
+        layer.ResetReading();
+        return has_polygonal_part(*g);
+      }
+    layer.ResetReading();
+    return false;
   }
 
   void set_crs() {
@@ -210,7 +237,8 @@ class Reader {
     GdalErrorCapture capture;
     if (layer_->SetAttributeFilter(p_.where.c_str()) != OGRERR_NONE)
       fail(ErrorClass::usage, "--where " + quote(p_.where) + " is not a valid filter on layer " +
-                                  quote(out_.layer_name) + ": " + capture.last_message());
+                                  quote(out_.layer_name) + ": " + capture.last_message() +
+                                  filter_help(*layer_, p_.where, capture.last_message()));
   }
 
   void read_features() {

@@ -54,6 +54,8 @@ struct SourceData {
   std::vector<SourcePolygon> polygons;
   CrsInfo crs;
   std::string layer_name;
+  // Without --layer, in a data set of several layers: the other layers of polygons.
+  std::vector<std::string> other_polygon_layers;
   std::size_t num_features = 0;          // features read after selection
   std::size_t num_features_skipped = 0;  // features without a polygon geometry
   std::optional<Ring> bbox_ring;         // the bbox as a closed ring in the source CRS
@@ -91,13 +93,14 @@ SourceData read_polygons(const ReadParams& params);
 // A value of an attribute over the selected features, with the OGR SQL filter that
 // selects the features that have it.
 struct SelectionValue {
-  std::string text;    // as GDAL formats it
-  std::string filter;  // "field" = 'text' (or = text for a number)
+  std::string text;    // as GDAL formats it; empty for null
+  std::string filter;  // "field" = 'text' (or = text for a number), or "field" IS NULL
+  bool null = false;   // the features without a value
 };
 
 // The distinct values of `field` over the features `params` selects (layer, --where,
-// --bbox), sorted (numbers by value), nulls left out. Throws as read_polygons, and
-// Error(usage) for no such attribute (listing those there are).
+// --bbox), sorted (numbers by value), then null when some feature has no value. Throws as
+// read_polygons, and Error(usage) for no such attribute (listing those there are).
 std::vector<SelectionValue> selection_values(const ReadParams& params, const std::string& field);
 
 // The area --clip (p.clip) or --bbox (p.bbox, one of them set) selects, as a ring in

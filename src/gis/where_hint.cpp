@@ -193,4 +193,35 @@ std::string where_hint(OGRLayer& layer, const std::string& where, const std::str
   return hint;
 }
 
+std::string filter_help(OGRLayer& layer, const std::string& where, const std::string& message) {
+  OGRFeatureDefn* defn = layer.GetLayerDefn();
+  std::vector<std::string> names;
+  std::string attributes;
+  for (int i = 0; i < defn->GetFieldCount(); ++i) {
+    const OGRFieldDefn* d = defn->GetFieldDefn(i);
+    names.push_back(d->GetNameRef());
+    attributes +=
+        (i ? ", " : "") + names.back() + " (" + OGRFieldDefn::GetFieldTypeName(d->GetType()) + ")";
+  }
+  std::string help = " (attributes: " + (attributes.empty() ? "none" : attributes);
+  // OGR names what it took for an attribute: "X" not recognised as an available field.
+  const std::size_t end = message.find("\" not recognised");
+  const std::size_t start = end == std::string::npos ? end : message.rfind('"', end - 1);
+  if (start != std::string::npos) {
+    const std::string unknown = message.substr(start + 1, end - start - 1);
+    std::string near;
+    for (const std::string& n : nearest_values(unknown, names))
+      near += (near.empty() ? "" : " or ") + quote(n);
+    if (!near.empty()) help += "; " + quote(unknown) + ": did you mean " + near + "?";
+    // After a comparison or in a list, a word meant as a value: OGR SQL's text is quoted.
+    const std::size_t at = where.find(unknown);
+    std::size_t before = at == std::string::npos || at == 0 ? std::string::npos
+                                                            : where.find_last_not_of(" \t", at - 1);
+    if (before != std::string::npos &&
+        std::string("=<>(,").find(where[before]) != std::string::npos)
+      help += "; a text value goes in single quotes: '" + unknown + "'";
+  }
+  return help + ")";
+}
+
 }  // namespace isoquad

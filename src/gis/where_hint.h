@@ -24,4 +24,10 @@ std::vector<std::string> nearest_values(const std::string& typed,
 // again before it returns.
 std::string where_hint(OGRLayer& layer, const std::string& where, const std::string& area);
 
+// What to add to OGR's `message` when `where` is no valid filter on `layer`: its
+// attributes with their types, " (attributes: id (String), name (String))", and, where OGR
+// took a word for an attribute it lacks, the nearest attributes' names, and a reminder
+// that text values are quoted when the word follows a comparison ("name = Belgium").
+std::string filter_help(OGRLayer& layer, const std::string& where, const std::string& message);
+
 }  // namespace isoquad

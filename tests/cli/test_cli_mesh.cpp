@@ -893,6 +893,30 @@ TEST(CliMesh, EachValueOfAnAttributeGetsItsOwnMesh) {
   EXPECT_EQ(r.out, "");
 }
 
+// --each: the features without a value are a region too (NULL, its files named as an
+// empty value's, _), not left out.
+TEST(CliMesh, EachMeshesTheFeaturesWithoutAValueTogether) {
+  TempDir dir;
+  const std::string input = dir.file("regions.geojson");
+  auto without_value = [](std::string feature) {
+    const std::string named = R"("region":"-")";
+    return feature.replace(feature.find(named), named.size(), R"("region":null)");
+  };
+  write_file(input, R"({"type":"FeatureCollection","features":[)" +
+                        without_value(square_feature(0, 0, 0.2, "-")) + "," +
+                        square_feature(1, 0, 0.2, "a") + "," +
+                        without_value(square_feature(0, 1, 0.2, "-")) + "]}");
+  const CliResult r = run_cli({"mesh", input, "--size", "3000", "--each", "region", "-o",
+                               dir.file("{}.gpkg"), "--report", dir.file("{}.json")},
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("== region = a (1 of 2)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("== region = NULL (2 of 2)"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--each region: 2 of 2 meshed"), std::string::npos) << r.err;
+  EXPECT_NE(read_file(dir.file("_.json")).find("\"num_components\": 2,"), std::string::npos);
+  EXPECT_NE(read_file(dir.file("a.json")).find("\"num_components\": 1,"), std::string::npos);
+}
+
 // --jobs 2: the regions meshed at once give the same files as one after the other, and
 // print in the same order; a failure is reported the same way.
 TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {

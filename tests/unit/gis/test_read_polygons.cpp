@@ -178,6 +178,53 @@ TEST(ReadPolygons, BadInputsAreReportedWithFileAndProblem) {
   expect_error(p, ErrorClass::usage, "no layer 'nope'");
 }
 
+// Without --layer, the first layer of polygons is read, also one whose type is not
+// declared (a TopoJSON's object of polygons and multipolygons, as Natural Earth's
+// countries in world-atlas, before its land); the other layers of polygons are named.
+TEST(ReadPolygons, TheFirstLayerOfPolygonsIsReadWhetherItsTypeIsDeclaredOrNot) {
+  TempDir dir;
+  const std::string path = dir.file("world.topojson");
+  write_file(
+      path,
+      R"({"type":"Topology","objects":{)"
+      R"("stations":{"type":"GeometryCollection","geometries":[{"type":"Point",)"
+      R"("coordinates":[-2.5,47.5]}]},)"
+      R"("countries":{"type":"GeometryCollection","geometries":[)"
+      R"({"type":"Polygon","arcs":[[0]],"properties":{"name":"a"}},)"
+      R"({"type":"MultiPolygon","arcs":[[[1]]],"properties":{"name":"b"}}]},)"
+      R"("land":{"type":"GeometryCollection","geometries":[{"type":"Polygon","arcs":[[1]]}]}},)"
+      R"("arcs":[[[-3,47],[-2,47],[-2,48],[-3,48],[-3,47]],)"
+      R"([[-1,47],[0,47],[0,48],[-1,48],[-1,47]]]})");
+  ReadParams p = params(path);
+  p.src_crs = "EPSG:4326";
+  const SourceData d = read_polygons(p);
+  EXPECT_EQ(d.layer_name, "countries");
+  EXPECT_EQ(d.polygons.size(), 2u);
+  EXPECT_EQ(d.other_polygon_layers, std::vector<std::string>{"land"});
+  p.layer = "land";
+  const SourceData land = read_polygons(p);
+  EXPECT_EQ(land.polygons.size(), 1u);
+  EXPECT_TRUE(land.other_polygon_layers.empty());
+}
+
+// An invalid filter lists the layer's attributes with their types, and says what OGR
+// took for a missing attribute may be a misspelt one or a text value without quotes.
+TEST(ReadPolygons, AnInvalidFilterListsTheAttributesAndWhatItMayHaveMeant) {
+  TempDir dir;
+  ReadParams p = params(good_geojson(dir));  // attributes id (0, 1) and name (f0, f1)
+  p.where = "no_such_field = 1";
+  expect_error(p, ErrorClass::usage, "(attributes: id (Integer), name (String))");
+  p.where = "nme = 'f0'";
+  expect_error(p, ErrorClass::usage, "'nme': did you mean 'name'?");
+  p.where = "name = f0";
+  expect_error(p, ErrorClass::usage, "a text value goes in single quotes: 'f0'");
+  p.where = "name IN ('f1', f0)";
+  expect_error(p, ErrorClass::usage, "a text value goes in single quotes: 'f0'");
+  p.where = "f0 = name";  // a word before the comparison: maybe an attribute
+  const std::string message = read_error(p).what();
+  EXPECT_EQ(message.find("single quotes"), std::string::npos) << message;
+}
+
 // A filter that selects nothing says why, when a value it compares with is mistyped or
 // lies outside the bbox.
 TEST(ReadPolygons, AFilterThatSelectsNothingNamesTheNearestValues) {
