@@ -186,29 +186,41 @@ const std::string& OutputSet::add(const std::string& final_path, bool overwrite)
   return outputs_.back()->temp_path();
 }
 
+void OutputSet::remove_on_commit(const std::string& path) {
+  std::error_code ec;
+  removed_.push_back(fs::weakly_canonical(fs::absolute(path, ec), ec).string());
+}
+
 void OutputSet::commit_all() {
   // A signal's clean-up waits until every output is in place (or none is).
   std::lock_guard<std::recursive_mutex> lock(unfinished().mutex);
-  // Set aside the files being replaced until every output is in place.
-  std::vector<std::string> backups(outputs_.size());
+  // Set aside the files being replaced (and those removed) until every output is in
+  // place: paths_[i]'s in backups[i], removed_[k]'s in backups[outputs_.size() + k].
+  const std::size_t n = outputs_.size();
+  std::vector<std::string> backups(n + removed_.size());
+  auto path_of = [&](std::size_t i) -> const std::string& {
+    return i < n ? paths_[i] : removed_[i - n];
+  };
   auto restore = [&] {
     for (std::size_t i = 0; i < backups.size(); ++i)
-      if (!backups[i].empty()) std::rename(backups[i].c_str(), paths_[i].c_str());
+      if (!backups[i].empty()) std::rename(backups[i].c_str(), path_of(i).c_str());
   };
   std::error_code ec;
-  for (std::size_t i = 0; i < outputs_.size(); ++i) {
-    if (!overwrite_[i] || !fs::is_regular_file(paths_[i], ec)) continue;
-    const std::string backup = paths_[i] + ".isoquad-old-" + std::to_string(getpid());
-    if (std::rename(paths_[i].c_str(), backup.c_str()) != 0) {
+  for (std::size_t i = 0; i < backups.size(); ++i) {
+    if ((i < n && !overwrite_[i]) || !fs::is_regular_file(path_of(i), ec)) continue;
+    const std::string backup = path_of(i) + ".isoquad-old-" + std::to_string(getpid());
+    if (std::rename(path_of(i).c_str(), backup.c_str()) != 0) {
       const std::string why = std::strerror(errno);
       restore();
-      throw Error(ErrorClass::output, "write", "cannot replace " + quote(paths_[i]) + ": " + why);
+      throw Error(
+          ErrorClass::output, "write",
+          "cannot " + std::string(i < n ? "replace " : "remove ") + quote(path_of(i)) + ": " + why);
     }
     backups[i] = backup;
   }
   std::size_t done = 0;
   try {
-    for (; done < outputs_.size(); ++done) outputs_[done]->commit();
+    for (; done < n; ++done) outputs_[done]->commit();
   } catch (...) {
     for (std::size_t i = 0; i < done; ++i) std::remove(paths_[i].c_str());
     restore();

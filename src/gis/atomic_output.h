@@ -55,11 +55,16 @@ class OutputSet {
   // Adds an output and returns where to write it. Throws Error(output) (see
   // check_output_path) or Error(usage) for a path given twice.
   const std::string& add(const std::string& final_path, bool overwrite);
+  // A file of an earlier run that the outputs replace without writing it again (a .pli
+  // output's numbered file for a segment the new mesh does not have): removed when they
+  // are moved into place, kept when they are not.
+  void remove_on_commit(const std::string& path);
   // Moves every output into place, or none. Throws Error(output).
   void commit_all();
   std::size_t size() const { return outputs_.size(); }
 
  private:
+  std::vector<std::string> removed_;
   std::vector<std::string> paths_;
   std::vector<char> overwrite_;
   std::vector<std::unique_ptr<AtomicOutput>> outputs_;

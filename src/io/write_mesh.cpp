@@ -172,8 +172,35 @@ std::string numbered_pli_path(const std::string& path, std::size_t k) {
   return p.string();
 }
 
+// The files of a .pli output that exist: the path, and its stem numbered (stem_K.pli),
+// which an earlier run may have written for another number of segments.
+std::vector<std::string> existing_pli_files(const std::string& path) {
+  std::vector<std::string> found;
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec)) found.push_back(path);
+  const std::filesystem::path p(path);
+  const std::string stem = p.stem().string() + "_", extension = p.extension().string();
+  const std::filesystem::path dir = p.has_parent_path() ? p.parent_path() : ".";
+  std::vector<std::pair<unsigned long, std::string>> numbered;
+  for (const auto& entry : std::filesystem::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    if (name.size() <= stem.size() + extension.size() || name.rfind(stem, 0) != 0 ||
+        name.compare(name.size() - extension.size(), extension.size(), extension) != 0)
+      continue;
+    const std::string k = name.substr(stem.size(), name.size() - stem.size() - extension.size());
+    if (k.size() > 9 || k.find_first_not_of("0123456789") != std::string::npos || k[0] == '0')
+      continue;
+    numbered.emplace_back(std::stoul(k), numbered_pli_path(path, std::stoul(k)));
+  }
+  std::sort(numbered.begin(), numbered.end());
+  for (auto& [k, file] : numbered) found.push_back(std::move(file));
+  return found;
+}
+
 // A .pli output: a file per open segment (in hgrid.gr3's order), the path itself for
-// one, else the path's stem numbered from 1.
+// one, else the path's stem numbered from 1. With overwrite, the files of an earlier
+// run that these do not replace go (a D-Flow FM model reading stem_*.pli would find a
+// segment the mesh no longer has).
 std::vector<std::string> write_open_boundary_polylines(const MeshView& v, const MeshOutput& o,
                                                        OutputSet& set) {
   std::vector<const BoundarySegment*> open;
@@ -189,6 +216,9 @@ std::vector<std::string> write_open_boundary_polylines(const MeshView& v, const 
     files.push_back(open.size() > 1 ? numbered_pli_path(o.path, k + 1) : o.path);
     write_pli_file(v, *open[k], set.add(files.back(), o.overwrite), files.back());
   }
+  if (o.overwrite)
+    for (const std::string& f : existing_pli_files(o.path))
+      if (std::find(files.begin(), files.end(), f) == files.end()) set.remove_on_commit(f);
   return files;
 }
 
@@ -302,10 +332,10 @@ void check_mesh_outputs(const std::vector<MeshOutput>& outputs, const MeshWriteO
   OutputSet probe;  // checks every path (exists, directory writable, given twice)
   for (const MeshOutput& o : outputs) {
     for (const std::string& f : mesh_output_files(o)) probe.add(f, o.overwrite);
-    // A .pli's first numbered file, written for several open segments: found now rather
-    // than after the meshing.
+    // A .pli's numbered files, written for several open segments: found now rather than
+    // after the meshing.
     if (mesh_output_format(o) == MeshFormat::pli && !o.overwrite)
-      check_output_path(numbered_pli_path(o.path, 1), false);
+      for (const std::string& f : existing_pli_files(o.path)) check_output_path(f, false);
   }
 }
 

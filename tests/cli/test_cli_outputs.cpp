@@ -1118,6 +1118,25 @@ TEST(CliOutputs, PliFilesHoldTheOpenBoundarySegments) {
   EXPECT_EQ(r.exit_code, 6) << r.err;
   EXPECT_NE(r.err.find("sea_1.pli' already exists"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("again.gr3")));
+  // A file of a run with more segments (sea_3.pli), and the single file of a run with one
+  // (sea.pli): refused without --overwrite, removed with it, so that stem_*.pli are the
+  // mesh's segments.
+  std::filesystem::remove(dir.file("sea_1.pli"));
+  std::filesystem::remove(dir.file("sea_2.pli"));
+  write_file(dir.file("sea_3.pli"), "old\n");
+  r = mesh({"--open-boundary", lines, "-o", dir.file("sea.pli"), "-o", dir.file("again.gr3")});
+  EXPECT_EQ(r.exit_code, 6) << r.err;
+  EXPECT_NE(r.err.find("sea_3.pli' already exists"), std::string::npos) << r.err;
+  write_file(dir.file("sea.pli"), "old\n");
+  write_file(dir.file("sea_10.pli"), "old\n");
+  write_file(dir.file("sea_x.pli"), "not ours\n");
+  r = mesh({"--open-boundary", lines, "-o", dir.file("sea.pli"), "--overwrite"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* gone : {"sea.pli", "sea_3.pli", "sea_10.pli"})
+    EXPECT_FALSE(std::filesystem::exists(dir.file(gone))) << gone;
+  for (std::size_t k = 0; k < 2; ++k)
+    expect_segment(parse_pli(dir.file("sea_" + std::to_string(k + 1) + ".pli")), two.open[k], two);
+  EXPECT_TRUE(std::filesystem::exists(dir.file("sea_x.pli")));
 
   // A land domain has no open boundary: exit 2 before meshing, nothing written.
   r = run_cli({"mesh", input, "--size", "800", "-q", "-o", dir.file("land.pli"), "-o",
