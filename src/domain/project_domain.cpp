@@ -1,6 +1,7 @@
 #include "domain/project_domain.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 
@@ -55,6 +56,81 @@ std::string why_not_kept(const CrsInfo& crs, const std::vector<Point2>& points) 
         why.empty() ? "it is not conformal over the domain" : ", and it is not conformal",
         100.0 * d.max_anisotropy, d.max_skew_deg);
   return why;
+}
+
+// Longitude 180 read as -180 where the two are one point in `t`'s CRS (bit for bit the
+// same point then, so that a ring closed through a pole by select_domain, which goes down
+// the 180th meridian and comes back up at -180, comes back along exactly the same points:
+// a spike, removed later). Not where they are the map's two edges, 40,000 km apart, as in
+// a cylindrical CRS centred on Greenwich (EPSG:3857): a domain that ends at 180 would be
+// torn across the map.
+void read_antimeridian_as_west(const CrsTransform& t, std::vector<Polygon>& polys) {
+  auto one_point = [&t](double lat) {
+    std::vector<Point2> p{{180.0, lat}, {-180.0, lat}};
+    return t.transform(p) < 0 && std::hypot(p[0].x - p[1].x, p[0].y - p[1].y) < 1.0;
+  };
+  auto west = [&](Ring& r) {
+    for (Point2& q : r)
+      if (q.x == 180.0 && one_point(q.y)) q.x = -180.0;
+  };
+  for (Polygon& p : polys) {
+    west(p.outer);
+    for (Ring& h : p.holes) west(h);
+  }
+}
+
+// Error(crs) when an edge of `lonlat` (longitudes and latitudes, degrees) is torn across
+// the map `t` projects it to (`projected`: the same rings, point for point): its image
+// over 10 times longer than the CRS's larger scale at its two ends makes it (a scale
+// that grows along an edge grows towards one of its ends, in the CRSs in use), and over
+// 100 km. So
+// is a domain across the antimeridian (drawn from 177 to 183 degrees) in a CRS whose map
+// ends there (EPSG:3857): the points beyond 180 land on the map's other edge.
+void check_not_torn(const std::vector<Polygon>& lonlat, const std::vector<Polygon>& projected,
+                    const CrsTransform& t, const CrsInfo& target) {
+  constexpr double kRadius = 6371008.8, kDeg = M_PI / 180.0;
+  auto ground = [](const Point2& a, const Point2& b) {
+    const double dlat = (b.y - a.y) * kDeg,
+                 dlon = (b.x - a.x) * kDeg * std::cos(0.5 * (a.y + b.y) * kDeg);
+    return kRadius * std::hypot(dlat, dlon);
+  };
+  // Each edge's ends and images, and a point about 100 m from each end towards the other.
+  std::vector<std::array<Point2, 4>> edges;
+  std::vector<Point2> steps;
+  auto add = [&](const Ring& r, const Ring& q) {
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const std::size_t j = (i + 1) % r.size();
+      const double degrees = std::hypot(r[j].x - r[i].x, r[j].y - r[i].y);
+      if (!(degrees > 0.0)) continue;
+      const double f = std::min(0.5, 1e-3 / degrees);
+      edges.push_back({r[i], r[j], q[i], q[j]});
+      steps.push_back({r[i].x + f * (r[j].x - r[i].x), r[i].y + f * (r[j].y - r[i].y)});
+      steps.push_back({r[j].x + f * (r[i].x - r[j].x), r[j].y + f * (r[i].y - r[j].y)});
+    }
+  };
+  for (std::size_t k = 0; k < lonlat.size(); ++k) {
+    add(lonlat[k].outer, projected[k].outer);
+    for (std::size_t h = 0; h < lonlat[k].holes.size(); ++h)
+      add(lonlat[k].holes[h], projected[k].holes[h]);
+  }
+  std::vector<Point2> images = steps;
+  if (t.transform(images) >= 0) return;  // the transform above succeeded at the ends
+  auto distance = [](const Point2& a, const Point2& b) { return std::hypot(b.x - a.x, b.y - a.y); };
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    const auto& [a, b, pa, pb] = edges[e];
+    const double scale = std::max(distance(pa, images[2 * e]) / ground(a, steps[2 * e]),
+                                  distance(pb, images[2 * e + 1]) / ground(b, steps[2 * e + 1]));
+    const double length = distance(pa, pb);
+    if (length > 10.0 * scale * ground(a, b) && length > 100e3)
+      throw Error(ErrorClass::crs, "crs",
+                  printf_string("the domain does not fit whole in the map of '%s': its edge "
+                                "from %s to %s, %.3g km long, is %.3g km long once projected "
+                                "(the map ends between them: across the antimeridian?); "
+                                "give a CRS centred on the domain, --dst-crs utm or local, "
+                                "or no --dst-crs",
+                                target.name.c_str(), format_point(a).c_str(),
+                                format_point(b).c_str(), ground(a, b) / 1e3, length / 1e3));
+  }
 }
 
 }  // namespace
@@ -113,25 +189,15 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
   }
 
   std::vector<Polygon> projected = polygons;
-  // Longitude 180 read as -180: the same point once projected, bit for bit, so that a
-  // ring closed through a pole (select_domain), which goes down the 180th meridian and
-  // comes back up at -180, comes back along exactly the same points (a spike, removed
-  // below).
-  auto antimeridian_west = [](Ring& r) {
-    for (Point2& q : r)
-      if (q.x == 180.0) q.x = -180.0;
-  };
-  if (source_crs.geographic)
-    for (Polygon& p : projected) {
-      antimeridian_west(p.outer);
-      for (Ring& h : p.holes) antimeridian_west(h);
-    }
   CrsTransform t(source_crs, target);
+  if (source_crs.geographic) read_antimeridian_as_west(t, projected);
   Point2 failed;
   if (!transform_all(t, projected, &failed))
     throw Error(ErrorClass::crs, "crs",
                 "point " + format_point(failed) + " cannot be transformed from '" + source_crs.name +
                     "' to '" + target.name + "'");
+  // The local projection's map ends only at the domain's antipode.
+  if (source_crs.geographic && !result.local) check_not_torn(polygons, projected, t, target);
   // Points that are one once projected (every point at a pole; see above for the
   // antimeridian) leave duplicates and spikes.
   remove_duplicates_and_spikes(projected);

@@ -128,6 +128,40 @@ TEST(FrontEnd, DstCrsUtmIsTheZoneOfTheDomainsCentre) {
   }
 }
 
+// A CRS whose map ends at the antimeridian (EPSG:3857): a domain that reaches 180 from
+// the west is projected where it lies (180 is not read as -180 there, the map's other
+// edge), and one across 180 is refused rather than torn across the map; EPSG:3832
+// (Mercator centred on 150 E) holds it whole, as the local projection does.
+TEST(FrontEnd, ADomainTheCrsMapWouldTearIsRefused) {
+  TempDir dir;
+  const std::string east = dir.file("east.geojson"), across = dir.file("across.geojson");
+  write_file(east, geojson_polygons({"[[[175,60],[180,60],[180,61],[175,61],[175,60]]]"}));
+  write_file(across, geojson_polygons({"[[[178,-17],[182,-17],[182,-16],[178,-16],[178,-17]]]"}));
+  FrontEndOptions o;
+  o.read.path = east;
+  o.project.dst_crs = "EPSG:3857";
+  FrontEndResult r = build_planar_domain(o);
+  // 5 x 1 degrees at 60.5 N: about 30,200 km2 on the ground, 4.1 times that in Mercator.
+  EXPECT_NEAR(r.summary.area_m2 / (4.1 * 30.2e9), 1.0, 0.05);
+  o.read.path = across;
+  try {
+    build_planar_domain(o);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::crs);
+    EXPECT_NE(std::string(e.what()).find("does not fit whole in the map of 'WGS 84 / "
+                                         "Pseudo-Mercator'"),
+              std::string::npos)
+        << e.what();
+  }
+  // 4 x 1 degrees at 16.5 S: about 47,200 km2 on the ground, 1.09 times that in Mercator.
+  for (const auto& [crs, k2] : {std::pair{"EPSG:3832", 1.09}, std::pair{"", 1.0}}) {
+    o.project.dst_crs = crs;
+    r = build_planar_domain(o);
+    EXPECT_NEAR(r.summary.area_m2 / (k2 * 47.2e9), 1.0, 0.02) << crs;
+  }
+}
+
 TEST(FrontEnd, SimplificationKeepsHolesAndNeverCrossesAndShrinksMonotonically) {
   std::size_t previous = SIZE_MAX;
   for (double tol : {0.0, 100.0, 1000.0, 5000.0, 20000.0}) {
