@@ -589,11 +589,6 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
       result.open_boundary_tolerance_m =
           2.0 * p.sag_m[0];  // the simplification tolerance added below
     }
-  } else if (kind == DomainKind::sea) {
-    s.warnings.push_back(
-        "--domain sea without --bbox or --clip, and no other polygon of the layer next to "
-        "the selection: the polygons' whole edge is land; mark its open parts with "
-        "--open-boundary");
   }
 
   if (!options.align_path.empty()) {
@@ -777,6 +772,13 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   s.num_open_parts = result.open_boundary_parts.size();
   for (const auto& part : result.open_boundary_parts)
     s.open_parts_length_m += polyline_length(part);
+  // Also where the layer's other polygons lie near the selection but border it nowhere
+  // (Madagascar's neighbours at 1:10m), or the bbox holds it whole.
+  if (kind == DomainKind::sea && !open_lines_given && !(s.open_parts_length_m > 0.0))
+    s.warnings.push_back(
+        "--domain sea: the polygons' edge meets neither the edge of --bbox or --clip nor "
+        "(with --where or --each) another polygon of the layer: all of it is land; mark its "
+        "open parts with --open-boundary");
   if (!s.embed_points_path.empty()) {
     // Inside the domain, or outside it within the target size of its boundary: the
     // meshing puts those near the coast on it (EmbedParams::point_coast_share).

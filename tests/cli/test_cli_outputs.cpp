@@ -483,7 +483,8 @@ TEST(CliOutputs, ASeaPolygonCutByTheBboxIsOpenAlongIt) {
 
   r = run_cli({"mesh", sea, "--domain", "sea", "--size", "2000", "-o", dir.file("whole.gr3")}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_NE(r.err.find("--domain sea without --bbox or --clip"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--domain sea: the polygons' edge meets neither"), std::string::npos)
+      << r.err;
   EXPECT_TRUE(parse_gr3(dir.file("whole.gr3")).open.empty());
   r = run_cli({"mesh", sea, "--domain", "sea", "--size", "2000", "-o", dir.file("whole.pli")}, dir);
   EXPECT_EQ(r.exit_code, 2) << r.err;
@@ -544,6 +545,34 @@ TEST(CliOutputs, SeaAreasAreOpenWhereTheyBorderEachOther) {
               dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(parse_gr3(dir.file("land.gr3")).open.empty());
+}
+
+// A sea area that borders nothing (its neighbour 0.01 degrees away, 750 m, near enough to
+// be read as one, within the 1% of its box's diagonal, and beyond the open boundary's
+// tolerance at 2 km, touches it nowhere) is all land, with a warning, as one without
+// neighbours.
+TEST(CliOutputs, ASeaAreaThatBordersNothingIsLandWithAWarning) {
+  TempDir dir;
+  const std::string areas = dir.file("areas.geojson");
+  write_file(
+      areas,
+      "{\"type\":\"FeatureCollection\",\"features\":["
+      "{\"type\":\"Feature\",\"properties\":{\"name\":\"lone\"},\"geometry\":{\"type\":"
+      "\"Polygon\",\"coordinates\":[[[-5,47],[-4,47],[-4,48],[-5,48],[-5,47]]]}},"
+      "{\"type\":\"Feature\",\"properties\":{\"name\":\"near\"},\"geometry\":{\"type\":"
+      "\"Polygon\",\"coordinates\":[[[-3.99,47],[-3,47],[-3,48],[-3.99,48],[-3.99,47]]]}}]}");
+  for (const std::vector<std::string>& selection :
+       {std::vector<std::string>{"--where", "name = 'lone'"}, std::vector<std::string>{}}) {
+    std::vector<std::string> args{"mesh", areas, "--domain",        "sea",        "--size",
+                                  "2000", "-o",  dir.file("m.gr3"), "--overwrite"};
+    args.insert(args.end(), selection.begin(), selection.end());
+    const CliResult r = run_cli(args, dir);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("warning: --domain sea: the polygons' edge meets neither"),
+              std::string::npos)
+        << r.err;
+    EXPECT_TRUE(parse_gr3(dir.file("m.gr3")).open.empty());
+  }
 }
 
 TEST(CliOutputs, AnOpenBoundaryDenserThanTheDomainsEdgeTakesTheWholeEdge) {
