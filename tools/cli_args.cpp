@@ -10,6 +10,7 @@
 
 #include "app/mesh_outputs.h"
 #include "core/error.h"
+#include "core/text.h"
 #include "gis/crs.h"
 #include "gis/raster_field.h"
 #include "gis/read_mesh.h"
@@ -33,6 +34,18 @@ CLI::Validator number_check(const char* name, bool zero_allowed) {
         return {};
       },
       name);
+}
+
+// A file name that ends in `extension` (any case): the plots are PNG only.
+CLI::Validator extension_check(const std::string& extension) {
+  return CLI::Validator(
+      [extension](std::string& text) -> std::string {
+        std::string ext = std::filesystem::path(text).extension().string();
+        for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        if (ext == extension) return {};
+        return "'" + text + "': the plot is a PNG image; name it " + extension;
+      },
+      "");
 }
 
 const CLI::Validator kPositive = number_check("POSITIVE", false);
@@ -380,7 +393,9 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
                   "KB of memory each; default 1000000; 0: no limit)")
       ->check(kNonNegative)
       ->group("Background mesh");
-  cmd->add_option("--plot", f.plot_path, "Also draw a PNG")->group("Output");
+  cmd->add_option("--plot", f.plot_path, "Also draw a PNG (FILE.png)")
+      ->check(extension_check(".png"))
+      ->group("Output");
 }
 
 // For `domain` (its summary says how much of the boundary the lines follow) and `mesh`.
@@ -643,6 +658,15 @@ FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {
     o.sizing.size_mesh_crs = a.fe.read.src_crs;
   }
   if (a.fe.target_size_m > 0) o.sizing.constant_m = a.fe.target_size_m;
+  // Every source is clamped to [hmin, hmax]: a --size outside would be a bound's value.
+  if (o.sizing.constant_m && o.sizing.hmin_m > 0 && *o.sizing.constant_m < o.sizing.hmin_m)
+    throw Error(ErrorClass::usage, "options",
+                printf_string("--size %g is under --hmin %g, which every size is raised to",
+                              *o.sizing.constant_m, o.sizing.hmin_m));
+  if (o.sizing.constant_m && o.sizing.hmax_m > 0 && *o.sizing.constant_m > o.sizing.hmax_m)
+    throw Error(ErrorClass::usage, "options",
+                printf_string("--size %g is over --hmax %g, which every size is lowered to",
+                              *o.sizing.constant_m, o.sizing.hmax_m));
   if (f.min_depth_m) o.sizing.min_depth_m = std::max(o.sizing.min_depth_m, *f.min_depth_m);
   o.sizing.automatic = f.size_auto || !has_explicit_source(o.sizing);
   if (!std::isnan(f.cross_angle_deg) && !f.cross_raster.empty())

@@ -655,7 +655,11 @@ int main(int argc, char** argv) {
   } catch (const CLI::Success& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "isoquad: usage: " << e.what() << "\nRun 'isoquad --help' for the options.\n";
+    // One line, as every error: with the help of the subcommand it was parsing.
+    std::string help = "isoquad --help";
+    for (const CLI::App* sub : app.get_subcommands())
+      if (sub->parsed()) help = "isoquad " + sub->get_name() + " --help";
+    std::cerr << "isoquad: usage: " << e.what() << " (" << help << " lists the options)\n";
     return exit_code(ErrorClass::usage);
   }
 

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "core/error.h"
+#include "core/text.h"
 
 namespace isoquad {
 
@@ -24,6 +25,8 @@ CleanResult clean_domain(Domain& domain, const CleanParams& params) {
   };
   auto& polys = domain.polygons;
   const std::size_t before = polys.size();
+  double largest = 0.0;
+  for (const Polygon& p : polys) largest = std::max(largest, measured(p.outer));
   polys.erase(std::remove_if(
                   polys.begin(), polys.end(),
                   [&](const Polygon& p) { return measured(p.outer) < params.min_island_area_m2; }),
@@ -39,7 +42,11 @@ CleanResult clean_domain(Domain& domain, const CleanParams& params) {
   }
   if (polys.empty())
     throw Error(ErrorClass::input, "domain",
-                "every component is smaller than --min-island-area; nothing is left to mesh");
+                printf_string("every component is smaller than --min-island-area, %.4g km2 (the "
+                              "largest: %.4g km2); nothing is left to mesh. Its default is the "
+                              "square of the size (--size, or the automatic sizing's hmin): "
+                              "give a smaller size, or --min-island-area",
+                              params.min_island_area_m2 / 1e6, largest / 1e6));
   return result;
 }
 

@@ -74,11 +74,11 @@ constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP};
 void check_output_path(const std::string& path, bool overwrite) {
   if (path.empty()) throw Error(ErrorClass::usage, "write", "empty output path");
   std::error_code ec;
+  if (fs::is_directory(path, ec))
+    throw Error(ErrorClass::output, "write", quote(path) + " is a directory");
   if (fs::exists(path, ec) && !overwrite)
     throw Error(ErrorClass::output, "write",
                 quote(path) + " already exists; pass --overwrite to replace it");
-  if (fs::is_directory(path, ec))
-    throw Error(ErrorClass::output, "write", quote(path) + " is a directory");
   const fs::path dir = parent_dir(path);
   if (!fs::is_directory(dir, ec))
     throw Error(ErrorClass::output, "write",

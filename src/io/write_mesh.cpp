@@ -277,6 +277,13 @@ MeshFormat mesh_output_format(const MeshOutput& out) {
   const std::string ext = lower_case(std::filesystem::path(out.path).extension().string());
   const std::string name =
       out.format.empty() ? (ext.empty() ? "" : ext.substr(1)) : lower_case(out.format);
+  // --output-format is for names without a format's extension (hgrid.txt): a .gpkg
+  // written as SCHISM's text would be a file no reader takes for what it is named.
+  if (!out.format.empty() && ext.size() > 1 && format_names().count(ext.substr(1)) &&
+      ext.substr(1) != name)
+    throw Error(ErrorClass::usage, "options",
+                "'" + out.path + "': --output-format " + out.format + " under a name of format " +
+                    ext + "; name it ." + name + ", or leave --output-format out");
   const auto it = format_names().find(name);
   if (it == format_names().end())
     throw Error(ErrorClass::usage, "options",
@@ -331,6 +338,9 @@ void check_mesh_outputs(const std::vector<MeshOutput>& outputs, const MeshWriteO
   }
   OutputSet probe;  // checks every path (exists, directory writable, given twice)
   for (const MeshOutput& o : outputs) {
+    if (o.path == "-")
+      throw Error(ErrorClass::usage, "options",
+                  "-o -: the mesh outputs are files (only --report - writes to stdout)");
     for (const std::string& f : mesh_output_files(o)) probe.add(f, o.overwrite);
     // A .pli's numbered files, written for several open segments: found now rather than
     // after the meshing.

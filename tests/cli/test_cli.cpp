@@ -9,6 +9,7 @@
 #include <array>
 #include <cmath>
 #include <sstream>
+#include <tuple>
 
 #include "gis/gdal_env.h"
 #include "support/fixtures.h"
@@ -131,8 +132,43 @@ TEST(Cli, UsageErrorsExitWithTwo) {
            {"--max-quads", "-1", "--max-quads: must be 0 or more, not -1"}}) {
     const CliResult r = run_cli({"mesh", input, "-o", out, option, value}, dir);
     EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(r.err.find("isoquad: usage: " + message + "\n"), std::string::npos) << r.err;
+    EXPECT_NE(
+        r.err.find("isoquad: usage: " + message + " (isoquad mesh --help lists the options)\n"),
+        std::string::npos)
+        << r.err;
     EXPECT_LT(r.err.size(), 200u) << r.err;
+  }
+}
+
+// Outputs that would not be what they are named, options that contradict each other:
+// refused before any work, nothing written.
+TEST(Cli, ContradictoryOutputsAndSizesAreRefusedBeforeMeshing) {
+  TempDir dir;
+  const std::string input = good_geojson(dir);
+  std::filesystem::create_directory(dir.file("folder.gpkg"));
+  for (const auto& [args, code, message] :
+       std::vector<std::tuple<std::vector<std::string>, int, std::string>>{
+           {{"-o", dir.file("m.gpkg"), "--output-format", "gr3"},
+            2,
+            "--output-format gr3 under a name of format .gpkg; name it .gr3"},
+           {{"-o", "-"}, 2, "-o -: the mesh outputs are files"},
+           {{"-o", dir.file("m.gpkg"), "--plot", dir.file("m.pdf")}, 2, "the plot is a PNG image"},
+           {{"-o", dir.file("m.gpkg"), "--size", "3000", "--hmin", "5000"},
+            2,
+            "--size 3000 is under --hmin 5000"},
+           {{"-o", dir.file("m.gpkg"), "--size", "3000", "--hmax", "2000"},
+            2,
+            "--size 3000 is over --hmax 2000"},
+           {{"-o", dir.file("folder.gpkg")}, 6, "folder.gpkg' is a directory"},
+           {{"-o", dir.file("folder.gpkg"), "--overwrite"}, 6, "folder.gpkg' is a directory"}}) {
+    std::vector<std::string> all{"mesh", input};
+    all.insert(all.end(), args.begin(), args.end());
+    const CliResult r = run_cli(all, dir);
+    EXPECT_EQ(r.exit_code, code) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir.file("m.gpkg")));
+    EXPECT_FALSE(std::filesystem::exists(dir.file("m.pdf")));
+    EXPECT_FALSE(std::filesystem::exists(dir.file("-")));
   }
 }
 

@@ -66,3 +66,21 @@ TEST(CleanDomain, AnAreaFactorMeasuresThemAsAtTheSmallestScale) {
   Domain tiny = islands();
   EXPECT_THROW(clean_domain(tiny, p), Error);
 }
+
+// Nothing left: an input error that gives the least area and the largest component's, and
+// says where the least area comes from by default.
+TEST(CleanDomain, NothingLeftSaysHowLargeTheComponentsAre) {
+  Domain d = islands();  // the largest 100 x 100 m, its holes not counted
+  CleanParams p;
+  p.min_island_area_m2 = 2e6;
+  try {
+    clean_domain(d, p);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::input);
+    const std::string what = e.what();
+    EXPECT_NE(what.find("--min-island-area, 2 km2 (the largest: 0.01 km2)"), std::string::npos)
+        << what;
+    EXPECT_NE(what.find("the square of the size"), std::string::npos) << what;
+  }
+}
