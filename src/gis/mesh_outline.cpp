@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <filesystem>
 #include <unordered_map>
 
 #include "core/error.h"
@@ -145,12 +146,22 @@ SourceData outline_source(const ReadMesh& mesh, const std::string& path,
                           const std::string& crs_text, const std::string& option,
                           std::vector<Point2>* nodes) {
   const std::string given = !crs_text.empty() ? crs_text : mesh.crs;
-  if (given.empty())
+  if (given.empty()) {
+    // SCHISM's grid in lon/lat beside it: the same nodes and elements, with a CRS.
+    std::filesystem::path ll(path);
+    ll.replace_extension(".ll");
+    std::error_code ec;
+    const bool has_ll = mesh.format == "gr3" && std::filesystem::exists(ll, ec);
     throw Error(ErrorClass::crs, "read",
                 "'" + path + "' does not say its CRS: its outline is the domain, so give the " +
                     "CRS of its coordinates with " + option +
                     " (EPSG:4326 for longitudes and latitudes, or the projected CRS it was made "
-                    "in, e.g. EPSG:32631)");
+                    "in, e.g. EPSG:32631; for isoquad's grids the summary's meshing CRS, the "
+                    "report's meshing_crs_proj)" +
+                    (has_ll ? ", or give '" + ll.string() +
+                                  "' instead: the same grid in longitudes and latitudes"
+                            : std::string()));
+  }
   SourceData source;
   source.crs = parse_crs(given, crs_text.empty() ? "'" + path + "' (its projection)" : option);
   // A band round the globe is an annulus only round a pole.

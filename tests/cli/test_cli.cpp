@@ -370,6 +370,8 @@ TEST(Cli, AMeshFileIsMeshedAgainWithinItsOutline) {
                        "coordinates with --src-crs"),
             std::string::npos)
       << r.err;
+  // The .ll beside it (written with it) has one.
+  EXPECT_NE(r.err.find("or give '" + dir.file("bay.ll") + "' instead"), std::string::npos) << r.err;
   r = run_cli({"mesh", dir.file("bay.gr3"), "--src-crs", "EPSG:32630", "--where", "id = 1",
                "--size", "3000", "-o", dir.file("x.gr3")},
               dir);
