@@ -35,26 +35,21 @@ std::string companion(const std::string& path, const char* extension) {
 // whole of a GeoJSON or FlatGeobuf output.
 void write_quads_layer(const MeshView& v, VectorWriter& w) {
   const QuadMesh& m = *v.data->mesh;
-  const QuadMetrics& q = *v.data->metrics;
   const auto& pts = v.points;
   const std::vector<QuadField> fields = quad_fields(*v.data);
   std::vector<FieldDef> defs = {{"id", FieldType::integer}};
   for (const QuadField& f : fields)  // a NaN time step is NULL (dry)
     defs.push_back({f.name, f.integer ? FieldType::integer : FieldType::real});
-  defs.push_back({"irregular_corners", FieldType::integer});
   w.begin_layer("quads", GeometryKind::polygon, defs);
   std::vector<FieldValue> values;
   for (std::size_t i = 0; i < m.quads.size(); ++i) {
     const auto& t = m.quads[i];
-    int irregular = 0;
-    for (int c : t) irregular += q.degree[c] != q.ideal_degree[c];
     values.assign(1, FieldValue::integer(static_cast<long long>(i)));
     for (const QuadField& f : fields) {
       const double x = (*f.values)[i];
       values.push_back(f.integer ? FieldValue::integer(static_cast<long long>(x))
                                  : FieldValue::real(x));
     }
-    values.push_back(FieldValue::integer(irregular));
     w.add_polygon(std::vector<Point2>{pts[t[0]], pts[t[1]], pts[t[2]], pts[t[3]]}, values);
   }
 }
@@ -228,7 +223,9 @@ void write_vtu_mesh(const MeshView& mv, const std::string& path) {
   v.points = &mv.points;
   for (const auto& t : mv.data->mesh->quads) v.cells.push_back({t[0], t[1], t[2], t[3]});
   std::vector<double> degree(q.degree.begin(), q.degree.end());
-  v.point_data = {{"degree", degree}};
+  std::vector<double> ideal(q.ideal_degree.begin(), q.ideal_degree.end());
+  std::vector<double> boundary(q.boundary.begin(), q.boundary.end());
+  v.point_data = {{"degree", degree}, {"ideal_degree", ideal}, {"boundary", boundary}};
   if (!mv.data->depth.empty()) v.point_data.push_back({"depth", mv.data->depth});
   for (const QuadField& f : quad_fields(*mv.data)) v.cell_data.push_back({f.name, *f.values});
   write_vtu(v, path, true);
@@ -247,6 +244,7 @@ std::vector<QuadField> quad_fields(const MeshOutputData& data) {
                                    {"orthogonality", &q.orthogonality, "1"}};
   if (!data.time_step_s.empty()) fields.push_back({"time_step_s", &data.time_step_s, "s"});
   if (!data.zone.empty()) fields.push_back({"zone", &data.zone, "1", true});
+  fields.push_back({"irregular_corners", &q.irregular_corners, "1", true});
   for (const QuadField& f : fields)
     if (f.values->size() != data.mesh->quads.size())
       throw Error(ErrorClass::internal, "write",

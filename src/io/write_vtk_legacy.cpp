@@ -27,6 +27,10 @@ void write_vtk_legacy_file(const MeshView& v, const std::string& path, const std
   }
   f << "POINT_DATA " << v.points.size() << "\nSCALARS degree int 1\nLOOKUP_TABLE default\n";
   for (int d : q.degree) f << d << "\n";
+  f << "SCALARS ideal_degree int 1\nLOOKUP_TABLE default\n";
+  for (int d : q.ideal_degree) f << d << "\n";
+  f << "SCALARS boundary int 1\nLOOKUP_TABLE default\n";
+  for (char b : q.boundary) f << static_cast<int>(b) << "\n";
   if (!v.data->depth.empty()) {
     f << "SCALARS depth double 1\nLOOKUP_TABLE default\n";
     for (double d : v.data->depth) f << d << "\n";

@@ -327,6 +327,9 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
       ++s.interior_degree_histogram[std::min(qm.degree[v], 8)];
     }
   }
+  qm.irregular_corners.assign(nq, 0.0);
+  for (int q = 0; q < nq; ++q)
+    for (int v : m.quads[q]) qm.irregular_corners[q] += qm.degree[v] != qm.ideal_degree[v];
   s.num_boundary_vertices = boundary;
   s.share_regular_interior = interior ? static_cast<double>(interior_regular) / interior : 0;
   s.share_regular_boundary = boundary ? static_cast<double>(boundary_regular) / boundary : 0;

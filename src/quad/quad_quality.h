@@ -27,6 +27,7 @@ struct QuadMetrics {
   std::vector<int> degree;              // #P number of quads at each vertex
   std::vector<char> boundary;           // #P 1 on the domain boundary
   std::vector<int> ideal_degree;        // #P 4 inside; on the boundary round(angle / 90)
+  std::vector<double> irregular_corners;  // #Q corners whose degree is not their ideal one
 };
 
 struct QualitySummary {

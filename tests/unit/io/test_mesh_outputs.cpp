@@ -66,6 +66,7 @@ struct Fixture {
       for (int v : q) ++metrics.degree[v];
     metrics.boundary.assign(mesh.points.size(), 1);
     metrics.ideal_degree = metrics.degree;
+    metrics.irregular_corners.assign(nq, 0.0);
   }
 
   MeshOutputData data(bool with_depth = true) const {
