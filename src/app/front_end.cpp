@@ -784,12 +784,23 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     // meshing puts those near the coast on it (EmbedParams::point_coast_share).
     std::vector<Point2> kept;
     std::vector<std::string> kept_names;
+    std::string first_far;  // the first few left out, by name or number
+    std::size_t num_listed = 0;
     for (std::size_t k = 0; k < result.embed_points.size(); ++k) {
       const Point2& p = result.embed_points[k];
       const bool inside = domain_contains(result.domain, p);
       if (!inside &&
-          !(s.target_size_m > 0 && distance_to_boundary(result.domain, p) <= s.target_size_m))
+          !(s.target_size_m > 0 && distance_to_boundary(result.domain, p) <= s.target_size_m)) {
+        if (num_listed < 5)
+          first_far += (first_far.empty() ? "" : ", ") +
+                       (result.embed_point_name.empty() || result.embed_point_name[k].empty()
+                            ? "point " + std::to_string(k + 1)
+                            : "'" + result.embed_point_name[k] + "'");
+        else if (num_listed == 5)
+          first_far += ", ...";
+        ++num_listed;
         continue;
+      }
       kept.push_back(p);
       if (!result.embed_point_name.empty()) kept_names.push_back(result.embed_point_name[k]);
       result.embed_point_number.push_back(static_cast<int>(k + 1));
@@ -800,7 +811,8 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
         std::to_string(far) + " of the " + std::to_string(s.embed_points_read) + " points of '" +
         s.embed_points_path + "' lie outside the domain" +
         (s.target_size_m > 0 ? printf_string(", farther than %.0f m from it", s.target_size_m)
-                             : std::string());
+                             : std::string()) +
+        (far > 0 ? " (" + first_far + ")" : std::string());
     if (kept.empty() && !options.align_optional)
       throw Error(ErrorClass::input, "read", "--embed-points: " + outside);
     if (far > 0) s.warnings.push_back("--embed-points: " + outside + ": they get no vertex");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "app/quality_report.h"
 #include "app/summary.h"
@@ -323,10 +324,24 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
   return r;
 }
 
+namespace {
+
+// read_mesh's format as the summary names it: "SCHISM .gr3", "ADCIRC .14"...
+std::string format_label(const std::string& format) {
+  static const std::map<std::string, std::string> labels = {
+      {"gr3", "SCHISM .gr3"},  {"14", "ADCIRC .14"},    {"2dm", "SMS .2dm"},
+      {"msh", "Gmsh .msh"},    {"mesh", "MIKE .mesh"},  {"nc", "UGRID .nc"},
+      {"slf", "TELEMAC .slf"}, {"polygons", "polygons"}};
+  const auto it = labels.find(format);
+  return it == labels.end() ? format : it->second;
+}
+
+}  // namespace
+
 std::string format_quality_job_summary(const QualityJobResult& r) {
   std::string out = printf_string(
-      "mesh:         %s file: %zu quads, %zu triangles, %zu vertices%s%s\n", r.format.c_str(),
-      r.quads.quads.size(), r.num_triangles, r.quads.points.size(),
+      "mesh:         %s file: %zu quads, %zu triangles, %zu vertices%s%s\n",
+      format_label(r.format).c_str(), r.quads.quads.size(), r.num_triangles, r.quads.points.size(),
       r.num_skipped_elements
           ? printf_string(" (%zu lines and points skipped)", r.num_skipped_elements).c_str()
           : "",

@@ -617,8 +617,8 @@ Ring read_clip_area(const std::string& path, const std::string& layer, const std
     throw Error(ErrorClass::input, "read",
                 file + (where.empty() ? "" : " --clip-where " + quote(where)) + " holds " +
                     std::to_string(area.polygons.size()) +
-                    " polygons: it takes one, the area to mesh (merge them first, or pick one "
-                    "with --clip-where)");
+                    " polygons: it takes one, the area to mesh (merge them first, pick one "
+                    "with --clip-where, or mesh each with --each-clip FIELD)");
   const std::vector<Ring>& rings = area.polygons.front().rings;
   if (rings.size() != 1)
     throw Error(ErrorClass::input, "read",

@@ -2364,6 +2364,7 @@ TEST(CliOutputs, EmbeddedPointsGetVertices) {
       << r.err;
   EXPECT_NE(r.err.find("warning: --embed-points: 1 of the 6 points of"), std::string::npos)
       << r.err;
+  EXPECT_NE(r.err.find("m from it (point 3): they get no vertex"), std::string::npos) << r.err;
   const std::string report = read_file(dir.file("s.json"));
   EXPECT_NE(report.find("\"embed_points_on_vertex\": 4"), std::string::npos);
   EXPECT_NE(report.find("\"embed_points_on_coast\": 2"), std::string::npos);

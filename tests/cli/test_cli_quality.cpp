@@ -366,6 +366,10 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
         run_cli({"quality", "--mesh", dir.file(file), "--hmax", "8000", "--report", report}, dir);
     ASSERT_EQ(r.exit_code, 0) << file << r.err;
     EXPECT_NE(r.err.find("domain from:  the mesh's outline"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(std::string("mesh:         ") +
+                         (std::string(file) == "m.gpkg" ? "polygons" : "SCHISM .gr3") + " file: "),
+              std::string::npos)
+        << r.err;
     const std::string q = read_file(report);
     EXPECT_EQ(report_number(q, "num_holes"), report_number(mesh_report, "num_holes")) << file;
     EXPECT_EQ(report_number(q, "num_outline_loops"), 1 + report_number(mesh_report, "num_holes"));
@@ -388,6 +392,8 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
   const CliResult no_crs = run_cli({"quality", "--mesh", dir.file("m.gr3")}, dir);
   EXPECT_EQ(no_crs.exit_code, 4);
   EXPECT_NE(no_crs.err.find("with --mesh-crs"), std::string::npos) << no_crs.err;
+  EXPECT_NE(no_crs.err.find("or give '" + dir.file("m.ll") + "' instead"), std::string::npos)
+      << no_crs.err;
   const CliResult where =
       run_cli({"quality", "--mesh", dir.file("m.gpkg"), "--where", "name = 'x'"}, dir);
   EXPECT_EQ(where.exit_code, 2);
