@@ -32,6 +32,7 @@
 #include "gis/read_mesh.h"
 #include "gis/read_polygons.h"
 #include "gis/read_size_features.h"
+#include "gis/where_hint.h"
 #include "gis/write_domain.h"
 #include "io/mesh_boundary.h"
 #include "io/write_fields.h"
@@ -656,10 +657,31 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     // One line, as every error: with the help of the subcommand it was parsing.
-    std::string help = "isoquad --help";
+    std::string help = "isoquad --help", what = e.what();
+    const CLI::App* parsed = nullptr;
     for (const CLI::App* sub : app.get_subcommands())
-      if (sub->parsed()) help = "isoquad " + sub->get_name() + " --help";
-    std::cerr << "isoquad: usage: " << e.what() << " (" << help << " lists the options)\n";
+      if (sub->parsed()) parsed = sub, help = "isoquad " + sub->get_name() + " --help";
+    // An option it does not have: the nearest it has, by spelling.
+    if (parsed && dynamic_cast<const CLI::ExtrasError*>(&e))
+      for (const std::string& extra : parsed->remaining()) {
+        if (extra.rfind("--", 0) != 0) continue;
+        const std::string name = extra.substr(2, extra.find('=') - 2);
+        std::vector<std::string> names;
+        for (const CLI::Option* o : parsed->get_options())
+          for (const std::string& n : o->get_lnames()) names.push_back(n);
+        // Another subcommand's option, or a misspelling.
+        std::string others;
+        for (const CLI::App* sub : app.get_subcommands({}))
+          if (sub != parsed && sub->get_option_no_throw("--" + name))
+            others += (others.empty() ? "" : ", ") + sub->get_name();
+        const std::vector<std::string> near = nearest_values(name, names, 1);
+        what = !others.empty()
+                   ? "--" + name + " is an option of " + others + ", not of " + parsed->get_name()
+                   : "unknown option --" + name +
+                         (near.empty() ? "" : "; did you mean --" + near[0] + "?");
+        break;
+      }
+    std::cerr << "isoquad: usage: " << what << " (" << help << " lists the options)\n";
     return exit_code(ErrorClass::usage);
   }
 

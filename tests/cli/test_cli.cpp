@@ -140,6 +140,22 @@ TEST(Cli, UsageErrorsExitWithTwo) {
   }
 }
 
+// A misspelt option: the nearest the subcommand has.
+TEST(Cli, AMisspeltOptionGetsTheNearestName) {
+  TempDir dir;
+  const std::string input = good_geojson(dir);
+  CliResult r = run_cli({"mesh", input, "--domian", "water", "-o", dir.file("m.gpkg")}, dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_EQ(r.err,
+            "isoquad: usage: unknown option --domian; did you mean --domain? (isoquad mesh --help "
+            "lists the options)\n");
+  r = run_cli({"domain", input, "--hmax=5", "-o", dir.file("d.gpkg")}, dir);  // mesh's only
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("usage: --hmax is an option of fields, mesh, quality, not of domain"),
+            std::string::npos)
+      << r.err;
+}
+
 // Outputs that would not be what they are named, options that contradict each other:
 // refused before any work, nothing written.
 TEST(Cli, ContradictoryOutputsAndSizesAreRefusedBeforeMeshing) {
