@@ -181,6 +181,18 @@ class Reader {
     }
   }
 
+  // A --bbox in a projected CRS whose numbers look like degrees: what to say.
+  std::string degrees_hint() const {
+    if (!p_.bbox) return "";
+    const CrsInfo crs = p_.bbox_crs.empty() ? out_.crs : parse_crs(p_.bbox_crs, "--bbox-crs");
+    const auto& b = *p_.bbox;
+    if (crs.geographic || std::abs(b[0]) > 360 || std::abs(b[2]) > 360 || std::abs(b[1]) > 90 ||
+        std::abs(b[3]) > 90)
+      return "";
+    return "; its numbers look like longitudes and latitudes, and " + quote(crs.name) +
+           " is projected: --bbox-crs EPSG:4326?";
+  }
+
   // `filter_lines`: a layer of lines is filtered too (the values of --each: those of the
   // lines that reach the bbox); otherwise it is read whole (polygons_from_lines).
   void apply_bbox(bool filter_lines) {
@@ -217,7 +229,7 @@ class Reader {
         fail(ErrorClass::input, what + " misses the data of layer " + quote(out_.layer_name) +
                                     " (extent " + fmt(ext.MinX) + "," + fmt(ext.MinY) + "," +
                                     fmt(ext.MaxX) + "," + fmt(ext.MaxY) + " in " + out_.crs.name +
-                                    ")");
+                                    ")" + degrees_hint());
     }
     // OGR's filter tests the geometry itself, drawn in lon/lat: land round a pole that
     // it does not reach as drawn (reach_pole) would miss a bbox near the pole. Polar

@@ -171,6 +171,14 @@ TEST(ReadPolygons, BadInputsAreReportedWithFileAndProblem) {
   p = params(good_geojson(dir));
   p.bbox = std::array<double, 4>{100, 10, 101, 11};
   expect_error(p, ErrorClass::input, "misses the data");
+  EXPECT_EQ(std::string(read_error(p).what()).find("look like longitudes"), std::string::npos);
+  // Degrees given in a projected CRS.
+  p.bbox = std::array<double, 4>{-3, 47, -2, 48};
+  p.bbox_crs = "EPSG:2154";
+  expect_error(p, ErrorClass::input,
+               "its numbers look like longitudes and latitudes, and 'RGF93 v1 / Lambert-93' is "
+               "projected: --bbox-crs EPSG:4326?");
+  p.bbox_crs.clear();
   p.bbox = std::array<double, 4>{1, 10, 0, 11};
   expect_error(p, ErrorClass::usage, "XMIN < XMAX");
   p = params(good_geojson(dir));
