@@ -410,6 +410,22 @@ TEST(MeshJob, NoQuadHasASideOfAFewMetresNextToSidesOfKilometres) {
   EXPECT_GT(ratio, 40.0);
 }
 
+namespace {
+
+// The usage error the fields of `o` stop with under `max_quads`, or "no error".
+std::string budget_error(FieldsOptions o, double max_quads) {
+  o.max_quads = max_quads;
+  try {
+    build_fields(o);
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::usage);
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
 // A size that asks for too many quads stops the job before the background mesh (the
 // estimate on a grid), or before the cross field (the prediction on the background mesh,
 // with the gradation's smaller sizes), with an error that names --max-quads.
@@ -426,16 +442,7 @@ TEST(MeshJob, SizesThatAskForTooManyQuadsStopTheJobBeforeTheMeshing) {
   const double estimate =
       estimate_num_quads(r.front.domain, [&](const Point2& p) { return oracle(p); });
   ASSERT_GT(predicted, 1.5 * estimate);  // the gradation's smaller sizes
-  auto message = [&o](double max_quads) {
-    o.max_quads = max_quads;
-    try {
-      build_fields(o);
-    } catch (const Error& e) {
-      EXPECT_EQ(e.error_class(), ErrorClass::usage);
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto message = [&o](double max_quads) { return budget_error(o, max_quads); };
   const std::string before_mesh = message(0.5 * estimate);
   EXPECT_NE(before_mesh.find("estimated on a grid"), std::string::npos) << before_mesh;
   EXPECT_NE(before_mesh.find("--max-quads"), std::string::npos) << before_mesh;
@@ -453,16 +460,7 @@ TEST(MeshJob, AnHmaxThatAsksForTooManyQuadsStopsTheJobBeforeTheSizes) {
   const MeshResult mesh = build_mesh(o);
   const double bound = 0.5 * area(mesh.fields.front.domain) / (8000.0 * 8000.0);
   EXPECT_GT(static_cast<double>(mesh.quads.quads.size()), 1.5 * bound);
-  auto message = [&o](double max_quads) {
-    o.fields.max_quads = max_quads;
-    try {
-      build_fields(o.fields);
-    } catch (const Error& e) {
-      EXPECT_EQ(e.error_class(), ErrorClass::usage);
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto message = [&o](double max_quads) { return budget_error(o.fields, max_quads); };
   const std::string below = message(0.99 * bound);
   EXPECT_NE(below.find("every size is at most --hmax"), std::string::npos) << below;
   EXPECT_NE(below.find("--max-quads"), std::string::npos) << below;
