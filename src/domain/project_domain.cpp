@@ -81,11 +81,10 @@ void read_antimeridian_as_west(const CrsTransform& t, std::vector<Polygon>& poly
 
 // Error(crs) when an edge of `lonlat` (longitudes and latitudes, degrees) is torn across
 // the map `t` projects it to (`projected`: the same rings, point for point): its image
-// over 10 times longer than the CRS's larger scale at its two ends makes it (a scale
-// that grows along an edge grows towards one of its ends, in the CRSs in use), and over
-// 100 km. So
-// is a domain across the antimeridian (drawn from 177 to 183 degrees) in a CRS whose map
-// ends there (EPSG:3857): the points beyond 180 land on the map's other edge.
+// over 100 km long, and over 10 times what the CRS's larger scale at its two ends makes
+// it (a scale that grows along an edge grows towards one of its ends, in the CRSs in
+// use). So is a domain across the antimeridian (drawn from 177 to 183 degrees) in a CRS
+// whose map ends there (EPSG:3857): the points beyond 180 land on the map's other edge.
 void check_not_torn(const std::vector<Polygon>& lonlat, const std::vector<Polygon>& projected,
                     const CrsTransform& t, const CrsInfo& target) {
   constexpr double kRadius = 6371008.8, kDeg = M_PI / 180.0;
