@@ -182,9 +182,10 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
       ->group("Cleaning");
   cmd->add_option(
          "--min-width", a.min_width_m,
-         "Fill notches and gaps, and remove spikes and isthmuses, narrower than this, in m "
-         "(default: a quarter of --size or, in fields and mesh, of the automatic hmin; otherwise "
-         "off)")
+         "Fill notches and slits, and remove spikes, narrower than this, in m, where that "
+         "changes no topology (an isthmus is never cut, two components never joined); cut "
+         "back tips sharper than 15 degrees to this width (default: a quarter of --size or, "
+         "in fields and mesh, of the automatic hmin; otherwise off)")
       ->check(kNonNegative)
       ->group("Cleaning");
   cmd->add_option("--report", a.report_path,
@@ -431,16 +432,18 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "(bays, estuaries, a model's nested domains); {} as with --each")
       ->group("Selection");
   cmd->add_option("--jobs", m.jobs,
-                  "With --each: regions meshed at once, each on its own thread (default 1). Every "
+                  "With --each or --each-clip: regions meshed at once, each on its own thread "
+                  "(default 1). Every "
                   "region's files are the same; their summaries print in order as they finish, "
                   "without progress; the peak memory is that of the regions running together")
       ->check(kPositive)
       ->group("Selection");
-  cmd->add_option("--each-table", m.each_table,
-                  "With --each: the closing table as a CSV file, a row per region in order "
-                  "(status, exit code, the quality figures, the error of a failed one; no "
-                  "seconds, so that the same batch writes the same bytes); written again by a "
-                  "batch resumed with --skip-existing")
+  cmd->add_option(
+         "--each-table", m.each_table,
+         "With --each or --each-clip: the closing table as a CSV file, a row per region in order "
+         "(status, exit code, the quality figures, the error of a failed one; no "
+         "seconds, so that the same batch writes the same bytes); written again by a "
+         "batch resumed with --skip-existing")
       ->group("Selection");
   cmd->add_flag("--skip-existing", m.skip_existing,
                 "Mesh nothing where every output (with --report and --plot) exists already: with "
