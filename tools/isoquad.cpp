@@ -458,16 +458,21 @@ std::vector<EachRegion> each_regions(const CommonArgs& a, const FieldArgs& f,
                     "' is a raster, whose cells in [--zmin, --zmax] are the domain: --each "
                     "selects from a vector file's features");
   read_clip(base.fe, base.fe.read);  // the values of the features that reach the area
-  const std::vector<SelectionValue> selected = selection_values(base.fe.read, field);
+  std::string unmatched;
+  const std::vector<SelectionValue> selected =
+      selection_values(base.fe.read, field, a.quiet ? nullptr : &unmatched);
+  if (!unmatched.empty()) std::cerr << "isoquad: warning: " << unmatched << "\n";
   if (selected.empty())
     throw Error(ErrorClass::input, "read",
                 "'" + a.input + "': no selected feature has a value of '" + field + "'");
   std::vector<std::string> values;
   for (const SelectionValue& v : selected) values.push_back(v.text);
   std::vector<EachRegion> regions = regions_of(a, f, field, selected);
-  for (EachRegion& r : regions)
+  for (EachRegion& r : regions) {
     r.a.fe.read.where =
         a.fe.read.where.empty() ? r.filter : "(" + a.fe.read.where + ") AND " + r.filter;
+    r.a.fe.read.hint_unmatched_values = false;
+  }
   return regions;
 }
 

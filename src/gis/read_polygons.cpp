@@ -67,7 +67,7 @@ class Reader {
  public:
   explicit Reader(const ReadParams& p) : p_(p) {}
 
-  std::vector<SelectionValue> values(const std::string& field) {
+  std::vector<SelectionValue> values(const std::string& field, std::string* unmatched) {
     open();
     choose_layer();
     set_crs();
@@ -105,6 +105,7 @@ class Reader {
     std::vector<SelectionValue> out;
     for (auto& [key, v] : sorted) out.push_back(std::move(v));
     if (any_null) out.push_back(SelectionValue{"", quoted + " IS NULL", true});
+    if (unmatched && !out.empty()) *unmatched = unmatched_values();
     return out;
   }
 
@@ -179,6 +180,15 @@ class Reader {
                                   " has no CRS; give the CRS of the coordinates with --src-crs");
       out_.crs = crs_from_srs(*srs);
     }
+  }
+
+  // The values --where compares a text attribute with that no feature read holds, while
+  // others match ("name IN ('France', 'Frnace')"): what to say, or empty.
+  std::string unmatched_values() {
+    if (p_.where.empty()) return "";
+    const std::string hint =
+        where_hint(*layer_, p_.where, p_.clip ? "the area of --clip" : "the bbox");
+    return hint.empty() ? "" : "--where " + quote(p_.where) + ": " + hint;
   }
 
   // A --bbox in a projected CRS whose numbers look like degrees: what to say.
@@ -313,6 +323,10 @@ class Reader {
       fail(ErrorClass::input, "the selection (" + selection.substr(1) +
                                   ") matched no feature in layer " + quote(out_.layer_name) +
                                   (hint.empty() ? "" : ": " + hint));
+    }
+    if (p_.hint_unmatched_values) {
+      const std::string unmatched = unmatched_values();
+      if (!unmatched.empty()) out_.warnings.push_back(unmatched);
     }
     // Polygons whose boxes reach the area but none of whose parts do.
     if (out_.polygons.empty() && p_.empty_area_ok && (p_.bbox || p_.clip) && num_other == 0) return;
@@ -599,8 +613,9 @@ Ring densified_box(const std::array<double, 4>& b, int per_side) {
 
 SourceData read_polygons(const ReadParams& params) { return Reader(params).run(); }
 
-std::vector<SelectionValue> selection_values(const ReadParams& params, const std::string& field) {
-  return Reader(params).values(field);
+std::vector<SelectionValue> selection_values(const ReadParams& params, const std::string& field,
+                                             std::string* unmatched) {
+  return Reader(params).values(field, unmatched);
 }
 
 Error read_error_of_option(const Error& e, const std::string& option) {

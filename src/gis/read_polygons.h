@@ -36,6 +36,10 @@ struct ReadParams {
   // that misses the layer's extent): no polygons, without an error (--exclude, where the
   // area holds none of its polygons).
   bool empty_area_ok = false;
+  // A warning (SourceData::warnings) for the values --where compares a text attribute
+  // with that no feature read holds, while others match; off for --each's regions, whose
+  // filters add their own value (selection_values says it once).
+  bool hint_unmatched_values = true;
   // A raster INPUT (read_raster_domain): the domain is where its values lie in
   // [zmin, zmax]; at least one is set. A window of more cells is read averaged.
   std::optional<double> zmin, zmax;
@@ -101,7 +105,10 @@ struct SelectionValue {
 // The distinct values of `field` over the features `params` selects (layer, --where,
 // --bbox), sorted (numbers by value), then null when some feature has no value. Throws as
 // read_polygons, and Error(usage) for no such attribute (listing those there are).
-std::vector<SelectionValue> selection_values(const ReadParams& params, const std::string& field);
+// `unmatched`, when given: the values --where compares a text attribute with that no
+// selected feature holds (where_hint's words), or empty.
+std::vector<SelectionValue> selection_values(const ReadParams& params, const std::string& field,
+                                             std::string* unmatched = nullptr);
 
 // The area --clip (p.clip) or --bbox (p.bbox, one of them set) selects, as a ring in
 // `crs` (from p.bbox_crs when given); `what` names it in messages ("--bbox 1,2,3,4").

@@ -929,6 +929,17 @@ TEST(CliMesh, EachMeshesTheFeaturesWithoutAValueTogether) {
   EXPECT_NE(r.err.find("--each region: 2 of 2 meshed"), std::string::npos) << r.err;
   EXPECT_NE(read_file(dir.file("_.json")).find("\"num_components\": 2,"), std::string::npos);
   EXPECT_NE(read_file(dir.file("a.json")).find("\"num_components\": 1,"), std::string::npos);
+  // A value of --where that no feature holds: one warning, not one per region.
+  const CliResult some = run_cli({"mesh", input, "--size", "3000", "--each", "region", "--where",
+                                  "region IN ('a', 'zz')", "-o", dir.file("w_{}.gpkg")},
+                                 dir);
+  ASSERT_EQ(some.exit_code, 0) << some.err;
+  const std::string warning =
+      "warning: --where 'region IN ('a', 'zz')': no feature has region 'zz'";
+  const std::size_t at = some.err.find(warning);
+  EXPECT_NE(at, std::string::npos) << some.err;
+  EXPECT_EQ(some.err.find(warning, at + 1), std::string::npos) << some.err;
+  EXPECT_NE(some.err.find("--each region: 1 of 1 meshed"), std::string::npos) << some.err;
 }
 
 // --jobs 2: the regions meshed at once give the same files as one after the other, and

@@ -242,8 +242,14 @@ TEST(ReadPolygons, AFilterThatSelectsNothingNamesTheNearestValues) {
   expect_error(p, ErrorClass::input, "no feature has name 'f7' (the nearest: 'f0', 'f1')");
   p.where = "'g1' = name";
   expect_error(p, ErrorClass::input, "no feature has name 'g1' (the nearest: 'f1')");
-  p.where = "name IN ('f0', 'xyz')";  // f0 matches
-  EXPECT_EQ(read_polygons(p).polygons.size(), 1u);
+  p.where = "name IN ('f0', 'xyz')";  // f0 matches; xyz, a warning
+  const SourceData some = read_polygons(p);
+  EXPECT_EQ(some.polygons.size(), 1u);
+  ASSERT_EQ(some.warnings.size(), 1u);
+  EXPECT_EQ(some.warnings[0], "--where 'name IN ('f0', 'xyz')': no feature has name 'xyz'");
+  p.hint_unmatched_values = false;  // --each's regions
+  EXPECT_TRUE(read_polygons(p).warnings.empty());
+  p.hint_unmatched_values = true;
   p.bbox = std::array<double, 4>{-1.5, 46.5, 0.5, 48.5};  // f1 only
   p.where = "name = 'f0'";
   expect_error(p, ErrorClass::input, "the features with name 'f0' lie outside the bbox");
