@@ -422,7 +422,8 @@ void add_open_boundary_options(CLI::App* cmd, FrontEndOptions& fe) {
 void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
   cmd->add_option("--each", m.each,
                   "A mesh per value of this attribute over the selected features (each value's "
-                  "features together): {} in -o, --report and --plot stands for the value; a "
+                  "features together; fid: a mesh per feature): {} in -o, --report and --plot "
+                  "stands for the value; a "
                   "region that fails does not stop the others, unless two fail with the same "
                   "usage error (the command's)")
       ->group("Selection");

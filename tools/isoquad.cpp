@@ -465,8 +465,6 @@ std::vector<EachRegion> each_regions(const CommonArgs& a, const FieldArgs& f,
   if (selected.empty())
     throw Error(ErrorClass::input, "read",
                 "'" + a.input + "': no selected feature has a value of '" + field + "'");
-  std::vector<std::string> values;
-  for (const SelectionValue& v : selected) values.push_back(v.text);
   std::vector<EachRegion> regions = regions_of(a, f, field, selected);
   for (EachRegion& r : regions) {
     r.a.fe.read.where =

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "gis/gdal_env.h"
 #include "gis/rings_from_lines.h"
 #include "gis/where_hint.h"
@@ -75,18 +76,35 @@ class Reader {
     apply_where();
     OGRFeatureDefn* defn = layer_->GetLayerDefn();
     const int index = defn->GetFieldIndex(field.c_str());
-    if (index < 0)
-      fail(ErrorClass::usage, "layer " + quote(out_.layer_name) + " has no attribute " +
-                                  quote(field) + " (attributes: " + field_names(*layer_) + ")");
-    const OGRFieldType type = defn->GetFieldDefn(index)->GetType();
+    // The features' ids: a GeoPackage's FID column (fid), OGR's FID elsewhere (a
+    // shapefile's record numbers): a mesh per feature, such as each part of a
+    // multi-polygon split by ogr2ogr -explodecollections.
+    const std::string fid_column = layer_->GetFIDColumn();
+    const bool by_fid =
+        index < 0 && (lower_case(field) == "fid" ||
+                      (!fid_column.empty() && lower_case(field) == lower_case(fid_column)));
+    if (index < 0 && !by_fid)
+      fail(ErrorClass::usage,
+           "layer " + quote(out_.layer_name) + " has no attribute " + quote(field) +
+               " (attributes: " + field_names(*layer_) +
+               "; the features' ids: " + (fid_column.empty() ? "FID" : fid_column) + ")");
+    const OGRFieldType type = by_fid ? OFTInteger64 : defn->GetFieldDefn(index)->GetType();
     const bool number = type == OFTInteger || type == OFTInteger64 || type == OFTReal;
     std::map<std::pair<double, std::string>, SelectionValue> sorted;
     std::string quoted = "\"";
-    for (char c : field) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
+    const std::string column = by_fid ? (fid_column.empty() ? "FID" : fid_column) : field;
+    for (char c : column) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
     quoted += "\"";
+    if (by_fid && fid_column.empty()) quoted = "FID";  // OGR SQL's special field, unquoted
     bool any_null = false;
     layer_->ResetReading();
     for (auto& feature : *layer_) {
+      if (by_fid) {
+        const GIntBig fid = feature->GetFID();
+        SelectionValue v{std::to_string(fid), quoted + " = " + std::to_string(fid), false};
+        sorted.emplace(std::make_pair(static_cast<double>(fid), v.text), v);
+        continue;
+      }
       if (!feature->IsFieldSetAndNotNull(index)) {
         any_null = true;
         continue;

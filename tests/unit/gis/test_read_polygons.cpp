@@ -1,6 +1,8 @@
 #include "gis/read_polygons.h"
 
+#include <gdal_priv.h>
 #include <gtest/gtest.h>
+#include <ogrsf_frmts.h>
 
 #include <algorithm>
 #include <cmath>
@@ -515,6 +517,68 @@ TEST(ReadPolygons, ReadsTheRingsOfALayerOfLines) {
   p.where = "id <> 3";
   expect_error(p, ErrorClass::input, "its lines do not close into rings: feature");
   expect_error(p, ErrorClass::input, "2 loose end(s) in all");
+}
+
+// --each fid: a region per feature, by the features' ids (a GeoPackage's FID column,
+// OGR's FID of a GeoJSON file or a shapefile), each filter selecting that feature alone,
+// where no attribute tells them apart (the parts of a multi-polygon split into features).
+TEST(ReadPolygons, TheFeaturesIdsAreValuesOfEach) {
+  TempDir dir;
+  ensure_gdal_registered();
+  const char* const squares[] = {"POLYGON ((0 0,1 0,1 1,0 1,0 0))",
+                                 "POLYGON ((2 0,3 0,3 1,2 1,2 0))",
+                                 "POLYGON ((4 0,6 0,6 2,4 2,4 0))"};
+  const std::pair<const char*, const char*> files[] = {
+      {"GPKG", "parts.gpkg"}, {"GeoJSON", "parts.geojson"}, {"ESRI Shapefile", "parts.shp"}};
+  for (const auto& [driver, file] : files) {
+    SCOPED_TRACE(driver);
+    const std::string path = dir.file(file);
+    {
+      GDALDataset* ds = GetGDALDriverManager()->GetDriverByName(driver)->Create(
+          path.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
+      ASSERT_NE(ds, nullptr);
+      OGRSpatialReference srs;
+      srs.importFromEPSG(32631);
+      OGRLayer* l = ds->CreateLayer("parts", &srs, wkbPolygon, nullptr);
+      OGRFieldDefn name("name", OFTString);
+      ASSERT_EQ(l->CreateField(&name), OGRERR_NONE);
+      for (const char* wkt : squares) {
+        OGRGeometry* g = nullptr;
+        OGRGeometryFactory::createFromWkt(wkt, nullptr, &g);
+        OGRFeature f(l->GetLayerDefn());
+        f.SetField("name", "island");
+        f.SetGeometryDirectly(g);
+        ASSERT_EQ(l->CreateFeature(&f), OGRERR_NONE);
+      }
+      GDALClose(ds);
+    }
+    ReadParams p = params(path);
+    EXPECT_EQ(selection_values(p, "name").size(), 1u);  // one value for the three
+    p.where = "name = 'island'";                        // --where and the ids together
+    const std::vector<SelectionValue> ids = selection_values(p, "FID");
+    ASSERT_EQ(ids.size(), 3u);
+    const double areas[] = {1.0, 1.0, 4.0};
+    for (std::size_t k = 0; k < ids.size(); ++k) {
+      EXPECT_FALSE(ids[k].null);
+      p.where = ids[k].filter;
+      const SourceData d = read_polygons(p);
+      ASSERT_EQ(d.polygons.size(), 1u) << ids[k].filter;
+      EXPECT_DOUBLE_EQ(std::abs(signed_area(d.polygons[0].rings[0])), areas[k]) << ids[k].filter;
+      EXPECT_DOUBLE_EQ(d.polygons[0].rings[0][0].x, 2.0 * k) << ids[k].filter;
+    }
+    // Named as the file names its ids (a GeoPackage's column "fid"), in any case.
+    p.where.clear();
+    EXPECT_EQ(selection_values(p, "fid").size(), 3u);
+    // An attribute the layer lacks: its attributes, and what its ids are called.
+    try {
+      selection_values(p, "nmae");
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("(attributes: name; the features' ids: "),
+                std::string::npos)
+          << e.what();
+    }
+  }
 }
 
 // Delft3D / D-Flow FM Tekal files (.pol, .ldb, .pli) and Blue Kenue line sets (.i2s):
