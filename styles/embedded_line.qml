@@ -1,5 +1,5 @@
 <!DOCTYPE qgis PUBLIC 'http://mrcc.com/qgis.dtd' 'SYSTEM'>
-<!-- isoquad: paths of quad edges on the lines of --embed -->
+<!-- isoquad: paths of quad edges on the lines given to the embed option -->
 <qgis version="3.22.0" styleCategories="Symbology">
   <renderer-v2 type="singleSymbol" symbollevels="0" forceraster="0" enableorderby="0">
     <symbols>

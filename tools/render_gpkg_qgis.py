@@ -8,8 +8,11 @@ rule-based style then prints a line per rule: `rule <label>: <features it select
     /usr/bin/python3 tools/render_gpkg_qgis.py mesh.gpkg mesh.png [--size 1200]
         [--style LAYER=NAME]...
 
-Needs Debian's python3-qgis and qgis-providers (QGIS 3.22). Exit 1 when a layer does not
-load or is not styled from the GeoPackage.
+Every style stored for a layer drawn is applied once (to a copy of the layer) and named
+on a line `style <layer>/<name>: applies`. Needs Debian's python3-qgis and qgis-providers
+(QGIS 3.22). Exit 1 when a layer does not load or is not styled from the GeoPackage, or
+when a stored style of it is not XML or QGIS cannot apply it (QGIS itself then draws the
+layer in a random colour and says nothing).
 """
 import argparse
 import os
@@ -51,6 +54,19 @@ def use_stored_style(layer, style_name):
     if not applied:
         print(f"{layer.name()}: style '{style_name}': {message}", file=sys.stderr)
     return applied
+
+
+def check_stored_styles(path, name):
+    """Applies each style stored for layer `name` to a copy of it; False when one fails."""
+    copy = QgsVectorLayer(f"{path}|layername={name}", name, "ogr")
+    count, ids, names, _, _ = copy.listStylesInDatabase()
+    ok = True
+    for style_name in names[:count]:  # the layer's own; those of other layers follow
+        if use_stored_style(copy, style_name):
+            print(f"style {name}/{style_name}: applies")
+        else:
+            ok = False
+    return ok
 
 
 def print_rules(layer):
@@ -99,6 +115,7 @@ def main():
                 ok = False
                 continue
             expected = None
+        ok = check_stored_styles(args.gpkg, name) and ok
         renderer = layer.renderer().type()
         style = layer.styleManager().currentStyle()
         print(f"{name}: {layer.featureCount()} features, renderer {renderer}, style '{style}'")

@@ -907,6 +907,34 @@ TEST(CliOutputs, QgisRendersTheEmbeddedStyles) {
   EXPECT_GT(pixels["open"], 100) << out;
 }
 
+// Every style stored in the GeoPackage applies in QGIS: the embedded paths' and the
+// depths' too (tools/render_gpkg_qgis.py applies each; a style QGIS cannot read, such
+// as one that is not XML, fails it, where QGIS alone would draw a random colour).
+TEST(CliOutputs, QgisAppliesEveryStoredStyle) {
+  TempDir dir;
+  ASSERT_TRUE(qgis_importable(dir)) << kQgisMissing;
+  const std::string lane = dir.file("lane.geojson");
+  write_file(lane,
+             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+             R"("geometry":{"type":"LineString","coordinates":[[-4.58,48.32],[-4.42,48.32]]}}]})");
+  const CliResult r = run_cli({"mesh", water_input(dir), "--domain", "water", "--bbox",
+                               "-4.6,48.2,-4.4,48.35", "--size", "800", "--align", lane, "--embed",
+                               "--bathymetry", bathymetry(dir), "-o", dir.file("m.gpkg"), "-q"},
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CliResult q = run_cli_program(
+      "/usr/bin/python3",
+      {source_dir() + "/tools/render_gpkg_qgis.py", dir.file("m.gpkg"), dir.file("m.png"), "--size",
+       "300", "--layers", "quads,vertices,boundary,embedded"},
+      dir);
+  ASSERT_EQ(q.exit_code, 0) << q.out << q.err;
+  for (const char* style : {"quads/size", "quads/orientation", "quads/irregular", "quads/checks",
+                            "vertices/degree", "vertices/depth", "boundary/kind", "embedded/line"})
+    EXPECT_NE(q.out.find(std::string("style ") + style + ": applies"), std::string::npos)
+        << style << "\n"
+        << q.out;
+}
+
 // The stored style `checks` of the quads (styles/quads_checks.qml), applied by QGIS: its
 // rules select as many quads as the report counts for SCHISM's checks and D-Flow FM's
 // orthogonality (each link over 0.5 marks its two quads).
