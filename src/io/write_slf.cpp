@@ -207,7 +207,10 @@ void write_telemac_files(const MeshView& v, const std::string& path, const std::
     w.text("", 16);
     w.end();
   }
-  w.ints({1, 0, 0, 0, 0, 0, 0, static_cast<int>(boundary.size()), 0, 0});
+  // IPARAM: 1, then 0 for a whole mesh, not a partition (TELEMAC up to v6 reads a file
+  // whose eighth is set as one partition of a parallel run, and its IPOBO record as the
+  // nodes' global numbers).
+  w.ints({1, 0, 0, 0, 0, 0, 0, 0, 0, 0});
   w.ints({static_cast<int>(ikle.size() / 3), np, 3, 1});
   w.ints(ikle);
   w.ints(ipobo);

@@ -157,7 +157,10 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
   nc.text(mesh, "edge_node_connectivity", "mesh_edge_nodes");
   nc.text(mesh, "edge_dimension", "n_edge");
 
-  const int crs = nc.var("crs", NC_INT, {});
+  // The CRS's variable by the names D-Flow FM writes and its readers look for (its older
+  // ones by these names only; a lon/lat net found by neither is read as metres).
+  const char* const crs_name = v.geographic ? "wgs84" : "projected_coordinate_system";
+  const int crs = nc.var(crs_name, NC_INT, {});
   nc.text(crs, "crs_wkt", v.crs_wkt);
   nc.text(crs, "spatial_ref", v.crs_wkt);  // GDAL's name
   nc.text(crs, "wkt", v.crs_wkt);          // Deltares' name, which QGIS's reader (MDAL) reads
@@ -174,7 +177,7 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
     nc.text(id, "units", units);
     nc.text(id, "mesh", "mesh");
     nc.text(id, "location", "node");
-    nc.text(id, "grid_mapping", "crs");
+    nc.text(id, "grid_mapping", crs_name);
     return id;
   };
   const int vx = node_var("mesh_node_x", v.geographic ? "longitude" : "projection_x_coordinate",
@@ -206,6 +209,7 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
   int vd = -1, vz = -1;
   if (!v.data->depth.empty()) {
     vd = node_var("depth", "sea_floor_depth_below_geoid", "m");
+    nc.text(vd, "long_name", "depth (positive down)");  // the name QGIS shows
     nc.text(vd, "positive", "down");
     // The bed level by the name D-Flow FM's and HYDROLIB's net readers look for.
     vz = node_var("mesh_node_z", "altitude", "m");
@@ -218,7 +222,7 @@ void write_ugrid_file(const MeshView& v, const std::string& path, const std::str
   for (const Point2& p : v.points) xs.push_back(p.x), ys.push_back(p.y);
   nc.check(nc_put_var_double(nc.id(), vx, xs.data()), "node x");
   nc.check(nc_put_var_double(nc.id(), vy, ys.data()), "node y");
-  nc.check(nc_put_var_int(nc.id(), crs, &epsg), "crs");
+  nc.check(nc_put_var_int(nc.id(), crs, &epsg), crs_name);
   std::vector<int> faces;
   for (const auto& c : m.quads)
     for (int n : c) faces.push_back(n + 1);

@@ -360,11 +360,11 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
                "assert d['time_step_s'].units == 's'\n"
                "assert d.dimensions['n_node'].size == np_ and d.dimensions['n_face'].size == ne\n"
                "assert d['mesh_node_x'].standard_name == 'longitude'\n"
-               "assert 'WGS 84' in d['crs'].crs_wkt\n"
-               "assert d['crs'].grid_mapping_name == 'latitude_longitude'\n"
+               "assert 'WGS 84' in d['wgs84'].crs_wkt\n"
+               "assert d['wgs84'].grid_mapping_name == 'latitude_longitude'\n"
                "faces = d['mesh_face_nodes'][:]\n"
                "assert faces.min() == 1 and faces.max() == np_\n"
-               "assert d['crs'][:] == 4326 and d['crs'].epsg == 4326\n"
+               "assert d['wgs84'][:] == 4326 and d['wgs84'].epsg == 4326\n"
                "assert np.allclose(d['mesh_node_z'][:], -d['depth'][:])\n",
                {dir.file("m.vtk"), dir.file("m.vtu"), std::to_string(np), std::to_string(ne),
                 dir.file("m.nc")});
@@ -1400,38 +1400,39 @@ TEST(CliOutputs, TelemacGeometryAndBoundaryConditions) {
   for (const auto& n : g.nodes) depths << n[2] << " ";
   write_file(dir.file("nodes.txt"), cli_nodes.str());
   write_file(dir.file("depths.txt"), depths.str());
-  python_check(dir,
-               std::string(kSelafinRecords) +
-                   "ints = lambda b: np.frombuffer(b, '>i4')\n"
-                   "reals = lambda b: np.frombuffer(b, '>f8')\n"
-                   "title = record()\n"
-                   "assert len(title) == 80 and title.endswith(b'SERAFIND'), title\n"
-                   "assert ints(record()).tolist() == [1, 0]\n"
-                   "assert record() == b'BOTTOM'.ljust(16) + b'M'.ljust(16)\n"
-                   "iparam = ints(record())\n"
-                   "nelem, npoin, ndp, one = ints(record())\n"
-                   "assert ndp == 3 and one == 1 and nelem == 2 * int(sys.argv[3])\n"
-                   "ikle = ints(record()).reshape(nelem, 3) - 1\n"
-                   "ipobo = ints(record())\n"
-                   "x, y = reals(record()), reals(record())\n"
-                   "assert reals(record()).tolist() == [0.0]\n"
-                   "bottom = reals(record())\n"
-                   "assert pos == len(data)\n"
-                   "cli = [int(n) - 1 for n in open(sys.argv[4]).read().split()]\n"
-                   "assert iparam[7] == len(cli) and len(ipobo) == npoin\n"
-                   "want = np.zeros(npoin, int)\n"
-                   "want[cli] = np.arange(1, len(cli) + 1)\n"
-                   "assert (ipobo == want).all()\n"
-                   "depth = np.array(open(sys.argv[5]).read().split(), float)\n"
-                   "assert len(depth) == npoin and np.allclose(bottom, -depth, atol=1e-6) and "
-                   "bottom.min() < -100\n"
-                   "a, b, c = ikle[:, 0], ikle[:, 1], ikle[:, 2]\n"
-                   "area = 0.5 * ((x[b] - x[a]) * (y[c] - y[a]) - (x[c] - x[a]) * (y[b] - y[a]))\n"
-                   "assert area.min() > 0, area.min()\n"
-                   "assert abs(area.sum() - float(sys.argv[2])) < 1e-6 * area.sum(), (area.sum(), "
-                   "sys.argv[2])\n",
-               {dir.file("geo.slf"), std::to_string(mesh_area), std::to_string(g.num_elements),
-                dir.file("nodes.txt"), dir.file("depths.txt")});
+  python_check(
+      dir,
+      std::string(kSelafinRecords) +
+          "ints = lambda b: np.frombuffer(b, '>i4')\n"
+          "reals = lambda b: np.frombuffer(b, '>f8')\n"
+          "title = record()\n"
+          "assert len(title) == 80 and title.endswith(b'SERAFIND'), title\n"
+          "assert ints(record()).tolist() == [1, 0]\n"
+          "assert record() == b'BOTTOM'.ljust(16) + b'M'.ljust(16)\n"
+          "iparam = ints(record())\n"
+          "nelem, npoin, ndp, one = ints(record())\n"
+          "assert ndp == 3 and one == 1 and nelem == 2 * int(sys.argv[3])\n"
+          "ikle = ints(record()).reshape(nelem, 3) - 1\n"
+          "ipobo = ints(record())\n"
+          "x, y = reals(record()), reals(record())\n"
+          "assert reals(record()).tolist() == [0.0]\n"
+          "bottom = reals(record())\n"
+          "assert pos == len(data)\n"
+          "cli = [int(n) - 1 for n in open(sys.argv[4]).read().split()]\n"
+          "assert iparam.tolist() == [1, 0, 0, 0, 0, 0, 0, 0, 0, 0] and len(ipobo) == npoin\n"
+          "want = np.zeros(npoin, int)\n"
+          "want[cli] = np.arange(1, len(cli) + 1)\n"
+          "assert (ipobo == want).all()\n"
+          "depth = np.array(open(sys.argv[5]).read().split(), float)\n"
+          "assert len(depth) == npoin and np.allclose(bottom, -depth, atol=1e-6) and "
+          "bottom.min() < -100\n"
+          "a, b, c = ikle[:, 0], ikle[:, 1], ikle[:, 2]\n"
+          "area = 0.5 * ((x[b] - x[a]) * (y[c] - y[a]) - (x[c] - x[a]) * (y[b] - y[a]))\n"
+          "assert area.min() > 0, area.min()\n"
+          "assert abs(area.sum() - float(sys.argv[2])) < 1e-6 * area.sum(), (area.sum(), "
+          "sys.argv[2])\n",
+      {dir.file("geo.slf"), std::to_string(mesh_area), std::to_string(g.num_elements),
+       dir.file("nodes.txt"), dir.file("depths.txt")});
 
   const std::string out = read_mesh_layers_in_qgis(dir, {dir.file("geo.slf")});
   // (MDAL reads BOTTOM as a data set, not as the vertices' z.)
@@ -1479,17 +1480,17 @@ TEST(CliOutputs, VerticesOutsideTheBathymetryTakeTheNearestDepth) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // The UGRID file in the automatic local projection, depth on nodes as in the gr3.
   python_check(dir,
-             "import sys, netCDF4, numpy as np\n"
-             "d = netCDF4.Dataset(sys.argv[1])\n"
-             "c = d['crs']\n"
-             "assert c.grid_mapping_name == 'oblique_stereographic', c.grid_mapping_name\n"
-             "assert abs(c.latitude_of_projection_origin - 48.275) < 0.01\n"
-             "assert abs(c.longitude_of_central_meridian + 4.5) < 0.01\n"
-             "assert d['mesh_node_x'].standard_name == 'projection_x_coordinate'\n"
-             "gr3 = np.loadtxt(sys.argv[2], skiprows=2, max_rows=d.dimensions['n_node'].size)\n"
-             "assert np.allclose(gr3[:, 3], d['depth'][:], atol=1e-6)\n"
-             "assert np.allclose(gr3[:, 1], d['mesh_node_x'][:], atol=1e-6)\n",
-             {dir.file("m.nc"), dir.file("hgrid.gr3")});
+               "import sys, netCDF4, numpy as np\n"
+               "d = netCDF4.Dataset(sys.argv[1])\n"
+               "c = d['projected_coordinate_system']\n"
+               "assert c.grid_mapping_name == 'oblique_stereographic', c.grid_mapping_name\n"
+               "assert abs(c.latitude_of_projection_origin - 48.275) < 0.01\n"
+               "assert abs(c.longitude_of_central_meridian + 4.5) < 0.01\n"
+               "assert d['mesh_node_x'].standard_name == 'projection_x_coordinate'\n"
+               "gr3 = np.loadtxt(sys.argv[2], skiprows=2, max_rows=d.dimensions['n_node'].size)\n"
+               "assert np.allclose(gr3[:, 3], d['depth'][:], atol=1e-6)\n"
+               "assert np.allclose(gr3[:, 1], d['mesh_node_x'][:], atol=1e-6)\n",
+               {dir.file("m.nc"), dir.file("hgrid.gr3")});
   const Gr3 ll = parse_gr3(dir.file("hgrid.ll"));
   // The depths where the raster has them (it ends at 4.5 W: past its last pixel centre,
   // and up to half a pixel past its edge, the values are its edge's), the set every
