@@ -91,6 +91,20 @@ MeshBoundary extract_boundary(const QuadMesh& mesh, const PolylineIndex& open_li
         first = i;
         break;
       }
+    if (first == n && kinds[0] == BoundaryKind::open && n >= 3) {
+      // A loop open all round (a box of sea round an island): two segments that share
+      // their ends, in every format alike, since SCHISM refuses an open boundary that
+      // closes on itself.
+      for (std::vector<int>& half : loop_halves(loop)) {
+        BoundarySegment s;
+        s.nodes = std::move(half);
+        s.kind = BoundaryKind::open;
+        s.island = island;
+        s.loop = static_cast<int>(l);
+        b.segments.push_back(std::move(s));
+      }
+      continue;
+    }
     if (first == n) {
       BoundarySegment s;
       s.nodes = loop;

@@ -16,7 +16,8 @@ enum class BoundaryKind { land, open };
 const char* boundary_kind_name(BoundaryKind k);  // "land" or "open"
 
 // A run of boundary edges of one kind: nodes[i] -> nodes[i+1], domain on the left. A
-// whole loop of one kind is one closed segment (last node not repeated).
+// whole loop of land is one closed segment (last node not repeated); a whole loop open is
+// two segments that share their ends (loop_halves), as SCHISM needs them.
 struct BoundarySegment {
   std::vector<int> nodes;
   BoundaryKind kind = BoundaryKind::land;

@@ -2,8 +2,9 @@
 // meshes: quads as E4Q cards (material 1, or each quad's zone: --zones), nodes as ND cards with z
 // the elevation (minus the depth; 0 when unknown), then one nodestring (NS cards, ten nodes a card,
 // the last negative) per boundary segment: the open segments first, then the land ones, each
-// running with the domain on its left, as in hgrid.gr3. A closed segment (an island or a whole
-// loop) repeats its first node at its end.
+// running with the domain on its left, as in hgrid.gr3. A whole loop of land (an island, a
+// coast all round) is two nodestrings that share their ends: SMS does not allow one that
+// begins and ends on the same node.
 #include <fstream>
 #include <iomanip>
 
@@ -14,10 +15,9 @@ namespace isoquad {
 
 namespace {
 
-void write_nodestring(std::ofstream& f, const BoundarySegment& s) {
+void write_nodestring(std::ofstream& f, const std::vector<int>& nodes) {
   std::vector<int> ids;
-  for (int n : s.nodes) ids.push_back(n + 1);
-  if (s.closed && !ids.empty()) ids.push_back(ids.front());
+  for (int n : nodes) ids.push_back(n + 1);
   if (ids.size() < 2) return;
   ids.back() = -ids.back();
   for (std::size_t i = 0; i < ids.size(); ++i) {
@@ -45,7 +45,13 @@ void write_2dm_file(const MeshView& v, const std::string& path, const std::strin
       << "\n";
   for (BoundaryKind kind : {BoundaryKind::open, BoundaryKind::land})
     for (const BoundarySegment& s : v.data->boundary.segments)
-      if (s.kind == kind) write_nodestring(f, s);
+      if (s.kind != kind) {
+        continue;
+      } else if (s.closed && s.nodes.size() >= 3) {
+        for (const std::vector<int>& half : loop_halves(s.nodes)) write_nodestring(f, half);
+      } else {
+        write_nodestring(f, s.nodes);
+      }
   f.close();
   if (!f) throw Error(ErrorClass::output, "write", "'" + what + "': cannot write");
 }

@@ -33,13 +33,8 @@ void write_fort14_file(const MeshView& v, const std::string& path, const std::st
 
   std::vector<std::vector<int>> open;
   std::vector<const BoundarySegment*> land;
-  for (const BoundarySegment& s : v.data->boundary.segments) {
-    if (s.kind != BoundaryKind::open) continue;
-    if (s.closed && s.nodes.size() >= 3)
-      for (std::vector<int>& half : loop_halves(s.nodes)) open.push_back(std::move(half));
-    else
-      open.push_back(s.nodes);
-  }
+  for (const BoundarySegment& s : v.data->boundary.segments)
+    if (s.kind == BoundaryKind::open) open.push_back(s.nodes);  // none closed
   for (const bool island : {false, true})
     for (const BoundarySegment& s : v.data->boundary.segments)
       if (s.kind == BoundaryKind::land && s.island == island) land.push_back(&s);

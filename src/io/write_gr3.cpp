@@ -24,10 +24,10 @@ std::vector<char> split_quads(const QuadMesh& m, bool schism_split, std::size_t&
 }
 
 // The boundary segments as SCHISM takes them: nodes in order and the land flag. A whole
-// loop open, or land on the exterior boundary, is written as two segments that share
-// their ends: SCHISM stops on an open segment whose first node is its last ("Looped
-// open bnd"), and its developers ask for at least two segments round the exterior
-// boundary; an island's whole loop stays one segment (flag 1), which SCHISM closes.
+// loop of land on the exterior boundary is written as two segments that share their
+// ends, as its developers ask (a whole loop open is two already, extract_boundary:
+// SCHISM stops on an open segment whose first node is its last, "Looped open bnd"); an
+// island's whole loop stays one segment (flag 1), which SCHISM closes.
 struct SchismSegment {
   std::vector<int> nodes;
   bool island = false;

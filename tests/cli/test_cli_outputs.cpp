@@ -971,10 +971,11 @@ TEST(CliOutputs, QgisFindsTheQuadsThatFailTheModelsChecks) {
 }
 
 // SMS .2dm: the same nodes, elements and boundary as hgrid.gr3 of the same run, z the
-// elevation (minus the depth), one nodestring per boundary segment (open ones first, an
-// island closed by its first node). Then QGIS's mesh reader (MDAL) opens it and the
-// UGRID file of the same run, in its CRS (the automatic projection, from the `crs`
-// variable), the first node at hgrid.ll's first node.
+// elevation (minus the depth), one nodestring per boundary segment (open ones first), an
+// island's loop as two that share their ends (SMS allows no nodestring that ends where it
+// begins). Then QGIS's mesh reader (MDAL) opens it and the UGRID file of the same run, in
+// its CRS (the automatic projection, from the variable `projected_coordinate_system`), the
+// first node at hgrid.ll's first node.
 TEST(CliOutputs, Sms2dmHoldsTheGr3sMeshWithElevationsAndNodestrings) {
   TempDir dir;
   const CliResult r = mesh_water_box(
@@ -1032,11 +1033,20 @@ TEST(CliOutputs, Sms2dmHoldsTheGr3sMeshWithElevationsAndNodestrings) {
   EXPECT_LT(deepest, -100.0);
   std::vector<std::vector<int>> expected = g.open;
   for (std::size_t s = 0; s < g.land.size(); ++s) {
-    expected.push_back(g.land[s]);
-    if (g.land_flags[s]) expected.back().push_back(g.land[s].front());  // an island, closed
+    const std::vector<int>& land = g.land[s];
+    if (!g.land_flags[s]) {
+      expected.push_back(land);
+      continue;
+    }
+    // An island: its first half, then the rest back to its first node.
+    const std::size_t half = land.size() / 2;
+    expected.emplace_back(land.begin(), land.begin() + half + 1);
+    expected.emplace_back(land.begin() + half, land.end());
+    expected.back().push_back(land.front());
   }
   EXPECT_EQ(strings, expected);
-  ASSERT_EQ(strings.size(), 3u);  // one open segment, the mainland coast and the island
+  ASSERT_EQ(strings.size(), 4u);  // one open segment, the mainland coast, the island's two
+  for (const std::vector<int>& ns : strings) EXPECT_NE(ns.front(), ns.back());
 
   const std::string out = read_mesh_layers_in_qgis(dir, {dir.file("m.2dm"), dir.file("m.nc")});
   double low = 0;

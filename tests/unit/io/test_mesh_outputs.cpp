@@ -300,7 +300,9 @@ TEST(MeshOutputs, Gr3MatchesGoldenAndParses) {
 
 // A whole loop of the exterior boundary, open (a box of sea) or land (a lake), is two
 // segments that share their ends, as SCHISM wants; the island's loop stays one (flag 1).
-// The fort.14's open segments are the same (every edge of the loop in one of them).
+// The fort.14's open segments are the same (every edge of the loop in one of them), and
+// so are the other formats' that number open segments: two .pli files, two Gmsh groups,
+// two MIKE codes, two nodestrings.
 TEST(MeshOutputs, Gr3WritesAWholeLoopOfTheExteriorAsTwoSegments) {
   const Fixture f;
   TempDir dir;
@@ -332,6 +334,47 @@ TEST(MeshOutputs, Gr3WritesAWholeLoopOfTheExteriorAsTwoSegments) {
     EXPECT_EQ(halves[1].back(), halves[0].front());
     EXPECT_EQ(halves[0].size() + halves[1].size(), 12u + 2u);  // the 12 nodes round, 2 shared
     expect_segments_cover_the_boundary(g);
+    if (!open) continue;
+    MeshWriteOptions groups;
+    groups.msh_groups = "segment";
+    write_mesh_outputs(d,
+                       {{dir.file("open.pli"), "", false},
+                        {dir.file("open.msh"), "", false},
+                        {dir.file("open.mesh"), "", false},
+                        {dir.file("open.2dm"), "", false}},
+                       groups);
+    for (int k = 1; k <= 2; ++k) {
+      std::istringstream pli(read_file(dir.file("open_" + std::to_string(k) + ".pli")));
+      std::string name;
+      std::size_t rows = 0;
+      pli >> name >> rows;
+      EXPECT_EQ(rows, g.open[k - 1].size()) << k;
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file("open.pli")));
+    const std::string msh = read_file(dir.file("open.msh"));
+    EXPECT_NE(msh.find("\"open_1\""), std::string::npos);
+    EXPECT_NE(msh.find("\"open_2\""), std::string::npos);
+    std::set<int> codes;
+    std::istringstream mesh(read_file(dir.file("open.mesh")));
+    std::string line;
+    std::getline(mesh, line);
+    for (int i = 0; i < 16 && std::getline(mesh, line); ++i) {
+      std::istringstream node(line);
+      double id, x, y, z;
+      int code;
+      node >> id >> x >> y >> z >> code;
+      codes.insert(code);
+    }
+    EXPECT_EQ(codes, (std::set<int>{1, 2, 3}));  // the island, two open segments (none inside)
+    std::istringstream dm(read_file(dir.file("open.2dm")));
+    std::size_t strings = 0;  // each ends with a negative id
+    while (std::getline(dm, line)) {
+      std::istringstream card(line);
+      std::string name;
+      card >> name;
+      for (int id = 0; name == "NS" && card >> id;) strings += id < 0;
+    }
+    EXPECT_EQ(strings, 2u + 2u);  // the open halves, the island's two
   }
 }
 
