@@ -335,7 +335,7 @@ RegionOutcome run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
     data.metrics = &r.metrics;
     data.crs_wkt = r.fields.front.domain.crs_wkt;
     try {
-      data.boundary = extract_boundary(r.quads, PolylineIndex(), r.on_boundary_tolerance_m);
+      data.boundary = boundary_of_domain(r.quads, r.fields.front);
     } catch (const Error& e) {
       throw Error(ErrorClass::input, "quality",
                   "'" + q.mesh_path + "': its boundary is not a set of simple loops (" +

@@ -450,7 +450,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   if ((!options.exclude_layer.empty() || !options.exclude_where.empty()) &&
       options.exclude_path.empty())
     throw Error(ErrorClass::usage, "options", "--exclude-layer and --exclude-where need --exclude");
-  std::vector<std::vector<Point2>> mesh_open_lines;
+  std::vector<std::vector<Point2>> mesh_open_lines = options.source_open_lines;
   const bool from_mesh = options.source.has_value() || is_mesh_file(read.path);
   if (!options.open_groups.empty() && (options.source || !from_mesh))
     throw Error(

@@ -29,6 +29,9 @@ struct FrontEndOptions {
   // a mesh: is_mesh_file), are meshed in their CRS when it is projected in metres and
   // project.dst_crs is empty.
   std::optional<SourceData> source;
+  // With `source`, a mesh's outline: its open boundaries, as lines in its CRS (as a mesh
+  // file given as INPUT has them).
+  std::vector<std::vector<Point2>> source_open_lines;
   DomainKind kind = DomainKind::land;
   bool kind_given = false;  // --domain given (a raster INPUT's domain is set by its range)
   bool largest = false;

@@ -43,6 +43,12 @@ std::vector<std::pair<std::string, std::string>> quality_items(const QualitySumm
           {"boundary_departure_p95_h", format_number(q.boundary_departure_p95_h)}};
 }
 
+MeshBoundary boundary_of_domain(const QuadMesh& quads, const FrontEndResult& front) {
+  return extract_boundary(
+      quads, PolylineIndex(front.open_boundary_lines, front.open_boundary_slack_m),
+      open_line_tolerance(front), front.open_boundary_chord_share, &front.open_boundary_line_group);
+}
+
 MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs& o) {
   std::vector<StageTime> output_time;
   StageClock clock(output_time);
@@ -54,12 +60,7 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
     data.mesh = &r.quads;
     data.metrics = &r.metrics;
     data.crs_wkt = front.domain.crs_wkt;
-    // Boundary parts on the open boundary's lines (the projected bbox, or the lines of
-    // --open-boundary; within the front end's tolerance, plus rounding) are open.
-    data.boundary = extract_boundary(
-        r.quads, PolylineIndex(front.open_boundary_lines, front.open_boundary_slack_m),
-        open_line_tolerance(front), front.open_boundary_chord_share,
-        &front.open_boundary_line_group);
+    data.boundary = boundary_of_domain(r.quads, front);
     written.num_open_edges = data.boundary.num_open_edges;
     written.num_land_edges = data.boundary.num_land_edges;
     if (!o.bathymetry.empty()) {

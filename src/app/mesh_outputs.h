@@ -46,6 +46,11 @@ struct MeshJobWritten {
   StageTime output_time;
 };
 
+// The quads' boundary, open where it lies on the front end's open boundary lines (the
+// projected bbox or --clip, the lines of --open-boundary; within its tolerance, plus
+// rounding), else land: for a mesh of `front`'s domain, made here or by another tool.
+MeshBoundary boundary_of_domain(const QuadMesh& quads, const FrontEndResult& front);
+
 // Writes them all or none (Error(output) when one cannot be written).
 MeshJobWritten write_mesh_job_outputs(const MeshResult& result, const MeshJobOutputs& outputs);
 

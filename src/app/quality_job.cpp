@@ -128,8 +128,16 @@ FrontEndOptions outline_front_end(const QualityJobOptions& options, const ReadMe
   front.read = ReadParams();
   front.read.path = options.mesh_path;
   front.read.repair = options.fields.front.read.repair;
-  front.source = outline_source(file, options.mesh_path, options.mesh_crs, "--mesh-crs");
+  std::vector<Point2> nodes;  // in the outline's CRS
+  front.source = outline_source(file, options.mesh_path, options.mesh_crs, "--mesh-crs", &nodes);
   r.num_outline_loops = front.source->num_features;
+  // Its open boundaries (a .gr3's, a MIKE mesh's codes, a .slf's .cli) stay open: -o
+  // marks them so.
+  for (const std::vector<int>& segment : file.open_boundaries) {
+    std::vector<Point2> line;
+    for (int v : segment) line.push_back(nodes[v]);
+    if (line.size() >= 2) front.source_open_lines.push_back(std::move(line));
+  }
   if (!front.simplify_m) front.simplify_m = 0.0;
   if (!front.min_island_area_m2) front.min_island_area_m2 = 0.0;
   if (!front.min_width_m) front.min_width_m = 0.0;

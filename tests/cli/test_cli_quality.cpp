@@ -9,6 +9,7 @@
 #include <ogrsf_frmts.h>
 
 #include <iomanip>
+#include <map>
 #include <sstream>
 
 #include "gis/gdal_env.h"
@@ -349,7 +350,8 @@ TEST(CliQuality, EachRegionsMeshMeasuredAsItsReportSays) {
 // Without INPUT the domain is the mesh's own outline: a water mesh with four islands
 // read back from its .gpkg (in the meshing CRS) and its .ll (in lon/lat) has the same
 // holes, every boundary vertex on the outline, the outline's area, and the same shapes as
-// the mesh report; a .gr3 without --mesh-crs, and selections from INPUT, stop clearly.
+// the mesh report; the .ll's open boundaries stay open (-o's boundary layer as the
+// mesh's); a .gr3 without --mesh-crs, and selections from INPUT, stop clearly.
 TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
   TempDir dir;
   const CliResult made =
@@ -362,8 +364,9 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
   ASSERT_GE(report_number(mesh_report, "num_holes"), 2);
   for (const char* file : {"m.gpkg", "m.ll"}) {
     const std::string report = dir.file(std::string(file) + ".json");
-    const CliResult r =
-        run_cli({"quality", "--mesh", dir.file(file), "--hmax", "8000", "--report", report}, dir);
+    const CliResult r = run_cli({"quality", "--mesh", dir.file(file), "--hmax", "8000", "--report",
+                                 report, "-o", dir.file(std::string("q_") + file + ".gpkg")},
+                                dir);
     ASSERT_EQ(r.exit_code, 0) << file << r.err;
     EXPECT_NE(r.err.find("domain from:  the mesh's outline"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find(std::string("mesh:         ") +
@@ -388,6 +391,21 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
       EXPECT_NEAR(a, b, tolerance * std::max(1.0, std::abs(a))) << file << ": " << key;
     }
   }
+
+  // The boundary's kinds: open along the bbox, land elsewhere, as the mesh wrote them.
+  isoquad::ensure_gdal_registered();
+  auto kinds = [&dir](const std::string& name) {
+    std::map<std::string, int> count;
+    GDALDataset* ds = static_cast<GDALDataset*>(
+        GDALOpenEx(dir.file(name).c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+    if (!ds) return count;
+    for (auto& f : *ds->GetLayerByName("boundary")) ++count[f->GetFieldAsString("kind")];
+    GDALClose(ds);
+    return count;
+  };
+  const std::map<std::string, int> made_kinds = kinds("m.gpkg");
+  EXPECT_EQ(made_kinds.count("open") ? made_kinds.at("open") : 0, 3);
+  EXPECT_EQ(kinds("q_m.ll.gpkg"), made_kinds);
 
   const CliResult no_crs = run_cli({"quality", "--mesh", dir.file("m.gr3")}, dir);
   EXPECT_EQ(no_crs.exit_code, 4);
