@@ -1,5 +1,6 @@
 #include "gis/write_domain.h"
 
+#include <cmath>
 #include <filesystem>
 
 #include "core/error.h"
@@ -18,6 +19,32 @@ std::string domain_driver(const std::string& path) {
   if (ext == ".fgb") return "FlatGeobuf";
   if (ext == ".geojson" || ext == ".json") return "GeoJSON";
   return "";
+}
+
+// A polygon in longitudes that crosses the antimeridian (an edge over 180 degrees of
+// longitude long) with its longitudes in [0, 360) instead, continuous, for RFC 7946's
+// writer to cut at 180 degrees (as the mesh's GeoJSON is); one round a pole stays.
+void unwrap_longitudes(Polygon& polygon) {
+  auto jumps = [](const Polygon& p) {
+    auto ring_jumps = [](const Ring& r) {
+      for (std::size_t i = 0; i < r.size(); ++i)
+        if (std::abs(r[i].x - r[(i + 1) % r.size()].x) > 180.0) return true;
+      return false;
+    };
+    if (ring_jumps(p.outer)) return true;
+    for (const Ring& h : p.holes)
+      if (ring_jumps(h)) return true;
+    return false;
+  };
+  if (!jumps(polygon)) return;
+  Polygon shifted = polygon;
+  auto shift = [](Ring& r) {
+    for (Point2& q : r)
+      if (q.x < 0) q.x += 360.0;
+  };
+  shift(shifted.outer);
+  for (Ring& h : shifted.holes) shift(h);
+  if (!jumps(shifted)) polygon = std::move(shifted);
 }
 
 }  // namespace
@@ -60,6 +87,7 @@ void write_domain(const Domain& domain, const WriteDomainParams& params) {
       };
       transform(shown.outer, p.outer);
       for (std::size_t h = 0; h < shown.holes.size(); ++h) transform(shown.holes[h], p.holes[h]);
+      unwrap_longitudes(shown);
     }
     w.add_polygon(shown, {FieldValue::integer(static_cast<long long>(i)), FieldValue::real(area(p)),
                           FieldValue::real(perimeter(p)),

@@ -543,6 +543,43 @@ TEST(Cli, SameInputGivesByteIdenticalOutput) {
   EXPECT_EQ(read_file(dir.file("a.gpkg")), read_file(dir.file("b.gpkg")));
 }
 
+// An island across the antimeridian, drawn as two parts split at 180 degrees (as
+// Natural Earth draws Fiji's, with a vertex of its boundary on 180 degrees): its domain
+// as GeoJSON is cut at 180 degrees again (RFC 7946), each part within a degree of
+// longitude, not a band round the globe.
+TEST(Cli, DomainAcrossTheAntimeridianAsGeoJson) {
+  TempDir dir;
+  const std::string island = dir.file("island.geojson");
+  write_file(island,
+             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+             R"("geometry":{"type":"MultiPolygon","coordinates":[)"
+             R"([[[179.9,-17],[180,-16.96],[180,-16.78],[179.93,-16.88],[179.9,-17]]],)"
+             R"([[[-180,-16.96],[-179.97,-16.93],[-179.87,-16.85],[-179.86,-16.69],[-180,-16.78],)"
+             R"([-180,-16.96]]]]}}]})");
+  const CliResult r =
+      run_cli({"domain", island, "-o", dir.file("d.geojson"), "--size", "500", "-q"}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  isoquad::ensure_gdal_registered();
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(dir.file("d.geojson").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  OGRLayer* layer = ds->GetLayer(0);
+  ASSERT_EQ(layer->GetFeatureCount(), 1);  // one component
+  for (auto& f : *layer) {
+    const OGRGeometry* g = f->GetGeometryRef();
+    ASSERT_EQ(wkbFlatten(g->getGeometryType()), wkbMultiPolygon) << g->exportToWkt();
+    const OGRMultiPolygon* parts = g->toMultiPolygon();
+    ASSERT_EQ(parts->getNumGeometries(), 2);
+    for (const OGRPolygon* part : *parts) {
+      OGREnvelope e;
+      part->getEnvelope(&e);
+      EXPECT_LT(e.MaxX - e.MinX, 0.2);
+      EXPECT_TRUE(e.MinX >= 179.8 || e.MaxX <= -179.8) << e.MinX << " " << e.MaxX;
+    }
+  }
+  GDALClose(ds);
+}
+
 // The domain as FlatGeobuf (its CRS) and GeoJSON (longitudes and latitudes): the same
 // components, holes and areas as the GeoPackage's, valid, the GeoJSON within the bbox.
 TEST(Cli, DomainAsFlatGeobufAndGeoJson) {
