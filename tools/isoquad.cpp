@@ -608,7 +608,8 @@ int main(int argc, char** argv) {
   CLI::App* fields_cmd = app.add_subcommand(
       "fields",
       "Build the background mesh with the sizing field and the cross field, and write them "
-      "(.vtu for ParaView, .gpkg for QGIS) with point data size (m) and cross_angle (deg).");
+      "(.vtu for ParaView: point data size (m) and cross_angle (deg); .gpkg for QGIS: layers "
+      "vertices and triangles with size_m and cross_angle_deg, drawn by size).");
   add_front_end_options(fields_cmd, fields_args);
   add_field_options(fields_cmd, field_args);
   fields_cmd->footer(kExitCodes);

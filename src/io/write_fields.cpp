@@ -5,6 +5,7 @@
 
 #include "core/error.h"
 #include "gis/vector_writer.h"
+#include "io/mesh_styles.h"
 #include "io/write_vtu.h"
 
 namespace isoquad {
@@ -43,6 +44,9 @@ void write_gpkg_fields(const BackgroundMesh& mesh, const SizingField& size, cons
                   {FieldValue::real(size.at(mesh, static_cast<int>(f), centre)),
                    FieldValue::real(degrees(cross_angle_at(mesh, cross, static_cast<int>(f), centre)))});
   }
+  std::vector<const MeshStyle*> styles;
+  for (const MeshStyle& s : fields_styles()) styles.push_back(&s);
+  write_layer_styles(w, styles);
   w.commit();
 }
 

@@ -133,29 +133,14 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
   row("num_land_boundary_edges", std::to_string(v.data->boundary.num_land_edges));
   row("depth", depth ? "metres, positive down" : "unknown");
   for (const auto& [k, val] : v.data->quality) row("quality." + k, val);
-  // QGIS reads a layer's styles from this table (the columns QGIS itself creates).
-  w.begin_layer("layer_styles", GeometryKind::none,
-                {{"f_table_catalog", FieldType::text},
-                 {"f_table_schema", FieldType::text},
-                 {"f_table_name", FieldType::text},
-                 {"f_geometry_column", FieldType::text},
-                 {"styleName", FieldType::text},
-                 {"styleQML", FieldType::text},
-                 {"styleSLD", FieldType::text},
-                 {"useAsDefault", FieldType::integer},
-                 {"description", FieldType::text},
-                 {"owner", FieldType::text},
-                 {"ui", FieldType::text},
-                 {"update_time", FieldType::text}});
+  // QGIS reads a layer's styles from this table.
+  std::vector<const MeshStyle*> styles;
   for (const MeshStyle& s : mesh_styles()) {
     if (!depth && std::string(s.layer) == "vertices" && std::string(s.name) == "depth") continue;
     if (v.data->embedded.empty() && std::string(s.layer) == "embedded") continue;
-    w.add_row({FieldValue::text(""), FieldValue::text(""), FieldValue::text(s.layer),
-               FieldValue::text("geom"), FieldValue::text(s.name), FieldValue::text(s.qml),
-               FieldValue::text(""), FieldValue::integer(s.is_default ? 1 : 0),
-               FieldValue::text(s.description), FieldValue::text("isoquad"), FieldValue::text(""),
-               FieldValue::text("2000-01-01T00:00:00Z")});
+    styles.push_back(&s);
   }
+  write_layer_styles(w, styles);
   w.commit();
 }
 

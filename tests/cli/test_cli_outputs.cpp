@@ -935,6 +935,45 @@ TEST(CliOutputs, QgisAppliesEveryStoredStyle) {
         << q.out;
 }
 
+// `isoquad fields -o .gpkg` opens in QGIS coloured by size (styles/triangles_size.qml, a
+// ramp over the layer's own range of h), with the cross's angle as a second style: the
+// picture holds many colours, from the fine coast to the coarse inland.
+TEST(CliOutputs, QgisDrawsTheFieldsBySize) {
+  TempDir dir;
+  ASSERT_TRUE(qgis_importable(dir)) << kQgisMissing;
+  const CliResult r = run_cli(
+      {"fields", sample("corsica.shp"), "--hmax", "8000", "-o", dir.file("f.gpkg"), "-q"}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CliResult q =
+      run_cli_program("/usr/bin/python3",
+                      {source_dir() + "/tools/render_gpkg_qgis.py", dir.file("f.gpkg"),
+                       dir.file("f.png"), "--size", "300", "--layers", "triangles"},
+                      dir);
+  ASSERT_EQ(q.exit_code, 0) << q.out << q.err;
+  EXPECT_NE(q.out.find("style triangles/size: applies"), std::string::npos) << q.out;
+  EXPECT_NE(q.out.find("style triangles/cross: applies"), std::string::npos) << q.out;
+  const std::string out = python_check(
+      dir,
+      "import sys\n"
+      "from osgeo import gdal\n"
+      "import numpy as np\n"
+      "ds = gdal.Open(sys.argv[1])\n"
+      "img = np.dstack([ds.GetRasterBand(b).ReadAsArray() for b in (1, 2, 3)]).astype(int)\n"
+      "px = img.reshape(-1, 3)\n"
+      "px = px[(px != 255).any(axis=1)]\n"
+      "red = ((px[:, 0] > 180) & (px[:, 2] < 80)).sum()\n"
+      "blueish = (px[:, 2] > px[:, 0] + 40).sum()\n"
+      "print(len(px), len({tuple(p) for p in px // 8}), red, blueish)\n",
+      {dir.file("f.png")});
+  std::istringstream in(out);
+  long drawn = 0, colours = 0, red = 0, blueish = 0;
+  in >> drawn >> colours >> red >> blueish;
+  EXPECT_GT(drawn, 300 * 300 / 5) << out;
+  EXPECT_GT(colours, 30) << out;      // a ramp, not one colour
+  EXPECT_GT(red, drawn / 10) << out;  // the coarse inland
+  EXPECT_GT(blueish, 0) << out;       // the finest sizes, at the coast
+}
+
 // The stored style `checks` of the quads (styles/quads_checks.qml), applied by QGIS: its
 // rules select as many quads as the report counts for SCHISM's checks and D-Flow FM's
 // orthogonality (each link over 0.5 marks its two quads).
