@@ -87,7 +87,7 @@ void VectorWriter::end_layer() {
 }
 
 void VectorWriter::begin_layer(const std::string& name, GeometryKind kind,
-                               const std::vector<FieldDef>& fields) {
+                               const std::vector<FieldDef>& fields, const LayerAbout& about) {
   end_layer();
   const OGRwkbGeometryType type = kind == GeometryKind::point  ? wkbPoint
                                   : kind == GeometryKind::line ? wkbLineString
@@ -95,8 +95,13 @@ void VectorWriter::begin_layer(const std::string& name, GeometryKind kind,
                                                                : wkbPolygon;
   OGRSpatialReference* srs =
       state_->srs.IsEmpty() || kind == GeometryKind::none ? nullptr : &state_->srs;
+  std::vector<std::string> texts = state_->layer_options;
+  if (state_->driver == "GPKG") {
+    if (!about.title.empty()) texts.push_back("IDENTIFIER=" + about.title);
+    if (!about.description.empty()) texts.push_back("DESCRIPTION=" + about.description);
+  }
   std::vector<const char*> options;
-  for (const std::string& o : state_->layer_options) options.push_back(o.c_str());
+  for (const std::string& o : texts) options.push_back(o.c_str());
   options.push_back(nullptr);
   state_->layer =
       state_->ds->CreateLayer(name.c_str(), srs, type, const_cast<char**>(options.data()));
@@ -116,6 +121,10 @@ void VectorWriter::add(OGRGeometry* g, const std::vector<FieldValue>& values) {
   OGRFeature feature(state_->layer->GetLayerDefn());
   for (std::size_t i = 0; i < state_->fields.size() && i < values.size(); ++i) {
     const int idx = static_cast<int>(i);
+    if (values[i].null) {
+      feature.SetFieldNull(idx);
+      continue;
+    }
     switch (state_->fields[i].type) {
       case FieldType::integer:
         feature.SetField(idx, static_cast<GIntBig>(values[i].i));

@@ -26,6 +26,12 @@ struct FieldValue {
   long long i = 0;
   double r = 0.0;
   std::string s;
+  bool null = false;  // no value (NULL), whatever the field's type
+  static FieldValue none() {
+    FieldValue f;
+    f.null = true;
+    return f;
+  }
   static FieldValue integer(long long v) {
     FieldValue f;
     f.i = v;
@@ -45,6 +51,13 @@ struct FieldValue {
 
 enum class GeometryKind { point, line, polygon, none };  // none: an attribute table
 
+// What QGIS shows as a layer's title and abstract (Layer Properties, Information): a
+// GeoPackage's gpkg_contents identifier (unique in the file) and description. The other
+// formats have no place for them.
+struct LayerAbout {
+  std::string title, description;
+};
+
 class VectorWriter {
  public:
   // Creates the temporary file next to `path` with OGR's driver (GeoPackage by default;
@@ -60,7 +73,8 @@ class VectorWriter {
   VectorWriter& operator=(const VectorWriter&) = delete;
 
   // Starts a layer (ending the previous one).
-  void begin_layer(const std::string& name, GeometryKind kind, const std::vector<FieldDef>& fields);
+  void begin_layer(const std::string& name, GeometryKind kind, const std::vector<FieldDef>& fields,
+                   const LayerAbout& about = {});
   // Adds a feature to the current layer; values follow the layer's fields.
   void add_point(const Point2& p, const std::vector<FieldValue>& values);
   void add_polygon(const Polygon& polygon, const std::vector<FieldValue>& values);

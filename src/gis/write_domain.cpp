@@ -73,7 +73,10 @@ void write_domain(const Domain& domain, const WriteDomainParams& params) {
                  {"area_m2", FieldType::real},
                  {"perimeter_m", FieldType::real},
                  {"num_holes", FieldType::integer},
-                 {"num_vertices", FieldType::integer}});
+                 {"num_vertices", FieldType::integer}},
+                {"isoquad domain: " + params.layer,
+                 "The domain to mesh, in components (area and perimeter in metres in the "
+                 "meshing CRS)."});
   for (std::size_t i = 0; i < domain.polygons.size(); ++i) {
     const Polygon& p = domain.polygons[i];
     Polygon shown = p;
@@ -96,7 +99,9 @@ void write_domain(const Domain& domain, const WriteDomainParams& params) {
   }
   if (driver == "GPKG" && params.open_parts && !params.open_parts->empty()) {
     w.begin_layer("open_boundary", GeometryKind::line,
-                  {{"id", FieldType::integer}, {"length_m", FieldType::real}});
+                  {{"id", FieldType::integer}, {"length_m", FieldType::real}},
+                  {"isoquad domain: open boundary",
+                   "The runs of the domain's boundary that are open (sea), the rest land."});
     for (std::size_t k = 0; k < params.open_parts->size(); ++k) {
       const std::vector<Point2>& line = (*params.open_parts)[k];
       w.add_line(line, {FieldValue::integer(static_cast<long long>(k)),

@@ -29,14 +29,21 @@ void write_gpkg_fields(const BackgroundMesh& mesh, const SizingField& size, cons
                        const std::string& crs_wkt, const std::string& path, bool overwrite) {
   VectorWriter w(path, overwrite, crs_wkt);
   w.begin_layer("vertices", GeometryKind::point,
-                {{"size_m", FieldType::real}, {"cross_angle_deg", FieldType::real},
-                 {"boundary_chain", FieldType::integer}});
+                {{"size_m", FieldType::real},
+                 {"cross_angle_deg", FieldType::real},
+                 {"boundary_chain", FieldType::integer}},
+                {"isoquad fields: vertices",
+                 "The background mesh's vertices: the size h (m), the cross field's angle "
+                 "(degrees), and the boundary chain each lies on (-1 inside)."});
   for (std::size_t i = 0; i < mesh.points.size(); ++i)
     w.add_point(mesh.points[i], {FieldValue::real(size.size_m[i]),
                                  FieldValue::real(degrees(cross.angle_rad[i])),
                                  FieldValue::integer(mesh.boundary_chain_of_vertex[i])});
   w.begin_layer("triangles", GeometryKind::polygon,
-                {{"size_m", FieldType::real}, {"cross_angle_deg", FieldType::real}});
+                {{"size_m", FieldType::real}, {"cross_angle_deg", FieldType::real}},
+                {"isoquad fields: triangles",
+                 "The background mesh's triangles: the size h (m) and the cross field's angle "
+                 "(degrees) at their centroids."});
   for (std::size_t f = 0; f < mesh.triangles.size(); ++f) {
     const auto& t = mesh.triangles[f];
     const std::array<double, 3> centre{1.0 / 3, 1.0 / 3, 1.0 / 3};

@@ -32,7 +32,8 @@ std::string companion(const std::string& path, const char* extension) {
 }
 
 // The quads as polygons with their metrics: the GeoPackage's layer `quads`, and the
-// whole of a GeoJSON or FlatGeobuf output.
+// whole of a GeoJSON or FlatGeobuf output. Their `id` is the element's number in the
+// model files (from 1), as the vertices' is the node's.
 void write_quads_layer(const MeshView& v, VectorWriter& w) {
   const QuadMesh& m = *v.data->mesh;
   const auto& pts = v.points;
@@ -40,11 +41,19 @@ void write_quads_layer(const MeshView& v, VectorWriter& w) {
   std::vector<FieldDef> defs = {{"id", FieldType::integer}};
   for (const QuadField& f : fields)  // a NaN time step is NULL (dry)
     defs.push_back({f.name, f.integer ? FieldType::integer : FieldType::real});
-  w.begin_layer("quads", GeometryKind::polygon, defs);
+  const std::string source =
+      v.data->command_line.empty() ? "" : " Made by: " + v.data->command_line;
+  w.begin_layer("quads", GeometryKind::polygon, defs,
+                {"isoquad mesh: quads",
+                 "The mesh's quadrangles with their metrics (size_ratio: sqrt(area)/h; "
+                 "orientation_deg: deviation from the cross field; angles; aspect ratio; "
+                 "Gmsh's eta; D-Flow FM's orthogonality); id: the element's number in the "
+                 "model files." +
+                     source});
   std::vector<FieldValue> values;
   for (std::size_t i = 0; i < m.quads.size(); ++i) {
     const auto& t = m.quads[i];
-    values.assign(1, FieldValue::integer(static_cast<long long>(i)));
+    values.assign(1, FieldValue::integer(static_cast<long long>(i + 1)));
     for (const QuadField& f : fields) {
       const double x = (*f.values)[i];
       values.push_back(f.integer ? FieldValue::integer(static_cast<long long>(x))
@@ -79,15 +88,22 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
   if (point) vfields.push_back({"point", FieldType::integer});
   const bool named = !v.data->vertex_point_name.empty();
   if (named) vfields.push_back({"point_name", FieldType::text});
-  w.begin_layer("vertices", GeometryKind::point, vfields);
+  w.begin_layer("vertices", GeometryKind::point, vfields,
+                {"isoquad mesh: vertices",
+                 "The mesh's nodes: id, the node's number in the model files; degree, the quads "
+                 "at the node (ideal_degree, what its corner of the domain asks); boundary, 1 "
+                 "on the boundary" +
+                     std::string(depth ? "; depth in metres, positive down" : "") + "."});
   for (std::size_t i = 0; i < pts.size(); ++i) {
-    std::vector<FieldValue> values = {FieldValue::integer(static_cast<long long>(i)),
-                                      FieldValue::integer(q.degree[i]),
-                                      FieldValue::integer(q.ideal_degree[i]),
-                                      FieldValue::integer(q.boundary[i])};
+    std::vector<FieldValue> values = {
+        FieldValue::integer(static_cast<long long>(i + 1)), FieldValue::integer(q.degree[i]),
+        FieldValue::integer(q.ideal_degree[i]), FieldValue::integer(q.boundary[i])};
     if (depth) values.push_back(FieldValue::real(v.data->depth[i]));
     if (point) values.push_back(FieldValue::integer(v.data->vertex_point[i]));
-    if (named) values.push_back(FieldValue::text(v.data->vertex_point_name[i]));
+    if (named) {  // NULL but at the named points' vertices
+      const std::string& name = v.data->vertex_point_name[i];
+      values.push_back(name.empty() ? FieldValue::none() : FieldValue::text(name));
+    }
     w.add_point(pts[i], values);
   }
   w.begin_layer("boundary", GeometryKind::line,
@@ -95,7 +111,10 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
                  {"kind", FieldType::text},
                  {"loop", FieldType::integer},
                  {"island", FieldType::integer},
-                 {"num_nodes", FieldType::integer}});
+                 {"num_nodes", FieldType::integer}},
+                {"isoquad mesh: boundary",
+                 "The mesh's boundary in segments of one kind: open (the sea's boundary, a "
+                 "model's forcing) or land (a coast), in hgrid.gr3's order."});
   const auto& segs = v.data->boundary.segments;
   for (std::size_t s = 0; s < segs.size(); ++s) {
     std::vector<Point2> line;
@@ -110,7 +129,10 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
     w.begin_layer("embedded", GeometryKind::line,
                   {{"id", FieldType::integer},
                    {"line", FieldType::integer},
-                   {"num_nodes", FieldType::integer}});
+                   {"num_nodes", FieldType::integer}},
+                  {"isoquad mesh: embedded paths",
+                   "Paths of quad edges along the lines of --embed (line: the line's number "
+                   "in its file, from 0)."});
     const auto& paths = v.data->embedded;
     for (std::size_t k = 0; k < paths.size(); ++k) {
       std::vector<Point2> line;
@@ -120,7 +142,11 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
                         FieldValue::integer(static_cast<long long>(paths[k].size()))});
     }
   }
-  w.begin_layer("metadata", GeometryKind::none, {{"key", FieldType::text}, {"value", FieldType::text}});
+  w.begin_layer("metadata", GeometryKind::none,
+                {{"key", FieldType::text}, {"value", FieldType::text}},
+                {"isoquad mesh: metadata",
+                 "The run: isoquad's version, its command line, the libraries' versions, the "
+                 "CRS and the quality summary."});
   auto row = [&w](const std::string& k, const std::string& val) {
     w.add_row({FieldValue::text(k), FieldValue::text(val)});
   };

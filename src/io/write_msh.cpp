@@ -4,7 +4,8 @@
 // on the lines, in the group embedded (4) (not among the surface's bounding curves).
 // With --zones, a surface per zone instead, each in the physical group zone_N of tag N
 // (a group of surfaces: the curves' tags are another dimension's), the quads in none
-// in no_zone (the largest zone + 1).
+// in no_zone (the largest zone + 1). The quads' element tags are their numbers in the
+// other formats (1 to the number of quads, whatever their zone); the lines' follow.
 #include <algorithm>
 #include <cstdio>
 #include <fstream>
@@ -126,7 +127,13 @@ void write_msh_file(const MeshView& v, const std::string& path, const std::strin
     for (std::size_t i = 0; i < np; ++i)
       f << i + 1 << " " << v.points[i].x << " " << v.points[i].y << " 0\n";
     f << "$EndNodes\n$Elements\n" << nl + nq << "\n";
-    std::size_t id = 1;
+    for (std::size_t i = 0; i < nq; ++i) {
+      const auto& q = m.quads[i];
+      const int s = surf.of_quad[i];
+      f << i + 1 << " 3 2 " << surf.tag[s] << " " << s + 1 << " " << q[0] + 1 << " " << q[1] + 1
+        << " " << q[2] + 1 << " " << q[3] + 1 << "\n";
+    }
+    std::size_t id = nq + 1;
     for (std::size_t c = 0; c < segs.size(); ++c)
       for (const auto& e : segment_edges(segs[c]))
         f << id++ << " 1 2 " << groups.of_segment[c] << " " << c + 1 << " " << e[0] + 1 << " "
@@ -135,12 +142,6 @@ void write_msh_file(const MeshView& v, const std::string& path, const std::strin
       for (const auto& e : path_edges(paths[k]))
         f << id++ << " 1 2 " << kEmbedded << " " << ns + k + 1 << " " << e[0] + 1 << " " << e[1] + 1
           << "\n";
-    for (std::size_t i = 0; i < nq; ++i) {
-      const auto& q = m.quads[i];
-      const int s = surf.of_quad[i];
-      f << id++ << " 3 2 " << surf.tag[s] << " " << s + 1 << " " << q[0] + 1 << " " << q[1] + 1
-        << " " << q[2] + 1 << " " << q[3] + 1 << "\n";
-    }
     f << "$EndElements\n";
   } else {
     Box all;
@@ -166,22 +167,22 @@ void write_msh_file(const MeshView& v, const std::string& path, const std::strin
     for (std::size_t i = 0; i < np; ++i) f << v.points[i].x << " " << v.points[i].y << " 0\n";
     f << "$EndNodes\n";
     f << "$Elements\n" << nc + nsurf << " " << nl + nq << " 1 " << nl + nq << "\n";
-    std::size_t id = 1;
-    for (std::size_t c = 0; c < nc; ++c) {
-      const auto edges = c < ns ? segment_edges(segs[c]) : path_edges(paths[c - ns]);
-      f << "1 " << c + 1 << " 1 " << edges.size() << "\n";
-      for (const auto& e : edges) f << id++ << " " << e[0] + 1 << " " << e[1] + 1 << "\n";
-    }
-    // A block per surface, its quads in their order.
+    // A block per surface, its quads in their order, then a block per curve.
     for (std::size_t k = 0; k < nsurf; ++k) {
       const auto count = std::count(surf.of_quad.begin(), surf.of_quad.end(), static_cast<int>(k));
       f << "2 " << k + 1 << " 3 " << count << "\n";
       for (std::size_t i = 0; i < nq; ++i) {
         if (surf.of_quad[i] != static_cast<int>(k)) continue;
         const auto& q = m.quads[i];
-        f << id++ << " " << q[0] + 1 << " " << q[1] + 1 << " " << q[2] + 1 << " " << q[3] + 1
+        f << i + 1 << " " << q[0] + 1 << " " << q[1] + 1 << " " << q[2] + 1 << " " << q[3] + 1
           << "\n";
       }
+    }
+    std::size_t id = nq + 1;
+    for (std::size_t c = 0; c < nc; ++c) {
+      const auto edges = c < ns ? segment_edges(segs[c]) : path_edges(paths[c - ns]);
+      f << "1 " << c + 1 << " 1 " << edges.size() << "\n";
+      for (const auto& e : edges) f << id++ << " " << e[0] + 1 << " " << e[1] + 1 << "\n";
     }
     f << "$EndElements\n";
   }

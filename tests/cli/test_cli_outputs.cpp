@@ -264,7 +264,7 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
   }
   for (auto& f : *vertices) {
     const OGRPoint* p = f->GetGeometryRef()->toPoint();
-    const int id = static_cast<int>(f->GetFieldAsInteger64("id"));
+    const int id = static_cast<int>(f->GetFieldAsInteger64("id")) - 1;  // numbered from 1
     EXPECT_NEAR(p->getX(), ll.nodes[id][0], 1e-9);
     EXPECT_NEAR(p->getY(), ll.nodes[id][1], 1e-9);
     EXPECT_NEAR(f->GetFieldAsDouble("depth"), ll.nodes[id][2], 1e-5);
@@ -2643,7 +2643,7 @@ TEST(CliOutputs, ZonesAreTheQuadsMaterials) {
   std::size_t element = 0;
   for (long long e = 0, z = 0; prop >> e >> z; ++element) {
     EXPECT_EQ(e, static_cast<long long>(element + 1));
-    EXPECT_EQ(z, zone_of[static_cast<int>(element)]) << e;
+    EXPECT_EQ(z, zone_of[static_cast<int>(e)]) << e;  // the quads' ids, the elements' numbers
   }
   EXPECT_EQ(element, g.elements.size());
   EXPECT_EQ(element, zone_of.size());
@@ -2710,6 +2710,36 @@ TEST(CliOutputs, ZonesAreTheQuadsMaterials) {
   const std::size_t first = groups.find(expected);  // meshio prints blank lines too
   EXPECT_NE(first, std::string::npos) << groups;
   EXPECT_NE(groups.find(expected, first + 1), std::string::npos) << groups;
+  // The quads' element tags are their numbers in the .2dm (and the GeoPackage's ids), in
+  // either version, their zones' blocks apart: 1 to the number of quads, the lines after.
+  python_check(dir,
+               "import sys\n"
+               "want = {}\n"
+               "for line in open(sys.argv[1]):\n"
+               "    w = line.split()\n"
+               "    if w and w[0] == 'E4Q': want[int(w[1])] = [int(x) for x in w[2:6]]\n"
+               "def elements(path):\n"
+               "    lines = open(path).read().split('$Elements\\n')[1].split('$EndElements')[0]\n"
+               "    rows = [list(map(int, l.split())) for l in lines.strip().split('\\n')]\n"
+               "    quads = {}\n"
+               "    if path.endswith('22.msh'):\n"
+               "        for r in rows[1:]:\n"
+               "            if r[1] == 3: quads[r[0]] = r[3 + r[2]:]\n"
+               "        lines_ = [r[0] for r in rows[1:] if r[1] == 1]\n"
+               "    else:\n"
+               "        i, lines_ = 1, []\n"
+               "        while i < len(rows):\n"
+               "            dim, n = rows[i][0], rows[i][3]\n"
+               "            for r in rows[i + 1:i + 1 + n]:\n"
+               "                if dim == 2: quads[r[0]] = r[1:]\n"
+               "                else: lines_.append(r[0])\n"
+               "            i += 1 + n\n"
+               "    return quads, lines_\n"
+               "for path in sys.argv[2:]:\n"
+               "    quads, lines_ = elements(path)\n"
+               "    assert quads == want, path\n"
+               "    assert min(lines_) == len(want) + 1, (path, min(lines_))\n",
+               {dir.file("m.2dm"), dir.file("m.msh"), dir.file("m22.msh")});
   // Polygons that miss the domain (another region's, or in a wrong CRS): said so.
   write_file(dir.file("far.geojson"),
              "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\","
