@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "gis/gdal_env.h"
 
 namespace isoquad {
@@ -162,7 +163,12 @@ LocalProjection choose_local_projection(const CrsInfo& geographic,
   lp.scale_factor = round_to(1.0 / (1.0 + c * c / 8.0), 1e-7);
 
   auto srs = make_srs(geographic);
-  srs->SetProjCS("isoquad local oblique stereographic");
+  // Named with its centre, so that the CRSs of several regions (--each) tell apart in a
+  // GIS's list: "isoquad local oblique stereographic 48.0750N 3.6250W".
+  srs->SetProjCS(printf_string("isoquad local oblique stereographic %.4f%c %.4f%c",
+                               std::abs(lp.lat0_deg), lp.lat0_deg < 0 ? 'S' : 'N',
+                               std::abs(lp.lon0_deg), lp.lon0_deg < 0 ? 'W' : 'E')
+                     .c_str());
   srs->SetOS(lp.lat0_deg, lp.lon0_deg, lp.scale_factor, 0.0, 0.0);
   srs->SetLinearUnits(SRS_UL_METER, 1.0);
   lp.crs = crs_from_srs(*srs);

@@ -63,6 +63,8 @@ TEST(Crs, LocalProjectionPreservesAreaOfADomainTheSizeOfFrance) {
   EXPECT_TRUE(lp.crs.projected);
   EXPECT_NEAR(lp.lon0_deg, 2.0, 1e-9);
   EXPECT_NEAR(lp.lat0_deg, 46.75, 1e-9);
+  // Named with its centre, to tell it from another region's in a GIS.
+  EXPECT_EQ(lp.crs.name, "isoquad local oblique stereographic 46.7500N 2.0000E");
   EXPECT_LT(lp.scale_factor, 1.0);
   EXPECT_GT(lp.max_distance_km, 600.0);
   Ring projected = lonlat;
@@ -77,6 +79,7 @@ TEST(Crs, LocalProjectionHandlesTheAntimeridian) {
   Ring fiji{{177.0, -19.0}, {179.5, -19.0}, {-179.5, -16.0}, {177.0, -16.0}};
   const LocalProjection lp = choose_local_projection(wgs, fiji);
   EXPECT_NEAR(lp.lon0_deg, 178.75, 1e-9);
+  EXPECT_EQ(lp.crs.name, "isoquad local oblique stereographic 17.5000S 178.7500E");
   EXPECT_LT(lp.max_distance_km, 300.0);
 }
 
