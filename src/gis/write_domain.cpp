@@ -6,6 +6,7 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "gis/crs.h"
+#include "gis/layer_styles.h"
 #include "gis/vector_writer.h"
 
 namespace isoquad {
@@ -107,6 +108,15 @@ void write_domain(const Domain& domain, const WriteDomainParams& params) {
       w.add_line(line, {FieldValue::integer(static_cast<long long>(k)),
                         FieldValue::real(polyline_length(line))});
     }
+  }
+  if (driver == "GPKG") {
+    std::vector<const LayerStyle*> styles;
+    for (const LayerStyle& s : domain_styles())
+      if (std::string(s.layer) == params.layer ||
+          (std::string(s.layer) == "open_boundary" && params.open_parts &&
+           !params.open_parts->empty()))
+        styles.push_back(&s);
+    write_layer_styles(w, styles);
   }
   w.commit();
 }

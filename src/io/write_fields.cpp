@@ -4,8 +4,8 @@
 #include <filesystem>
 
 #include "core/error.h"
+#include "gis/layer_styles.h"
 #include "gis/vector_writer.h"
-#include "io/mesh_styles.h"
 #include "io/write_vtu.h"
 
 namespace isoquad {
@@ -51,8 +51,8 @@ void write_gpkg_fields(const BackgroundMesh& mesh, const SizingField& size, cons
                   {FieldValue::real(size.at(mesh, static_cast<int>(f), centre)),
                    FieldValue::real(degrees(cross_angle_at(mesh, cross, static_cast<int>(f), centre)))});
   }
-  std::vector<const MeshStyle*> styles;
-  for (const MeshStyle& s : fields_styles()) styles.push_back(&s);
+  std::vector<const LayerStyle*> styles;
+  for (const LayerStyle& s : fields_styles()) styles.push_back(&s);
   write_layer_styles(w, styles);
   w.commit();
 }

@@ -8,9 +8,9 @@
 #include "core/text.h"
 #include "gis/atomic_output.h"
 #include "gis/crs.h"
+#include "gis/layer_styles.h"
 #include "gis/vector_writer.h"
 #include "io/mesh_formats.h"
-#include "io/mesh_styles.h"
 #include "io/write_vtu.h"
 
 namespace isoquad {
@@ -160,8 +160,8 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
   row("depth", depth ? "metres, positive down" : "unknown");
   for (const auto& [k, val] : v.data->quality) row("quality." + k, val);
   // QGIS reads a layer's styles from this table.
-  std::vector<const MeshStyle*> styles;
-  for (const MeshStyle& s : mesh_styles()) {
+  std::vector<const LayerStyle*> styles;
+  for (const LayerStyle& s : mesh_styles()) {
     if (!depth && std::string(s.layer) == "vertices" && std::string(s.name) == "depth") continue;
     if (v.data->embedded.empty() && std::string(s.layer) == "embedded") continue;
     styles.push_back(&s);

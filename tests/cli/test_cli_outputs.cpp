@@ -974,6 +974,41 @@ TEST(CliOutputs, QgisDrawsTheFieldsBySize) {
   EXPECT_GT(blueish, 0) << out;       // the finest sizes, at the coast
 }
 
+// `isoquad domain -o .gpkg` opens in QGIS styled: the domain filled, its open boundary in
+// the mesh's open green (styles/domain_area.qml, domain_open.qml).
+TEST(CliOutputs, QgisDrawsTheDomainStyled) {
+  TempDir dir;
+  ASSERT_TRUE(qgis_importable(dir)) << kQgisMissing;
+  const CliResult r =
+      run_cli({"domain", water_input(dir), "--domain", "water", "--bbox", "-4.6,48.2,-4.4,48.35",
+               "--size", "800", "-o", dir.file("d.gpkg"), "-q"},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const CliResult q =
+      run_cli_program("/usr/bin/python3",
+                      {source_dir() + "/tools/render_gpkg_qgis.py", dir.file("d.gpkg"),
+                       dir.file("d.png"), "--size", "300", "--layers", "domain,open_boundary"},
+                      dir);
+  ASSERT_EQ(q.exit_code, 0) << q.out << q.err;
+  EXPECT_NE(q.out.find("style domain/area: applies"), std::string::npos) << q.out;
+  EXPECT_NE(q.out.find("style open_boundary/open: applies"), std::string::npos) << q.out;
+  const std::string out = python_check(
+      dir,
+      "import sys\n"
+      "from osgeo import gdal\n"
+      "import numpy as np\n"
+      "ds = gdal.Open(sys.argv[1])\n"
+      "img = np.dstack([ds.GetRasterBand(b).ReadAsArray() for b in (1, 2, 3)]).astype(int)\n"
+      "near = lambda c: int((np.abs(img - np.array(c)).sum(axis=2) <= 12).sum())\n"
+      "print(near((1, 102, 94)), near((196, 224, 238)))\n",
+      {dir.file("d.png")});
+  std::istringstream in(out);
+  int open = 0, water = 0;
+  in >> open >> water;
+  EXPECT_GT(open, 100) << out;             // the bbox's sides across the water
+  EXPECT_GT(water, 300 * 300 / 4) << out;  // the domain's fill over white
+}
+
 // The stored style `checks` of the quads (styles/quads_checks.qml), applied by QGIS: its
 // rules select as many quads as the report counts for SCHISM's checks and D-Flow FM's
 // orthogonality (each link over 0.5 marks its two quads).

@@ -1,4 +1,4 @@
-#include "io/mesh_styles.h"
+#include "gis/layer_styles.h"
 
 #include "gis/vector_writer.h"
 
@@ -6,8 +6,8 @@
 
 namespace isoquad {
 
-const std::vector<MeshStyle>& mesh_styles() {
-  static const std::vector<MeshStyle> styles = {
+const std::vector<LayerStyle>& mesh_styles() {
+  static const std::vector<LayerStyle> styles = {
       {"quads", "size", "size conformance sqrt(area)/h", kQml_quads_size, true},
       {"quads", "orientation", "deviation from the cross field (degrees)", kQml_quads_orientation,
        false},
@@ -22,8 +22,8 @@ const std::vector<MeshStyle>& mesh_styles() {
   return styles;
 }
 
-const std::vector<MeshStyle>& fields_styles() {
-  static const std::vector<MeshStyle> styles = {
+const std::vector<LayerStyle>& fields_styles() {
+  static const std::vector<LayerStyle> styles = {
       {"triangles", "size", "size h (m), log scale: blue fine, red coarse", kQml_triangles_size,
        true},
       {"triangles", "cross", "cross field's angle (degrees), a colour wheel over 90",
@@ -32,7 +32,15 @@ const std::vector<MeshStyle>& fields_styles() {
   return styles;
 }
 
-void write_layer_styles(VectorWriter& w, const std::vector<const MeshStyle*>& styles) {
+const std::vector<LayerStyle>& domain_styles() {
+  static const std::vector<LayerStyle> styles = {
+      {"domain", "area", "the domain to mesh", kQml_domain_area, true},
+      {"open_boundary", "open", "the open boundary (sea)", kQml_domain_open, true},
+  };
+  return styles;
+}
+
+void write_layer_styles(VectorWriter& w, const std::vector<const LayerStyle*>& styles) {
   w.begin_layer("layer_styles", GeometryKind::none,
                 {{"f_table_catalog", FieldType::text},
                  {"f_table_schema", FieldType::text},
@@ -46,7 +54,7 @@ void write_layer_styles(VectorWriter& w, const std::vector<const MeshStyle*>& st
                  {"owner", FieldType::text},
                  {"ui", FieldType::text},
                  {"update_time", FieldType::text}});
-  for (const MeshStyle* s : styles)
+  for (const LayerStyle* s : styles)
     w.add_row({FieldValue::text(""), FieldValue::text(""), FieldValue::text(s->layer),
                FieldValue::text("geom"), FieldValue::text(s->name), FieldValue::text(s->qml),
                FieldValue::text(""), FieldValue::integer(s->is_default ? 1 : 0),
