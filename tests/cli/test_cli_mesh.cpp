@@ -1333,6 +1333,45 @@ TEST(CliMesh, EmbedPutsQuadEdgesOnTheLine) {
   EXPECT_NE(alone.err.find("--embed needs --align"), std::string::npos) << alone.err;
 }
 
+// --embed along a line drawn by hand, with bends (the sample Loire lane, refined along
+// it): every vertex of the path on the line and no edge of it shrunk to nothing where a
+// bend's vertex came next to the point the vertex before went to (it went halfway to its
+// other neighbour instead). Measured: 71 of 71 on the line, edges of 1,235 to 3,354 m
+// (a 21.8 m edge before, between quads of aspect ratio 114.7 and 101.0).
+TEST(CliMesh, EmbedAlongABentLineKeepsItsEdgesApart) {
+  TempDir dir;
+  const std::string lane = sample("loire_lane.geojson");
+  const CliResult r = run_cli(
+      {"mesh", sample("brittany_land.shp"), "--domain", "water", "--bbox=-5.3,46.8,-1.95,49.35",
+       "--hmax", "8000", "--align", lane, "--embed", "--refine", lane, "--refine-width-field",
+       "width", "-o", dir.file("m.gpkg"), "--report", dir.file("r.json"), "-q"},
+      dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string report = read_file(dir.file("r.json"));
+  EXPECT_GT(report_number(report, "embed_num_interior_vertices"), 50);
+  EXPECT_EQ(report_number(report, "embed_num_on_line"),
+            report_number(report, "embed_num_interior_vertices"));
+  isoquad::ensure_gdal_registered();
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(dir.file("m.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  std::vector<double> edges;
+  for (auto& f : *ds->GetLayerByName("embedded")) {
+    const OGRLineString* path = f->GetGeometryRef()->toLineString();
+    for (int i = 0; i + 1 < path->getNumPoints(); ++i)
+      edges.push_back(
+          std::hypot(path->getX(i + 1) - path->getX(i), path->getY(i + 1) - path->getY(i)));
+  }
+  double worst_aspect = 0;
+  for (auto& f : *ds->GetLayerByName("quads"))
+    worst_aspect = std::max(worst_aspect, f->GetFieldAsDouble("aspect_ratio"));
+  GDALClose(ds);
+  ASSERT_GT(edges.size(), 50u);
+  std::sort(edges.begin(), edges.end());
+  EXPECT_GT(edges.front(), 0.4 * edges[edges.size() / 2]) << edges.front();
+  EXPECT_LT(worst_aspect, 30.0);
+}
+
 TEST(CliMesh, AlignNeedsLinesInsideTheDomainAndTheBoundaryField) {
   TempDir dir;
   const std::string rect = dir.file("rect.geojson"), lane = dir.file("lane.geojson"),
