@@ -474,6 +474,15 @@ std::vector<EachRegion> each_regions(const CommonArgs& a, const FieldArgs& f,
   return regions;
 }
 
+// --each-table's file and, for a .csv, its .csvt (each_csv_types_path), checked before
+// any meshing.
+void check_each_table(const std::string& path, bool overwrite) {
+  if (path.empty()) return;
+  check_output_path(path, overwrite);
+  const std::string types = each_csv_types_path(path);
+  if (!types.empty()) check_output_path(types, overwrite);
+}
+
 // Runs `run` for every region, `jobs` at once; a failure (Error) is reported in its
 // console and the others go on. Then the table (and with `table_path` its CSV) and the
 // total ("M of N `done`"); the exit code is the first failure's.
@@ -507,8 +516,11 @@ int run_each(const CommonArgs& a, const std::string& option, const std::string& 
   const std::vector<RegionOutcome> outcomes =
       run_regions(regions.size(), static_cast<std::size_t>(jobs), header, region);
   const int exit = each_exit_code(outcomes);
-  if (!table_path.empty())
+  if (!table_path.empty()) {
     write_text_file(table_path, format_each_csv(field, values, outcomes, done), a.overwrite);
+    const std::string types = each_csv_types_path(table_path);
+    if (!types.empty()) write_text_file(types, format_each_csv_types(), a.overwrite);
+  }
   if (!a.quiet) std::cerr << format_each_table(field, values, outcomes);
   if (!a.quiet || exit)
     std::cerr << (exit ? "isoquad: " : "")
@@ -533,7 +545,7 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
   // A resumed batch (--skip-existing) writes its table again.
   CommonArgs table_args = a;
   table_args.overwrite = a.overwrite || m.skip_existing;
-  if (!m.each_table.empty()) check_output_path(m.each_table, table_args.overwrite);
+  check_each_table(m.each_table, table_args.overwrite);
   for (EachRegion& r : regions) {
     r.skip = m.skip_existing && every_output_exists(r.a, r.f, m);
     if (r.skip) continue;
@@ -570,7 +582,7 @@ int run_quality_each(const CommonArgs& a, const FieldArgs& f, const QualityArgs&
                 "--each selects regions from INPUT's features: give INPUT");
   const VectorDatasetPool pool;
   std::vector<EachRegion> regions = each_regions(a, f, q.each);
-  if (!q.each_table.empty()) check_output_path(q.each_table, a.overwrite);
+  check_each_table(q.each_table, a.overwrite);
   return run_each(a, "--each", q.each, regions, q.jobs, "measured", q.each_table,
                   [&](EachRegion& r, const Console& console) {
                     QualityArgs qq = q;

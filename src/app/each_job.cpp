@@ -4,6 +4,7 @@
 #include <atomic>
 #include <cctype>
 #include <exception>
+#include <filesystem>
 #include <map>
 #include <mutex>
 #include <sstream>
@@ -225,6 +226,21 @@ std::string format_each_csv(const std::string& field, const std::vector<std::str
     csv += csv_field(o.error) + "\r\n";
   }
   return csv;
+}
+
+std::string format_each_csv_types() {
+  // As format_each_csv's columns: the value, status, exit, quads, vertices, eight
+  // figures, three counts, the error.
+  std::string types = "\"String\",\"String\",\"Integer\",\"Integer\",\"Integer\"";
+  for (int k = 0; k < 8; ++k) types += ",\"Real\"";
+  for (int k = 0; k < 3; ++k) types += ",\"Integer\"";
+  return types + ",\"String\"\r\n";
+}
+
+std::string each_csv_types_path(const std::string& table_path) {
+  std::filesystem::path p(table_path);
+  if (lower_case(p.extension().string()) != ".csv") return "";
+  return p.replace_extension(".csvt").string();
 }
 
 int each_exit_code(const std::vector<RegionOutcome>& outcomes) {

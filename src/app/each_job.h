@@ -78,6 +78,11 @@ std::string format_each_total(const std::string& field, const std::vector<std::s
 std::string format_each_csv(const std::string& field, const std::vector<std::string>& values,
                             const std::vector<RegionOutcome>& outcomes,
                             const std::string& done = "meshed");
+// The CSV's column types for GDAL and QGIS (a .csvt beside a .csv: without it every
+// column reads as text), and that file's path: the table's with .csvt for a .csv, else
+// empty (no such file).
+std::string format_each_csv_types();
+std::string each_csv_types_path(const std::string& table_path);
 // The first failed region's exit code, 0 when none failed.
 int each_exit_code(const std::vector<RegionOutcome>& outcomes);
 

@@ -983,6 +983,23 @@ TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
             "orientation_p90_deg,schism_angle_ratio_fails,schism_aspect_fails,"
             "dflowfm_links_over_05,error");
   EXPECT_NE(table.find("\r\nq,meshed,0,"), std::string::npos) << table;
+  // Its column types beside it (one.csvt), so that GDAL (and QGIS) read numbers as numbers.
+  isoquad::ensure_gdal_registered();
+  GDALDataset* csv = static_cast<GDALDataset*>(
+      GDALOpenEx(dir.file("one.csv").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(csv, nullptr);
+  OGRFeatureDefn* defn = csv->GetLayer(0)->GetLayerDefn();
+  ASSERT_EQ(defn->GetFieldCount(), 17);
+  for (int i = 0; i < defn->GetFieldCount(); ++i) {
+    const std::string name = defn->GetFieldDefn(i)->GetNameRef();
+    const OGRFieldType type = defn->GetFieldDefn(i)->GetType();
+    const bool text = name == "region" || name == "status" || name == "error";
+    const bool integer = name == "exit" || name == "quads" || name == "vertices" ||
+                         name.find("_fails") != std::string::npos ||
+                         name == "dflowfm_links_over_05";
+    EXPECT_EQ(type, text ? OFTString : integer ? OFTInteger : OFTReal) << name;
+  }
+  GDALClose(csv);
   // One region over --max-quads: the others written, the same message and exit code.
   const CliResult failed =
       run("cap", {"--jobs", "2", "--max-quads", "150", "-q", "--each-table", dir.file("cap.csv")});
