@@ -862,6 +862,47 @@ bool qgis_importable(const TempDir& dir) {
 constexpr const char* kQgisMissing =
     "/usr/bin/python3 cannot import qgis.core: run tools/install-deps.sh (python3-qgis)";
 
+// tools/render_gpkg_qgis.py: a GeoPackage's layers drawn by QGIS to `png`, `size` pixels
+// wide (`more`: its other options, --layers, --style), every stored style of those layers
+// applied once on the way.
+CliResult render_in_qgis(const TempDir& dir, const std::string& gpkg, const std::string& png,
+                         int size, const std::vector<std::string>& more = {}) {
+  std::vector<std::string> args = {source_dir() + "/tools/render_gpkg_qgis.py", gpkg, png, "--size",
+                                   std::to_string(size)};
+  args.insert(args.end(), more.begin(), more.end());
+  return run_cli_program("/usr/bin/python3", args, dir);
+}
+
+// Python that reads the PNG sys.argv[1] as `img`, an array of rows of (r, g, b).
+constexpr const char* kPngPixels =
+    "import sys\n"
+    "from osgeo import gdal\n"
+    "import numpy as np\n"
+    "ds = gdal.Open(sys.argv[1])\n"
+    "img = np.dstack([ds.GetRasterBand(b).ReadAsArray() for b in (1, 2, 3)]).astype(int)\n";
+
+// The pixels of a PNG within `tolerance` (|dr| + |dg| + |db|) of each named colour.
+std::map<std::string, int> pixels_near(const TempDir& dir, const std::string& png,
+                                       const std::map<std::string, std::array<int, 3>>& colours,
+                                       int tolerance) {
+  std::ostringstream wanted;
+  for (const auto& [name, c] : colours)
+    wanted << "('" << name << "', (" << c[0] << ", " << c[1] << ", " << c[2] << ")), ";
+  const std::string out =
+      python_check(dir,
+                   std::string(kPngPixels) + "for name, c in [" + wanted.str() +
+                       "]:\n"
+                       "    print(name, int((np.abs(img - np.array(c)).sum(axis=2) <= " +
+                       std::to_string(tolerance) + ").sum()))\n",
+                   {png});
+  std::istringstream in(out);
+  std::map<std::string, int> pixels;
+  std::string name;
+  int n = 0;
+  while (in >> name >> n) pixels[name] = n;
+  return pixels;
+}
+
 // Acceptance: QGIS 3.22 (python3-qgis, headless) opens the GeoPackage with its embedded
 // styles and renders it; the PNG shows the size-conformance colours of styles/quads_size.qml
 // and the boundary colours of styles/boundary_kind.qml.
@@ -872,39 +913,26 @@ TEST(CliOutputs, QgisRendersTheEmbeddedStyles) {
                                "-4.6,48.2,-4.4,48.35", "--size", "800", "-o", dir.file("m.gpkg"), "-q"},
                               dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const CliResult q = run_cli_program(
-      "/usr/bin/python3",
-      {source_dir() + "/tools/render_gpkg_qgis.py", dir.file("m.gpkg"), dir.file("m.png"), "--size", "600"},
-      dir);
+  const CliResult q = render_in_qgis(dir, dir.file("m.gpkg"), dir.file("m.png"), 600);
   ASSERT_EQ(q.exit_code, 0) << q.out << q.err;
   EXPECT_NE(q.out.find("quads: "), std::string::npos) << q.out;
   EXPECT_NE(q.out.find("renderer graduatedSymbol"), std::string::npos) << q.out;
   EXPECT_NE(q.out.find("boundary: 3 features, renderer categorizedSymbol"), std::string::npos) << q.out;
   // Pixel colours: the five size classes, land and open boundary lines.
-  const std::string out = python_check(
-      dir,
-      "import sys\n"
-      "from osgeo import gdal\n"
-      "import numpy as np\n"
-      "ds = gdal.Open(sys.argv[1])\n"
-      "img = np.dstack([ds.GetRasterBand(b).ReadAsArray() for b in (1, 2, 3)]).astype(int)\n"
-      "colours = {'small': (44, 123, 182), 'low': (171, 217, 233), 'ok': (255, 255, 191),\n"
-      "           'high': (253, 174, 97), 'large': (215, 25, 28), 'land': (140, 81, 10),\n"
-      "           'open': (1, 102, 94)}\n"
-      "for name, c in colours.items():\n"
-      "    n = int((np.abs(img - np.array(c)).sum(axis=2) <= 6).sum())\n"
-      "    print(name, n)\n",
-      {dir.file("m.png")});
-  std::istringstream in(out);
-  std::map<std::string, int> pixels;
-  std::string name;
-  int n = 0;
-  while (in >> name >> n) pixels[name] = n;
+  std::map<std::string, int> pixels = pixels_near(dir, dir.file("m.png"),
+                                                  {{"small", {44, 123, 182}},
+                                                   {"low", {171, 217, 233}},
+                                                   {"ok", {255, 255, 191}},
+                                                   {"high", {253, 174, 97}},
+                                                   {"large", {215, 25, 28}},
+                                                   {"land", {140, 81, 10}},
+                                                   {"open", {1, 102, 94}}},
+                                                  6);
   int fill = 0;
   for (const char* c : {"small", "low", "ok", "high", "large"}) fill += pixels[c];
-  EXPECT_GT(fill, 600 * 600 / 4) << out;  // the styled quads cover much of the picture
-  EXPECT_GT(pixels["land"], 100) << out;
-  EXPECT_GT(pixels["open"], 100) << out;
+  EXPECT_GT(fill, 600 * 600 / 4);  // the styled quads cover much of the picture
+  EXPECT_GT(pixels["land"], 100);
+  EXPECT_GT(pixels["open"], 100);
 }
 
 // Every style stored in the GeoPackage applies in QGIS: the embedded paths' and the
@@ -922,11 +950,8 @@ TEST(CliOutputs, QgisAppliesEveryStoredStyle) {
                                "--bathymetry", bathymetry(dir), "-o", dir.file("m.gpkg"), "-q"},
                               dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const CliResult q = run_cli_program(
-      "/usr/bin/python3",
-      {source_dir() + "/tools/render_gpkg_qgis.py", dir.file("m.gpkg"), dir.file("m.png"), "--size",
-       "300", "--layers", "quads,vertices,boundary,embedded"},
-      dir);
+  const CliResult q = render_in_qgis(dir, dir.file("m.gpkg"), dir.file("m.png"), 300,
+                                     {"--layers", "quads,vertices,boundary,embedded"});
   ASSERT_EQ(q.exit_code, 0) << q.out << q.err;
   for (const char* style : {"quads/size", "quads/orientation", "quads/irregular", "quads/checks",
                             "vertices/degree", "vertices/depth", "boundary/kind", "embedded/line"})
@@ -945,26 +970,19 @@ TEST(CliOutputs, QgisDrawsTheFieldsBySize) {
       {"fields", sample("corsica.shp"), "--hmax", "8000", "-o", dir.file("f.gpkg"), "-q"}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const CliResult q =
-      run_cli_program("/usr/bin/python3",
-                      {source_dir() + "/tools/render_gpkg_qgis.py", dir.file("f.gpkg"),
-                       dir.file("f.png"), "--size", "300", "--layers", "triangles"},
-                      dir);
+      render_in_qgis(dir, dir.file("f.gpkg"), dir.file("f.png"), 300, {"--layers", "triangles"});
   ASSERT_EQ(q.exit_code, 0) << q.out << q.err;
   EXPECT_NE(q.out.find("style triangles/size: applies"), std::string::npos) << q.out;
   EXPECT_NE(q.out.find("style triangles/cross: applies"), std::string::npos) << q.out;
-  const std::string out = python_check(
-      dir,
-      "import sys\n"
-      "from osgeo import gdal\n"
-      "import numpy as np\n"
-      "ds = gdal.Open(sys.argv[1])\n"
-      "img = np.dstack([ds.GetRasterBand(b).ReadAsArray() for b in (1, 2, 3)]).astype(int)\n"
-      "px = img.reshape(-1, 3)\n"
-      "px = px[(px != 255).any(axis=1)]\n"
-      "red = ((px[:, 0] > 180) & (px[:, 2] < 80)).sum()\n"
-      "blueish = (px[:, 2] > px[:, 0] + 40).sum()\n"
-      "print(len(px), len({tuple(p) for p in px // 8}), red, blueish)\n",
-      {dir.file("f.png")});
+  const std::string out =
+      python_check(dir,
+                   std::string(kPngPixels) +
+                       "px = img.reshape(-1, 3)\n"
+                       "px = px[(px != 255).any(axis=1)]\n"
+                       "red = ((px[:, 0] > 180) & (px[:, 2] < 80)).sum()\n"
+                       "blueish = (px[:, 2] > px[:, 0] + 40).sum()\n"
+                       "print(len(px), len({tuple(p) for p in px // 8}), red, blueish)\n",
+                   {dir.file("f.png")});
   std::istringstream in(out);
   long drawn = 0, colours = 0, red = 0, blueish = 0;
   in >> drawn >> colours >> red >> blueish;
@@ -984,29 +1002,15 @@ TEST(CliOutputs, QgisDrawsTheDomainStyled) {
                "--size", "800", "-o", dir.file("d.gpkg"), "-q"},
               dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  const CliResult q =
-      run_cli_program("/usr/bin/python3",
-                      {source_dir() + "/tools/render_gpkg_qgis.py", dir.file("d.gpkg"),
-                       dir.file("d.png"), "--size", "300", "--layers", "domain,open_boundary"},
-                      dir);
+  const CliResult q = render_in_qgis(dir, dir.file("d.gpkg"), dir.file("d.png"), 300,
+                                     {"--layers", "domain,open_boundary"});
   ASSERT_EQ(q.exit_code, 0) << q.out << q.err;
   EXPECT_NE(q.out.find("style domain/area: applies"), std::string::npos) << q.out;
   EXPECT_NE(q.out.find("style open_boundary/open: applies"), std::string::npos) << q.out;
-  const std::string out = python_check(
-      dir,
-      "import sys\n"
-      "from osgeo import gdal\n"
-      "import numpy as np\n"
-      "ds = gdal.Open(sys.argv[1])\n"
-      "img = np.dstack([ds.GetRasterBand(b).ReadAsArray() for b in (1, 2, 3)]).astype(int)\n"
-      "near = lambda c: int((np.abs(img - np.array(c)).sum(axis=2) <= 12).sum())\n"
-      "print(near((1, 102, 94)), near((196, 224, 238)))\n",
-      {dir.file("d.png")});
-  std::istringstream in(out);
-  int open = 0, water = 0;
-  in >> open >> water;
-  EXPECT_GT(open, 100) << out;             // the bbox's sides across the water
-  EXPECT_GT(water, 300 * 300 / 4) << out;  // the domain's fill over white
+  std::map<std::string, int> pixels =
+      pixels_near(dir, dir.file("d.png"), {{"open", {1, 102, 94}}, {"water", {196, 224, 238}}}, 12);
+  EXPECT_GT(pixels["open"], 100);             // the bbox's sides across the water
+  EXPECT_GT(pixels["water"], 300 * 300 / 4);  // the domain's fill over white
 }
 
 // The stored style `checks` of the quads (styles/quads_checks.qml), applied by QGIS: its
@@ -1019,11 +1023,8 @@ TEST(CliOutputs, QgisFindsTheQuadsThatFailTheModelsChecks) {
       mesh_box_800(dir, {"-o", dir.file("m.gpkg"), "--report", dir.file("m.json"), "-q"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string report = read_file(dir.file("m.json"));
-  const CliResult q = run_cli_program(
-      "/usr/bin/python3",
-      {source_dir() + "/tools/render_gpkg_qgis.py", dir.file("m.gpkg"), dir.file("m.png"), "--size",
-       "300", "--layers", "quads", "--style", "quads=checks"},
-      dir);
+  const CliResult q = render_in_qgis(dir, dir.file("m.gpkg"), dir.file("m.png"), 300,
+                                     {"--layers", "quads", "--style", "quads=checks"});
   ASSERT_EQ(q.exit_code, 0) << q.out << q.err;
   EXPECT_NE(q.out.find("renderer RuleRenderer"), std::string::npos) << q.out;
   auto selected = [&q](const std::string& label) {
