@@ -212,7 +212,14 @@ bool read_gr3_boundaries(LineReader& r, const NodeIds& ids, const std::string& k
 // boundaries: "NOPE", "NETA", and for each "n" and n lines of a node id; then the land
 // boundaries, of which only the flux ones are kept (read_gr3_boundaries).
 void read_gr3(LineReader& r, ReadMesh& mesh) {
-  r.need("a title line");
+  // The CRS that isoquad's title line names ("... CRS: EPSG:32630", or a PROJ string).
+  const std::string title = r.need("a title line");
+  const std::size_t crs_at = title.find(" CRS: ");
+  if (mesh.format == "gr3" && crs_at != std::string::npos) {
+    std::string crs = title.substr(crs_at + 6);
+    while (!crs.empty() && std::isspace(static_cast<unsigned char>(crs.back()))) crs.pop_back();
+    mesh.crs = crs;
+  }
   const std::string counts = r.need("the numbers of elements and nodes");
   Fields f(counts, r);
   const long long ne = need_count(f, "the number of elements", r);

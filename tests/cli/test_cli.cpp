@@ -380,14 +380,24 @@ TEST(Cli, AMeshFileIsMeshedAgainWithinItsOutline) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NEAR(report_number(read_file(dir.file("d.json")), "area_m2"), 1.1e9, 1e3);
 
-  r = run_cli({"mesh", dir.file("bay.gr3"), "--size", "3000", "-o", dir.file("x.gr3")}, dir);
+  // isoquad's .gr3 names its CRS in its title line: meshed again without --src-crs.
+  r = run_cli({"mesh", dir.file("bay.gr3"), "--size", "3000", "-o", dir.file("named.gr3")}, dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("CRS WGS 84 / UTM zone 30N)"), std::string::npos) << r.err;
+  // Another mesher's does not (the same grid, its title line without the CRS).
+  std::string other = read_file(dir.file("bay.gr3"));
+  other.replace(0, other.find('\n'), "bay, from another mesher");
+  write_file(dir.file("other.gr3"), other);
+  write_file(dir.file("other.ll"), read_file(dir.file("bay.ll")));
+  r = run_cli({"mesh", dir.file("other.gr3"), "--size", "3000", "-o", dir.file("x.gr3")}, dir);
   EXPECT_EQ(r.exit_code, 4);
   EXPECT_NE(r.err.find("does not say its CRS: its outline is the domain, so give the CRS of its "
                        "coordinates with --src-crs"),
             std::string::npos)
       << r.err;
   // The .ll beside it (written with it) has one.
-  EXPECT_NE(r.err.find("or give '" + dir.file("bay.ll") + "' instead"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("or give '" + dir.file("other.ll") + "' instead"), std::string::npos)
+      << r.err;
   r = run_cli({"mesh", dir.file("bay.gr3"), "--src-crs", "EPSG:32630", "--where", "id = 1",
                "--size", "3000", "-o", dir.file("x.gr3")},
               dir);

@@ -89,9 +89,11 @@ TEST(CliQuality, IsoquadsOwnOutputsMeasureAsTheMeshReportSays) {
   ASSERT_EQ(ll.exit_code, 0) << ll.err;
   expect_same_quality(mesh_report, read_file(dir.file("ll.json")), 1e-3, ".ll");
   EXPECT_NE(ll.err.find("WGS 84, transformed into the meshing CRS"), std::string::npos) << ll.err;
-  // The .ll's nodes as a .gr3 without --mesh-crs: the degrees are read as metres, a clear
-  // stop.
-  std::filesystem::copy_file(dir.file("m.ll"), dir.file("degrees.gr3"));
+  // The .ll's nodes as another mesher's .gr3 (a title line that names no CRS) without
+  // --mesh-crs: the degrees are read as metres, a clear stop.
+  std::string degrees_text = read_file(dir.file("m.ll"));
+  degrees_text.replace(0, degrees_text.find('\n'), "a grid in degrees");
+  write_file(dir.file("degrees.gr3"), degrees_text);
   const CliResult degrees = run_cli(quality_args(dir.file("degrees.gr3")), dir);
   EXPECT_EQ(degrees.exit_code, 3);
   EXPECT_NE(degrees.err.find("is the mesh in another CRS (give it with --mesh-crs)"),
@@ -407,10 +409,18 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
   EXPECT_EQ(made_kinds.count("open") ? made_kinds.at("open") : 0, 3);
   EXPECT_EQ(kinds("q_m.ll.gpkg"), made_kinds);
 
-  const CliResult no_crs = run_cli({"quality", "--mesh", dir.file("m.gr3")}, dir);
+  // isoquad's .gr3 names its CRS in its title line; another mesher's (the same grid, a
+  // title without it) stops, naming --mesh-crs and the .ll beside it.
+  const CliResult named = run_cli({"quality", "--mesh", dir.file("m.gr3")}, dir);
+  EXPECT_EQ(named.exit_code, 0) << named.err;
+  std::string other = read_file(dir.file("m.gr3"));
+  other.replace(0, other.find('\n'), "a grid from another mesher");
+  write_file(dir.file("other.gr3"), other);
+  write_file(dir.file("other.ll"), read_file(dir.file("m.ll")));
+  const CliResult no_crs = run_cli({"quality", "--mesh", dir.file("other.gr3")}, dir);
   EXPECT_EQ(no_crs.exit_code, 4);
   EXPECT_NE(no_crs.err.find("with --mesh-crs"), std::string::npos) << no_crs.err;
-  EXPECT_NE(no_crs.err.find("or give '" + dir.file("m.ll") + "' instead"), std::string::npos)
+  EXPECT_NE(no_crs.err.find("or give '" + dir.file("other.ll") + "' instead"), std::string::npos)
       << no_crs.err;
   const CliResult where =
       run_cli({"quality", "--mesh", dir.file("m.gpkg"), "--where", "name = 'x'"}, dir);

@@ -1,4 +1,4 @@
-isoquad mesh (depth in metres, positive down)
+isoquad mesh (depth in metres, positive down) CRS: EPSG:4326
 8 16
 1 3.0000000000 45.1534771834 10.000000
 2 3.0127219016 45.1534764748 10.500000
