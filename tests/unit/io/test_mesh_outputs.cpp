@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <map>
@@ -366,6 +367,17 @@ TEST(MeshOutputs, Gr3WritesAWholeLoopOfTheExteriorAsTwoSegments) {
       codes.insert(code);
     }
     EXPECT_EQ(codes, (std::set<int>{1, 2, 3}));  // the island, two open segments (none inside)
+    // Read back by MIKE's rule (a face takes its end node's code), the codes give the two
+    // segments again, each face of each in it: the shared nodes end the segment before.
+    std::vector<std::vector<int>> read_back;
+    for (const std::vector<int>& run : read_mesh(dir.file("open.mesh")).open_boundaries) {
+      read_back.emplace_back();
+      for (int n : run) read_back.back().push_back(n + 1);
+    }
+    std::vector<std::vector<int>> written = g.open;
+    std::sort(read_back.begin(), read_back.end());
+    std::sort(written.begin(), written.end());
+    EXPECT_EQ(read_back, written);
     std::istringstream dm(read_file(dir.file("open.2dm")));
     std::size_t strings = 0;  // each ends with a negative id
     while (std::getline(dm, line)) {
