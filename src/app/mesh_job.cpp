@@ -140,15 +140,28 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
                         "--min-width fills or removes such pieces, a smaller --size or --hmin "
                         "resolves them)" +
                         earlier);
+      // Fewer attempts than the default were asked for: more may mend it.
+      const std::string more_attempts = options.max_attempts < MeshOptions{}.max_attempts
+                                            ? "; more tiling attempts (--max-attempts, " +
+                                                  std::to_string(MeshOptions{}.max_attempts) +
+                                                  " by default) may mend it"
+                                            : "";
+      // Quads that fold where an inlet is narrower than they are: the domain's, and the
+      // user's to change.
+      if (r.smooth.num_nonconvex_after == 0)
+        throw Error(ErrorClass::meshing, "smooth",
+                    problem + " after " + std::to_string(r.attempts) +
+                        " tiling attempt(s); no mesh is written (quads fold over each other "
+                        "where an inlet or channel is narrower than they are: a larger "
+                        "--min-width fills such inlets, a smaller --hmin or --size resolves "
+                        "them" +
+                        more_attempts + ")" + earlier);
+      // A quad left non-convex: the smoothing's guarantee failed, isoquad's fault.
       throw Error(ErrorClass::internal, "smooth",
                   problem + " after " + std::to_string(r.attempts) +
-                      " tiling attempt(s); no mesh is written" +
-                      (r.smooth.num_nonconvex_after == 0
-                           ? " (quads fold over each other where an inlet or channel is "
-                             "narrower than they are: a larger --min-width fills such inlets, "
-                             "a smaller --hmin or --size resolves them)"
-                           : "") +
-                      earlier);
+                      " tiling attempt(s); no mesh is written (isoquad guarantees convex "
+                      "quads: please report the input and options" +
+                      more_attempts + ")" + earlier);
     }
     // The next attempt also has smaller sizes where this one failed.
     const std::vector<LocalRefinement> more =

@@ -205,6 +205,11 @@ TEST(MeshJob, GivesUpWithAnErrorAfterTheLastAttempt) {
         << e.what();
     // The first attempt's failure is in the message too.
     EXPECT_NE(std::string(e.what()).find("; attempt 1: "), std::string::npos) << e.what();
+    // A quad left non-convex is the guarantee failing (exit 70); fewer attempts than the
+    // default were asked for, and the message says so.
+    EXPECT_EQ(e.error_class(), ErrorClass::internal);
+    EXPECT_NE(std::string(e.what()).find("(--max-attempts, 6 by default)"), std::string::npos)
+        << e.what();
   }
 }
 
