@@ -90,12 +90,13 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
                       : a.many_outputs
                           ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, "
                             ".pli, .slf, .14; the quads alone: .geojson, .fgb); repeat for "
-                            "several"
+                            "several; required but with --stop-after"
                           : "Output file (domain: .gpkg, .fgb or .geojson; fields: .gpkg or "
                             ".vtu)")
           ->expected(1)
           ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
-  if (!a.output_optional) output->required();
+  // mesh's -o is checked after parsing (finish_front_end_args): --stop-after writes none.
+  if (!a.output_optional && !a.many_outputs) output->required();
   cmd->add_option("--layer", a.fe.read.layer,
                   "Layer to read (default: the only layer, or the first with polygons)")
       ->group("Selection");
@@ -399,7 +400,9 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
       ->group("Output");
 }
 
-// For `domain` (its summary says how much of the boundary the lines follow) and `mesh`.
+// For every subcommand: `domain` (its summary says how much of the boundary the lines
+// follow), `fields` (the distance to the coast, c, leaves them out), `mesh` and `quality`
+// (the outline's open boundaries, and their summaries' lengths).
 void add_open_boundary_options(CLI::App* cmd, FrontEndOptions& fe) {
   cmd->add_option("--open-boundary", fe.open_boundary_path,
                   "Vector file (any format, with a CRS) of lines drawn along the domain's edge "
@@ -414,7 +417,8 @@ void add_open_boundary_options(CLI::App* cmd, FrontEndOptions& fe) {
                   "With a Gmsh .msh or an SMS .2dm as INPUT: its physical groups of curves or "
                   "nodestrings (names or numbers, comma-separated; nodestrings numbered from 1) "
                   "whose lines along the outline are open boundaries (default: those whose name "
-                  "begins with 'open', as isoquad's own .msh names them)")
+                  "begins with 'open', as isoquad's own .msh names them); for quality without "
+                  "INPUT, those of --mesh")
       ->delimiter(',')
       ->group("Output");
 }

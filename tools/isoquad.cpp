@@ -204,12 +204,16 @@ std::string joined_command_line(int argc, char** argv) {
 // The mesh job; with --each, one region's (printing into `console`).
 RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& command_line,
                        const Console& console = Console()) {
-  finish_front_end_args(a);
   const bool tiling_only = !m.stop_after.empty();
+  if (tiling_only && !a.outputs.empty())
+    throw Error(ErrorClass::usage, "options",
+                "--stop-after stops before the quads and writes no mesh: leave out -o (the "
+                "tiling goes to --plot and --report)");
+  if (tiling_only) a.output_optional = true;
+  finish_front_end_args(a);
   const std::vector<MeshOutput> outputs = mesh_outputs(a, m);
   const MeshWriteOptions write_options = mesh_write_options(m);
   if (!tiling_only) check_mesh_outputs(outputs, write_options);
-  else check_output_path(a.output, a.overwrite);
   const bool has_open_boundary =
       !a.fe.open_boundary_path.empty() ||
       (a.fe.kind != DomainKind::land && (!a.bbox.empty() || !a.fe.clip_path.empty())) ||
@@ -379,6 +383,7 @@ struct EachRegion {
   CommonArgs a;
   FieldArgs f;
   std::string value, name, filter;
+  std::string id_filter;  // the region's features by their ids (SelectionValue::id_filter)
   bool skip = false;  // mesh --skip-existing, and every output exists
 };
 
@@ -392,7 +397,12 @@ std::vector<EachRegion> regions_of(const CommonArgs& a, const FieldArgs& f,
   const std::vector<std::string> names = each_file_names(field, values);
   std::vector<EachRegion> regions;
   for (std::size_t k = 0; k < selected.size(); ++k) {
-    EachRegion r{a, f, selected[k].null ? "NULL" : values[k], names[k], selected[k].filter};
+    EachRegion r{a,
+                 f,
+                 selected[k].null ? "NULL" : values[k],
+                 names[k],
+                 selected[k].filter,
+                 selected[k].id_filter};
     r.a.fe.align_optional = true;  // one file of --align lines for all the regions
     for (std::string& o : r.a.outputs) o = fill_each_mark(o, names[k]);
     r.a.report_path = fill_each_mark(r.a.report_path, names[k]);
@@ -425,7 +435,7 @@ std::vector<EachRegion> each_clip_regions(const CommonArgs& a, const FieldArgs& 
   std::vector<EachRegion> regions = regions_of(a, f, field, selected);
   for (EachRegion& r : regions)
     r.a.fe.clip_where =
-        a.fe.clip_where.empty() ? r.filter : "(" + a.fe.clip_where + ") AND " + r.filter;
+        a.fe.clip_where.empty() ? r.id_filter : "(" + a.fe.clip_where + ") AND " + r.id_filter;
   return regions;
 }
 
@@ -468,7 +478,7 @@ std::vector<EachRegion> each_regions(const CommonArgs& a, const FieldArgs& f,
   std::vector<EachRegion> regions = regions_of(a, f, field, selected);
   for (EachRegion& r : regions) {
     r.a.fe.read.where =
-        a.fe.read.where.empty() ? r.filter : "(" + a.fe.read.where + ") AND " + r.filter;
+        a.fe.read.where.empty() ? r.id_filter : "(" + a.fe.read.where + ") AND " + r.id_filter;
     r.a.fe.read.hint_unmatched_values = false;
   }
   return regions;
@@ -624,6 +634,7 @@ int main(int argc, char** argv) {
       "vertices and triangles with size_m and cross_angle_deg, drawn by size).");
   add_front_end_options(fields_cmd, fields_args);
   add_field_options(fields_cmd, field_args);
+  add_open_boundary_options(fields_cmd, fields_args.fe);
   fields_cmd->footer(kExitCodes);
 
   CommonArgs mesh_args;
@@ -661,6 +672,7 @@ int main(int argc, char** argv) {
   add_front_end_options(quality_cmd, quality_args);
   add_field_options(quality_cmd, quality_field_args);
   add_quality_options(quality_cmd, quality_extra);
+  add_open_boundary_options(quality_cmd, quality_args.fe);
   quality_cmd->footer(kExitCodes);
 
   try {

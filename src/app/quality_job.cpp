@@ -166,8 +166,17 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
   r.num_skipped_elements = file.num_skipped_elements;
   std::vector<StageTime> read_times = r.fields.times;
   FieldsOptions fields = options.fields;
-  if (fields.front.read.path.empty() && !fields.front.source)
+  if (fields.front.read.path.empty() && !fields.front.source) {
+    // Without INPUT, --open-groups names the groups of the measured .msh or .2dm itself.
+    if (!options.fields.front.open_groups.empty()) {
+      if (!options.fields.front.open_boundary_path.empty())
+        throw Error(ErrorClass::usage, "options",
+                    "give the open boundaries once: --open-boundary or --open-groups");
+      open_boundaries_from_groups(file, options.fields.front.open_groups, options.mesh_path);
+    }
     fields.front = outline_front_end(options, file, r);
+    fields.front.open_groups.clear();
+  }
   r.fields = build_fields(fields, progress.slice(0.05, 0.85));
   r.fields.times.insert(r.fields.times.begin(), read_times.begin(), read_times.end());
   StageClock measure_clock(r.fields.times);

@@ -96,17 +96,30 @@ class Reader {
     for (char c : column) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);
     quoted += "\"";
     if (by_fid && fid_column.empty()) quoted = "FID";  // OGR SQL's special field, unquoted
-    bool any_null = false;
+    std::string fid_ref = "FID";
+    if (!fid_column.empty()) {
+      fid_ref = "\"";
+      for (char c : fid_column) fid_ref += c == '"' ? std::string("\"\"") : std::string(1, c);
+      fid_ref += "\"";
+    }
+    // Each value's features by their ids, in the order read.
+    std::map<std::pair<double, std::string>, std::vector<GIntBig>> ids;
+    std::vector<GIntBig> null_ids;
+    bool any_null = false, all_ids = true;
     layer_->ResetReading();
     for (auto& feature : *layer_) {
+      const GIntBig fid = feature->GetFID();
+      all_ids = all_ids && fid != OGRNullFID;
       if (by_fid) {
-        const GIntBig fid = feature->GetFID();
-        SelectionValue v{std::to_string(fid), quoted + " = " + std::to_string(fid), false};
-        sorted.emplace(std::make_pair(static_cast<double>(fid), v.text), v);
+        SelectionValue v{std::to_string(fid), quoted + " = " + std::to_string(fid), false, ""};
+        const auto key = std::make_pair(static_cast<double>(fid), v.text);
+        sorted.emplace(key, v);
+        ids[key].push_back(fid);
         continue;
       }
       if (!feature->IsFieldSetAndNotNull(index)) {
         any_null = true;
+        null_ids.push_back(fid);
         continue;
       }
       SelectionValue v;
@@ -118,11 +131,26 @@ class Reader {
         for (char c : v.text) v.filter += c == '\'' ? std::string("''") : std::string(1, c);
         v.filter += "'";
       }
-      sorted.emplace(std::make_pair(number ? feature->GetFieldAsDouble(index) : 0.0, v.text), v);
+      const auto key = std::make_pair(number ? feature->GetFieldAsDouble(index) : 0.0, v.text);
+      sorted.emplace(key, v);
+      ids[key].push_back(fid);
     }
+    auto id_filter = [&](const std::vector<GIntBig>& fids, const std::string& fallback) {
+      if (!all_ids) return fallback;
+      std::string f = fid_ref + " IN (";
+      for (std::size_t i = 0; i < fids.size(); ++i) f += (i ? "," : "") + std::to_string(fids[i]);
+      return f + ")";
+    };
     std::vector<SelectionValue> out;
-    for (auto& [key, v] : sorted) out.push_back(std::move(v));
-    if (any_null) out.push_back(SelectionValue{"", quoted + " IS NULL", true});
+    for (auto& [key, v] : sorted) {
+      v.id_filter = id_filter(ids[key], v.filter);
+      out.push_back(std::move(v));
+    }
+    if (any_null) {
+      SelectionValue v{"", quoted + " IS NULL", true, ""};
+      v.id_filter = id_filter(null_ids, v.filter);
+      out.push_back(std::move(v));
+    }
     if (unmatched && !out.empty()) *unmatched = unmatched_values();
     return out;
   }

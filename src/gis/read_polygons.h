@@ -100,6 +100,11 @@ struct SelectionValue {
   std::string text;    // as GDAL formats it; empty for null
   std::string filter;  // "field" = 'text' (or = text for a number), or "field" IS NULL
   bool null = false;   // the features without a value
+  // The filter that selects exactly those features, by their ids (FID IN (...), or the
+  // GeoPackage's FID column): OGR SQL's = ignores case on most formats ('Malta' would
+  // also select 'MALTA'), and a real's or a date's text is not its stored value. The
+  // readable `filter` when a feature has no id.
+  std::string id_filter;
 };
 
 // The distinct values of `field` over the features `params` selects (layer, --where,

@@ -432,13 +432,29 @@ TEST(CliMesh, AnnulusKeepsItsHoleAndLoadsInMeshio) {
   EXPECT_EQ(py.exit_code, 0) << py.err << py.out;
 }
 
+// --stop-after needs --plot or --report, and writes no mesh: -o is refused with it, and
+// needed without it.
 TEST(CliMesh, TilingStepNeedsSomethingToShowIt) {
   TempDir dir;
-  const CliResult r = run_cli({"mesh", golden_input("square"), "--dst-crs", "EPSG:3857", "--size",
-                               "50", "-o", dir.file("m.gpkg"), "--stop-after", "relax"},
-                              dir);
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_FALSE(std::filesystem::exists(dir.file("m.gpkg")));
+  const std::vector<std::string> square = {
+      "mesh", golden_input("square"), "--dst-crs", "EPSG:3857", "--size", "50"};
+  auto with = [&](std::vector<std::string> more) {
+    std::vector<std::string> args = square;
+    args.insert(args.end(), more.begin(), more.end());
+    return run_cli(args, dir);
+  };
+  const CliResult nothing = with({"--stop-after", "relax"});
+  EXPECT_EQ(nothing.exit_code, 2) << nothing.err;
+  EXPECT_NE(nothing.err.find("--stop-after needs --plot or --report"), std::string::npos)
+      << nothing.err;
+  const CliResult output =
+      with({"--stop-after", "relax", "--plot", dir.file("t.png"), "-o", dir.file("m.gpkg")});
+  EXPECT_EQ(output.exit_code, 2) << output.err;
+  EXPECT_NE(output.err.find("leave out -o"), std::string::npos) << output.err;
+  const CliResult no_output = with({"--plot", dir.file("t.png")});
+  EXPECT_EQ(no_output.exit_code, 2) << no_output.err;
+  EXPECT_NE(no_output.err.find("-o FILE"), std::string::npos) << no_output.err;
+  EXPECT_TRUE(dir.entries().empty());
 }
 
 // A size in the wrong unit (10 m instead of 10 km over France: 5 billion quads) stops
@@ -457,12 +473,12 @@ TEST(CliMesh, ASizeThatAsksForBillionsOfQuadsStopsBeforeTheMeshing) {
 TEST(CliMesh, StopAfterButterflyReportsTheTilingAndWritesNoMesh) {
   TempDir dir;
   const std::string report = dir.file("tiles.json"), png = dir.file("tiles.png");
-  const CliResult r = run_cli({"mesh", golden_input("square"), "--dst-crs", "EPSG:3857", "--size",
-                               "50", "--cross-angle", "0", "-o", dir.file("m.gpkg"),
-                               "--stop-after", "butterfly", "--report", report, "--plot", png, "-q"},
-                              dir);
+  const CliResult r = run_cli(
+      {"mesh", golden_input("square"), "--dst-crs", "EPSG:3857", "--size", "50", "--cross-angle",
+       "0", "--stop-after", "butterfly", "--report", report, "--plot", png, "-q"},
+      dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_FALSE(std::filesystem::exists(dir.file("m.gpkg")));
+  EXPECT_EQ(dir.entries().size(), 2u);  // the report and the plot
   EXPECT_TRUE(std::filesystem::exists(png));
   // The report has the four tiling steps and no quad quality.
   const std::string json = read_file(report);
@@ -940,6 +956,39 @@ TEST(CliMesh, EachMeshesTheFeaturesWithoutAValueTogether) {
   EXPECT_NE(at, std::string::npos) << some.err;
   EXPECT_EQ(some.err.find(warning, at + 1), std::string::npos) << some.err;
   EXPECT_NE(some.err.find("--each region: 1 of 1 meshed"), std::string::npos) << some.err;
+}
+
+// --each selects each region's features by their ids, not by its value's text in a
+// filter: 'Malta' and 'MALTA' (which OGR SQL's = takes for one on a GeoJSON file) are two
+// regions of one square each, and so are a value with a backslash and a quote, and reals
+// whose text (15 digits) is not their stored value.
+TEST(CliMesh, EachSelectsExactlyTheFeaturesOfItsValue) {
+  TempDir dir;
+  const std::string input = dir.file("regions.geojson");
+  auto with_real = [](std::string feature, const std::string& real) {
+    const std::string at = R"("properties":{)";
+    return feature.replace(feature.find(at), at.size(), at + R"("v":)" + real + ",");
+  };
+  write_file(input, R"({"type":"FeatureCollection","features":[)" +
+                        with_real(square_feature(0, 0, 0.3, "Malta"), "0.3333333333333333") + "," +
+                        with_real(square_feature(1, 0, 0.2, "MALTA"), "123456789.12345679") + "," +
+                        with_real(square_feature(0, 1, 0.25, R"(it\\'s)"), "0.1") + "]}");
+  const CliResult r = run_cli({"mesh", input, "--size", "3000", "--each", "region", "-o",
+                               dir.file("{}.gpkg"), "--report", dir.file("{}.json"), "-q"},
+                              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::set<long> quads;
+  for (const char* name : {"Malta", "MALTA", "it__s"}) {
+    const std::string report = read_file(dir.file(std::string(name) + ".json"));
+    EXPECT_EQ(report_number(report, "num_components"), 1) << name;
+    quads.insert(std::lround(report_number(report, "num_quads")));
+  }
+  EXPECT_EQ(quads.size(), 3u);  // three squares of different sizes
+  const CliResult reals = run_cli({"mesh", input, "--size", "3000", "--each", "v", "-o",
+                                   dir.file("v_{}.gpkg"), "--report", dir.file("v_{}.json")},
+                                  dir);
+  ASSERT_EQ(reals.exit_code, 0) << reals.err;
+  EXPECT_NE(reals.err.find("--each v: 3 of 3 meshed"), std::string::npos) << reals.err;
 }
 
 // --jobs 2: the regions meshed at once give the same files as one after the other, and

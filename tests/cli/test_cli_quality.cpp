@@ -359,7 +359,7 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
   const CliResult made =
       run_cli({"mesh", sample("brittany_land.shp"), "--domain", "water",
                "--bbox=-5.3,46.8,-1.95,49.35", "--hmax", "8000", "-o", dir.file("m.gpkg"), "-o",
-               dir.file("m.gr3"), "--report", dir.file("r.json")},
+               dir.file("m.gr3"), "-o", dir.file("m.msh"), "--report", dir.file("r.json")},
               dir);
   ASSERT_EQ(made.exit_code, 0) << made.err;
   const std::string mesh_report = read_file(dir.file("r.json"));
@@ -408,6 +408,22 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
   const std::map<std::string, int> made_kinds = kinds("m.gpkg");
   EXPECT_EQ(made_kinds.count("open") ? made_kinds.at("open") : 0, 3);
   EXPECT_EQ(kinds("q_m.ll.gpkg"), made_kinds);
+  // --open-groups names the .msh's own groups: its "land" group open, the rest land (the
+  // .msh in the report's meshing CRS, which it does not name).
+  const std::string key = "\"meshing_crs_proj\": \"";
+  const std::size_t crs_at = mesh_report.find(key) + key.size();
+  const std::string crs = mesh_report.substr(crs_at, mesh_report.find('"', crs_at) - crs_at);
+  const CliResult groups = run_cli({"quality", "--mesh", dir.file("m.msh"), "--mesh-crs", crs,
+                                    "--open-groups", "land", "-o", dir.file("g.gpkg")},
+                                   dir);
+  ASSERT_EQ(groups.exit_code, 0) << groups.err;
+  const std::map<std::string, int> swapped = kinds("g.gpkg");
+  EXPECT_EQ(swapped.count("land") ? swapped.at("land") : 0, 3) << groups.err;
+  const CliResult both = run_cli({"quality", "--mesh", dir.file("m.msh"), "--open-groups", "land",
+                                  "--open-boundary", dir.file("m.gpkg")},
+                                 dir);
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_NE(both.err.find("--open-boundary or --open-groups"), std::string::npos) << both.err;
 
   // isoquad's .gr3 names its CRS in its title line; another mesher's (the same grid, a
   // title without it) stops, naming --mesh-crs and the .ll beside it.
@@ -429,6 +445,58 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
   const CliResult each = run_cli({"quality", "--mesh", dir.file("{}.gpkg"), "--each", "name"}, dir);
   EXPECT_EQ(each.exit_code, 2);
   EXPECT_NE(each.err.find("give INPUT"), std::string::npos) << each.err;
+}
+
+// A sea polygon as INPUT (the domain's own GeoPackage) with --open-boundary: `quality`
+// measures the mesh against it with the mesh's open boundary (-o's boundary layer open
+// where the mesh's is; all land without the option), and `fields` leaves the open lines
+// out of the distance to the coast, c (sizes that grow with c: larger, fewer quads).
+TEST(CliQuality, OpenBoundaryLinesForQualityAndFields) {
+  TempDir dir;
+  const std::string sea = dir.file("sea.gpkg");
+  const CliResult domain = run_cli({"domain", sample("brittany_land.shp"), "--domain", "water",
+                                    "--bbox=-5.3,46.8,-1.95,49.35", "--size", "2000", "-o", sea},
+                                   dir);
+  ASSERT_EQ(domain.exit_code, 0) << domain.err;
+  const CliResult made = run_cli({"mesh", sea, "--open-boundary", sea, "--hmax", "8000", "-o",
+                                  dir.file("m.gr3"), "--report", dir.file("m.json")},
+                                 dir);
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  isoquad::ensure_gdal_registered();
+  auto kinds = [&dir](const std::string& name) {
+    std::map<std::string, int> count;
+    GDALDataset* ds = static_cast<GDALDataset*>(
+        GDALOpenEx(dir.file(name).c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+    if (!ds) return count;
+    for (auto& f : *ds->GetLayerByName("boundary")) ++count[f->GetFieldAsString("kind")];
+    GDALClose(ds);
+    return count;
+  };
+  for (const bool lines : {true, false}) {
+    std::vector<std::string> args = {"quality", sea,
+                                     "--hmax",  "8000",
+                                     "--mesh",  dir.file("m.gr3"),
+                                     "-o",      dir.file(lines ? "q_open.gpkg" : "q_land.gpkg")};
+    if (lines) args.insert(args.end(), {"--open-boundary", sea});
+    const CliResult q = run_cli(args, dir);
+    ASSERT_EQ(q.exit_code, 0) << q.err;
+    const std::map<std::string, int> k = kinds(lines ? "q_open.gpkg" : "q_land.gpkg");
+    EXPECT_EQ(k.count("open") ? k.at("open") : 0, lines ? 3 : 0) << q.err;
+  }
+  auto predicted = [&](bool lines) {
+    std::vector<std::string> args = {"fields",      sea,
+                                     "--hmax",      "8000",
+                                     "--size-expr", "2000 + 0.2 * c",
+                                     "-o",          dir.file(lines ? "o.vtu" : "l.vtu")};
+    if (lines) args.insert(args.end(), {"--open-boundary", sea});
+    const CliResult f = run_cli(args, dir);
+    EXPECT_EQ(f.exit_code, 0) << f.err;
+    const std::size_t at = f.err.find("; about ");
+    return at == std::string::npos ? 0.0 : std::stod(f.err.substr(at + 8));
+  };
+  const double with_lines = predicted(true), without = predicted(false);
+  EXPECT_GT(with_lines, 0);
+  EXPECT_LT(with_lines, 0.9 * without) << with_lines << " against " << without;
 }
 
 // A lon/lat grid across the antimeridian is read whichever way its longitudes run: the
