@@ -221,9 +221,20 @@ class Reader {
         out_.crs = parse_crs(p_.default_crs, "the CRS of " + quote(out_.layer_name));
         return;
       }
-      if (!srs)
-        fail(ErrorClass::crs, "layer " + quote(out_.layer_name) +
-                                  " has no CRS; give the CRS of the coordinates with --src-crs");
+      if (!srs) {
+        // Coordinates in degrees' range are most likely longitudes and latitudes (a
+        // TopoJSON file's, world-atlas's): say so.
+        OGREnvelope e;
+        const bool degrees = layer_->GetExtent(&e, TRUE) == OGRERR_NONE && e.MinX >= -180.0 &&
+                             e.MaxX <= 360.0 && e.MinY >= -90.0 && e.MaxY <= 90.0;
+        fail(ErrorClass::crs,
+             "layer " + quote(out_.layer_name) +
+                 " has no CRS; give the CRS of the coordinates with --src-crs" +
+                 (degrees ? std::string(" (they lie within longitudes' and latitudes' range: "
+                                        "--src-crs EPSG:4326 if that is what they are, as a "
+                                        "TopoJSON file's usually are)")
+                          : std::string()));
+      }
       out_.crs = crs_from_srs(*srs);
     }
   }

@@ -69,14 +69,25 @@ DomainLayer read_domain_layer(const std::string& gpkg) {
 
 TEST(Cli, BadInputsFailCleanly) {
   TempDir dir;
+  // Coordinates in degrees without a CRS: the message suggests EPSG:4326 (and only then).
+  const std::string lonlat_csv = dir.file("lonlat.csv");
+  write_file(lonlat_csv, "WKT,id\n\"POLYGON ((2 47,2.5 47,2.5 47.5,2 47.5,2 47))\",1\n");
   const std::vector<BadCase> cases = {
       {"missing file", dir.file("missing.shp"), {}, 3, "no such file"},
       {"corrupt file", corrupt_shapefile(dir), {}, 3, "cannot read"},
       {"empty file", empty_file(dir), {}, 3, "empty"},
       {"no polygons", points_geojson(dir), {}, 3, "has no polygons"},
-      {"empty selection", good_geojson(dir), {"--where", "name = 'atlantis'"}, 3,
+      {"empty selection",
+       good_geojson(dir),
+       {"--where", "name = 'atlantis'"},
+       3,
        "matched no feature"},
-      {"no CRS", no_crs_csv(dir), {}, 4, "has no CRS"},
+      {"no CRS",
+       no_crs_csv(dir),
+       {},
+       4,
+       "has no CRS; give the CRS of the coordinates with --src-crs\n"},
+      {"no CRS, degrees", lonlat_csv, {}, 4, "(they lie within longitudes' and latitudes' range"},
       {"self-intersection", bowtie_geojson(dir), {}, 3, "Self-intersection"},
       {"unclosed ring", unclosed_geojson(dir), {}, 3, "not closed"},
       {"NaN", non_finite_geojson(dir), {}, 3, "not finite"},
@@ -84,8 +95,11 @@ TEST(Cli, BadInputsFailCleanly) {
       {"latitude 120", out_of_range_geojson(dir), {}, 4, "outside the valid range"},
       {"wrong CRS", wrong_crs_geojson(dir), {}, 4, "area of use"},
       {"bbox misses", good_geojson(dir), {"--bbox", "100,10,101,11"}, 3, "misses the data"},
-      {"water covered", good_geojson(dir), {"--domain", "water", "--bbox", "-2.9,47.1,-2.1,47.9"},
-       3, "empty"},
+      {"water covered",
+       good_geojson(dir),
+       {"--domain", "water", "--bbox", "-2.9,47.1,-2.1,47.9"},
+       3,
+       "empty"},
   };
   for (const BadCase& c : cases) expect_clean_failure(c, dir);
 }
