@@ -15,7 +15,10 @@ Each case is a directory tests/golden/<case>/ holding:
                                                    (a new case: writes args.txt from the
                                                     arguments after --, runs them and
                                                     writes expected.json with the default
-                                                    values and tolerances below)
+                                                    values and tolerances below; an -o
+                                                    without a directory, such as -o
+                                                    mesh.geojson, goes in the case
+                                                    directory, written again by each run)
 
 Only values listed in expected.json are compared, with their tolerances; the mesh
 itself is not stored (byte-exact floating point would fail across compilers).
@@ -35,7 +38,9 @@ def run_case(case, isoquad):
         args = [l.strip().replace("{dir}", case).replace("{src}", SRC) for l in f if l.strip()]
     with tempfile.TemporaryDirectory() as tmp:
         report = os.path.join(tmp, "report.json")
-        cmd = [isoquad, "mesh", *args, "-o", os.path.join(tmp, "mesh.gpkg"), "--report", report, "-q"]
+        # --overwrite: a case's own outputs (-o {dir}/mesh.geojson) are written again.
+        cmd = [isoquad, "mesh", *args, "-o", os.path.join(tmp, "mesh.gpkg"), "--report", report,
+               "-q", "--overwrite"]
         proc = subprocess.run(cmd, capture_output=True, text=True)
         if proc.returncode != 0:
             sys.exit(f"golden: {case}: isoquad failed ({proc.returncode}): {proc.stderr.strip()}")
@@ -110,11 +115,18 @@ def init(case, isoquad, args):
         if os.path.exists(os.path.join(case, name)):
             sys.exit(f"golden: {case}: {name} exists; use update")
     os.makedirs(case, exist_ok=True)
-    # Paths inside the case directory are written as {dir}, so the case can move.
+    # Paths inside the case directory are written as {dir}, so the case can move; an
+    # output named without a directory (-o mesh.geojson) is kept in the case directory.
     lines = []
-    for a in args:
+    for i, a in enumerate(args):
         full = os.path.abspath(a)
-        lines.append("{dir}" + full[len(case):] if os.path.exists(a) and full.startswith(case + os.sep) else a)
+        output = i > 0 and args[i - 1] in ("-o", "--output")
+        if output and not os.path.dirname(a):
+            lines.append("{dir}" + os.sep + a)
+        elif (os.path.exists(a) or output) and full.startswith(case + os.sep):
+            lines.append("{dir}" + full[len(case):])
+        else:
+            lines.append(a)
     with open(os.path.join(case, "args.txt"), "w") as f:
         f.write("\n".join(lines) + "\n")
     report = run_case(case, isoquad)
