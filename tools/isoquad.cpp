@@ -195,9 +195,34 @@ int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
   return 0;
 }
 
+// The command line as the outputs record it (a GeoPackage's metadata, a netCDF's history,
+// the report): the program as `isoquad`, each argument quoted for a POSIX shell where it
+// needs to be, and without the options that change no output (--jobs, --overwrite,
+// --skip-existing, -q, --each-table), so that a batch on one thread or two, resumed, or
+// run again with --overwrite writes the same bytes.
 std::string joined_command_line(int argc, char** argv) {
-  std::string s;
-  for (int i = 0; i < argc; ++i) s += (i ? " " : "") + std::string(argv[i]);
+  auto quoted = [](const std::string& arg) {
+    const bool plain = !arg.empty() && arg.find_first_not_of(
+                                           "abcdefghijklmnopqrstuvwxyz"
+                                           "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
+                                           "0123456789-_./,:=+@%") == std::string::npos;
+    if (plain) return arg;
+    std::string q = "'";
+    for (char c : arg) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+  };
+  std::string s = "isoquad";
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--overwrite" || arg == "--skip-existing" || arg == "-q" || arg == "--quiet" ||
+        arg.rfind("--jobs=", 0) == 0 || arg.rfind("--each-table=", 0) == 0)
+      continue;
+    if (arg == "--jobs" || arg == "--each-table") {
+      ++i;  // and its value
+      continue;
+    }
+    s += " " + quoted(arg);
+  }
   return s;
 }
 
@@ -384,7 +409,8 @@ struct EachRegion {
   FieldArgs f;
   std::string value, name, filter;
   std::string id_filter;  // the region's features by their ids (SelectionValue::id_filter)
-  bool skip = false;  // mesh --skip-existing, and every output exists
+  bool null = false;      // the features without a value (value "NULL")
+  bool skip = false;      // mesh --skip-existing, and every output exists
 };
 
 // A region per selected value: {} in the paths replaced by its file name.
@@ -402,7 +428,8 @@ std::vector<EachRegion> regions_of(const CommonArgs& a, const FieldArgs& f,
                  selected[k].null ? "NULL" : values[k],
                  names[k],
                  selected[k].filter,
-                 selected[k].id_filter};
+                 selected[k].id_filter,
+                 selected[k].null};
     r.a.fe.align_optional = true;  // one file of --align lines for all the regions
     for (std::string& o : r.a.outputs) o = fill_each_mark(o, names[k]);
     r.a.report_path = fill_each_mark(r.a.report_path, names[k]);
@@ -488,9 +515,64 @@ std::vector<EachRegion> each_regions(const CommonArgs& a, const FieldArgs& f,
 // any meshing.
 void check_each_table(const std::string& path, bool overwrite) {
   if (path.empty()) return;
+  if (path == "-")
+    throw Error(ErrorClass::usage, "options",
+                "--each-table -: the table is a CSV file (the console shows it at the end)");
   check_output_path(path, overwrite);
   const std::string types = each_csv_types_path(path);
   if (!types.empty()) check_output_path(types, overwrite);
+}
+
+// Every file the regions write (each region's outputs with the files beside them, its
+// report and plot) and the batch's table: Error(usage) naming both when two regions, or a
+// region and the table, would write the same file (values 'Malta' and 'Malta_1' with
+// -o {}.gpkg -o {}_1.gpkg), before any meshing. A .pli of several open segments is
+// written as NAME_1.pli, NAME_2.pli...: those names are taken too.
+void check_regions_write_apart(const std::vector<EachRegion>& regions,
+                               const std::vector<std::vector<MeshOutput>>& outputs,
+                               const std::string& field, const std::string& table_path) {
+  namespace fs = std::filesystem;
+  auto key = [](const std::string& path) { return output_path_key(path); };
+  std::map<std::string, std::string> owner;                    // a file's key -> who writes it
+  std::vector<std::pair<std::string, std::string>> pli_stems;  // "dir/stem_", who
+  auto take = [&](const std::string& path, const std::string& who) {
+    const auto [it, added] = owner.emplace(key(path), who);
+    if (!added && it->second != who)
+      throw Error(ErrorClass::usage, "options",
+                  "'" + path + "' would be written by " + it->second + " and by " + who +
+                      ": make the -o, --report and --plot templates give each region its "
+                      "own files");
+  };
+  for (std::size_t k = 0; k < regions.size(); ++k) {
+    const std::string who = "the region " + field + " = " + regions[k].value;
+    for (const MeshOutput& o : outputs[k]) {
+      for (const std::string& f : mesh_output_files(o)) take(f, who);
+      if (mesh_output_format(o) == MeshFormat::pli) {
+        const fs::path p = key(o.path);
+        pli_stems.emplace_back((p.parent_path() / p.stem()).string() + "_", who);
+      }
+    }
+    if (!regions[k].a.report_path.empty() && regions[k].a.report_path != "-")
+      take(regions[k].a.report_path, who);
+    if (!regions[k].f.plot_path.empty()) take(regions[k].f.plot_path, who);
+  }
+  if (!table_path.empty()) {
+    take(table_path, "--each-table");
+    const std::string types = each_csv_types_path(table_path);
+    if (!types.empty()) take(types, "--each-table");
+  }
+  for (const auto& [stem, who] : pli_stems)
+    for (auto it = owner.lower_bound(stem); it != owner.end() && it->first.rfind(stem, 0) == 0;
+         ++it) {
+      const std::string number = it->first.substr(stem.size());
+      const std::size_t digits = number.find_first_not_of("0123456789");
+      if (it->second != who && digits > 0 && digits != std::string::npos &&
+          number.substr(digits) == ".pli")
+        throw Error(ErrorClass::usage, "options",
+                    "'" + it->first + "' would be written by " + it->second + " and by " + who +
+                        " (its .pli's numbered files, one per open segment): make the -o "
+                        "templates give each region its own files");
+    }
 }
 
 // Runs `run` for every region, `jobs` at once; a failure (Error) is reported in its
@@ -527,7 +609,9 @@ int run_each(const CommonArgs& a, const std::string& option, const std::string& 
       run_regions(regions.size(), static_cast<std::size_t>(jobs), header, region);
   const int exit = each_exit_code(outcomes);
   if (!table_path.empty()) {
-    write_text_file(table_path, format_each_csv(field, values, outcomes, done), a.overwrite);
+    std::vector<EachCsvRegion> rows;
+    for (const EachRegion& r : regions) rows.push_back({r.value, r.name, r.null});
+    write_text_file(table_path, format_each_csv(field, rows, outcomes, done), a.overwrite);
     const std::string types = each_csv_types_path(table_path);
     if (!types.empty()) write_text_file(types, format_each_csv_types(), a.overwrite);
   }
@@ -556,12 +640,16 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
   CommonArgs table_args = a;
   table_args.overwrite = a.overwrite || m.skip_existing;
   check_each_table(m.each_table, table_args.overwrite);
-  for (EachRegion& r : regions) {
+  std::vector<std::vector<MeshOutput>> outputs;
+  for (EachRegion& r : regions) outputs.push_back(mesh_outputs(r.a, m));
+  check_regions_write_apart(regions, outputs, field, m.each_table);
+  for (std::size_t k = 0; k < regions.size(); ++k) {
+    EachRegion& r = regions[k];
     r.skip = m.skip_existing && every_output_exists(r.a, r.f, m);
     if (r.skip) continue;
     if (!r.a.report_path.empty()) check_output_path(r.a.report_path, a.overwrite);
     if (!r.f.plot_path.empty()) check_output_path(r.f.plot_path, a.overwrite);
-    check_mesh_outputs(mesh_outputs(r.a, m), mesh_write_options(m));
+    check_mesh_outputs(outputs[k], mesh_write_options(m));
   }
   return run_each(table_args, over_clip ? "--each-clip" : "--each", field, regions, m.jobs,
                   "meshed", m.each_table, [&](EachRegion& r, const Console& console) {
@@ -593,6 +681,12 @@ int run_quality_each(const CommonArgs& a, const FieldArgs& f, const QualityArgs&
   const VectorDatasetPool pool;
   std::vector<EachRegion> regions = each_regions(a, f, q.each);
   check_each_table(q.each_table, a.overwrite);
+  std::vector<std::vector<MeshOutput>> outputs;
+  for (const EachRegion& r : regions) {
+    outputs.emplace_back();
+    for (const std::string& o : r.a.outputs) outputs.back().push_back(MeshOutput{o, "", false});
+  }
+  check_regions_write_apart(regions, outputs, q.each, q.each_table);
   return run_each(a, "--each", q.each, regions, q.jobs, "measured", q.each_table,
                   [&](EachRegion& r, const Console& console) {
                     QualityArgs qq = q;

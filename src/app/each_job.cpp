@@ -198,20 +198,23 @@ std::string csv_field(const std::string& text) {
 
 }  // namespace
 
-std::string format_each_csv(const std::string& field, const std::vector<std::string>& values,
+std::string format_each_csv(const std::string& field, const std::vector<EachCsvRegion>& regions,
                             const std::vector<RegionOutcome>& outcomes, const std::string& done) {
-  std::string csv = csv_field(field) +
-                    ",status,exit,quads,vertices,angles_75_105_pct,min_angle_deg,max_angle_deg,"
-                    "regular_interior_pct,size_ratio_median,sizes_08_125_pct,"
-                    "orientation_mean_deg,orientation_p90_deg,schism_angle_ratio_fails,"
-                    "schism_aspect_fails,dflowfm_links_over_05,error\r\n";
-  for (std::size_t k = 0; k < values.size(); ++k) {
+  std::string csv =
+      csv_field(field) +
+      ",file,status,exit,quads,vertices,angles_75_105_pct,min_angle_deg,max_angle_deg,"
+      "regular_interior_pct,size_ratio_median,sizes_08_125_pct,"
+      "orientation_mean_deg,orientation_p90_deg,schism_angle_ratio_fails,"
+      "schism_aspect_fails,dflowfm_links_over_05,error\r\n";
+  for (std::size_t k = 0; k < regions.size(); ++k) {
     const RegionOutcome& o = outcomes[k];
     const char* status = o.quality   ? done.c_str()
                          : o.skipped ? "skipped"
                          : o.not_run ? "not run"
                                      : "failed";
-    csv += csv_field(values[k]) + "," + status + "," + std::to_string(o.exit);
+    csv += (regions[k].null ? std::string() : csv_field(regions[k].value)) + "," +
+           csv_field(regions[k].file) + "," + status + "," +
+           (o.not_run ? std::string() : std::to_string(o.exit));
     if (o.quality) {
       const QualitySummary& q = *o.quality;
       csv += printf_string(",%zu,%zu,%.2f,%.2f,%.2f,%.2f,%.4f,%.2f,%.2f,%.2f,%zu,%zu,%zu,",
@@ -229,9 +232,9 @@ std::string format_each_csv(const std::string& field, const std::vector<std::str
 }
 
 std::string format_each_csv_types() {
-  // As format_each_csv's columns: the value, status, exit, quads, vertices, eight
+  // As format_each_csv's columns: the value, file, status, exit, quads, vertices, eight
   // figures, three counts, the error.
-  std::string types = "\"String\",\"String\",\"Integer\",\"Integer\",\"Integer\"";
+  std::string types = "\"String\",\"String\",\"String\",\"Integer\",\"Integer\",\"Integer\"";
   for (int k = 0; k < 8; ++k) types += ",\"Real\"";
   for (int k = 0; k < 3; ++k) types += ",\"Integer\"";
   return types + ",\"String\"\r\n";

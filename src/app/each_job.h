@@ -71,11 +71,18 @@ std::string format_each_total(const std::string& field, const std::vector<std::s
                               const std::vector<RegionOutcome>& outcomes,
                               const std::string& done = "meshed",
                               const std::string& option = "--each");
+// A region as the CSV names it: its value (an empty field for the features without one)
+// and its file name, what {} stands for in its paths.
+struct EachCsvRegion {
+  std::string value, file;
+  bool null = false;
+};
 // The table as CSV (--each-table), for a batch's records and golden files: a header, then
-// a row per region in the regions' order: its value, status (`done`, failed, skipped, not
-// run), exit code, quads, vertices, the quality figures (shares in percent) and the
-// error of a failed one. No seconds: the same batch gives the same bytes.
-std::string format_each_csv(const std::string& field, const std::vector<std::string>& values,
+// a row per region in the regions' order: its value, file name, status (`done`, failed,
+// skipped, not run), exit code (empty for one not run), quads, vertices, the quality
+// figures (shares in percent) and the error of a failed one. No seconds: the same batch
+// gives the same bytes.
+std::string format_each_csv(const std::string& field, const std::vector<EachCsvRegion>& regions,
                             const std::vector<RegionOutcome>& outcomes,
                             const std::string& done = "meshed");
 // The CSV's column types for GDAL and QGIS (a .csvt beside a .csv: without it every

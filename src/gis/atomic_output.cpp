@@ -86,17 +86,38 @@ void check_output_path(const std::string& path, bool overwrite) {
   if (access(dir.c_str(), W_OK) != 0)
     throw Error(ErrorClass::output, "write",
                 quote(path) + ": directory " + quote(dir.string()) + " is not writable");
+  // A name longer than the file system takes would fail only at the end, after the work.
+  const std::string name = fs::path(path).filename().string();
+  const long name_max = pathconf(dir.c_str(), _PC_NAME_MAX);
+  if (name_max > 0 && static_cast<long>(name.size()) > name_max)
+    throw Error(ErrorClass::output, "write",
+                quote(path) + ": its name has " + std::to_string(name.size()) +
+                    " bytes, over the " + std::to_string(name_max) +
+                    " the file system takes in a file name");
+}
+
+std::string output_path_key(const std::string& path) {
+  std::error_code ec;
+  const fs::path absolute = fs::absolute(path, ec);
+  const fs::path canonical = fs::weakly_canonical(absolute, ec);
+  return (ec ? absolute.lexically_normal() : canonical).string();
 }
 
 AtomicOutput::AtomicOutput(std::string final_path, bool overwrite)
     : final_path_(std::move(final_path)), overwrite_(overwrite) {
   check_output_path(final_path_, overwrite_);
   const fs::path p(final_path_);
-  const fs::path name = "." + short_stem(p.stem().string()) + ".tmp-" + std::to_string(getpid()) +
-                        p.extension().string();
-  temp_path_ = (parent_dir(final_path_) / name).string();
+  const std::string stem = "." + short_stem(p.stem().string()) + ".tmp-" + std::to_string(getpid());
   UnfinishedOutputs& u = unfinished();
   std::lock_guard<std::recursive_mutex> lock(u.mutex);
+  // Another output of this process being written to the same name (two threads, one
+  // final path) gets a name of its own: neither removes the other's file.
+  for (int n = 1;; ++n) {
+    const fs::path name = stem + (n > 1 ? "-" + std::to_string(n) : "") + p.extension().string();
+    temp_path_ = (parent_dir(final_path_) / name).string();
+    if (std::find(u.temp_paths.begin(), u.temp_paths.end(), temp_path_) == u.temp_paths.end())
+      break;
+  }
   remove_with_side_files(temp_path_);
   u.temp_paths.push_back(temp_path_);
 }
@@ -177,7 +198,7 @@ void write_text_file(const std::string& path, const std::string& text, bool over
 
 const std::string& OutputSet::add(const std::string& final_path, bool overwrite) {
   std::error_code ec;
-  const std::string key = fs::weakly_canonical(fs::absolute(final_path, ec), ec).string();
+  const std::string key = output_path_key(final_path);
   for (const std::string& p : paths_)
     if (p == key) throw Error(ErrorClass::usage, "write", quote(final_path) + " is given twice");
   outputs_.push_back(std::make_unique<AtomicOutput>(final_path, overwrite));
@@ -188,7 +209,7 @@ const std::string& OutputSet::add(const std::string& final_path, bool overwrite)
 
 void OutputSet::remove_on_commit(const std::string& path) {
   std::error_code ec;
-  removed_.push_back(fs::weakly_canonical(fs::absolute(path, ec), ec).string());
+  removed_.push_back(output_path_key(path));
 }
 
 void OutputSet::commit_all() {

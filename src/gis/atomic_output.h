@@ -12,6 +12,11 @@ namespace isoquad {
 // directory does not exist or is not writable. Call before any long work.
 void check_output_path(const std::string& path, bool overwrite);
 
+// The path as one file's key, so that two spellings of one file compare equal (./a and
+// a, a link to its directory): canonical as far as it exists, else absolute and
+// normalised (a name too long to look up).
+std::string output_path_key(const std::string& path);
+
 // Removes the temporary files of the outputs still being written when the process is
 // stopped by SIGINT, SIGTERM or SIGHUP, then lets the signal end it as it would have
 // (exit status 128 + the signal's number in a shell). Call first thing in main, before

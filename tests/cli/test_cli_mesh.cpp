@@ -991,6 +991,44 @@ TEST(CliMesh, EachSelectsExactlyTheFeaturesOfItsValue) {
   EXPECT_NE(reals.err.find("--each v: 3 of 3 meshed"), std::string::npos) << reals.err;
 }
 
+// Two regions that would write the same file (values 'a' and 'a_1' with -o {}.gpkg -o
+// {}_1.gpkg; a .pli's numbered files; a report that is the table) are refused before any
+// meshing, naming both, and so is a file name longer than the file system takes; nothing
+// is written.
+TEST(CliMesh, EachRegionsNeverWriteTheSameFile) {
+  TempDir dir;
+  const std::string input = dir.file("regions.geojson");
+  const std::string long_name(300, 'x');
+  write_file(input, R"({"type":"FeatureCollection","features":[)" + square_feature(0, 0, 0.2, "a") +
+                        "," + square_feature(1, 0, 0.2, "a_1") + "]}");
+  auto each = [&](std::vector<std::string> more) {
+    std::vector<std::string> args = {"mesh", input, "--size", "3000", "--each", "region"};
+    args.insert(args.end(), more.begin(), more.end());
+    return run_cli(args, dir);
+  };
+  const CliResult suffix = each({"-o", dir.file("{}.gpkg"), "-o", dir.file("{}_1.gpkg")});
+  EXPECT_EQ(suffix.exit_code, 2) << suffix.err;
+  EXPECT_NE(suffix.err.find("a_1.gpkg' would be written by the region region = a and by the "
+                            "region region = a_1"),
+            std::string::npos)
+      << suffix.err;
+  const CliResult pli =
+      each({"--domain", "water", "--bbox", "-1,-1,3,2", "-o", dir.file("{}.pli")});
+  EXPECT_EQ(pli.exit_code, 2) << pli.err;
+  EXPECT_NE(pli.err.find("numbered files"), std::string::npos) << pli.err;
+  const CliResult table = each({"-o", dir.file("{}.gpkg"), "--report", dir.file("{}.csv"),
+                                "--each-table", dir.file("a.csv")});
+  EXPECT_EQ(table.exit_code, 2) << table.err;
+  EXPECT_NE(table.err.find("and by --each-table"), std::string::npos) << table.err;
+  const CliResult dash = each({"-o", dir.file("{}.gpkg"), "--each-table", "-"});
+  EXPECT_EQ(dash.exit_code, 2) << dash.err;
+  const CliResult too_long = each({"-o", dir.file(long_name + "{}.gpkg")});
+  EXPECT_EQ(too_long.exit_code, 6) << too_long.err;
+  EXPECT_NE(too_long.err.find("the file system takes in a file name"), std::string::npos)
+      << too_long.err;
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"regions.geojson"});
+}
+
 // --jobs 2: the regions meshed at once give the same files as one after the other, and
 // print in the same order; a failure is reported the same way.
 TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
@@ -1027,22 +1065,22 @@ TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
   const std::string table = read_file(dir.file("one.csv"));
   EXPECT_EQ(table, read_file(dir.file("two.csv")));
   EXPECT_EQ(table.substr(0, table.find("\r\n")),
-            "region,status,exit,quads,vertices,angles_75_105_pct,min_angle_deg,max_angle_deg,"
+            "region,file,status,exit,quads,vertices,angles_75_105_pct,min_angle_deg,max_angle_deg,"
             "regular_interior_pct,size_ratio_median,sizes_08_125_pct,orientation_mean_deg,"
             "orientation_p90_deg,schism_angle_ratio_fails,schism_aspect_fails,"
             "dflowfm_links_over_05,error");
-  EXPECT_NE(table.find("\r\nq,meshed,0,"), std::string::npos) << table;
+  EXPECT_NE(table.find("\r\nq,q,meshed,0,"), std::string::npos) << table;
   // Its column types beside it (one.csvt), so that GDAL (and QGIS) read numbers as numbers.
   isoquad::ensure_gdal_registered();
   GDALDataset* csv = static_cast<GDALDataset*>(
       GDALOpenEx(dir.file("one.csv").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
   ASSERT_NE(csv, nullptr);
   OGRFeatureDefn* defn = csv->GetLayer(0)->GetLayerDefn();
-  ASSERT_EQ(defn->GetFieldCount(), 17);
+  ASSERT_EQ(defn->GetFieldCount(), 18);
   for (int i = 0; i < defn->GetFieldCount(); ++i) {
     const std::string name = defn->GetFieldDefn(i)->GetNameRef();
     const OGRFieldType type = defn->GetFieldDefn(i)->GetType();
-    const bool text = name == "region" || name == "status" || name == "error";
+    const bool text = name == "region" || name == "file" || name == "status" || name == "error";
     const bool integer = name == "exit" || name == "quads" || name == "vertices" ||
                          name.find("_fails") != std::string::npos ||
                          name == "dflowfm_links_over_05";
@@ -1060,10 +1098,10 @@ TEST(CliMesh, EachRegionsMeshedAtOnceGiveTheSameFiles) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("cap_p.gr3")));
   // Its row: the exit code, no figures, and the message quoted (it holds commas).
   const std::string capped = read_file(dir.file("cap.csv"));
-  EXPECT_NE(capped.find("\r\ns,failed,2,,,,,,,,,,,,,,\"sizing: the sizes ask for about"),
+  EXPECT_NE(capped.find("\r\ns,s,failed,2,,,,,,,,,,,,,,\"sizing: the sizes ask for about"),
             std::string::npos)
       << capped;
-  EXPECT_NE(capped.find("\r\np,meshed,0,"), std::string::npos) << capped;
+  EXPECT_NE(capped.find("\r\np,p,meshed,0,"), std::string::npos) << capped;
   // --jobs and --each-table without --each.
   const CliResult table_alone = run_cli({"mesh", input, "--size", "3000", "--each-table",
                                          dir.file("t.csv"), "-o", dir.file("a.gpkg")},
@@ -1098,10 +1136,10 @@ TEST(CliMesh, EachStopsAtAUsageErrorTwoRegionsShare) {
   EXPECT_EQ(r.err.find("== region = r"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("\nr       not run\n"), std::string::npos) << r.err;
   const std::string table = read_file(dir.file("batch.csv"));
-  EXPECT_NE(table.find("\r\nq,failed,2,,,,,,,,,,,,,,domain: --domain water needs --bbox"),
+  EXPECT_NE(table.find("\r\nq,q,failed,2,,,,,,,,,,,,,,domain: --domain water needs --bbox"),
             std::string::npos)
       << table;
-  EXPECT_NE(table.find("\r\ns,not run,0,,,,,,,,,,,,,,\r\n"), std::string::npos) << table;
+  EXPECT_NE(table.find("\r\ns,s,not run,,,,,,,,,,,,,,,\r\n"), std::string::npos) << table;
   EXPECT_NE(r.err.find("--each region: 0 of 4 meshed; failed: p, q; 2 not run: p and q failed "
                        "with the same usage error"),
             std::string::npos)
@@ -1133,8 +1171,8 @@ TEST(CliMesh, SkipExistingResumesABatch) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   // The table written again (without --overwrite): p meshed, q skipped.
   const std::string table = read_file(dir.file("batch.csv"));
-  EXPECT_NE(table.find("\r\np,meshed,0,"), std::string::npos) << table;
-  EXPECT_NE(table.find("\r\nq,skipped,0,"), std::string::npos) << table;
+  EXPECT_NE(table.find("\r\np,p,meshed,0,"), std::string::npos) << table;
+  EXPECT_NE(table.find("\r\nq,q,skipped,0,"), std::string::npos) << table;
   EXPECT_NE(r.err.find("== region = q (2 of 2)\nskipped: every output exists (--skip-existing)"),
             std::string::npos)
       << r.err;

@@ -2102,8 +2102,8 @@ TEST(CliOutputs, EachClipMeshesEveryAreaOfTheClipFile) {
                         dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string table = read_file(dir.file("areas.csv"));
-  EXPECT_NE(table.find("\nf0,meshed,0,"), std::string::npos) << table;
-  EXPECT_NE(table.find("\nf1,meshed,0,"), std::string::npos) << table;
+  EXPECT_NE(table.find("\nf0,f0,meshed,0,"), std::string::npos) << table;
+  EXPECT_NE(table.find("\nf1,f1,meshed,0,"), std::string::npos) << table;
   for (const std::string name : {"f0", "f1"}) {
     r = run_cli({"mesh", water_input(dir), "--domain", "water", "--clip", dir.file("areas.geojson"),
                  "--clip-where", "name = '" + name + "'", "--size", "800", "-q", "-o",
@@ -2806,15 +2806,21 @@ TEST(CliOutputs, GoldenToolStartsACaseThatChecksAndCatchesAChange) {
   std::filesystem::create_directories(case_dir);
   write_file(case_dir + "/input.geojson",
              geojson_polygons({"[[[0,0],[1000,0],[1000,1000],[0,1000],[0,0]]]"}));
-  CliResult r = run_cli_program("/usr/bin/python3",
-                                {golden, "init", case_dir, "--isoquad", ISOQUAD_CLI, "--",
-                                 case_dir + "/input.geojson", "--src-crs", "EPSG:3857", "--size", "100"},
-                                dir);
+  CliResult r = run_cli_program(
+      "/usr/bin/python3",
+      {golden, "init", case_dir, "--isoquad", ISOQUAD_CLI, "--", case_dir + "/input.geojson",
+       "--src-crs", "EPSG:3857", "--size", "100", "-o", "mesh.geojson"},
+      dir);
   ASSERT_EQ(r.exit_code, 0) << r.err << r.out;
-  // The input inside the case is written relative to it, so the case can move.
+  // The input inside the case is written relative to it, so the case can move; so is the
+  // quads' file, kept in the case and written again by each check.
   EXPECT_NE(read_file(case_dir + "/args.txt").find("{dir}/input.geojson"), std::string::npos);
+  EXPECT_NE(read_file(case_dir + "/args.txt").find("{dir}/mesh.geojson"), std::string::npos);
+  const std::string quads_file = read_file(case_dir + "/mesh.geojson");
+  EXPECT_FALSE(std::filesystem::exists(dir.file("mesh.geojson")));
   r = run_cli_program("/usr/bin/python3", {golden, "check", case_dir, "--isoquad", ISOQUAD_CLI}, dir);
   EXPECT_EQ(r.exit_code, 0) << r.err << r.out;
+  EXPECT_EQ(read_file(case_dir + "/mesh.geojson"), quads_file);
   EXPECT_NE(r.out.find("quality.num_quads"), std::string::npos) << r.out;
   // A second init would overwrite the case: refused.
   r = run_cli_program("/usr/bin/python3",

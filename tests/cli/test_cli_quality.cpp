@@ -323,17 +323,17 @@ TEST(CliQuality, EachRegionsMeshMeasuredAsItsReportSays) {
   const std::string made_table = read_file(dir.file("made.csv"));
   const std::string measured_table = read_file(dir.file("measured.csv"));
   for (const std::string name : {"f0", "f1"}) {
-    const std::string start = "\r\n" + name + ",meshed,0,";
+    const std::string start = "\r\n" + name + "," + name + ",meshed,0,";
     const std::size_t at = made_table.find(start);
     ASSERT_NE(at, std::string::npos) << made_table;
     const std::size_t end = made_table.find("\r\n", at + 2);
     const std::string figures = made_table.substr(at + start.size(), end - at - start.size());
-    EXPECT_NE(measured_table.find("\r\n" + name + ",measured,0," + figures + "\r\n"),
+    EXPECT_NE(measured_table.find("\r\n" + name + "," + name + ",measured,0," + figures + "\r\n"),
               std::string::npos)
         << figures << "\n"
         << measured_table;
   }
-  EXPECT_NE(measured_table.find("\r\nf2,failed,3,"), std::string::npos) << measured_table;
+  EXPECT_NE(measured_table.find("\r\nf2,f2,failed,3,"), std::string::npos) << measured_table;
   EXPECT_NE(measured.err.find("name = f2: read: '" + dir.file("f2.gr3") + "': no such mesh file"),
             std::string::npos)
       << measured.err;

@@ -191,7 +191,11 @@ TEST(EachJob, TheTableAsCsvQuotesWhatNeedsIt) {
   outcomes[2].exit = 3;
   outcomes[2].error = "read: 'a.shp': \"x\", y";
   outcomes[3].not_run = true;
-  const std::vector<std::string> values = {"Bonaire, Saint Eustatius and Saba", "b", "c\"d", "e"};
+  const std::vector<EachCsvRegion> values = {
+      {"Bonaire, Saint Eustatius and Saba", "Bonaire__Saint_Eustatius_and_Saba", false},
+      {"b", "b", false},
+      {"c\"d", "c_d", false},
+      {"NULL", "_", true}};
   const std::string csv = format_each_csv("name", values, outcomes);
   std::vector<std::string> rows;
   for (std::size_t at = 0, next; (next = csv.find("\r\n", at)) != std::string::npos; at = next + 2)
@@ -207,11 +211,15 @@ TEST(EachJob, TheTableAsCsvQuotesWhatNeedsIt) {
     }
     return n;
   };
-  for (const std::string& row : rows) EXPECT_EQ(num_fields(row), 17u) << row;
-  EXPECT_EQ(rows[1].substr(0, 57), "\"Bonaire, Saint Eustatius and Saba\",meshed,0,1234,0,90.00");
-  EXPECT_EQ(rows[2], "b,skipped,0,,,,,,,,,,,,,,");
-  EXPECT_EQ(rows[3], "\"c\"\"d\",failed,3,,,,,,,,,,,,,,\"read: 'a.shp': \"\"x\"\", y\"");
-  EXPECT_EQ(rows[4], "e,not run,0,,,,,,,,,,,,,,");
+  for (const std::string& row : rows) EXPECT_EQ(num_fields(row), 18u) << row;
+  EXPECT_EQ(rows[0].substr(0, 23), "name,file,status,exit,q");
+  EXPECT_EQ(rows[1].substr(0, 91),
+            "\"Bonaire, Saint Eustatius and Saba\",Bonaire__Saint_Eustatius_and_Saba,meshed,0,1234,"
+            "0,90.00");
+  EXPECT_EQ(rows[2], "b,b,skipped,0,,,,,,,,,,,,,,");
+  EXPECT_EQ(rows[3], "\"c\"\"d\",c_d,failed,3,,,,,,,,,,,,,,\"read: 'a.shp': \"\"x\"\", y\"");
+  // The features without a value: an empty value (not the text NULL); not run: no exit.
+  EXPECT_EQ(rows[4], ",_,not run,,,,,,,,,,,,,,,");
   EXPECT_EQ(csv.find("1.5"), std::string::npos);  // no seconds
   EXPECT_EQ(format_each_csv("name", values, outcomes, "measured").find("meshed"),
             std::string::npos);

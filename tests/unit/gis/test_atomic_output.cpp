@@ -196,3 +196,32 @@ TEST(AtomicOutput, LongNamesGetShortTemporaryNames) {
   EXPECT_EQ(read_file(path), "data");
   EXPECT_EQ(dir.entries(), std::vector<std::string>{stem + ".gpkg"});
 }
+
+// Two outputs of one final path at once (two threads' regions) write to temporary files of
+// their own: neither removes the other's, and the second to commit replaces the first.
+TEST(AtomicOutput, TwoWritersOfOnePathGetTheirOwnTemporaryFiles) {
+  TempDir dir;
+  const std::string path = dir.file("out.gpkg");
+  {
+    AtomicOutput first(path, true);
+    write_file(first.temp_path(), "first");
+    AtomicOutput second(path, true);
+    EXPECT_NE(second.temp_path(), first.temp_path());
+    EXPECT_EQ(read_file(first.temp_path()), "first");
+    write_file(second.temp_path(), "second");
+    first.commit();
+    second.commit();
+  }
+  EXPECT_EQ(read_file(path), "second");
+  EXPECT_EQ(dir.entries(), std::vector<std::string>{"out.gpkg"});
+}
+
+// The keys of two spellings of one file are equal, and those of two names too long to
+// look up differ.
+TEST(AtomicOutput, PathKeysTellFilesApart) {
+  TempDir dir;
+  EXPECT_EQ(output_path_key(dir.file("a.gpkg")), output_path_key(dir.file("./x/../a.gpkg")));
+  const std::string long_name(300, 'x');
+  EXPECT_NE(output_path_key(dir.file(long_name + "a.gpkg")),
+            output_path_key(dir.file(long_name + "b.gpkg")));
+}
