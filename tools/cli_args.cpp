@@ -207,7 +207,8 @@ void add_quality_options(CLI::App* cmd, QualityArgs& q) {
       ->group("Mesh");
   cmd->add_option("--mesh-crs", q.mesh_crs,
                   "CRS of the mesh's coordinates (EPSG:4326 for a .14 in longitudes and "
-                  "latitudes; default: the file's own (.ll, .mesh, .nc, polygons), else the "
+                  "latitudes; default: the file's own (.ll, .mesh, .nc, polygons, a .gr3 whose "
+                  "title names it, as isoquad's do), else the "
                   "meshing CRS, as --dst-crs or the automatic projection gives it)")
       ->group("Mesh");
   cmd->add_option("--each", q.each,
@@ -391,7 +392,7 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
       ->check(CLI::Range(0.001, 1.0))
       ->group("Background mesh");
   cmd->add_option("--max-quads", f.max_quads,
-                  "Stop before meshing when the sizes ask for more quads than this (about 3 to 5 "
+                  "Stop before meshing when the sizes ask for more quads than this (about 2 to 5 "
                   "KB of memory each; default 1000000; 0: no limit)")
       ->check(kNonNegative)
       ->group("Background mesh");
