@@ -21,7 +21,7 @@ struct ReadMesh {
   // The file's CRS, when the format holds one (MIKE's projection: "EPSG:4326" for its
   // LONG/LAT, else its WKT; UGRID's grid mapping: its WKT or EPSG code, or EPSG:4326 for
   // longitudes; a layer's CRS; EPSG:4326 for SCHISM's .ll; the one isoquad names in a
-  // .gr3's title line, "... CRS: EPSG:32630" or a PROJ string); empty otherwise.
+  // .gr3's or .14's title line, "... CRS: EPSG:32630" or a PROJ string); empty otherwise.
   std::string crs;
   std::size_t num_skipped_elements = 0;  // lines and points of a .msh
   // Each node's depth or bed level where the format has one (.gr3, .ll, .14: the depth;

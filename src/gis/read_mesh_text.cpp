@@ -143,7 +143,7 @@ void read_gr3(LineReader& r, ReadMesh& mesh) {
   // The CRS that isoquad's title line names ("... CRS: EPSG:32630", or a PROJ string).
   const std::string title = r.need("a title line");
   const std::size_t crs_at = title.find(" CRS: ");
-  if (mesh.format == "gr3" && crs_at != std::string::npos) {
+  if ((mesh.format == "gr3" || mesh.format == "14") && crs_at != std::string::npos) {
     std::string crs = title.substr(crs_at + 6);
     while (!crs.empty() && std::isspace(static_cast<unsigned char>(crs.back()))) crs.pop_back();
     mesh.crs = crs;

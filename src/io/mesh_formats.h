@@ -60,6 +60,11 @@ void write_fort14_file(const MeshView& v, const std::string& path, const std::st
 std::array<std::array<int, 3>, 2> quad_as_triangles(const QuadMesh& mesh, int q);
 std::vector<std::array<int, 3>> quads_as_triangles(const QuadMesh& mesh);
 
+// The title line's note of the coordinates' CRS in hgrid.gr3 and fort.14 (which SCHISM
+// and ADCIRC skip, and isoquad reads back): " CRS: EPSG:n", or " CRS: " and the PROJ
+// string of a CRS without a code; empty when the view has none.
+std::string title_crs_note(const MeshView& v);
+
 // Each node's zone from its quads' (--zones; TELEMAC's zones are the nodes'): the zone of
 // most of them; on a tie a zone before none (0), then the smaller number.
 std::vector<double> node_zones(const QuadMesh& mesh, const std::vector<double>& quad_zone);

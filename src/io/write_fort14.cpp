@@ -9,6 +9,7 @@
 // ends, so that every edge of it is in one (an elevation boundary is a run of nodes, not
 // a loop).
 #include <cstdio>
+#include <string>
 
 #include "io/mesh_boundary.h"
 #include "io/mesh_formats.h"
@@ -23,7 +24,10 @@ void write_fort14_file(const MeshView& v, const std::string& path, const std::st
   OutputFile f(path, what);
   std::FILE* raw = f.get();
   const char* xyz = v.geographic ? "%zu %.10f %.10f %.6f\n" : "%zu %.6f %.6f %.6f\n";
-  std::fprintf(raw, "isoquad mesh (quads cut into triangles; depth in metres, positive down)\n");
+  // The title (ADCIRC's AGRID, of which it reads 80 characters) names the CRS at its end,
+  // as hgrid.gr3's does, for isoquad to read back.
+  std::fprintf(raw, "isoquad mesh (quads cut into triangles; depth in metres, positive down)%s\n",
+               title_crs_note(v).c_str());
   std::fprintf(raw, "%zu %zu\n", triangles.size(), v.points.size());
   for (std::size_t i = 0; i < v.points.size(); ++i)
     std::fprintf(raw, xyz, i + 1, v.points[i].x, v.points[i].y, depth.empty() ? 0.0 : depth[i]);

@@ -64,6 +64,13 @@ void write_prop_file(const MeshView& v, const std::string& path, const std::stri
   f.close();
 }
 
+std::string title_crs_note(const MeshView& v) {
+  const int epsg = epsg_code(v.crs_wkt);
+  const std::string crs =
+      epsg > 0 ? "EPSG:" + std::to_string(epsg) : crs_proj_string(CrsInfo{v.crs_wkt, ""});
+  return crs.empty() ? "" : " CRS: " + crs;
+}
+
 void write_gr3_file(const MeshView& v, const std::vector<Point2>& points, const std::string& path,
                     const std::string& what, bool schism_split) {
   const QuadMesh& m = *v.data->mesh;
@@ -74,16 +81,13 @@ void write_gr3_file(const MeshView& v, const std::vector<Point2>& points, const 
   OutputFile f(path, what);
   std::FILE* raw = f.get();
   const char* xy = v.geographic ? "%zu %.10f %.10f %.6f\n" : "%zu %.6f %.6f %.6f\n";
-  // The title line (which SCHISM skips) says the coordinates' CRS, its EPSG code or else
-  // its PROJ string, so that a grid alone is enough to place it (isoquad reads it back).
-  const int epsg = epsg_code(v.crs_wkt);
-  const std::string crs =
-      epsg > 0 ? "EPSG:" + std::to_string(epsg) : crs_proj_string(CrsInfo{v.crs_wkt, ""});
+  // The title line (which SCHISM skips) says the coordinates' CRS, so that a grid alone
+  // is enough to place it.
   const std::string split_note =
       num_split ? printf_string("; %zu quads failing SCHISM's checks as triangle pairs", num_split)
                 : std::string();
   std::fprintf(raw, "isoquad mesh (depth in metres, positive down%s)%s\n", split_note.c_str(),
-               crs.empty() ? "" : (" CRS: " + crs).c_str());
+               title_crs_note(v).c_str());
   std::fprintf(raw, "%zu %zu\n", m.quads.size() + num_split, points.size());
   for (std::size_t i = 0; i < points.size(); ++i)
     std::fprintf(raw, xy, i + 1, points[i].x, points[i].y, depth.empty() ? 0.0 : depth[i]);

@@ -1785,8 +1785,9 @@ TEST(CliOutputs, AModelsGridMeshedAgainKeepsItsSeaBoundaryAndDepths) {
   ASSERT_EQ(from_nc.nodes.size(), again.nodes.size());
   for (std::size_t i = 0; i < again.nodes.size(); ++i)
     EXPECT_NEAR(from_nc.nodes[i][2], again.nodes[i][2], 0.01) << i;
-  // An ADCIRC grid in lon/lat (a fort.14 says no CRS): read in --src-crs; without it, in
-  // the meshing CRS, where it gives no vertex a depth.
+  // An ADCIRC grid in lon/lat: another mesher's fort.14 says no CRS, and is read in
+  // --src-crs; without it, in the meshing CRS, where it gives no vertex a depth.
+  // isoquad's own names its CRS in its title line.
   r = mesh_water_box(dir, {"-o", dir.file("lonlat.14"), "--output-crs", "EPSG:4326"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   r = run_cli({"mesh", dir.file("hgrid.ll"), "--src-crs", "EPSG:4326", "--size", "1200",
@@ -1798,7 +1799,19 @@ TEST(CliOutputs, AModelsGridMeshedAgainKeepsItsSeaBoundaryAndDepths) {
   for (std::size_t i = 0; i < again.nodes.size(); ++i)
     EXPECT_NEAR(from_14.nodes[i][2], again.nodes[i][2], 0.01) << i;
   r = run_cli({"mesh", dir.file("hgrid.ll"), "--size", "1200", "--bathymetry",
-               dir.file("lonlat.14"), "-o", dir.file("no_crs.gr3")},
+               dir.file("lonlat.14"), "-o", dir.file("own_crs.gr3")},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const Gr3 own_crs = parse_gr3(dir.file("own_crs.ll"));
+  ASSERT_EQ(own_crs.nodes.size(), again.nodes.size());
+  for (std::size_t i = 0; i < again.nodes.size(); ++i)
+    EXPECT_NEAR(own_crs.nodes[i][2], again.nodes[i][2], 0.01) << i;
+  std::string other = read_file(dir.file("lonlat.14"));
+  ASSERT_NE(other.find(" CRS: EPSG:4326\n"), std::string::npos);
+  other.replace(0, other.find('\n'), "a grid from another mesher");
+  write_file(dir.file("other.14"), other);
+  r = run_cli({"mesh", dir.file("hgrid.ll"), "--size", "1200", "--bathymetry", dir.file("other.14"),
+               "-o", dir.file("no_crs.gr3")},
               dir);
   EXPECT_EQ(r.exit_code, 3);
   EXPECT_NE(r.err.find("no vertex of the mesh lies where it has a depth"), std::string::npos)

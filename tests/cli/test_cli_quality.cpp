@@ -429,6 +429,14 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
   // title without it) stops, naming --mesh-crs and the .ll beside it.
   const CliResult named = run_cli({"quality", "--mesh", dir.file("m.gr3")}, dir);
   EXPECT_EQ(named.exit_code, 0) << named.err;
+  // Its fort.14 too (the same title's note).
+  const CliResult made14 = run_cli({"mesh", sample("corsica.shp"), "--hmax", "8000", "-o",
+                                    dir.file("c.14"), "-o", dir.file("c.gr3"), "-q"},
+                                   dir);
+  ASSERT_EQ(made14.exit_code, 0) << made14.err;
+  const CliResult named14 = run_cli({"quality", "--mesh", dir.file("c.14")}, dir);
+  EXPECT_EQ(named14.exit_code, 0) << named14.err;
+  EXPECT_NE(named14.err.find("triangles"), std::string::npos) << named14.err;
   std::string other = read_file(dir.file("m.gr3"));
   other.replace(0, other.find('\n'), "a grid from another mesher");
   write_file(dir.file("other.gr3"), other);
