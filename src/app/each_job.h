@@ -23,8 +23,8 @@ bool has_each_mark(const std::string& path);
 std::string fill_each_mark(std::string path, const std::string& name);
 
 // The regions' values as file names: ASCII other than letters, digits, '.', '-' and '_'
-// as '_' (UTF-8 kept), "_" for an empty value. Error(usage) naming both values when two
-// give the same name.
+// as '_' (UTF-8 kept, other bytes as '_'), "_" for an empty value, a leading '-' as '_'.
+// Error(usage) naming both values when two give the same name.
 std::vector<std::string> each_file_names(const std::string& field,
                                          const std::vector<std::string>& values);
 

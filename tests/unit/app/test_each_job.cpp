@@ -20,6 +20,12 @@ TEST(EachJob, ValuesBecomeFileNamesAndTwoThatMeetAreRefused) {
   EXPECT_EQ(
       each_file_names("name", {"Côte d'Ivoire", "a/b c", "", "x.y-z_1", "..", ".", "..."}),
       (std::vector<std::string>{"Côte_d_Ivoire", "a_b_c", "_", "x.y-z_1", "_..", "_.", "..."}));
+  // Bytes that are not UTF-8 (Latin-1's ç, a truncated sequence, a surrogate) as '_',
+  // UTF-8 kept; a leading '-' as '_'.
+  EXPECT_EQ(each_file_names("name", {"Cura\xe7"
+                                     "ao",
+                                     "\xc3", "a\xed\xa0\x80", "-o", "\xe6\x97\xa5"}),
+            (std::vector<std::string>{"Cura_ao", "_", "a___", "_o", "\xe6\x97\xa5"}));
   try {
     each_file_names("name", {"a b", "a/b"});
     FAIL() << "two values with one file name";
