@@ -661,10 +661,37 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
                       return outcome;
                     }
                     MeshArgs mm = m;
-                    return run_mesh(r.a, r.f, mm,
-                                    command_line + (over_clip ? " [--each-clip: " : " [--each: ") +
-                                        r.filter + "]",
-                                    console);
+                    try {
+                      return run_mesh(r.a, r.f, mm,
+                                      command_line +
+                                          (over_clip ? " [--each-clip: " : " [--each: ") +
+                                          r.filter + "]",
+                                      console);
+                    } catch (const Error& e) {
+                      // A region that fails keeps the files an earlier run wrote, which a
+                      // later --skip-existing would take for this run's: say which.
+                      std::vector<std::string> earlier;
+                      std::error_code ec;
+                      for (std::size_t k = 0; k < regions.size(); ++k)
+                        if (&regions[k] == &r)
+                          for (const MeshOutput& o : outputs[k])
+                            for (const std::string& f : mesh_output_files(o))
+                              if (std::filesystem::exists(f, ec)) earlier.push_back(f);
+                      if (!r.a.report_path.empty() && r.a.report_path != "-" &&
+                          std::filesystem::exists(r.a.report_path, ec))
+                        earlier.push_back(r.a.report_path);
+                      if (earlier.empty()) throw;
+                      std::string list;
+                      for (std::size_t i = 0; i < earlier.size() && i < 3; ++i)
+                        list += (i ? ", '" : "'") + earlier[i] + "'";
+                      if (earlier.size() > 3)
+                        list += " and " + std::to_string(earlier.size() - 3) + " more";
+                      throw Error(e.error_class(), e.stage(),
+                                  e.message() +
+                                      "; its files of an earlier run stay as they were (" + list +
+                                      "): remove them, or --skip-existing would count the "
+                                      "region done");
+                    }
                   });
 }
 

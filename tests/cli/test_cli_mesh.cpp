@@ -915,6 +915,18 @@ TEST(CliMesh, EachValueOfAnAttributeGetsItsOwnMesh) {
   EXPECT_NE(r.err.find("--each region: 1 of 2 meshed; failed: a b"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("m_a_b.gpkg")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("m_c_d.gpkg")));
+  // Run again over the first run's files (--overwrite): 'a b' fails and keeps them, and
+  // its message says so.
+  const std::string kept = read_file(dir.file("a_b.json"));
+  r = run_cli({"mesh", input, "--size", "3000", "--each", "region", "-o", dir.file("{}.gpkg"),
+               "--report", dir.file("{}.json"), "--max-quads", "150", "--overwrite", "-q"},
+              dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("its files of an earlier run stay as they were ('" + dir.file("a_b.gpkg") +
+                       "', '" + dir.file("a_b.json") + "')"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(read_file(dir.file("a_b.json")), kept);
   // No {}: nothing runs.
   r = run_cli({"mesh", input, "--size", "3000", "--each", "region", "-o", dir.file("one.gpkg")},
               dir);
