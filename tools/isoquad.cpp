@@ -20,6 +20,7 @@
 #include "app/mesh_job.h"
 #include "app/mesh_outputs.h"
 #include "app/quality_job.h"
+#include "app/quality_report.h"
 #include "app/summary.h"
 #include "app/versions.h"
 #include "cli_args.h"
@@ -658,6 +659,9 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
                         console.out << "skipped: every output exists (--skip-existing)\n";
                       RegionOutcome outcome;
                       outcome.skipped = true;
+                      // The table's figures from the region's report, when it has one.
+                      if (!r.a.report_path.empty() && r.a.report_path != "-")
+                        outcome.quality = read_report_quality(r.a.report_path);
                       return outcome;
                     }
                     MeshArgs mm = m;

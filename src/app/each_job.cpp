@@ -174,7 +174,7 @@ std::string format_each_table(const std::string& field, const std::vector<std::s
   for (std::size_t k = 0; k < values.size(); ++k) {
     table += padded(values[k]);
     const RegionOutcome& o = outcomes[k];
-    if (!o.quality) {
+    if (!o.quality || o.skipped) {
       table += printf_string(" %8s\n", o.skipped ? "skipped" : o.not_run ? "not run" : "failed");
       continue;
     }
@@ -246,8 +246,9 @@ std::string format_each_csv(const std::string& field, const std::vector<EachCsvR
       "schism_aspect_fails,dflowfm_links_over_05,error\r\n";
   for (std::size_t k = 0; k < regions.size(); ++k) {
     const RegionOutcome& o = outcomes[k];
-    const char* status = o.quality   ? done.c_str()
-                         : o.skipped ? "skipped"
+    // A skipped region's figures, when there, are its earlier report's.
+    const char* status = o.skipped   ? "skipped"
+                         : o.quality ? done.c_str()
                          : o.not_run ? "not run"
                                      : "failed";
     csv += (regions[k].null ? std::string() : csv_field(regions[k].value)) + "," +

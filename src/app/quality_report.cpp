@@ -1,5 +1,7 @@
 #include "app/quality_report.h"
 
+#include <cpl_json.h>
+
 #include "core/text.h"
 
 namespace isoquad {
@@ -106,6 +108,43 @@ void add_quality_values(JsonWriter& j, const QualitySummary& q, QualityParts par
       .value("boundary_departure_max_h", q.boundary_departure_max_h)
       .value("boundary_departure_p95_h", q.boundary_departure_p95_h)
       .value("num_boundary_backtracks", q.num_boundary_backtracks);
+}
+
+std::optional<QualitySummary> read_report_quality(const std::string& path) {
+  CPLJSONDocument doc;
+  if (!doc.Load(path)) return std::nullopt;
+  const CPLJSONObject q = doc.GetRoot().GetObj("quality");
+  if (!q.IsValid()) return std::nullopt;
+  QualitySummary s;
+  bool complete = true;
+  auto real = [&](const char* key, double& out) {
+    const CPLJSONObject v = q.GetObj(key);
+    complete =
+        complete && v.IsValid() &&
+        (v.GetType() == CPLJSONObject::Type::Double ||
+         v.GetType() == CPLJSONObject::Type::Integer || v.GetType() == CPLJSONObject::Type::Long);
+    out = v.ToDouble(0.0);
+  };
+  auto count = [&](const char* key, std::size_t& out) {
+    double v = 0;
+    real(key, v);
+    out = static_cast<std::size_t>(v);
+  };
+  count("num_quads", s.num_quads);
+  count("num_vertices", s.num_vertices);
+  real("share_angles_75_105", s.share_angles_75_105);
+  real("min_angle_deg", s.min_angle_deg);
+  real("max_angle_deg", s.max_angle_deg);
+  real("share_regular_interior", s.share_regular_interior);
+  real("size_ratio_median", s.size_ratio_median);
+  real("share_size_ratio_08_125", s.share_size_08_125);
+  real("orientation_mean_deg", s.orientation_mean_deg);
+  real("orientation_p90_deg", s.orientation_p90_deg);
+  count("schism_angle_ratio_violations", s.schism_angle_ratio_violations);
+  count("schism_aspect_ratio_violations", s.schism_aspect_violations);
+  count("dflowfm_orthogonality_violations", s.dflowfm_orthogonality_violations);
+  if (!complete) return std::nullopt;
+  return s;
 }
 
 }  // namespace isoquad

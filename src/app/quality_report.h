@@ -2,6 +2,7 @@
 // made) and `isoquad quality` (a mesh read from a file).
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "core/json_writer.h"
@@ -29,5 +30,10 @@ std::string format_quad_connectivity_lines(const QualitySummary& q, QualityParts
 // The quality object's values (the caller opens and closes it), without the counts of
 // quads and vertices, those of `parts` and D-Flow FM's.
 void add_quality_values(JsonWriter& j, const QualitySummary& q, QualityParts parts = {});
+
+// The figures of --each's table read back from a report (--report FILE.json) an earlier
+// run wrote: its quality object's counts and shares; nothing when the file cannot be read
+// or lacks one of them.
+std::optional<QualitySummary> read_report_quality(const std::string& path);
 
 }  // namespace isoquad
