@@ -51,6 +51,19 @@ void expect_same_quality(const std::string& mesh_report, const std::string& qual
 
 const std::vector<std::string> kCorsica = {"--hmax", "8000"};
 
+// The segments of a GeoPackage's boundary layer by kind (open, land); none when the file
+// cannot be opened.
+std::map<std::string, int> boundary_kinds(const std::string& path) {
+  isoquad::ensure_gdal_registered();
+  std::map<std::string, int> count;
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(path.c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  if (!ds) return count;
+  for (auto& f : *ds->GetLayerByName("boundary")) ++count[f->GetFieldAsString("kind")];
+  GDALClose(ds);
+  return count;
+}
+
 std::vector<std::string> quality_args(const std::string& mesh, std::vector<std::string> more = {}) {
   std::vector<std::string> args = {"quality", sample("corsica.geojson"), "--mesh", mesh};
   args.insert(args.end(), kCorsica.begin(), kCorsica.end());
@@ -395,16 +408,7 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
   }
 
   // The boundary's kinds: open along the bbox, land elsewhere, as the mesh wrote them.
-  isoquad::ensure_gdal_registered();
-  auto kinds = [&dir](const std::string& name) {
-    std::map<std::string, int> count;
-    GDALDataset* ds = static_cast<GDALDataset*>(
-        GDALOpenEx(dir.file(name).c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
-    if (!ds) return count;
-    for (auto& f : *ds->GetLayerByName("boundary")) ++count[f->GetFieldAsString("kind")];
-    GDALClose(ds);
-    return count;
-  };
+  auto kinds = [&dir](const std::string& name) { return boundary_kinds(dir.file(name)); };
   const std::map<std::string, int> made_kinds = kinds("m.gpkg");
   EXPECT_EQ(made_kinds.count("open") ? made_kinds.at("open") : 0, 3);
   EXPECT_EQ(kinds("q_m.ll.gpkg"), made_kinds);
@@ -470,16 +474,7 @@ TEST(CliQuality, OpenBoundaryLinesForQualityAndFields) {
                                   dir.file("m.gr3"), "--report", dir.file("m.json")},
                                  dir);
   ASSERT_EQ(made.exit_code, 0) << made.err;
-  isoquad::ensure_gdal_registered();
-  auto kinds = [&dir](const std::string& name) {
-    std::map<std::string, int> count;
-    GDALDataset* ds = static_cast<GDALDataset*>(
-        GDALOpenEx(dir.file(name).c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
-    if (!ds) return count;
-    for (auto& f : *ds->GetLayerByName("boundary")) ++count[f->GetFieldAsString("kind")];
-    GDALClose(ds);
-    return count;
-  };
+  auto kinds = [&dir](const std::string& name) { return boundary_kinds(dir.file(name)); };
   for (const bool lines : {true, false}) {
     std::vector<std::string> args = {"quality", sea,
                                      "--hmax",  "8000",
