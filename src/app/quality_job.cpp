@@ -195,8 +195,24 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
   // The mesh must lie on the domain and cover about as much: another CRS puts it
   // elsewhere, or makes it far larger or smaller (degrees read as metres).
   const TriangleLocator locator(r.fields.mesh);
+  // Whether p lies in the domain, or within `share` of the size there from it (a node on
+  // a coast the domain draws a little otherwise): locate() clamps a point outside to a
+  // triangle, so its distance to the clamped point tells.
+  auto in_domain = [&](const Point2& p, double share) {
+    const Location loc = locator.locate(p);
+    if (loc.triangle < 0) return false;
+    if (loc.inside) return true;
+    const auto& t = r.fields.mesh.triangles[loc.triangle];
+    Point2 c{0, 0};
+    for (int k = 0; k < 3; ++k) {
+      c.x += loc.bary[k] * r.fields.mesh.points[t[k]].x;
+      c.y += loc.bary[k] * r.fields.mesh.points[t[k]].y;
+    }
+    const double h = r.fields.size.at(r.fields.mesh, loc.triangle, loc.bary);
+    return std::hypot(p.x - c.x, p.y - c.y) <= share * h;
+  };
   std::size_t inside = 0;
-  for (const Point2& p : m.points) inside += locator.locate(p).triangle >= 0;
+  for (const Point2& p : m.points) inside += in_domain(p, 0.5);
   double mesh_area = 0;
   for (int q = 0; q < nq; ++q) mesh_area += std::abs(quad_area(m, q));
   for (const auto& t : triangles) mesh_area += std::abs(triangle_signed_area(m.points, t));
@@ -310,7 +326,7 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
     if (r.fields.num_aligned_vertices > 0)
       measure_line_following(r.quads, r.fields.front.align_lines, r.quality);
     for (int q = 0; q < static_cast<int>(r.quads.quads.size()); ++q)
-      r.num_quads_outside += locator.locate(quad_centroid(r.quads, q)).triangle < 0;
+      r.num_quads_outside += !in_domain(quad_centroid(r.quads, q), 0.25);
   }
   if (r.num_triangles > 0 && r.coast_measured) {
     QualitySummary& q = r.quality;  // the quads' boundary's figures replaced
@@ -324,9 +340,10 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
   r.quality.domain_area_m2 = domain_area;
   if (r.num_quads_outside > 0)
     r.warnings.push_back(std::to_string(r.num_quads_outside) +
-                         " quad(s) have their centroid outside the domain: their size ratio and "
-                         "orientation count as 0 (is it the same domain, with the same "
-                         "--min-width and --simplify?)");
+                         " quad(s) have their centroid outside the domain (by over a quarter of "
+                         "the size there): their size ratio and orientation are measured "
+                         "against the fields at the domain's edge (is it the same domain, with "
+                         "the same --min-width and --simplify?)");
   if (r.num_boundary_off > 0)
     r.warnings.push_back(printf_string(
         "%zu of the mesh's %zu boundary vertices lie off the domain's boundary (farther than "

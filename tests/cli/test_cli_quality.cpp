@@ -462,7 +462,8 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
 // A sea polygon as INPUT (the domain's own GeoPackage) with --open-boundary: `quality`
 // measures the mesh against it with the mesh's open boundary (-o's boundary layer open
 // where the mesh's is; all land without the option), and `fields` leaves the open lines
-// out of the distance to the coast, c (sizes that grow with c: larger, fewer quads).
+// out of the distance to the coast, c (sizes that grow with c: larger, fewer quads). The
+// quads outside a domain cut short are counted; a mesh read in the wrong CRS stops.
 TEST(CliQuality, OpenBoundaryLinesForQualityAndFields) {
   TempDir dir;
   const std::string sea = dir.file("sea.gpkg");
@@ -486,6 +487,27 @@ TEST(CliQuality, OpenBoundaryLinesForQualityAndFields) {
     const std::map<std::string, int> k = kinds(lines ? "q_open.gpkg" : "q_land.gpkg");
     EXPECT_EQ(k.count("open") ? k.at("open") : 0, lines ? 3 : 0) << q.err;
   }
+  // The mesh's quads lie in the domain; a third of the domain cut off leaves some outside,
+  // counted with a warning; the mesh read in another CRS (away from the domain) stops.
+  const CliResult whole = run_cli({"quality", sea, "--hmax", "8000", "--mesh", dir.file("m.gr3"),
+                                   "--report", dir.file("whole.json")},
+                                  dir);
+  ASSERT_EQ(whole.exit_code, 0) << whole.err;
+  EXPECT_EQ(report_number(read_file(dir.file("whole.json")), "num_quads_outside_domain"), 0);
+  const CliResult part = run_cli(
+      {"quality", sea, "--hmax", "8000", "--mesh", dir.file("m.gr3"), "--bbox=-5.3,46.8,-3.0,49.35",
+       "--bbox-crs", "EPSG:4326", "--report", dir.file("part.json")},
+      dir);
+  ASSERT_EQ(part.exit_code, 0) << part.err;
+  const double outside =
+      report_number(read_file(dir.file("part.json")), "num_quads_outside_domain");
+  EXPECT_GT(outside, 0.1 * report_number(read_file(dir.file("m.json")), "num_quads"));
+  EXPECT_NE(part.err.find("have their centroid outside the domain"), std::string::npos) << part.err;
+  const CliResult elsewhere = run_cli(
+      {"quality", sea, "--hmax", "8000", "--mesh", dir.file("m.gr3"), "--mesh-crs", "EPSG:32631"},
+      dir);
+  EXPECT_EQ(elsewhere.exit_code, 3) << elsewhere.err;
+  EXPECT_NE(elsewhere.err.find("0 of its"), std::string::npos) << elsewhere.err;
   auto predicted = [&](bool lines) {
     std::vector<std::string> args = {"fields",      sea,
                                      "--hmax",      "8000",
