@@ -35,6 +35,9 @@ struct CommonArgs {
   bool overwrite = false;
   bool quiet = false;
   FrontEndOptions fe;
+  // A region of --each or --each-clip: the option, its attribute and the region's value
+  // (empty for the features without one), for the GeoPackage's metadata.
+  std::vector<std::pair<std::string, std::string>> region;
 };
 
 // Options of the background mesh and the fields (`fields` and `mesh`).

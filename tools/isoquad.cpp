@@ -273,6 +273,7 @@ RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::stri
   MeshResult r = build_mesh(options, progress.slice(0.0, 0.95));
   MeshJobOutputs job;
   job.meshes = outputs;
+  job.metadata = a.region;
   job.write = write_options;
   job.bathymetry = bathymetry;
   job.min_depth_m = f.min_depth_m;
@@ -432,6 +433,7 @@ std::vector<EachRegion> regions_of(const CommonArgs& a, const FieldArgs& f,
                  selected[k].id_filter,
                  selected[k].null};
     r.a.fe.align_optional = true;  // one file of --align lines for all the regions
+    r.a.region = {{"each_field", field}, {"each_value", selected[k].null ? "" : values[k]}};
     for (std::string& o : r.a.outputs) o = fill_each_mark(o, names[k]);
     r.a.report_path = fill_each_mark(r.a.report_path, names[k]);
     r.f.plot_path = fill_each_mark(r.f.plot_path, names[k]);

@@ -93,6 +93,7 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
       data.embedded_line.push_back(front.align_line_of[path.line]);  // the file's line
     }
     data.command_line = o.command_line;
+    data.metadata = o.metadata;
     data.libraries = library_versions_line();
     data.quality = quality_items(r.quality);
     written.files = write_mesh_outputs(data, o.meshes, o.write, set);

@@ -33,6 +33,8 @@ struct MeshJobOutputs {
   std::string report_path;   // JSON: mesh_report_json(); kStdoutPath: returned (::report)
   bool overwrite = false;    // for the plot and the report (the meshes have their own)
   std::string command_line;  // in the GeoPackage's metadata and the report
+  // More rows of the GeoPackage's metadata (a region of --each: its attribute and value).
+  std::vector<std::pair<std::string, std::string>> metadata;
 };
 
 struct MeshJobWritten {

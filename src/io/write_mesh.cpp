@@ -152,6 +152,7 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
   };
   row("isoquad_version", ISOQUAD_VERSION);
   row("command_line", v.data->command_line);
+  for (const auto& [k, val] : v.data->metadata) row(k, val);
   row("libraries", v.data->libraries);
   row("crs_wkt", v.crs_wkt);
   row("mesh_crs_wkt", v.data->crs_wkt);

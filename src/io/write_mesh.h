@@ -85,6 +85,7 @@ struct MeshOutputData {
   std::vector<int> embedded_line;
   // GeoPackage metadata.
   std::string command_line;
+  std::vector<std::pair<std::string, std::string>> metadata;  // more rows, after the command line
   std::string libraries;  // "CGAL 5.5.1, Eigen 3.4.0, ..." (app/versions.h)
   std::vector<std::pair<std::string, std::string>> quality;  // name, value
 };

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <map>
 #include <memory>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -996,6 +997,17 @@ TEST(CliMesh, EachSelectsExactlyTheFeaturesOfItsValue) {
     quads.insert(std::lround(report_number(report, "num_quads")));
   }
   EXPECT_EQ(quads.size(), 3u);  // three squares of different sizes
+  // Each GeoPackage names its region in its metadata.
+  isoquad::ensure_gdal_registered();
+  GDALDataset* ds = static_cast<GDALDataset*>(
+      GDALOpenEx(dir.file("MALTA.gpkg").c_str(), GDAL_OF_VECTOR, nullptr, nullptr, nullptr));
+  ASSERT_NE(ds, nullptr);
+  std::map<std::string, std::string> meta;
+  for (auto& f : *ds->GetLayerByName("metadata"))
+    meta[f->GetFieldAsString("key")] = f->GetFieldAsString("value");
+  GDALClose(ds);
+  EXPECT_EQ(meta["each_field"], "region");
+  EXPECT_EQ(meta["each_value"], "MALTA");
   const CliResult reals = run_cli({"mesh", input, "--size", "3000", "--each", "v", "-o",
                                    dir.file("v_{}.gpkg"), "--report", dir.file("v_{}.json")},
                                   dir);
