@@ -255,7 +255,9 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
     s.max_angle_deg = std::max(s.max_angle_deg, amax);
     eta_sum += qm.eta[q];
     s.eta_min = std::min(s.eta_min, qm.eta[q]);
-    const bool bad_ratio = fails_schism_angle_ratio(a);
+    // A quad with a corner of 180 degrees or more (not convex, or clockwise: every corner
+    // 270) fails too: SCHISM stops on it, whatever the ratio of its angles.
+    const bool bad_ratio = fails_schism_angle_ratio(a) || amax >= 180.0;
     if (bad_ratio) ++s.schism_angle_ratio_violations;
 
     const auto& t = m.quads[q];
@@ -263,7 +265,8 @@ QualitySummary measure_quality(const QuadMesh& m, const BackgroundMesh& bg, cons
     for (int i = 0; i < 4; ++i) c.x += 0.25 * m.points[t[i]].x, c.y += 0.25 * m.points[t[i]].y;
     const double aspect = quad_aspect(m, q);
     qm.aspect_ratio[q] = aspect;
-    const bool bad_aspect = fails_schism_aspect_ratio(aspect);
+    // A side of length 0 (an infinite ratio) fails too.
+    const bool bad_aspect = fails_schism_aspect_ratio(aspect) || std::isinf(aspect);
     if (bad_aspect) ++s.schism_aspect_violations;
     if (bad_ratio || bad_aspect) ++s.schism_failures;
     const Location loc = locator.locate(c);

@@ -115,6 +115,30 @@ TEST(QuadQuality, PerfectGridIsPerfect) {
   EXPECT_EQ(dflowfm_links(m).edge.size(), static_cast<std::size_t>(2 * kN * (kN - 1)));
 }
 
+// A quad written clockwise (every corner 270 degrees) and a quad with a reflex corner both
+// fail SCHISM's checks, which stop on them, whatever the ratio of their angles; a side of
+// length 0 too.
+TEST(QuadQuality, QuadsSchismStopsOnFailItsChecks) {
+  const BackgroundMesh bg = square_background();
+  SizingField size;
+  size.size_m.assign(bg.points.size(), kSide / kN);
+  const CrossField cross = constant_cross_field(bg, 0.0);
+  QuadMesh m = grid();
+  std::reverse(m.quads[0].begin(), m.quads[0].end());
+  QualitySummary s = measure_quality(m, bg, size, cross);
+  EXPECT_EQ(s.num_nonconvex, 1u);
+  EXPECT_EQ(s.schism_angle_ratio_violations, 1u);
+  EXPECT_EQ(s.schism_failures, 1u);
+  const QuadMesh dart = hexagon_with_a_vertex_pushed_in();
+  s = measure_quality(dart, bg, size, cross);
+  EXPECT_EQ(s.num_nonconvex, 1u);
+  EXPECT_GE(s.schism_failures, 1u);
+  m = grid();
+  m.points[m.quads[0][1]] = m.points[m.quads[0][0]];  // a side of nothing
+  s = measure_quality(m, bg, size, cross);
+  EXPECT_GE(s.schism_aspect_violations, 1u);
+}
+
 // D-Flow FM's orthogonality on a sheared grid: (i, j) at (i + s j, j) h, parallelograms
 // whose centres (each quad symmetric about its middle) are their middles. Between two
 // of them, the flow link runs along one side direction and the edge along the other:
