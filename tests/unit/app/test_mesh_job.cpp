@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/mesh_outputs.h"
 #include "core/error.h"
 #include "core/progress.h"
 #include "fields/align_lines.h"
@@ -183,7 +184,11 @@ TEST(MeshJob, ThinQuadsAreMendedAndTheirPatchesChangeNothing) {
     EXPECT_EQ(patch_first.quads.points[v].x, whole.quads.points[v].x) << v;
     EXPECT_EQ(patch_first.quads.points[v].y, whole.quads.points[v].y) << v;
   }
-  EXPECT_NE(mesh_report_json(patch_first, "test").find("\"num_thin_repairs\""), std::string::npos);
+  const std::string report = mesh_report_json(patch_first, "test");
+  EXPECT_NE(report.find("\"num_thin_repairs\""), std::string::npos);
+  // The GeoPackage's metadata names its quality figures as the report does.
+  for (const auto& [key, value] : quality_items(patch_first.quality))
+    EXPECT_NE(report.find("\"" + key + "\": "), std::string::npos) << key;
 }
 
 TEST(MeshJob, GivesUpWithAnErrorAfterTheLastAttempt) {
