@@ -74,13 +74,13 @@ std::array<double, 4> parse_bbox(const std::string& text) {
 void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
   CLI::Option* input = cmd->add_option(
       "INPUT", a.input,
-      std::string(
-          "Input vector file (shapefile, GeoJSON, TopoJSON, GeoPackage...) of polygons, "
-          "or of lines whose rings make them (a coastline drawn as lines; also "
-          "Delft3D/D-Flow FM .ldb, .pol, .pli and Blue Kenue .i2s, with --src-crs), or a "
-          "mesh whose outline is the domain (.gr3 or .ll with its open boundaries, .14, "
-          ".2dm, .msh, .mesh, .nc, .slf), or a raster (a DEM: GeoTIFF, netCDF...) whose cells "
-          "in [--zmin, --zmax] are the domain") +
+      std::string("Input vector file (shapefile, GeoJSON, TopoJSON, GeoPackage...) of polygons, "
+                  "or of lines whose rings make them (a coastline drawn as lines; also "
+                  "Delft3D/D-Flow FM .ldb, .pol, .pli and Blue Kenue .i2s, with --src-crs), or a "
+                  "mesh whose outline is the domain (.gr3 or .ll with its open boundaries, .14, "
+                  ".2dm, .msh, .mesh, .nc, .slf, .vtu, .vtk), or a raster (a DEM: GeoTIFF, "
+                  "netCDF...) whose cells "
+                  "in [--zmin, --zmax] are the domain") +
           (a.input_optional ? "; leave it out to measure against the mesh's own outline" : ""));
   if (!a.input_optional) input->required();
   CLI::Option* output =
@@ -201,7 +201,8 @@ void add_quality_options(CLI::App* cmd, QualityArgs& q) {
   cmd->add_option("--mesh", q.mesh_path,
                   "The mesh to measure: SCHISM .gr3 or .ll, ADCIRC .14, SMS .2dm, Gmsh .msh "
                   "(ASCII 2.2 or 4.1), MIKE .mesh, UGRID .nc (also D-Flow FM's net files), "
-                  "TELEMAC .slf, or polygons (isoquad's .gpkg, .shp, .geojson, .fgb); "
+                  "TELEMAC .slf, VTK .vtu or .vtk (ASCII), or polygons (isoquad's .gpkg, .shp, "
+                  ".geojson, .fgb); "
                   "triangles and quadrangles")
       ->required()
       ->group("Mesh");
@@ -244,10 +245,11 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
       ->group(g);
   cmd->add_option("--size-raster", f.sizing.raster_path, "GDAL raster of sizes in metres, any CRS")
       ->group(g);
-  cmd->add_option("--size-mesh", f.sizing.size_mesh_path,
-                  "A mesh whose elements give the sizes (a model's grid: .gr3, .ll, .14, .2dm, "
-                  ".msh, .mesh, .nc, .slf): each node's mean side length, linear between "
-                  "nodes; in the file's CRS, else --src-crs, else the meshing CRS")
+  cmd->add_option(
+         "--size-mesh", f.sizing.size_mesh_path,
+         "A mesh whose elements give the sizes (a model's grid: .gr3, .ll, .14, .2dm, "
+         ".msh, .mesh, .nc, .slf, .vtu, .vtk): each node's mean side length, linear between "
+         "nodes; in the file's CRS, else --src-crs, else the meshing CRS")
       ->group(g);
   cmd->add_option("--refine", f.sizing.refine_path,
                   "Vector file (any format, with a CRS) of polygons, lines or points whose "

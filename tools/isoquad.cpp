@@ -791,7 +791,8 @@ int main(int argc, char** argv) {
   CLI::App* quality_cmd = app.add_subcommand(
       "quality",
       "Measure a mesh made by another tool (Gmsh, SMS, OceanMesh2D...) or an earlier run "
-      "(--mesh: .gpkg, .geojson, .fgb, .gr3, .ll, .14, .2dm, .msh, .mesh, .nc, .slf) as `mesh` "
+      "(--mesh: .gpkg, .geojson, .fgb, .gr3, .ll, .14, .2dm, .msh, .mesh, .nc, .slf, .vtu, .vtk) "
+      "as `mesh` "
       "measures its "
       "own: angles, regularity, SCHISM's and D-Flow FM's checks, and its sizes and "
       "orientation against the fields that INPUT and the same options give (without INPUT: "

@@ -363,9 +363,10 @@ namespace {
 // read_mesh's format as the summary names it: "SCHISM .gr3", "ADCIRC .14"...
 std::string format_label(const std::string& format) {
   static const std::map<std::string, std::string> labels = {
-      {"gr3", "SCHISM .gr3"},  {"14", "ADCIRC .14"},    {"2dm", "SMS .2dm"},
-      {"msh", "Gmsh .msh"},    {"mesh", "MIKE .mesh"},  {"nc", "UGRID .nc"},
-      {"slf", "TELEMAC .slf"}, {"polygons", "polygons"}};
+      {"gr3", "SCHISM .gr3"},  {"14", "ADCIRC .14"},   {"2dm", "SMS .2dm"},
+      {"msh", "Gmsh .msh"},    {"mesh", "MIKE .mesh"}, {"nc", "UGRID .nc"},
+      {"slf", "TELEMAC .slf"}, {"vtu", "VTK .vtu"},    {"vtk", "VTK .vtk"},
+      {"polygons", "polygons"}};
   const auto it = labels.find(format);
   return it == labels.end() ? format : it->second;
 }

@@ -145,13 +145,17 @@ std::string mesh_file_format(const std::string& path) {
   if (ext == ".mesh") return "mesh";
   if (ext == ".nc") return "nc";
   if (ext == ".slf" || ext == ".srf") return "slf";
+  if (ext == ".vtu") return "vtu";
+  if (ext == ".vtk") return "vtk";
   if (ext == ".gpkg" || ext == ".shp" || ext == ".geojson" || ext == ".fgb") return "polygons";
-  throw Error(ErrorClass::usage, "options",
-              "'" + path +
-                  "': a mesh to measure is a .gr3 or .ll (SCHISM), .14 or .grd (ADCIRC), .2dm "
-                  "(SMS), .msh (Gmsh, ASCII), .mesh (MIKE 21/3 FM), .nc (UGRID, D-Flow FM's net "
-                  "file), .slf (TELEMAC's Selafin) or a layer of polygons, each a triangle or a "
-                  "quadrangle (.gpkg: isoquad's layer 'quads', .shp, .geojson, .fgb)");
+  throw Error(
+      ErrorClass::usage, "options",
+      "'" + path +
+          "': a mesh to measure is a .gr3 or .ll (SCHISM), .14 or .grd (ADCIRC), .2dm "
+          "(SMS), .msh (Gmsh, ASCII), .mesh (MIKE 21/3 FM), .nc (UGRID, D-Flow FM's net "
+          "file), .slf (TELEMAC's Selafin), .vtu or .vtk (VTK) or a layer of polygons, each "
+          "a triangle or a quadrangle (.gpkg: isoquad's layer 'quads', .shp, .geojson, "
+          ".fgb)");
 }
 
 bool is_mesh_file(const std::string& path) {
@@ -246,6 +250,8 @@ ReadMesh read_mesh(const std::string& path) {
   } else if (mesh.format == "slf") {
     read_selafin(path, mesh);
     read_telemac_cli(path, mesh);
+  } else if (mesh.format == "vtu" || mesh.format == "vtk") {
+    read_vtk(path, mesh);
   } else if (mesh.format == "polygons") {
     read_polygon_layer(path, mesh);
   } else {

@@ -1,8 +1,8 @@
 // Reading meshes that other tools wrote (and isoquad's own outputs), to measure them:
 // SCHISM's .gr3/.ll, ADCIRC's .14, SMS's .2dm, Gmsh's .msh (ASCII 2.2 and 4.1), MIKE
 // 21/3 FM's .mesh, UGRID netCDF (.nc, also D-Flow FM's older net files), TELEMAC's
-// Selafin (.slf) and layers of polygons (isoquad's GeoPackage, or elements exported as
-// polygons). Only the nodes and the 2D elements are read: triangles and quadrangles.
+// Selafin (.slf), VTK's .vtu and .vtk, and layers of polygons (isoquad's GeoPackage, or elements
+// exported as polygons). Only the nodes and the 2D elements are read: triangles and quadrangles.
 #pragma once
 
 #include <array>
@@ -14,7 +14,7 @@
 namespace isoquad {
 
 struct ReadMesh {
-  std::string format;                     // "gr3", "14", "2dm", "msh", "mesh"
+  std::string format;  // "gr3", "14", "2dm", "msh", "mesh", "nc", "slf", "vtu", "vtk", "polygons"
   std::vector<Point2> points;             // as in the file
   std::vector<std::array<int, 4>> quads;  // 0-based indices into points, as in the file
   std::vector<std::array<int, 3>> triangles;

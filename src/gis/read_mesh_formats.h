@@ -1,7 +1,8 @@
 // The readers behind read_mesh (read_mesh.h), one translation unit per family of
 // formats: the text ones (read_mesh_text.cpp: SCHISM's .gr3/.ll, ADCIRC's .14, SMS's .2dm,
 // Gmsh's .msh, MIKE's .mesh), the binary ones (read_mesh_binary.cpp: UGRID netCDF and
-// D-Flow FM's net files, TELEMAC's Selafin and the .cli beside it), and what they share:
+// D-Flow FM's net files, TELEMAC's Selafin and the .cli beside it; read_mesh_vtk.cpp:
+// VTK's .vtu and .vtk), and what they share:
 // a text file's lines and fields with their numbers for the messages, and the open
 // boundaries from the nodes' codes (read_mesh.cpp). Not for use outside these files.
 #pragma once
@@ -128,6 +129,10 @@ bool netcdf_holds_mesh(const std::string& path);
 void read_netcdf(const std::string& path, ReadMesh& mesh);
 void read_selafin(const std::string& path, ReadMesh& mesh);
 void read_telemac_cli(const std::string& slf_path, ReadMesh& mesh);
+
+// VTK's XML unstructured grid (.vtu) and legacy ASCII file (.vtk), by mesh.format
+// (read_mesh_vtk.cpp).
+void read_vtk(const std::string& path, ReadMesh& mesh);
 
 // read_mesh.cpp: the open boundaries as runs of the outline's faces of one kind, and
 // from the nodes' codes by MIKE's rule.

@@ -6,6 +6,10 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <sstream>
+
+#include <cpl_conv.h>
+#include <cpl_string.h>
 
 #include "core/error.h"
 #include "gis/read_mesh.h"
@@ -382,4 +386,124 @@ TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("missing.gr3': no such mesh file"), std::string::npos);
   }
+}
+
+namespace {
+
+// Two quads and a triangle of a 2 x 1 grid with a triangle on top: points 0..6.
+const char* const kVtuPoints = "0 0 0  1 0 0  2 0 0  0 1 0  1 1 0  2 1 0  1 2 0";
+const std::vector<std::int64_t> kConnectivity = {0, 1, 4, 3, 1, 2, 5, 4, 3, 4, 6};
+const std::vector<std::int64_t> kOffsets = {4, 8, 11};
+const std::vector<std::int64_t> kTypes = {9, 9, 5};
+
+void expect_two_quads_and_a_triangle(const ReadMesh& m, const std::string& what) {
+  ASSERT_EQ(m.points.size(), 7u) << what;
+  EXPECT_EQ(m.quads, (std::vector<std::array<int, 4>>{{0, 1, 4, 3}, {1, 2, 5, 4}})) << what;
+  EXPECT_EQ(m.triangles, (std::vector<std::array<int, 3>>{{3, 4, 6}})) << what;
+  EXPECT_DOUBLE_EQ(m.points[6].x, 1.0) << what;
+  EXPECT_DOUBLE_EQ(m.points[6].y, 2.0) << what;
+}
+
+// A little-endian array as VTK's binary data: a UInt32 byte count, then the values.
+template <typename T>
+std::string vtk_bytes(const std::vector<T>& values) {
+  std::string data(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(T));
+  const auto n = static_cast<std::uint32_t>(data.size());
+  return std::string(reinterpret_cast<const char*>(&n), 4) + data;
+}
+
+std::string base64(const std::string& bytes) {
+  char* text =
+      CPLBase64Encode(static_cast<int>(bytes.size()), reinterpret_cast<const GByte*>(bytes.data()));
+  std::string out = text;
+  CPLFree(text);
+  return out;
+}
+
+}  // namespace
+
+// VTK's unstructured grids as ParaView, VTK and meshio write them: ascii arrays, appended
+// raw and base64 data (UInt32 headers), each read to the same cells; a line cell skipped,
+// a hexahedron refused; and the legacy ASCII file, before version 5 and after.
+TEST(ReadMesh, VtkUnstructuredGridsInEveryEncoding) {
+  TempDir dir;
+  const std::string cells_ascii =
+      "<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">0 1 4 3 1 2 5 4 3 4 6"
+      "</DataArray><DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">4 8 11"
+      "</DataArray><DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">9 9 5</DataArray>";
+  auto vtu = [](const std::string& points, const std::string& cells, const std::string& tail) {
+    return std::string(
+               "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" "
+               "version=\"1.0\" byte_order=\"LittleEndian\">\n<UnstructuredGrid>"
+               "<Piece NumberOfPoints=\"7\" NumberOfCells=\"3\"><Points>") +
+           points + "</Points><Cells>" + cells + "</Cells></Piece></UnstructuredGrid>" + tail +
+           "</VTKFile>\n";
+  };
+  write_file(dir.file("ascii.vtu"),
+             vtu(std::string("<DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+                             "format=\"ascii\">") +
+                     kVtuPoints + "</DataArray>",
+                 cells_ascii, ""));
+  expect_two_quads_and_a_triangle(read_mesh(dir.file("ascii.vtu")), "ascii");
+  // Appended: the points as Float32, the cells as Int64 and UInt8, one after the other.
+  std::vector<float> xyz;
+  std::istringstream in(kVtuPoints);
+  for (float v; in >> v;) xyz.push_back(v);
+  const std::vector<std::uint8_t> types(kTypes.begin(), kTypes.end());
+  const std::vector<std::string> arrays = {vtk_bytes(xyz), vtk_bytes(kConnectivity),
+                                           vtk_bytes(kOffsets), vtk_bytes(types)};
+  for (const bool raw : {true, false}) {
+    std::vector<std::size_t> offset;
+    std::string data;
+    for (const std::string& a : arrays) {
+      offset.push_back(data.size());
+      data += raw ? a : base64(a);
+    }
+    auto appended = [&](const char* type, const char* name, int k, const char* extra) {
+      return std::string("<DataArray type=\"") + type + "\" Name=\"" + name + "\" " + extra +
+             "format=\"appended\" offset=\"" + std::to_string(offset[k]) + "\"/>";
+    };
+    const std::string file = dir.file(raw ? "raw.vtu" : "base64.vtu");
+    write_file(file,
+               vtu(appended("Float32", "Points", 0, "NumberOfComponents=\"3\" "),
+                   appended("Int64", "connectivity", 1, "") + appended("Int64", "offsets", 2, "") +
+                       appended("UInt8", "types", 3, ""),
+                   std::string("<AppendedData encoding=\"") + (raw ? "raw" : "base64") + "\">\n_" +
+                       data + "\n</AppendedData>"));
+    expect_two_quads_and_a_triangle(read_mesh(file), raw ? "raw" : "base64");
+  }
+  // A line among the cells is skipped; a hexahedron refused.
+  std::string with_line = cells_ascii;
+  with_line.replace(with_line.find("3 4 6<"), 5, "3 4 6 0 3");
+  with_line.replace(with_line.find("4 8 11<"), 6, "4 8 11 13");
+  with_line.replace(with_line.find("9 9 5<"), 5, "9 9 5 3");
+  std::string text = vtu(std::string("<DataArray type=\"Float64\" NumberOfComponents=\"3\" "
+                                     "format=\"ascii\">") +
+                             kVtuPoints + "</DataArray>",
+                         with_line, "");
+  text.replace(text.find("NumberOfCells=\"3\""), 17, "NumberOfCells=\"4\"");
+  write_file(dir.file("line.vtu"), text);
+  const ReadMesh lined = read_mesh(dir.file("line.vtu"));
+  expect_two_quads_and_a_triangle(lined, "line");
+  EXPECT_EQ(lined.num_skipped_elements, 1u);
+  std::string hex = text;
+  hex.replace(hex.find("9 9 5 3<"), 7, "9 9 5 12");
+  EXPECT_NE(read_error(dir, "hex.vtu", hex).find("cell 3 is of VTK type 12"), std::string::npos);
+  // Legacy, version 4.2 and 5.1.
+  const std::string head =
+      "# vtk DataFile Version 4.2\nmesh\nASCII\nDATASET UNSTRUCTURED_GRID\n"
+      "POINTS 7 double\n" +
+      std::string(kVtuPoints) + "\n";
+  write_file(dir.file("v42.vtk"), head +
+                                      "CELLS 3 14\n4 0 1 4 3\n4 1 2 5 4\n3 3 4 6\n"
+                                      "CELL_TYPES 3\n9\n9\n5\nCELL_DATA 3\n");
+  expect_two_quads_and_a_triangle(read_mesh(dir.file("v42.vtk")), "4.2");
+  write_file(dir.file("v51.vtk"), head +
+                                      "CELLS 4 11\nOFFSETS vtktypeint64\n0 4 8 11\n"
+                                      "CONNECTIVITY vtktypeint64\n0 1 4 3 1 2 5 4 3 4 6\n"
+                                      "CELL_TYPES 3\n9\n9\n5\n");
+  expect_two_quads_and_a_triangle(read_mesh(dir.file("v51.vtk")), "5.1");
+  EXPECT_NE(read_error(dir, "binary.vtk", "# vtk DataFile Version 4.2\nm\nBINARY\n")
+                .find("only ASCII ones are read"),
+            std::string::npos);
 }
