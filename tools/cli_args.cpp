@@ -91,8 +91,8 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
                           ? "Output file (.gpkg, .vtu, .vtk, .msh, .gr3, .nc, .2dm, .mesh, "
                             ".pli, .slf, .14; the quads alone: .geojson, .fgb); repeat for "
                             "several; required but with --stop-after"
-                          : "Output file (domain: .gpkg, .fgb or .geojson; fields: .gpkg or "
-                            ".vtu)")
+                      : cmd->get_name() == "domain" ? "Output file (.gpkg, .fgb or .geojson)"
+                                                    : "Output file (.gpkg or .vtu)")
           ->expected(1)
           ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
   // mesh's -o is checked after parsing (finish_front_end_args): --stop-after writes none.
