@@ -412,6 +412,7 @@ struct EachRegion {
   std::string value, name, filter;
   std::string id_filter;  // the region's features by their ids (SelectionValue::id_filter)
   bool null = false;      // the features without a value (value "NULL")
+  std::size_t index = 0;  // its place among the regions
   bool skip = false;      // mesh --skip-existing, and every output exists
 };
 
@@ -434,6 +435,7 @@ std::vector<EachRegion> regions_of(const CommonArgs& a, const FieldArgs& f,
                  selected[k].null};
     r.a.fe.align_optional = true;  // one file of --align lines for all the regions
     r.a.region = {{"each_field", field}, {"each_value", selected[k].null ? "" : values[k]}};
+    r.index = k;
     for (std::string& o : r.a.outputs) o = fill_each_mark(o, names[k]);
     r.a.report_path = fill_each_mark(r.a.report_path, names[k]);
     r.f.plot_path = fill_each_mark(r.f.plot_path, names[k]);
@@ -678,11 +680,9 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
                       // later --skip-existing would take for this run's: say which.
                       std::vector<std::string> earlier;
                       std::error_code ec;
-                      for (std::size_t k = 0; k < regions.size(); ++k)
-                        if (&regions[k] == &r)
-                          for (const MeshOutput& o : outputs[k])
-                            for (const std::string& f : mesh_output_files(o))
-                              if (std::filesystem::exists(f, ec)) earlier.push_back(f);
+                      for (const MeshOutput& o : outputs[r.index])
+                        for (const std::string& f : mesh_output_files(o))
+                          if (std::filesystem::exists(f, ec)) earlier.push_back(f);
                       if (!r.a.report_path.empty() && r.a.report_path != "-" &&
                           std::filesystem::exists(r.a.report_path, ec))
                         earlier.push_back(r.a.report_path);
