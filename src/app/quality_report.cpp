@@ -117,13 +117,15 @@ std::optional<QualitySummary> read_report_quality(const std::string& path) {
   if (!q.IsValid()) return std::nullopt;
   QualitySummary s;
   bool complete = true;
+  // Each key's number into `out`; a key missing or not a number leaves the read incomplete.
   auto real = [&](const char* key, double& out) {
     const CPLJSONObject v = q.GetObj(key);
-    complete =
-        complete && v.IsValid() &&
-        (v.GetType() == CPLJSONObject::Type::Double ||
-         v.GetType() == CPLJSONObject::Type::Integer || v.GetType() == CPLJSONObject::Type::Long);
-    out = v.ToDouble(0.0);
+    const CPLJSONObject::Type type = v.IsValid() ? v.GetType() : CPLJSONObject::Type::Unknown;
+    if (type == CPLJSONObject::Type::Double || type == CPLJSONObject::Type::Integer ||
+        type == CPLJSONObject::Type::Long)
+      out = v.ToDouble();
+    else
+      complete = false;
   };
   auto count = [&](const char* key, std::size_t& out) {
     double v = 0;

@@ -8,13 +8,17 @@
 #include <chrono>
 #include <functional>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <thread>
 
+#include "app/quality_report.h"
 #include "core/error.h"
+#include "support/test_support.h"
 
 using namespace isoquad;
+using namespace isoquad::test;
 
 TEST(EachJob, ValuesBecomeFileNamesAndTwoThatMeetAreRefused) {
   EXPECT_EQ(
@@ -229,4 +233,37 @@ TEST(EachJob, TheTableAsCsvQuotesWhatNeedsIt) {
   EXPECT_EQ(csv.find("1.5"), std::string::npos);  // no seconds
   EXPECT_EQ(format_each_csv("name", values, outcomes, "measured").find("meshed"),
             std::string::npos);
+}
+
+// A resumed batch's figures read back from a region's report: all of them, or none when
+// a key is missing or not a number, or the file is not JSON.
+TEST(EachJob, ReportFiguresAreReadBackWholeOrNotAtAll) {
+  TempDir dir;
+  const std::string keys[] = {"num_vertices",
+                              "share_angles_75_105",
+                              "min_angle_deg",
+                              "max_angle_deg",
+                              "share_regular_interior",
+                              "size_ratio_median",
+                              "share_size_ratio_08_125",
+                              "orientation_mean_deg",
+                              "orientation_p90_deg",
+                              "schism_angle_ratio_violations",
+                              "schism_aspect_ratio_violations",
+                              "dflowfm_orthogonality_violations"};
+  std::string quality = "\"num_quads\": 1234";
+  for (const std::string& k : keys) quality += ", \"" + k + "\": 0.5";
+  write_file(dir.file("whole.json"), "{\"quality\": {" + quality + "}}");
+  const std::optional<QualitySummary> q = read_report_quality(dir.file("whole.json"));
+  ASSERT_TRUE(q.has_value());
+  EXPECT_EQ(q->num_quads, 1234u);
+  EXPECT_DOUBLE_EQ(q->orientation_p90_deg, 0.5);
+  std::string text = quality;
+  text.replace(0, 17, "\"num_quads\": \"many\"");
+  write_file(dir.file("text.json"), "{\"quality\": {" + text + "}}");
+  EXPECT_FALSE(read_report_quality(dir.file("text.json")).has_value());
+  write_file(dir.file("short.json"), "{\"quality\": {\"num_quads\": 1234}}");
+  EXPECT_FALSE(read_report_quality(dir.file("short.json")).has_value());
+  write_file(dir.file("broken.json"), "not json");
+  EXPECT_FALSE(read_report_quality(dir.file("broken.json")).has_value());
 }
