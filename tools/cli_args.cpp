@@ -225,7 +225,8 @@ void add_quality_options(CLI::App* cmd, QualityArgs& q) {
   cmd->add_option("--each-table", q.each_table,
                   "With --each: the closing table as a CSV file, a row per region in order "
                   "(status, exit code, the quality figures, the error of a failed one; no "
-                  "seconds, so that the same batch writes the same bytes)")
+                  "seconds, so that the same batch writes the same bytes); written again as "
+                  "each region ends")
       ->group("Selection");
 }
 
@@ -450,8 +451,9 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
          "--each-table", m.each_table,
          "With --each or --each-clip: the closing table as a CSV file, a row per region in order "
          "(status, exit code, the quality figures, the error of a failed one; no "
-         "seconds, so that the same batch writes the same bytes); written again by a "
-         "batch resumed with --skip-existing")
+         "seconds, so that the same batch writes the same bytes); written again as each "
+         "region ends (a batch stopped part-way leaves the regions done, the others 'not "
+         "run') and by a batch resumed with --skip-existing")
       ->group("Selection");
   cmd->add_flag("--skip-existing", m.skip_existing,
                 "Mesh nothing where every output (with --report and --plot) exists already: with "

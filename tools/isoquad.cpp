@@ -581,8 +581,9 @@ void check_regions_write_apart(const std::vector<EachRegion>& regions,
 }
 
 // Runs `run` for every region, `jobs` at once; a failure (Error) is reported in its
-// console and the others go on. Then the table (and with `table_path` its CSV) and the
-// total ("M of N `done`"); the exit code is the first failure's.
+// console and the others go on. With `table_path`, its CSV is written as each region
+// ends and once more at the end; then the table and the total ("M of N `done`") on the
+// console. The exit code is the first failure's.
 int run_each(const CommonArgs& a, const std::string& option, const std::string& field,
              std::vector<EachRegion>& regions, int jobs, const std::string& done,
              const std::string& table_path,
@@ -610,16 +611,34 @@ int run_each(const CommonArgs& a, const std::string& option, const std::string& 
       return outcome;
     }
   };
-  const std::vector<RegionOutcome> outcomes =
-      run_regions(regions.size(), static_cast<std::size_t>(jobs), header, region);
-  const int exit = each_exit_code(outcomes);
-  if (!table_path.empty()) {
-    std::vector<EachCsvRegion> rows;
-    for (const EachRegion& r : regions) rows.push_back({r.value, r.name, r.null});
-    write_text_file(table_path, format_each_csv(field, rows, outcomes, done), a.overwrite);
+  // The table is written again as each region ends, so that a batch stopped part-way
+  // (Ctrl-C) leaves the rows of the regions done, the others `not run`; a failure to write
+  // it then is left to the last write, after the batch.
+  std::vector<EachCsvRegion> rows;
+  for (const EachRegion& r : regions) rows.push_back({r.value, r.name, r.null});
+  bool table_written = false, types_written = false, table_failed = false;
+  auto write_table = [&](const std::vector<RegionOutcome>& outcomes) {
+    write_text_file(table_path, format_each_csv(field, rows, outcomes, done),
+                    a.overwrite || table_written);
+    table_written = true;
     const std::string types = each_csv_types_path(table_path);
-    if (!types.empty()) write_text_file(types, format_each_csv_types(), a.overwrite);
-  }
+    if (!types.empty() && !types_written) {
+      write_text_file(types, format_each_csv_types(), a.overwrite);
+      types_written = true;
+    }
+  };
+  auto finished = [&](const std::vector<RegionOutcome>& outcomes) {
+    if (table_path.empty() || table_failed) return;
+    try {
+      write_table(outcomes);
+    } catch (const Error&) {
+      table_failed = true;
+    }
+  };
+  const std::vector<RegionOutcome> outcomes = run_regions(
+      regions.size(), static_cast<std::size_t>(jobs), header, region, std::cerr, finished);
+  const int exit = each_exit_code(outcomes);
+  if (!table_path.empty()) write_table(outcomes);
   if (!a.quiet) std::cerr << format_each_table(field, values, outcomes);
   if (!a.quiet || exit)
     std::cerr << (exit ? "isoquad: " : "")

@@ -89,7 +89,8 @@ std::vector<std::string> each_file_names(const std::string& field,
 
 std::vector<RegionOutcome> run_regions(
     std::size_t n, std::size_t jobs, const std::function<std::string(std::size_t)>& header,
-    const std::function<RegionOutcome(std::size_t, const Console&)>& run, std::ostream& stream) {
+    const std::function<RegionOutcome(std::size_t, const Console&)>& run, std::ostream& stream,
+    const std::function<void(const std::vector<RegionOutcome>&)>& finished) {
   std::vector<RegionOutcome> outcomes(n);
   for (RegionOutcome& o : outcomes) o.not_run = true;
   jobs = std::min(jobs, n);
@@ -106,6 +107,7 @@ std::vector<RegionOutcome> run_regions(
     for (std::size_t k = 0; k < n; ++k) {
       stream << header(k) << std::flush;
       outcomes[k] = run(k, Console{stream, stream, true});
+      if (finished) finished(outcomes);
       if (repeats_usage_error(k)) break;
     }
     return outcomes;
@@ -130,6 +132,7 @@ std::vector<RegionOutcome> run_regions(
       }
       const std::lock_guard<std::mutex> lock(mutex);
       outcomes[k] = std::move(outcome);
+      if (finished && !buffers[k].crash) finished(outcomes);
       if (repeats_usage_error(k)) stop = true;
       buffers[k].done = true;
       for (; printed < n && buffers[printed].done; ++printed)

@@ -54,11 +54,14 @@ struct RegionOutcome {
 // done (its out, then its err). Once two regions have failed with the same usage error
 // (one that names no place of theirs: the command is wrong for every region), no other
 // region starts: those are `not_run`. Anything `run` throws is rethrown once every
-// started region has run.
+// started region has run. `finished`, when given, is called with the outcomes so far
+// (those not yet ended `not_run`) each time a region ends, one call at a time; it must
+// not throw.
 std::vector<RegionOutcome> run_regions(
     std::size_t n, std::size_t jobs, const std::function<std::string(std::size_t)>& header,
     const std::function<RegionOutcome(std::size_t, const Console&)>& run,
-    std::ostream& stream = std::cerr);
+    std::ostream& stream = std::cerr,
+    const std::function<void(const std::vector<RegionOutcome>&)>& finished = {});
 
 // A line per region (its quads' quality and seconds, or skipped, or failed), under a
 // header, the values padded to one width in characters (UTF-8).

@@ -5,7 +5,9 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <chrono>
 #include <cmath>
+#include <csignal>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -14,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -1243,6 +1246,75 @@ TEST(CliMesh, SkipExistingResumesABatch) {
   EXPECT_EQ(r.out, "");
   EXPECT_EQ(r.err, "skipped: every output exists (--skip-existing)\n");
   EXPECT_EQ(std::filesystem::last_write_time(dir.file("one.gpkg")), one_time);
+}
+
+// A batch stopped part-way (SIGTERM, as Ctrl-C's SIGINT) leaves its table: the table is
+// written again as each region ends, so the regions done are `meshed` and the others `not
+// run`; the region stopped while meshing left no file, and --skip-existing resumes.
+TEST(CliMesh, ABatchStoppedPartWayLeavesItsTable) {
+  TempDir dir;
+  const std::string input = dir.file("regions.geojson");
+  // p meshes in a moment, q (a hundred times p's area) takes seconds.
+  write_file(input, R"({"type":"FeatureCollection","features":[)" + square_feature(0, 0, 0.3, "p") +
+                        "," + square_feature(1, 0, 3.0, "q") + "," +
+                        square_feature(5, 0, 0.3, "r") + "]}");
+  const std::string table = dir.file("batch.csv");
+  bool caught = false;
+  for (const char* size : {"2000", "1000"}) {
+    for (const char* f :
+         {"p.gr3", "p.ll", "q.gr3", "q.ll", "r.gr3", "r.ll", "batch.csv", "batch.csvt", "err.txt"})
+      std::filesystem::remove(dir.file(f));
+    const std::vector<std::string> args = {
+        ISOQUAD_CLI,        "mesh",         input, "--size", size, "--each", "region", "-o",
+        dir.file("{}.gr3"), "--each-table", table, "-q"};
+    const pid_t child = fork();
+    ASSERT_GE(child, 0);
+    if (child == 0) {
+      const int err = open(dir.file("err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      dup2(err, 2);
+      std::vector<char*> argv;
+      for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+      argv.push_back(nullptr);
+      execv(argv[0], argv.data());
+      _exit(127);
+    }
+    int status = 0;
+    bool ended = false;
+    const auto start = std::chrono::steady_clock::now();
+    while (!ended && std::chrono::steady_clock::now() - start < std::chrono::seconds(120)) {
+      if (std::filesystem::exists(table)) {  // p is done
+        kill(child, SIGTERM);
+        ASSERT_EQ(waitpid(child, &status, 0), child);
+        ended = true;
+        break;
+      }
+      ended = waitpid(child, &status, WNOHANG) == child;
+      usleep(1000);
+    }
+    ASSERT_TRUE(ended) << "the batch did not end";
+    if (!WIFSIGNALED(status)) continue;  // the whole batch ended first: a finer size
+    caught = true;
+    EXPECT_EQ(WTERMSIG(status), SIGTERM);
+    const std::string rows = read_file(table);
+    EXPECT_NE(rows.find("\r\np,p,meshed,0,"), std::string::npos) << rows;
+    EXPECT_NE(rows.find("\r\nq,q,not run,,"), std::string::npos) << rows;
+    EXPECT_NE(rows.find("\r\nr,r,not run,,"), std::string::npos) << rows;
+    EXPECT_TRUE(std::filesystem::exists(dir.file("batch.csvt")));
+    EXPECT_TRUE(std::filesystem::exists(dir.file("p.gr3")));
+    EXPECT_FALSE(std::filesystem::exists(dir.file("q.gr3")));
+    // Resumed: p skipped, q and r meshed, the table written again.
+    const CliResult resumed =
+        run_cli({"mesh", input, "--size", size, "--each", "region", "-o", dir.file("{}.gr3"),
+                 "--each-table", table, "--skip-existing", "-q"},
+                dir);
+    ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+    const std::string again = read_file(table);
+    EXPECT_NE(again.find("\r\np,p,skipped,0,"), std::string::npos) << again;
+    EXPECT_NE(again.find("\r\nq,q,meshed,0,"), std::string::npos) << again;
+    EXPECT_NE(again.find("\r\nr,r,meshed,0,"), std::string::npos) << again;
+    break;
+  }
+  EXPECT_TRUE(caught) << "no batch was stopped between its regions";
 }
 
 namespace {

@@ -76,6 +76,41 @@ TEST(EachJob, RegionsRunAtOncePrintInTheirOrder) {
   }
 }
 
+// `finished` sees each region end, one call at a time: every call one region more ended
+// than the one before, the others still `not_run`, and the last call every outcome.
+TEST(EachJob, EveryRegionsEndIsReportedWithTheOutcomesSoFar) {
+  for (const std::size_t jobs : {1, 2, 3}) {
+    std::ostringstream stream;
+    std::vector<std::vector<RegionOutcome>> calls;
+    const auto outcomes = run_regions(
+        5, jobs, [](std::size_t) { return std::string(); },
+        [](std::size_t k, const Console&) {
+          if (k == 1) std::this_thread::sleep_for(std::chrono::milliseconds(200));
+          RegionOutcome o;
+          o.exit = static_cast<int>(k) + 1;
+          return o;
+        },
+        stream, [&](const std::vector<RegionOutcome>& so_far) { calls.push_back(so_far); });
+    ASSERT_EQ(calls.size(), 5u) << jobs << " jobs";
+    for (std::size_t c = 0; c < calls.size(); ++c) {
+      ASSERT_EQ(calls[c].size(), 5u);
+      const auto ended = std::count_if(calls[c].begin(), calls[c].end(),
+                                       [](const RegionOutcome& o) { return !o.not_run; });
+      EXPECT_EQ(ended, static_cast<long>(c) + 1) << jobs << " jobs, call " << c;
+      for (std::size_t k = 0; k < 5; ++k) {
+        if (!calls[c][k].not_run) {
+          EXPECT_EQ(calls[c][k].exit, static_cast<int>(k) + 1);
+        }
+      }
+    }
+    for (std::size_t k = 0; k < 5; ++k) EXPECT_EQ(calls.back()[k].exit, outcomes[k].exit);
+    // With more than one thread, region 1 (asleep) ends after those after it.
+    if (jobs > 1) {
+      EXPECT_TRUE(calls[1][1].not_run) << jobs << " jobs";
+    }
+  }
+}
+
 // Something other than a region's failure (a bug) reaches the caller, once every region
 // has run.
 TEST(EachJob, AnExceptionFromARegionIsRethrownAfterTheOthers) {
