@@ -16,7 +16,6 @@
 #include <string>
 #include <vector>
 
-#include <fcntl.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -1267,17 +1266,8 @@ TEST(CliMesh, ABatchStoppedPartWayLeavesItsTable) {
     const std::vector<std::string> args = {
         ISOQUAD_CLI,        "mesh",         input, "--size", size, "--each", "region", "-o",
         dir.file("{}.gr3"), "--each-table", table, "-q"};
-    const pid_t child = fork();
+    const pid_t child = start_program(args, dir.file("err.txt"));
     ASSERT_GE(child, 0);
-    if (child == 0) {
-      const int err = open(dir.file("err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      dup2(err, 2);
-      std::vector<char*> argv;
-      for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-      argv.push_back(nullptr);
-      execv(argv[0], argv.data());
-      _exit(127);
-    }
     int status = 0;
     bool ended = false;
     const auto start = std::chrono::steady_clock::now();

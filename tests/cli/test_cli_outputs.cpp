@@ -3,7 +3,6 @@
 // by real readers: GDAL (GeoPackage layers, CRS, counts, styles, metadata), the gmsh
 // binary, meshio (legacy VTK), python3-netcdf4 (UGRID) and our SCHISM parser; open
 // boundary edges on the bbox, depths from a bathymetry raster, all-or-nothing outputs.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -810,17 +809,8 @@ TEST(CliOutputs, ASignalWhileWritingLeavesNoTemporaryFile) {
                                            "--report",
                                            dir.file("r.json"),
                                            "-q"};
-    const pid_t child = fork();
+    const pid_t child = start_program(args, dir.file("err.txt"));
     ASSERT_GE(child, 0);
-    if (child == 0) {
-      const int err = open(dir.file("err.txt").c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-      dup2(err, 2);
-      std::vector<char*> argv;
-      for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
-      argv.push_back(nullptr);
-      execv(argv[0], argv.data());
-      _exit(127);
-    }
     int status = 0;
     bool ended = false;
     const auto start = std::chrono::steady_clock::now();

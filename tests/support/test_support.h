@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -132,6 +133,22 @@ inline double report_number(const std::string& report, const std::string& key) {
   const std::size_t at = report.find("\"" + key + "\": ");
   EXPECT_NE(at, std::string::npos) << key;
   return at == std::string::npos ? std::nan("") : std::stod(report.substr(at + key.size() + 4));
+}
+
+// Starts `args` (the program first) in a child process, its standard error to the file
+// `err_path`, and returns its pid without waiting, for a test to stop it part-way.
+inline pid_t start_program(const std::vector<std::string>& args, const std::string& err_path) {
+  const pid_t child = fork();
+  if (child == 0) {
+    const int err = open(err_path.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    dup2(err, 2);
+    std::vector<char*> argv;
+    for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+    argv.push_back(nullptr);
+    execv(argv[0], argv.data());
+    _exit(127);
+  }
+  return child;
 }
 
 // Runs the built isoquad binary.
