@@ -5,7 +5,6 @@
 #include <gtest/gtest.h>
 
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -1268,20 +1267,10 @@ TEST(CliMesh, ABatchStoppedPartWayLeavesItsTable) {
         dir.file("{}.gr3"), "--each-table", table, "-q"};
     const pid_t child = start_program(args, dir.file("err.txt"));
     ASSERT_GE(child, 0);
-    int status = 0;
-    bool ended = false;
-    const auto start = std::chrono::steady_clock::now();
-    while (!ended && std::chrono::steady_clock::now() - start < std::chrono::seconds(120)) {
-      if (std::filesystem::exists(table)) {  // p is done
-        kill(child, SIGTERM);
-        ASSERT_EQ(waitpid(child, &status, 0), child);
-        ended = true;
-        break;
-      }
-      ended = waitpid(child, &status, WNOHANG) == child;
-      usleep(1000);
-    }
-    ASSERT_TRUE(ended) << "the batch did not end";
+    const int status = wait_or_stop(
+        child, [&] { return std::filesystem::exists(table); },  // p is done
+        [&] { kill(child, SIGTERM); }, 1000);
+    ASSERT_NE(status, -1) << "the batch did not end";
     if (!WIFSIGNALED(status)) continue;  // the whole batch ended first: a finer size
     caught = true;
     EXPECT_EQ(WTERMSIG(status), SIGTERM);

@@ -9,7 +9,6 @@
 
 #include <algorithm>
 #include <array>
-#include <chrono>
 #include <cmath>
 #include <csignal>
 #include <filesystem>
@@ -811,23 +810,16 @@ TEST(CliOutputs, ASignalWhileWritingLeavesNoTemporaryFile) {
                                            "-q"};
     const pid_t child = start_program(args, dir.file("err.txt"));
     ASSERT_GE(child, 0);
-    int status = 0;
-    bool ended = false;
-    const auto start = std::chrono::steady_clock::now();
-    while (!ended && std::chrono::steady_clock::now() - start < std::chrono::seconds(120)) {
-      if (temporary()) {
-        kill(child, SIGSTOP);
-        caught = temporary();  // still writing, frozen
-        kill(child, caught ? SIGTERM : SIGKILL);
-        kill(child, SIGCONT);
-        ASSERT_EQ(waitpid(child, &status, 0), child);
-        ended = true;
-        break;
-      }
-      ended = waitpid(child, &status, WNOHANG) == child;
-      usleep(200);
-    }
-    ASSERT_TRUE(ended) << "the run did not end";
+    const int status = wait_or_stop(
+        child, temporary,
+        [&] {
+          kill(child, SIGSTOP);
+          caught = temporary();  // still writing, frozen
+          kill(child, caught ? SIGTERM : SIGKILL);
+          kill(child, SIGCONT);
+        },
+        200);
+    ASSERT_NE(status, -1) << "the run did not end";
     if (!caught) {  // finished first (or killed above): clear its outputs and try again
       for (const std::string& name : entries()) std::filesystem::remove(dir.file(name));
       continue;

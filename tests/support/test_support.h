@@ -1,10 +1,12 @@
 // Helpers shared by the tests: temporary directories, fixture files, running the CLI.
 #pragma once
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -149,6 +151,25 @@ inline pid_t start_program(const std::vector<std::string>& args, const std::stri
     _exit(127);
   }
   return child;
+}
+
+// Waits for the child `child` (start_program) to end, checking `ready()` every
+// `poll_us` microseconds: once it holds, calls `stop()` (which signals the child) and waits
+// for the end. Returns the wait status, or -1 when the child has not ended within two
+// minutes.
+inline int wait_or_stop(pid_t child, const std::function<bool()>& ready,
+                        const std::function<void()>& stop, int poll_us) {
+  int status = 0;
+  const auto start = std::chrono::steady_clock::now();
+  while (std::chrono::steady_clock::now() - start < std::chrono::seconds(120)) {
+    if (ready()) {
+      stop();
+      return waitpid(child, &status, 0) == child ? status : -1;
+    }
+    if (waitpid(child, &status, WNOHANG) == child) return status;
+    usleep(poll_us);
+  }
+  return -1;
 }
 
 // Runs the built isoquad binary.
