@@ -421,7 +421,9 @@ std::vector<EachRegion> regions_of(const CommonArgs& a, const FieldArgs& f,
                                    const std::string& field,
                                    const std::vector<SelectionValue>& selected) {
   std::vector<std::string> values;
-  for (const SelectionValue& v : selected) values.push_back(v.text);
+  // Text that is not UTF-8 (a .dbf without its .cpg) read as Windows-1252, for the
+  // console, the table, the reports and the file names.
+  for (const SelectionValue& v : selected) values.push_back(utf8_or_cp1252(v.text));
   // The features without a value: their file name that of an empty value, "_".
   const std::vector<std::string> names = each_file_names(field, values);
   std::vector<EachRegion> regions;

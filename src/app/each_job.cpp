@@ -27,33 +27,6 @@ std::string fill_each_mark(std::string path, const std::string& name) {
   return path;
 }
 
-namespace {
-
-// The length of the valid UTF-8 sequence that starts at text[i] (1 for ASCII), or 0 when
-// the bytes there are not one (a stray continuation byte, an overlong or truncated
-// sequence, a surrogate, beyond U+10FFFF).
-std::size_t utf8_sequence_length(const std::string& text, std::size_t i) {
-  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
-  const unsigned char c = byte(i);
-  if (c < 0x80) return 1;
-  std::size_t n = 0;
-  unsigned char lo = 0x80, hi = 0xBF;  // the second byte's range
-  if (c >= 0xC2 && c <= 0xDF)
-    n = 2;
-  else if (c >= 0xE0 && c <= 0xEF)
-    n = 3, lo = c == 0xE0 ? 0xA0 : 0x80, hi = c == 0xED ? 0x9F : 0xBF;
-  else if (c >= 0xF0 && c <= 0xF4)
-    n = 4, lo = c == 0xF0 ? 0x90 : 0x80, hi = c == 0xF4 ? 0x8F : 0xBF;
-  else
-    return 0;
-  if (i + n > text.size() || byte(i + 1) < lo || byte(i + 1) > hi) return 0;
-  for (std::size_t k = 2; k < n; ++k)
-    if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return 0;
-  return n;
-}
-
-}  // namespace
-
 std::vector<std::string> each_file_names(const std::string& field,
                                          const std::vector<std::string>& values) {
   std::map<std::string, std::string> value_of;  // file name -> value
@@ -230,7 +203,9 @@ namespace {
 
 // A CSV field (RFC 4180): quoted, its quotes doubled, when it holds a comma, a quote or a
 // line break.
-std::string csv_field(const std::string& text) {
+// A CSV field: valid UTF-8 (utf8_or_cp1252), quoted when it needs it (RFC 4180).
+std::string csv_field(const std::string& raw) {
+  const std::string text = utf8_or_cp1252(raw);
   if (text.find_first_of(",\"\r\n") == std::string::npos) return text;
   std::string quoted = "\"";
   for (char c : text) quoted += c == '"' ? std::string("\"\"") : std::string(1, c);

@@ -3,9 +3,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/text.h"
+
 namespace isoquad {
 
-std::string JsonWriter::quote(const std::string& s) {
+std::string JsonWriter::quote(const std::string& raw) {
+  // JSON is UTF-8 (RFC 8259): text that is not (a .dbf's Latin-1 in a command line) is
+  // read as Windows-1252.
+  const std::string s = utf8_or_cp1252(raw);
   std::string out = "\"";
   for (char c : s) {
     switch (c) {

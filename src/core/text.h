@@ -27,4 +27,16 @@ std::string printf_string(const char* format, Args... args) {
   return text;
 }
 
+// The length of the valid UTF-8 sequence that starts at text[i] (1 for ASCII), or 0 when
+// the bytes there are not one (a stray continuation byte, an overlong or truncated
+// sequence, a surrogate, beyond U+10FFFF).
+std::size_t utf8_sequence_length(const std::string& text, std::size_t i);
+
+bool is_utf8(const std::string& text);
+
+// `text` as valid UTF-8: each byte that starts no valid UTF-8 sequence read as
+// Windows-1252 (Latin-1 and more: the usual encoding of a .dbf without its .cpg), its five
+// unassigned bytes as U+FFFD. Valid UTF-8 is returned as it is.
+std::string utf8_or_cp1252(const std::string& text);
+
 }  // namespace isoquad

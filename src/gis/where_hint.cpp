@@ -186,9 +186,18 @@ std::string where_hint(OGRLayer& layer, const std::string& where, const std::str
     const std::vector<std::string> near =
         nearest_values(value, {inside[k].begin(), inside[k].end()});
     std::string listed;
-    for (const std::string& n : near) listed += (listed.empty() ? "" : ", ") + quote(n);
+    bool not_utf8 = false;
+    for (const std::string& n : near) {
+      listed += (listed.empty() ? "" : ", ") + quote(utf8_or_cp1252(n));
+      not_utf8 = not_utf8 || !is_utf8(n);
+    }
     add("no feature" + std::string(spatial ? " there" : "") + " has " + name + " " + quote(value) +
         (near.empty() ? "" : " (the nearest: " + listed + ")"));
+    // OGR compares bytes: a .dbf in Latin-1 without its .cpg never matches UTF-8 text.
+    if (not_utf8)
+      add("the layer's text is not UTF-8 (shown here as Windows-1252): name its encoding in "
+          "a .cpg file beside the .shp (e.g. 'ISO-8859-1' or '1252') or in the environment "
+          "variable SHAPE_ENCODING");
   }
   return hint;
 }

@@ -1016,6 +1016,65 @@ TEST(CliMesh, EachSelectsExactlyTheFeaturesOfItsValue) {
   EXPECT_NE(reals.err.find("--each v: 3 of 3 meshed"), std::string::npos) << reals.err;
 }
 
+// A shapefile whose .dbf is Latin-1 without its .cpg (OGR reads its bytes as they are):
+// --each's values, file names, reports and table are UTF-8 (the bytes read as
+// Windows-1252), and a --where in UTF-8 that misses says why.
+TEST(CliMesh, EachReadsTextThatIsNotUtf8AsWindows1252) {
+  TempDir dir;
+  const std::string shp = dir.file("regions.shp");
+  {
+    isoquad::ensure_gdal_registered();
+    GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("ESRI Shapefile");
+    ASSERT_NE(driver, nullptr);
+    GDALDataset* ds = driver->Create(shp.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
+    ASSERT_NE(ds, nullptr);
+    OGRSpatialReference utm;
+    utm.importFromEPSG(32631);
+    const char* options[] = {"ENCODING=ISO-8859-1", nullptr};
+    OGRLayer* layer = ds->CreateLayer("regions", &utm, wkbPolygon, const_cast<char**>(options));
+    OGRFieldDefn name("name", OFTString);
+    ASSERT_EQ(layer->CreateField(&name), OGRERR_NONE);
+    const char* names[] = {"Bretagne", "Île-de-France"};
+    for (int k = 0; k < 2; ++k) {
+      OGRFeature feature(layer->GetLayerDefn());
+      feature.SetField("name", names[k]);
+      const double x = 500000 + 20000 * k, y = 5000000;
+      OGRPolygon square;
+      OGRLinearRing ring;
+      for (const auto& [dx, dy] : {std::pair{0, 0}, {8000, 0}, {8000, 8000}, {0, 8000}, {0, 0}})
+        ring.addPoint(x + dx, y + dy);
+      square.addRing(&ring);
+      feature.SetGeometry(&square);
+      ASSERT_EQ(layer->CreateFeature(&feature), OGRERR_NONE);
+    }
+    GDALClose(ds);
+  }
+  std::filesystem::remove(dir.file("regions.cpg"));
+  ASSERT_NE(read_file(dir.file("regions.dbf"))
+                .find("\xce"
+                      "le-de-France"),
+            std::string::npos);
+  const CliResult r =
+      run_cli({"mesh", shp, "--size", "2000", "--each", "name", "-o", dir.file("{}.gpkg"),
+               "--report", dir.file("{}.json"), "--each-table", dir.file("batch.csv"), "-q"},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string report = read_file(dir.file("Île-de-France.json"));
+  EXPECT_NE(report.find("[--each: \\\"name\\\" = 'Île-de-France']"), std::string::npos) << report;
+  EXPECT_NE(read_file(dir.file("batch.csv")).find("\r\nÎle-de-France,Île-de-France,meshed,0,"),
+            std::string::npos);
+  // The report parses as JSON (UTF-8 throughout).
+  python_check(dir, "import json, sys\njson.load(open(sys.argv[1], encoding='utf-8'))\n",
+               {dir.file("Île-de-France.json")});
+  const CliResult where =
+      run_cli({"mesh", shp, "--where", "name = 'Île-de-France'", "-o", dir.file("m.gpkg")}, dir);
+  EXPECT_EQ(where.exit_code, 3) << where.err;
+  EXPECT_NE(where.err.find("(the nearest: 'Île-de-France'); the layer's text is not UTF-8"),
+            std::string::npos)
+      << where.err;
+  EXPECT_NE(where.err.find("SHAPE_ENCODING"), std::string::npos) << where.err;
+}
+
 // Two regions that would write the same file (values 'a' and 'a_1' with -o {}.gpkg -o
 // {}_1.gpkg; a .pli's numbered files; a report that is the table) are refused before any
 // meshing, naming both, and so is a file name longer than the file system takes; nothing
