@@ -31,6 +31,8 @@ CLI::Validator number_check(const char* name, bool zero_allowed) {
         if (zero_allowed ? v < 0 : !(v > 0))
           return "must be " + std::string(zero_allowed ? "0 or more" : "more than 0") + ", not " +
                  text;
+        // Subnormal numbers (4.9e-324) underflow in the first product.
+        if (v != 0 && !std::isnormal(v)) return "'" + text + "' is too small a number";
         return {};
       },
       name);
@@ -57,7 +59,8 @@ std::array<double, 4> parse_bbox(const std::string& text) {
   std::string item;
   int n = 0;
   while (std::getline(ss, item, ',')) {
-    if (n == 4) break;
+    if (n == 4)
+      throw Error(ErrorClass::usage, "options", "--bbox needs four numbers: XMIN,YMIN,XMAX,YMAX");
     char* end = nullptr;
     b[n] = std::strtod(item.c_str(), &end);
     if (item.empty() || end == item.c_str() || *end != '\0')
@@ -70,6 +73,25 @@ std::array<double, 4> parse_bbox(const std::string& text) {
 }
 
 }  // namespace
+
+void check_option_values(const CLI::App& app) {
+  for (const CLI::App* sub : app.get_subcommands())
+    for (const CLI::Option* o : sub->get_options()) {
+      if (o->count() == 0 || o->get_type_size_max() == 0) continue;  // not given, or a flag
+      const bool number = o->get_type_name().rfind("FLOAT", 0) == 0;
+      for (const std::string& v : o->results()) {
+        if (v.empty())
+          throw CLI::ValidationError(o->get_name(),
+                                     "an empty value (give one, or leave the option out)");
+        if (!number) continue;
+        char* end = nullptr;
+        const double x = std::strtod(v.c_str(), &end);
+        if (end == v.c_str() || *end != '\0' || !std::isfinite(x) ||
+            v.find_first_of("xX") != std::string::npos)
+          throw CLI::ValidationError(o->get_name(), "'" + v + "' is not a number");
+      }
+    }
+}
 
 void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
   CLI::Option* input = cmd->add_option(
@@ -369,7 +391,9 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
                   "the rotation --cross-conformal asks for")
       ->check(CLI::IsMember({"boundary"}))
       ->group(c);
-  cmd->add_option("--cross-angle", f.cross_angle_deg, "Constant cross angle in degrees")->group(c);
+  cmd->add_option("--cross-angle", f.cross_angle_deg, "Constant cross angle in degrees")
+      ->check(CLI::Range(-360.0, 360.0))
+      ->group(c);
   cmd->add_option("--cross-raster", f.cross_raster,
                   "GDAL raster of cross angles in degrees (counter-clockwise from the x axis)")
       ->group(c);

@@ -99,6 +99,12 @@ void add_field_options(CLI::App* cmd, FieldArgs& f);
 void add_open_boundary_options(CLI::App* cmd, FrontEndOptions& fe);
 // The tiling, the quads and the mesh outputs (`mesh`).
 void add_mesh_options(CLI::App* cmd, MeshArgs& m);
+
+// After parsing: throws CLI::ValidationError for an option of the parsed subcommands given
+// an empty value (an unset shell variable would otherwise leave it out unseen) or, taking
+// a number, a value that is not a finite decimal number (nan, inf, hex), which range
+// checks let through.
+void check_option_values(const CLI::App& app);
 // The front end's options from the arguments (the first output, the bbox, the domain's
 // kind, the cleaning); Error(usage) for arguments that do not fit together.
 void finish_front_end_args(CommonArgs& a);

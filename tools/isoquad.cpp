@@ -826,6 +826,7 @@ int main(int argc, char** argv) {
 
   try {
     app.parse(argc, argv);
+    check_option_values(app);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
   } catch (const CLI::CallForAllHelp& e) {

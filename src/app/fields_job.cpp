@@ -109,6 +109,27 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
     return h;
   });
   check_quad_budget(estimate, "estimated on a grid", smallest, domain, options);
+  // The grid misses a band of small sizes along the boundary (--size-expr "max(c, 1)",
+  // sizes from the distance to the coast): there every boundary edge of the mesh is a
+  // quad's side, about h long, so its quads are at least half the boundary's length over
+  // its sizes, sampled at its vertices and edges' midpoints. A size of 0 there (c alone)
+  // is refused by the oracle itself.
+  double boundary_quads = 0.0;
+  auto add_ring = [&](const Ring& ring) {
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const Point2& a = ring[i];
+      const Point2& b = ring[(i + 1) % ring.size()];
+      const double h = std::min(oracle(a), oracle({0.5 * (a.x + b.x), 0.5 * (a.y + b.y)}));
+      smallest = std::min(smallest, h);
+      boundary_quads += std::hypot(b.x - a.x, b.y - a.y) / h;
+    }
+  };
+  for (const Polygon& poly : domain.polygons) {
+    add_ring(poly.outer);
+    for (const Ring& hole : poly.holes) add_ring(hole);
+  }
+  check_quad_budget(0.5 * boundary_quads, "at least that along the boundary", smallest, domain,
+                    options);
   timer.lap("sizing sources");
 
   progress.report("background", 0.2);  // to 0.6 as the background mesh is built

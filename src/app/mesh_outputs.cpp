@@ -56,6 +56,14 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
   MeshJobWritten written;
   MeshOutputData data;
   if (r.has_quads) {
+    // The last guard of the all-quad guarantee: a vertex that is not finite (sizes gone
+    // infinite) makes no quad, convex or not, and no file is written with one.
+    for (std::size_t v = 0; v < r.quads.points.size(); ++v)
+      if (!std::isfinite(r.quads.points[v].x) || !std::isfinite(r.quads.points[v].y))
+        throw Error(ErrorClass::internal, "write",
+                    "vertex " + std::to_string(v + 1) +
+                        " of the mesh has no finite position; no mesh is written (please "
+                        "report the input and options)");
     const FrontEndResult& front = r.fields.front;
     data.mesh = &r.quads;
     data.metrics = &r.metrics;

@@ -349,7 +349,16 @@ double SizingOracle::operator()(const Point2& p) const {
                     " (outside every raster or mesh of sizes); give --hmax or --size");
   h = std::clamp(h, hmin_, hmax_);
   if (automatic_) h = std::min(h, automatic_->narrow(p) / k);
-  return limit_locally(p, k * std::max(h, raw_time_step_floor(raw)), k);
+  const double floor = raw_time_step_floor(raw);
+  const double size = limit_locally(p, k * std::max(h, floor), k);
+  // Only the time step's floor raises sizes over hmax: --time-step 1e308 would give
+  // infinite sizes, and vertices nowhere.
+  if (!std::isfinite(size))
+    throw Error(ErrorClass::usage, "sizing",
+                "--time-step " + std::to_string(params_.time_step_s) + " s with --courant " +
+                    std::to_string(params_.courant) + " asks for cells " + std::to_string(floor) +
+                    " m wide at " + format_point(p) + "; sizes must be finite");
+  return size;
 }
 
 double SizingOracle::depth_at(const Point2& p) const {

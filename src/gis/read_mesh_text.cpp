@@ -153,7 +153,8 @@ void read_gr3(LineReader& r, ReadMesh& mesh) {
   const long long ne = need_count(f, "the number of elements", r);
   const long long np = need_count(f, "the number of nodes", r);
   NodeIds ids;
-  mesh.points.reserve(np);
+  // The count is the file's word: a damaged one must not reserve gigabytes.
+  mesh.points.reserve(static_cast<std::size_t>(std::min<long long>(np, 1 << 20)));
   for (long long k = 0; k < np; ++k) {
     const std::string line = r.need("node " + std::to_string(k + 1) + " of " + std::to_string(np));
     Fields n(line, r);
@@ -369,10 +370,10 @@ void read_msh(LineReader& r, ReadMesh& mesh) {
           h.integer("the entity's tag");
           h.integer("whether the nodes are parametric");
           const long long n = need_count(h, "the block's number of nodes", r);
-          std::vector<long long> tags(n);
+          std::vector<long long> tags;  // grown as read: n is the file's word
           for (long long k = 0; k < n; ++k) {
             Fields t(r.need("a node tag"), r);
-            tags[k] = t.integer("a node tag");
+            tags.push_back(t.integer("a node tag"));
           }
           for (long long k = 0; k < n; ++k) {
             Fields f(r.need("a node's coordinates"), r);

@@ -128,6 +128,7 @@ TEST(Cli, UsageErrorsExitWithTwo) {
        std::vector<std::vector<std::string>>{{"domain", input, "-o", out, "--no-such-option"},
                                              {"domain", input, "-o", out, "--bbox", "1,2,3"},
                                              {"domain", input, "-o", out, "--bbox", "1,2,x,4"},
+                                             {"domain", input, "-o", out, "--bbox", "1,2,3,4,x"},
                                              {"domain", input, "-o", out, "--domain", "ocean"},
                                              {"domain", input, "-o", out, "--simplify", "-5"},
                                              {"domain", input, "-o", dir.file("out.shp")},
@@ -143,13 +144,26 @@ TEST(Cli, UsageErrorsExitWithTwo) {
            {"--hmax", "0", "--hmax: must be more than 0, not 0"},
            {"--hmax", "abc", "--hmax: 'abc' is not a number"},
            {"--hmax", "5000x", "--hmax: '5000x' is not a number"},
-           {"--max-quads", "-1", "--max-quads: must be 0 or more, not -1"}}) {
+           {"--max-quads", "-1", "--max-quads: must be 0 or more, not -1"},
+           // Range checks let NaN through, and a constant field of inf degrees hung the
+           // tiling: every number option takes finite decimal numbers only.
+           {"--cross-conformal", "nan", "--cross-conformal: 'nan' is not a number"},
+           {"--cross-angle", "nan", "--cross-angle: 'nan' is not a number"},
+           {"--hmin", "inf", "--hmin: 'inf' is not a number"},
+           {"--cross-angle", "1e308", "--cross-angle: Value 1e308 not in range"},
+           {"--corner-angle", "-nan", "--corner-angle: '-nan' is not a number"},
+           {"--hmax", "0x4e20", "--hmax: '0x4e20' is not a number"},
+           {"--cells-across", "4.9e-324", "--cells-across: '4.9e-324' is too small a number"},
+           // An empty value (an unset shell variable) is not the option left out.
+           {"--open-boundary", "",
+            "--open-boundary: an empty value (give one, or leave the "
+            "option out)"},
+           {"--where", "", "--where: an empty value"},
+           {"--report", "", "--report: an empty value"}}) {
     const CliResult r = run_cli({"mesh", input, "-o", out, option, value}, dir);
     EXPECT_EQ(r.exit_code, 2) << r.err;
-    EXPECT_NE(
-        r.err.find("isoquad: usage: " + message + " (isoquad mesh --help lists the options)\n"),
-        std::string::npos)
-        << r.err;
+    EXPECT_NE(r.err.find("isoquad: usage: " + message), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(" (isoquad mesh --help lists the options)\n"), std::string::npos) << r.err;
     EXPECT_LT(r.err.size(), 200u) << r.err;
   }
 }

@@ -120,6 +120,18 @@ TEST(CliFields, BadSizingOptionsFailCleanly) {
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out)) << extra[0];
   }
+  // Sizes that shrink to nothing at the coast, which the grid's estimate misses: refused
+  // at once (they kept the size cache refining towards the coast without end).
+  for (const auto& [extra, message] : std::vector<std::pair<std::vector<std::string>, std::string>>{
+           {{"--size-expr", "c"}, "--size-expr 'c' gives 0.000000 at ("},
+           {{"--size-expr", "max(c, 1)", "--max-quads", "100000"},
+            "(at least that along the boundary; 8665.1 km2, sizes from 1 m), over the limit"}}) {
+    std::vector<std::string> args{"fields", sample("corsica.geojson"), "-o", out};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const CliResult r = run_cli(args, dir);
+    EXPECT_EQ(r.exit_code, 2) << r.err;
+    EXPECT_NE(r.err.find(message), std::string::npos) << r.err;
+  }
 }
 
 // The start of a check of a fields .vtu (argv[1]) meshed in Web Mercator: its points

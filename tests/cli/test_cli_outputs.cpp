@@ -2355,6 +2355,11 @@ TEST(CliOutputs, TimeStepRuleWidensTheQuadsInDeepWater) {
         << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir.file("x.gpkg")));
   }
+  // A time step that asks for infinite cells (which gave vertices at NaN): refused.
+  const CliResult infinite = run({"--time-step", "1e308", "-o", dir.file("x.2dm")});
+  EXPECT_EQ(infinite.exit_code, 2) << infinite.err;
+  EXPECT_NE(infinite.err.find("sizes must be finite"), std::string::npos) << infinite.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("x.2dm")));
 }
 
 namespace {

@@ -318,6 +318,16 @@ TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
   EXPECT_NE(read_error(dir, "b.gr3", "grid\n1 3\n1 0 0 0\n2 1 0 0\n")
                 .find("b.gr3': the file ends at line 4"),
             std::string::npos);
+  // Counts far beyond what the file holds (a damaged header) reserve nothing: the file
+  // ends where the count says a node should follow.
+  EXPECT_NE(read_error(dir, "h.gr3", "grid\n4 2000000000\n")
+                .find("h.gr3': the file ends at line 2 where node 1 of 2000000000 should follow"),
+            std::string::npos);
+  EXPECT_NE(read_error(dir, "h.msh",
+                       "$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$Nodes\n1 4000000000 1 "
+                       "4000000000\n2 1 0 4000000000\n")
+                .find("h.msh': the file ends at line 6 where a node tag should follow"),
+            std::string::npos);
   // The open boundaries: cut short, or with a node the file does not have.
   const std::string tri = "grid\n1 3\n1 0 0 0\n2 1 0 0\n3 1 1 0\n1 3 1 2 3\n";
   EXPECT_NE(read_error(dir, "f.gr3", tri + "1 = Number of open boundaries\n")
