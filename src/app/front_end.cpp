@@ -493,6 +493,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   sp.source_name = options.read.path;
   SelectResult selected = select_domain(source, sp);
   s.num_repaired = selected.num_repaired;
+  for (const std::string& note : selected.repair_notes) s.warnings.push_back(note);
 
   progress.report("project", 0.6);
   // A mesh's outline in a projected CRS in metres (a model's grid in UTM) is meshed in

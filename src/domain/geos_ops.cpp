@@ -197,6 +197,12 @@ GeosGeometry GeosContext::clone(const GeosGeometry& g) {
   return check(GEOSGeom_clone_r(state_->handle, static_cast<GEOSGeometry*>(g.get())), "clone");
 }
 
+GeosGeometry GeosContext::sym_difference(const GeosGeometry& a, const GeosGeometry& b) {
+  return check(GEOSSymDifference_r(state_->handle, static_cast<GEOSGeometry*>(a.get()),
+                                   static_cast<GEOSGeometry*>(b.get())),
+               "symmetric difference");
+}
+
 GeosGeometry GeosContext::difference(const GeosGeometry& a, const GeosGeometry& b) {
   return check(GEOSDifference_r(state_->handle, static_cast<GEOSGeometry*>(a.get()),
                                 static_cast<GEOSGeometry*>(b.get())),

@@ -70,6 +70,7 @@ class GeosContext {
   GeosGeometry union_of(const GeosGeometry& a, const GeosGeometry& b);
   GeosGeometry intersection(const GeosGeometry& a, const GeosGeometry& b);
   GeosGeometry difference(const GeosGeometry& a, const GeosGeometry& b);
+  GeosGeometry sym_difference(const GeosGeometry& a, const GeosGeometry& b);
   bool intersects(const GeosGeometry& a, const GeosGeometry& b);
   // Offset by `distance` (negative: inwards) with mitred joins, so that corners keep
   // their place (down to mitre_limit, in multiples of |distance|) instead of rounding.

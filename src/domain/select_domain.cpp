@@ -209,6 +209,54 @@ std::optional<Rectangle> read_rectangle(const SourceData& source) {
   return Rectangle{x0 - m, y0 - m, x1 + m, y1 + m};
 }
 
+// The area an invalid polygon's rings enclose an odd number of times (even-odd, as a
+// renderer fills them), each ring made valid alone.
+GeosGeometry even_odd(GeosContext& geos, const GeosGeometry& g) {
+  std::optional<GeosGeometry> filled;
+  for (const Polygon& p : geos.polygons(g)) {
+    std::vector<const Ring*> rings{&p.outer};
+    for (const Ring& hole : p.holes) rings.push_back(&hole);
+    for (const Ring* ring : rings) {
+      if (ring->size() < 3) continue;
+      GeosGeometry r = geos.make_valid(geos.polygon({*ring}));
+      filled = filled ? geos.sym_difference(*filled, r) : std::move(r);
+    }
+  }
+  return filled ? geos.make_valid(*filled) : geos.make_valid(g);
+}
+
+// An invalid polygon (`what`: which feature) made valid. MakeValid's structure method
+// takes the first ring for the shell and cuts the others out of it: rings wound the
+// other way (a shapefile's shell read inside its own "hole") would lose the whole
+// polygon. So where that keeps less than half of what the rings enclose by even-odd,
+// the even-odd area is taken; and a result more than 1% off that area is noted, as is a
+// hole outside its shell (`v`: the validity check's finding), which becomes land.
+GeosGeometry repaired(GeosContext& geos, const GeosGeometry& g, const std::string& what,
+                      const GeosValidity& v, std::vector<std::string>& notes) {
+  GeosGeometry fixed = geos.make_valid(g);
+  GeosGeometry drawn = even_odd(geos, g);
+  const double a_fixed = geos.area(fixed), a_drawn = geos.area(drawn);
+  if (!(a_drawn > 0)) return fixed;
+  if (a_fixed < 0.5 * a_drawn) {
+    notes.push_back(what + ": its rings do not nest as shell and holes (wound the other way?); " +
+                    "repaired as the area they enclose an odd number of times");
+    return drawn;
+  }
+  const double change = (a_fixed - a_drawn) / a_drawn;
+  if (std::abs(change) > 0.01) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  ": the repair %s %.3g%% of the area its rings enclose (a hole outside its "
+                  "shell, or holes that overlap)",
+                  change < 0 ? "left out" : "added", 100 * std::abs(change));
+    notes.push_back(what + buf);
+  } else if (v.reason == "Hole lies outside shell") {
+    notes.push_back(what + ": a hole lies outside its shell, at or near " +
+                    format_point(v.location) + ": it is land of its own");
+  }
+  return fixed;
+}
+
 }  // namespace
 
 const char* domain_kind_name(DomainKind kind) {
@@ -288,7 +336,7 @@ SelectResult select_domain(const SourceData& input, const SelectParams& params) 
                           (sp.part ? " part " + std::to_string(sp.part) : std::string()) +
                           " is invalid: " + v.reason + " at or near " + format_point(v.location) +
                           "; use --repair to fix it");
-        g = geos.make_valid(g);
+        g = repaired(geos, g, file + ": feature " + std::to_string(sp.fid), v, result.repair_notes);
         ++result.num_repaired;
       }
       parts.push_back(std::move(g));

@@ -28,6 +28,8 @@ struct SelectParams {
 struct SelectResult {
   std::vector<Polygon> polygons;  // source CRS, oriented, sorted by decreasing area
   std::size_t num_repaired = 0;   // input polygons fixed by MakeValid
+  // Repairs that changed the area the polygon's rings enclose, one line each.
+  std::vector<std::string> repair_notes;
 };
 
 // Throws Error(input) for an invalid polygon (without repair) or an empty domain,

@@ -453,6 +453,40 @@ TEST(Cli, WaterDomainAndRepairFromTheCommandLine) {
   EXPECT_NE(r.err.find("1 invalid polygon(s) fixed"), std::string::npos) << r.err;
 }
 
+// --repair of rings that do not nest: a 10 km square whose 4 km "shell" lies inside its
+// "hole" (rings wound the other way) is the annulus between them, not nothing; a hole
+// drawn outside its shell is land of its own. Both said.
+TEST(Cli, RepairKeepsWhatTheRingsEncloseAndSaysSo) {
+  TempDir dir;
+  const std::string big =
+      "[500000,5000000],[510000,5000000],[510000,5010000],[500000,5010000],"
+      "[500000,5000000]";
+  const std::string small =
+      "[503000,5003000],[507000,5003000],[507000,5007000],"
+      "[503000,5007000],[503000,5003000]";
+  const std::string apart =
+      "[520000,5000000],[524000,5000000],[524000,5004000],"
+      "[520000,5004000],[520000,5000000]";
+  write_file(dir.file("inside_out.geojson"),
+             geojson_polygons({"[[" + small + "],[" + big + "]]"}, kUtm31nCrsMember));
+  CliResult r = run_cli({"domain", dir.file("inside_out.geojson"), "-o", dir.file("a.gpkg"),
+                         "--repair", "--size", "1000"},
+                        dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("area:         84 km2"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("feature 0: its rings do not nest as shell and holes"), std::string::npos)
+      << r.err;
+  write_file(dir.file("hole_apart.geojson"),
+             geojson_polygons({"[[" + big + "],[" + apart + "]]"}, kUtm31nCrsMember));
+  r = run_cli({"domain", dir.file("hole_apart.geojson"), "-o", dir.file("b.gpkg"), "--repair",
+               "--size", "1000"},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("area:         116 km2"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("feature 0: a hole lies outside its shell, at or near ("), std::string::npos)
+      << r.err;
+}
+
 // The Arctic Ocean's side of Europe and Asia from Natural Earth's land at 1:110m (the
 // seven parts of `world-atlas` land-110m.json that reach 64 N between 1 W and 91 E): with
 // no simplification, cutting the rings apart where they touched left two of the pieces,
