@@ -216,4 +216,17 @@ void separate_rings(Domain& domain, double r_m) {
   set_polygons(domain, std::move(polygons));
 }
 
+void close_hairline_gaps(Domain& domain, double r_m) {
+  if (!(r_m > 0) || domain.polygons.empty()) return;
+  constexpr double kMitreLimit = 5.0;
+  GeosContext geos;
+  GeosGeometry whole = geos.multipolygon(geos_polygons(geos, domain));
+  if (!geos.validity(whole).valid) whole = geos.make_valid(whole);
+  GeosGeometry closed =
+      geos.buffer_mitre(geos.buffer_mitre(whole, r_m, kMitreLimit), -r_m, kMitreLimit);
+  if (!geos.validity(closed).valid) closed = geos.make_valid(closed);
+  std::vector<Polygon> polygons = geos.polygons(closed);
+  if (!polygons.empty()) set_polygons(domain, std::move(polygons));
+}
+
 }  // namespace isoquad

@@ -31,4 +31,10 @@ bool merge_shared_boundaries(Domain& domain);
 // Throws Error(input) when nothing is left.
 void separate_rings(Domain& domain, double r_m);
 
+// Closes gaps and slits of the domain narrower than 2 r (a closing: offset out by r, then
+// in, with mitred corners): polygons that should meet but miss by a hair (tiles or
+// neighbours digitised less than a millimetre apart) leave slits whose sides touch where
+// separate_rings cannot part them.
+void close_hairline_gaps(Domain& domain, double r_m);
+
 }  // namespace isoquad

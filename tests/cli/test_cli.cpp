@@ -487,6 +487,27 @@ TEST(Cli, RepairKeepsWhatTheRingsEncloseAndSaysSo) {
       << r.err;
 }
 
+// Two squares that should share a side but miss by a tenth of a millimetre at one corner:
+// their union has a slit 10 km long whose sides touch where cuts cannot part them (the
+// run stopped: "rings still touch after cutting them apart"). The slit is closed.
+TEST(Cli, PolygonsThatMissByAHairAreJoined) {
+  TempDir dir;
+  write_file(dir.file("two.geojson"),
+             geojson_polygons({"[[[500000,5000000],[510000,5000000],[510000,5010000],"
+                               "[500000,5010000],[500000,5000000]]]",
+                               "[[[510000.0001,5000000],[520000,5000000],[520000,5010000],"
+                               "[510000,5010000],[510000.0001,5000000]]]"},
+                              kUtm31nCrsMember));
+  const CliResult r = run_cli({"domain", dir.file("two.geojson"), "-o", dir.file("d.gpkg")}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("domain:       1 component(s), 1 ring(s), 0 hole(s)"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("where rings touched (polygons that miss each other by a hair) were "
+                       "closed"),
+            std::string::npos)
+      << r.err;
+}
+
 // The Arctic Ocean's side of Europe and Asia from Natural Earth's land at 1:110m (the
 // seven parts of `world-atlas` land-110m.json that reach 64 N between 1 W and 91 E): with
 // no simplification, cutting the rings apart where they touched left two of the pieces,
