@@ -619,15 +619,16 @@ int run_each(const CommonArgs& a, const std::string& option, const std::string& 
   std::vector<EachCsvRegion> rows;
   for (const EachRegion& r : regions) rows.push_back({r.value, r.name, r.null});
   bool table_written = false, types_written = false, table_failed = false;
+  // The column types first: a table on disk always has them beside it.
   auto write_table = [&](const std::vector<RegionOutcome>& outcomes) {
-    write_text_file(table_path, format_each_csv(field, rows, outcomes, done),
-                    a.overwrite || table_written);
-    table_written = true;
     const std::string types = each_csv_types_path(table_path);
     if (!types.empty() && !types_written) {
       write_text_file(types, format_each_csv_types(), a.overwrite);
       types_written = true;
     }
+    write_text_file(table_path, format_each_csv(field, rows, outcomes, done),
+                    a.overwrite || table_written);
+    table_written = true;
   };
   auto finished = [&](const std::vector<RegionOutcome>& outcomes) {
     if (table_path.empty() || table_failed) return;
