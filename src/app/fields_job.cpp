@@ -290,12 +290,19 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options, 
       // Where the raster has no data, the boundary-aligned field fills in.
       r.cross = boundary_field(r.mesh, r.size, options.cross.conformal, coarse ? &*coarse : nullptr,
                                fixed_lines, align_lines);
+      std::size_t num_taken = 0;
       for (std::size_t v = 0; v < r.mesh.points.size(); ++v) {
         const double deg = raster.sample(r.mesh.points[v]);
         if (std::isnan(deg)) continue;
         // Degrees counter-clockwise from the meshing CRS's x axis, modulo 90.
         r.cross.angle_rad[v] = std::fmod(std::fmod(deg, 90.0) + 90.0, 90.0) * M_PI / 180.0;
+        ++num_taken;
       }
+      if (num_taken == 0)
+        throw Error(ErrorClass::input, "cross field",
+                    "--cross-raster '" + options.cross.raster_path +
+                        "' has no angle anywhere over the domain (check its extent, its CRS "
+                        "and its nodata value)");
       break;
     }
   }

@@ -145,6 +145,19 @@ SizingOracle::SizingOracle(const Domain& domain, const SizingParams& params) : p
   }
   if (!params.raster_path.empty()) {
     raster_ = std::make_unique<RasterField>(params.raster_path, "--size-raster", crs, extent);
+    // A raster that misses the domain (one in another CRS, or of another place) would
+    // leave the sizes to the other sources without a word.
+    constexpr int kProbes = 64;
+    bool covers = false;
+    for (int i = 0; i <= kProbes && !covers; ++i)
+      for (int j = 0; j <= kProbes && !covers; ++j)
+        covers = !std::isnan(raster_->sample({extent[0] + (extent[2] - extent[0]) * i / kProbes,
+                                              extent[1] + (extent[3] - extent[1]) * j / kProbes}));
+    if (!covers)
+      throw Error(ErrorClass::input, "sizing",
+                  "--size-raster '" + params.raster_path +
+                      "' has no size anywhere over the domain (check its extent, its CRS and "
+                      "its nodata value)");
     summary_.sources.push_back("raster " + params.raster_path);
   }
   if (!params.size_mesh_path.empty()) {

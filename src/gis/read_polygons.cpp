@@ -366,6 +366,12 @@ class Reader {
                               "first in feature " +
                               std::to_string(first_feature_ignored_) +
                               "); their polygons are read");
+    // Whole features of points or lines beside the polygons (a closed line would make a
+    // ring in a layer of lines): ignored, and said.
+    if (!out_.polygons.empty() && num_other > 0)
+      out_.warnings.push_back(std::to_string(num_other) + " feature(s) of points or lines in " +
+                              "layer " + quote(out_.layer_name) +
+                              " ignored; only its polygons are read");
     if (out_.polygons.empty() && out_.num_rings_from_lines > 0 && !selection.empty())
       fail(ErrorClass::input, "the " + std::to_string(out_.num_rings_from_lines) +
                                   " ring(s) the lines of layer " + quote(out_.layer_name) +

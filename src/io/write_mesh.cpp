@@ -337,6 +337,12 @@ void check_mesh_outputs(const std::vector<MeshOutput>& outputs, const MeshWriteO
     throw Error(ErrorClass::usage, "options", "--msh-version must be 4.1 or 2.2");
   if (!options.output_crs.empty()) {
     const CrsInfo crs = parse_crs(options.output_crs, "--output-crs");
+    // Planar files hold two coordinates: a geocentric or vertical CRS's would be nonsense.
+    if (!crs.geographic && !crs.projected)
+      throw Error(ErrorClass::crs, "options",
+                  "--output-crs '" + options.output_crs + "' (" + crs.name +
+                      ") is neither geographic nor projected: the outputs hold two "
+                      "coordinates, longitude and latitude or planar ones");
     // A GeoJSON names its CRS by an EPSG code, and is read as lon/lat without one.
     for (const MeshOutput& o : outputs)
       if (mesh_output_format(o) == MeshFormat::geojson && epsg_code(crs.wkt) == 0)

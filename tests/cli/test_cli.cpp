@@ -204,7 +204,11 @@ TEST(Cli, ContradictoryOutputsAndSizesAreRefusedBeforeMeshing) {
             2,
             "--size 3000 is over --hmax 2000"},
            {{"-o", dir.file("folder.gpkg")}, 6, "folder.gpkg' is a directory"},
-           {{"-o", dir.file("folder.gpkg"), "--overwrite"}, 6, "folder.gpkg' is a directory"}}) {
+           {{"-o", dir.file("folder.gpkg"), "--overwrite"}, 6, "folder.gpkg' is a directory"},
+           // Geocentric X, Y, Z in a file of two coordinates (it wrote X and Y).
+           {{"-o", dir.file("m.gpkg"), "--output-crs", "EPSG:4978"},
+            4,
+            "--output-crs 'EPSG:4978' (WGS 84) is neither geographic nor projected"}}) {
     std::vector<std::string> all{"mesh", input};
     all.insert(all.end(), args.begin(), args.end());
     const CliResult r = run_cli(all, dir);
@@ -484,6 +488,26 @@ TEST(Cli, RepairKeepsWhatTheRingsEncloseAndSaysSo) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("area:         116 km2"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("feature 0: a hole lies outside its shell, at or near ("), std::string::npos)
+      << r.err;
+}
+
+// A layer of polygons with a point and a closed line among them: those are ignored, and
+// the summary says so.
+TEST(Cli, PointsAndLinesAmongPolygonsAreIgnoredAndSaid) {
+  TempDir dir;
+  std::string json = geojson_polygons({"[[[500000,5000000],[510000,5000000],[510000,5010000],"
+                                       "[500000,5010000],[500000,5000000]]]"},
+                                      kUtm31nCrsMember);
+  json.insert(json.size() - 2,
+              R"(,{"type":"Feature","properties":{},"geometry":{"type":"Point",)"
+              R"("coordinates":[520000,5000000]}},{"type":"Feature","properties":{},)"
+              R"("geometry":{"type":"LineString","coordinates":[[520000,5000000],)"
+              R"([530000,5000000],[530000,5010000],[520000,5000000]]}})");
+  write_file(dir.file("mixed.geojson"), json);
+  const CliResult r = run_cli({"domain", dir.file("mixed.geojson"), "-o", dir.file("d.gpkg")}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("warning: 2 feature(s) of points or lines in layer 'mixed' ignored"),
+            std::string::npos)
       << r.err;
 }
 

@@ -8,6 +8,7 @@
 
 #include "gis/gdal_env.h"
 #include "support/fixtures.h"
+#include "support/write_raster.h"
 
 using namespace isoquad::test;
 
@@ -119,6 +120,19 @@ TEST(CliFields, BadSizingOptionsFailCleanly) {
     EXPECT_NE(r.exit_code, 70) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_FALSE(std::filesystem::exists(out)) << extra[0];
+  }
+  // A raster of sizes or angles far from the domain (lon/lat 0..1, Corsica at 9 E 42 N):
+  // refused, not ignored.
+  const std::string far = write_geotiff(dir.file("far.tif"), 0.0, 1.0, 0.1, 10, 10, 4326,
+                                        [](double, double) { return 3000.0; });
+  for (const auto& [option, message] : std::vector<std::pair<std::string, std::string>>{
+           {"--size-raster", "has no size anywhere over the domain"},
+           {"--cross-raster", "has no angle anywhere over the domain"}}) {
+    const CliResult r = run_cli(
+        {"fields", sample("corsica.geojson"), "--hmax", "20000", option, far, "-o", out}, dir);
+    EXPECT_EQ(r.exit_code, 3) << r.err;
+    EXPECT_NE(r.err.find(option + " '" + far + "' " + message), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(out));
   }
   // Sizes that shrink to nothing at the coast, which the grid's estimate misses: refused
   // at once (they kept the size cache refining towards the coast without end).
