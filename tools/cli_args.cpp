@@ -819,4 +819,30 @@ bool every_output_exists(const CommonArgs& a, const FieldArgs& f, const MeshArgs
   return true;
 }
 
+void check_not_partly_written(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m) {
+  std::error_code ec;
+  std::vector<std::string> present, missing;
+  auto sort_out = [&](const std::string& path) {
+    (std::filesystem::exists(path, ec) ? present : missing).push_back(path);
+  };
+  for (const MeshOutput& o : mesh_outputs(a, m)) {
+    if (mesh_output_exists(o)) {  // a .pli's numbered files among them
+      present.push_back(o.path);
+      continue;
+    }
+    for (const std::string& path : mesh_output_files(o)) sort_out(path);
+  }
+  for (const std::string& p : {a.report_path, f.plot_path})
+    if (!p.empty() && p != kStdoutPath) sort_out(p);
+  if (present.empty() || missing.empty()) return;
+  throw Error(
+      ErrorClass::usage, "options",
+      "--skip-existing: '" + present[0] + "' exists" +
+          (present.size() > 1 ? " (and " + std::to_string(present.size() - 1) + " more)" : "") +
+          " but not '" + missing[0] + "'" +
+          (missing.size() > 1 ? " (and " + std::to_string(missing.size() - 1) + " more)" : "") +
+          ": a run stopped part-way leaves none of its outputs, so these are another "
+          "run's; remove them to mesh again");
+}
+
 }  // namespace isoquad::cli

@@ -124,4 +124,9 @@ MeshWriteOptions mesh_write_options(const MeshArgs& m);
 // --skip-existing: every file the run would write exists.
 bool every_output_exists(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m);
 
+// With --skip-existing: Error(usage) naming what exists and what is missing when some of
+// the outputs (with the files written beside them, --report and --plot) exist and
+// others do not.
+void check_not_partly_written(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m);
+
 }  // namespace isoquad::cli

@@ -674,6 +674,7 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
     EachRegion& r = regions[k];
     r.skip = m.skip_existing && every_output_exists(r.a, r.f, m);
     if (r.skip) continue;
+    if (m.skip_existing) check_not_partly_written(r.a, r.f, m);
     if (!r.a.report_path.empty()) check_output_path(r.a.report_path, a.overwrite);
     if (!r.f.plot_path.empty()) check_output_path(r.f.plot_path, a.overwrite);
     check_mesh_outputs(outputs[k], mesh_write_options(m));
@@ -889,6 +890,8 @@ int main(int argc, char** argv) {
       if (!mesh_args.quiet) std::cerr << "skipped: every output exists (--skip-existing)\n";
       return 0;
     }
+    if (mesh_cmd->parsed() && mesh_extra.skip_existing)
+      check_not_partly_written(mesh_args, mesh_field_args, mesh_extra);
     if (quality_cmd->parsed() && !quality_extra.each.empty())
       return run_quality_each(quality_args, quality_field_args, quality_extra,
                               joined_command_line(argc, argv));

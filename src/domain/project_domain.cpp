@@ -180,6 +180,23 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
       throw Error(ErrorClass::crs, "crs",
                   "--dst-crs '" + params.dst_crs + "' (" + target.name +
                       ") is not in metres; choose a projected CRS in metres");
+    // A zone mistyped (UTM 10N for Corsica) meshes in a map stretched by a fifth: said.
+    double aou[4];
+    if (crs_area_of_use(target, aou)) {
+      const CrsInfo geog = geographic_base(source_crs);
+      constexpr double kMarginDeg = 10.0;  // as for the input's own CRS
+      for (const Point2& q : lonlat_points(geog))
+        if (q.x < aou[0] - kMarginDeg || q.x > aou[2] + kMarginDeg || q.y < aou[1] - kMarginDeg ||
+            q.y > aou[3] + kMarginDeg) {
+          result.warning = printf_string(
+              "--dst-crs '%s' (%s): the domain reaches lon %.4g, lat %.4g, far outside the "
+              "CRS's area of use (lon %.4g to %.4g, lat %.4g to %.4g); the map strays from "
+              "the ground there: check the CRS, or --dst-crs local",
+              params.dst_crs.c_str(), target.name.c_str(), q.x, q.y, aou[0], aou[2], aou[1],
+              aou[3]);
+          break;
+        }
+    }
   } else {
     // Centred on the domain.
     const CrsInfo geog = geographic_base(source_crs);

@@ -200,7 +200,11 @@ const std::string& OutputSet::add(const std::string& final_path, bool overwrite)
   std::error_code ec;
   const std::string key = output_path_key(final_path);
   for (const std::string& p : paths_)
-    if (p == key) throw Error(ErrorClass::usage, "write", quote(final_path) + " is given twice");
+    if (p == key)
+      throw Error(ErrorClass::usage, "write",
+                  quote(final_path) +
+                      " would be written twice: given twice, or given once and also written "
+                      "beside another output (a .gr3's .ll, a .slf's .cli)");
   outputs_.push_back(std::make_unique<AtomicOutput>(final_path, overwrite));
   paths_.push_back(key);
   overwrite_.push_back(overwrite);

@@ -1278,11 +1278,16 @@ TEST(CliMesh, SkipExistingResumesABatch) {
   EXPECT_TRUE(std::filesystem::exists(dir.file("p.ll")));
   EXPECT_TRUE(std::filesystem::exists(dir.file("p.json")));
   EXPECT_EQ(std::filesystem::last_write_time(dir.file("q.gr3")), q_time);
-  // p without its .ll: not done, and its .gr3 is not replaced.
+  // p without its .ll: not done, and its .gr3 is not replaced; the message says what is
+  // there and what is not.
   std::filesystem::remove(dir.file("p.ll"));
   r = run({"--skip-existing"});
-  EXPECT_EQ(r.exit_code, 6) << r.err;
-  EXPECT_NE(r.err.find("/p.json' already exists"), std::string::npos) << r.err;
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(
+      r.err.find("--skip-existing: '" + dir.file("p.gr3") + "' exists (and 1 more) but not '" +
+                 dir.file("p.ll") + "': a run stopped part-way leaves none of its outputs"),
+      std::string::npos)
+      << r.err;
   EXPECT_EQ(read_file(dir.file("p.gr3")), p_grid);
   // Both options: refused.
   r = run({"--skip-existing", "--overwrite"});

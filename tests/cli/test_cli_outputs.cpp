@@ -746,6 +746,14 @@ TEST(CliOutputs, UnwritableSecondOutputLeavesNothing) {
   r = run({"-o", dir.file("a.gpkg"), "-o", dir.file("a.gpkg")});
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(entries(), before);
+  // Given once, and written beside another output too (hgrid.gr3's hgrid.ll).
+  r = run({"-o", dir.file("hgrid.gr3"), "--report", dir.file("hgrid.ll")});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("hgrid.ll' would be written twice: given twice, or given once and also "
+                       "written beside another output (a .gr3's .ll"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(entries(), before);
   r = run({"-o", dir.file("a.gpkg"), "-o", dir.file("b.shp")});
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_EQ(entries(), before);

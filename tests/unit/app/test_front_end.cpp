@@ -128,6 +128,21 @@ TEST(FrontEnd, DstCrsUtmIsTheZoneOfTheDomainsCentre) {
   }
 }
 
+// An explicit --dst-crs far from the domain (a zone mistyped: UTM 10N, California's, for
+// France) is warned of; the zone that holds it is not.
+TEST(FrontEnd, ADstCrsFarFromTheDomainIsWarnedOf) {
+  for (const auto& [crs, warned] :
+       std::vector<std::pair<std::string, bool>>{{"EPSG:32610", true}, {"EPSG:32631", false}}) {
+    FrontEndOptions o = france(0.0);
+    o.project.dst_crs = crs;
+    const FrontEndResult r = build_planar_domain(o);
+    bool found = false;
+    for (const std::string& w : r.summary.warnings)
+      found = found || w.find("far outside the CRS's area of use") != std::string::npos;
+    EXPECT_EQ(found, warned) << crs;
+  }
+}
+
 // A CRS whose map ends at the antimeridian (EPSG:3857): a domain that reaches 180 from
 // the west is projected where it lies (180 is not read as -180 there, the map's other
 // edge), and one across 180 is refused rather than torn across the map; EPSG:3832
