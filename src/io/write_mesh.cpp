@@ -1,7 +1,9 @@
 #include "io/write_mesh.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <map>
 
 #include "core/error.h"
@@ -67,7 +69,25 @@ void write_quads_layer(const MeshView& v, VectorWriter& w) {
 void write_quad_polygons(const MeshView& v, const std::string& path, const std::string& what,
                          const std::string& driver) {
   std::vector<std::string> options;
-  if (driver == "GeoJSON" && v.geographic) options.push_back("RFC7946=YES");
+  if (driver == "GeoJSON" && v.geographic) {
+    options.push_back("RFC7946=YES");
+    // RFC 7946's 7 decimals of a degree round by about 1 cm: quads with sides under 10 m
+    // (a flume, a harbour's details) get the decimals that keep the rounding under a
+    // thousandth of their shortest side, or they could come out non-convex.
+    const QuadMesh& mesh = *v.data->mesh;
+    double shortest = std::numeric_limits<double>::infinity();
+    for (const auto& q : mesh.quads)
+      for (int k = 0; k < 4; ++k) {
+        const Point2& a = mesh.points[q[k]];
+        const Point2& b = mesh.points[q[(k + 1) % 4]];
+        shortest = std::min(shortest, std::hypot(b.x - a.x, b.y - a.y));
+      }
+    if (shortest < 10.0) {
+      const int decimals = std::min(
+          15, 7 + static_cast<int>(std::ceil(std::log10(10.0 / std::max(shortest, 1e-8)))));
+      options.push_back("COORDINATE_PRECISION=" + std::to_string(decimals));
+    }
+  }
   VectorWriter w(path, true, v.crs_wkt, driver, options, what);
   write_quads_layer(v, w);
   w.commit();

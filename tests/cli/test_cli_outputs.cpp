@@ -1976,6 +1976,39 @@ TEST(CliOutputs, QuadsAsGeoJsonAndFlatGeobuf) {
   EXPECT_FALSE(std::filesystem::exists(dir.file("custom.geojson")));
 }
 
+// Quads of 1 cm (a laboratory flume) as GeoJSON in longitude and latitude: RFC 7946's 7
+// decimals (about 1 cm) left a tenth of them non-convex; the file gets the decimals they
+// need.
+TEST(CliOutputs, SmallQuadsAsGeoJsonStayConvex) {
+  TempDir dir;
+  write_file(dir.file("flume.geojson"),
+             geojson_polygons({"[[[500000,5000000],[500000.5,5000000],[500000.5,5000000.5],"
+                               "[500000,5000000.5],[500000,5000000]]]"},
+                              kUtm31nCrsMember));
+  const CliResult r = run_cli(
+      {"mesh", dir.file("flume.geojson"), "--size", "0.01", "-o", dir.file("m.geojson"), "-q"},
+      dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string out = python_check(
+      dir,
+      "import json, sys\n"
+      "d = json.load(open(sys.argv[1]))\n"
+      "bad = 0\n"
+      "for f in d['features']:\n"
+      "    p = f['geometry']['coordinates'][0][:4]\n"
+      "    for k in range(4):\n"
+      "        a, b, c = p[k], p[(k + 1) % 4], p[(k + 2) % 4]\n"
+      "        if (b[0] - a[0]) * (c[1] - b[1]) - (b[1] - a[1]) * (c[0] - b[0]) <= 0:\n"
+      "            bad += 1\n"
+      "            break\n"
+      "print(len(d['features']), bad)\n",
+      {dir.file("m.geojson")});
+  int quads = 0, bad = -1;
+  std::istringstream(out) >> quads >> bad;
+  EXPECT_GT(quads, 2000) << out;
+  EXPECT_EQ(bad, 0) << out;
+}
+
 // --exclude: a breakwater drawn in UTM 30N (3 x 1 km) removed from the water box in
 // lon/lat: a land loop more, no node inside it; one outside the box excludes nothing and
 // changes no byte; a ring that crosses itself is refused, named by its feature.
