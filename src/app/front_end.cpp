@@ -609,6 +609,14 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     PointLayer layer = read_point_layer(
         path, "--embed-points", false, "", "", std::numeric_limits<std::size_t>::max(),
         {named.empty() ? "name" : named, "--embed-points-name", !named.empty()});
+    // Each point is a station the user placed: one that cannot be read is an error.
+    if (layer.num_without_point > 0)
+      throw Error(ErrorClass::input, "read",
+                  "--embed-points '" + path + "': " + std::to_string(layer.num_without_point) +
+                      " feature(s) without a point, the first feature " +
+                      std::to_string(layer.first_without_point) +
+                      " (coordinates that are not numbers, or empty)" +
+                      (layer.gdal_message.empty() ? "" : ": " + layer.gdal_message));
     if (layer.points.empty())
       throw Error(ErrorClass::input, "read", "--embed-points '" + path + "': holds no point");
     const CrsInfo from =

@@ -87,10 +87,14 @@ PointLayer read_point_layer(const std::string& path, const std::string& what, bo
                                   names.option + "; attributes: " + field_names(*layer) + ")");
   }
   layer->ResetReading();
+  GdalErrorCapture capture;  // a CSV's "Invalid value type" warnings, said by the caller
   for (auto& feature : *layer) {
     if (out.points.size() >= max_points) break;
     const OGRGeometry* g = feature->GetGeometryRef();
-    if (!g || g->IsEmpty()) continue;
+    if (!g || g->IsEmpty()) {
+      if (out.num_without_point++ == 0) out.first_without_point = feature->GetFID();
+      continue;
+    }
     const std::string where = "layer '" + name + "', feature " + std::to_string(feature->GetFID());
     if (!is_point_type(g->getGeometryType()))
       fail(ErrorClass::input, where + " is a " + OGRGeometryTypeToName(g->getGeometryType()) +
@@ -123,6 +127,7 @@ PointLayer read_point_layer(const std::string& path, const std::string& what, bo
     else
       for (const OGRPoint* p : *g->toMultiPoint()) add(*p);
   }
+  out.gdal_message = capture.last_message();
   return out;
 }
 

@@ -17,6 +17,11 @@ struct PointLayer {
   std::vector<std::string> names;  // with a name attribute: each point's (its feature's)
   std::string crs;             // WKT; empty when the layer has none
   std::string layer_name;
+  // Features without a point (a CSV row whose coordinates are not numbers or are empty),
+  // the first's id, and what GDAL said of it.
+  std::size_t num_without_point = 0;
+  long long first_without_point = -1;
+  std::string gdal_message;
 };
 
 // Whether `path` opens as a vector data set with a layer of points (read_point_layer).

@@ -116,6 +116,14 @@ RawSamples read_xyz(const std::string& path, const std::string& what, std::size_
 RawSamples read_points(const std::string& path, const std::string& what, const std::string& field,
                        std::size_t max_samples) {
   PointLayer layer = read_point_layer(path, what, true, field, "--depth-field", max_samples);
+  // As an .xyz's line that is not three numbers: an error, not a sounding left out.
+  if (layer.num_without_point > 0)
+    fail(ErrorClass::input, what, path,
+         "has " + std::to_string(layer.num_without_point) +
+             " feature(s) without a point, the first feature " +
+             std::to_string(layer.first_without_point) +
+             " (coordinates that are not numbers, or empty)" +
+             (layer.gdal_message.empty() ? "" : ": " + layer.gdal_message));
   return {std::move(layer.points), std::move(layer.values), std::move(layer.crs)};
 }
 

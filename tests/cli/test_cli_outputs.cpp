@@ -2597,6 +2597,16 @@ TEST(CliOutputs, EmbeddedPointsGetVertices) {
   EXPECT_EQ(r.exit_code, 3) << r.err;
   EXPECT_NE(r.err.find("1 of the 1 points of"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("t.gr3")));
+  // A CSV row whose longitude is not a number: an error naming it, not a station lost.
+  write_file(dir.file("rows.csv"), "name,lon,lat\nA,-4.45,48.3\nC,abc,48.3\n");
+  r = mesh_box_800(dir, {"--embed-points", dir.file("rows.csv"), "-o", dir.file("t.gr3")});
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("rows.csv': 1 feature(s) without a point, the first feature 2 "
+                       "(coordinates that are not numbers, or empty)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("Warning 1:"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("t.gr3")));
 }
 
 // --depth-average: the depths as means over squares round the vertices, said in the
