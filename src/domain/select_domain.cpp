@@ -234,7 +234,13 @@ GeosGeometry even_odd(GeosContext& geos, const GeosGeometry& g) {
 GeosGeometry repaired(GeosContext& geos, const GeosGeometry& g, const std::string& what,
                       const GeosValidity& v, std::vector<std::string>& notes) {
   GeosGeometry fixed = geos.make_valid(g);
-  GeosGeometry drawn = even_odd(geos, g);
+  std::optional<GeosGeometry> even;
+  try {  // an overlay GEOS fails on (a non-noded intersection): MakeValid's result stands
+    even = even_odd(geos, g);
+  } catch (const Error&) {
+    return fixed;
+  }
+  GeosGeometry drawn = std::move(*even);
   const double a_fixed = geos.area(fixed), a_drawn = geos.area(drawn);
   if (!(a_drawn > 0)) return fixed;
   if (a_fixed < 0.5 * a_drawn) {
