@@ -211,6 +211,14 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
          "in fields and mesh, of the automatic hmin; otherwise off)")
       ->check(kNonNegative)
       ->group("Cleaning");
+  cmd->add_option("--hairline", a.hairline_m,
+                  "Of the pieces narrower than --min-width that it keeps because filling or "
+                  "cutting them would join or cut components or holes: close the gaps, and cut "
+                  "out the strips, narrower than this, in m (polygons that miss each other by a "
+                  "hair: unsnapped neighbours, tiles), which would need quads that narrow "
+                  "(default: a fiftieth of --min-width; 0: never)")
+      ->check(kNonNegative)
+      ->group("Cleaning");
   cmd->add_option("--report", a.report_path,
                   "Write the summary as JSON to this file (-: to stdout, once every output is "
                   "written)")
@@ -684,6 +692,7 @@ void finish_front_end_args(CommonArgs& a) {
   if (a.simplify_m >= 0) a.fe.simplify_m = a.simplify_m;
   if (a.min_island_area_m2 >= 0) a.fe.min_island_area_m2 = a.min_island_area_m2;
   if (a.min_width_m >= 0) a.fe.min_width_m = a.min_width_m;
+  if (a.hairline_m >= 0) a.fe.hairline_m = a.hairline_m;
 }
 
 FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {

@@ -31,6 +31,7 @@ struct CommonArgs {
   double simplify_m = -1.0;
   double min_island_area_m2 = -1.0;
   double min_width_m = -1.0;
+  double hairline_m = -1.0;
   std::string report_path;
   bool overwrite = false;
   bool quiet = false;

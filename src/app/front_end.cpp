@@ -22,6 +22,9 @@ namespace isoquad {
 
 namespace {
 
+// The default --hairline, a share of --min-width.
+constexpr double kHairlineShare = 0.02;
+
 struct ProjectedLines {
   std::vector<std::vector<Point2>> lines;
   std::vector<double> sag_m;  // by line: the largest gap between a projected segment and its chord
@@ -741,18 +744,73 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   // step changes more than min_width^2 of area (slivers the offsets alone move are far
   // smaller), a few rounds at most.
   constexpr int kNarrowRounds = 3;
-  for (int round = 0; round < kNarrowRounds; ++round) {
-    const NarrowResult n = remove_narrow_features(result.domain, np);
-    if (round == 0) s.narrow = n;
-    else s.narrow.add(n);
-    if (!n.changed) break;
-    const double moved = n.area_removed_m2 + n.area_added_m2;
+  auto clean_and_simplify_again = [&] {
     const CleanResult again = clean_domain(result.domain, cp);
     s.dropped.num_islands_dropped += again.num_islands_dropped;
     s.dropped.num_holes_dropped += again.num_holes_dropped;
     s.num_vertices_after = simplify_domain(result.domain, simp).num_vertices_after;
-    if (moved < np.min_width_m * np.min_width_m) break;
+  };
+  auto narrow_rounds = [&](bool first) {
+    for (int round = 0; round < kNarrowRounds; ++round) {
+      const NarrowResult n = remove_narrow_features(result.domain, np);
+      if (round == 0 && first)
+        s.narrow = n;
+      else
+        s.narrow.add(n);
+      if (!n.changed) break;
+      const double moved = n.area_removed_m2 + n.area_added_m2;
+      clean_and_simplify_again();
+      if (moved < np.min_width_m * np.min_width_m) break;
+    }
+  };
+  narrow_rounds(true);
+  // Pieces kept for the topology that are far narrower than any quad (two islands or
+  // tiles a centimetre apart, a strip of land a few millimetres wide between a lake and
+  // the sea) are digitising artefacts: the background mesh would refine down to their
+  // width (a gap of 1 cm: 1.1 million vertices and 5 minutes for 2,400 quads) and the
+  // quads across them be needles (a strip 1/400 of the quads wide: an aspect ratio of
+  // thousands). Those are closed or cut out whatever that does to the topology, and the
+  // narrow features run again (filling round the joins just made).
+  if (options.hairline_m && *options.hairline_m < 0)
+    throw Error(ErrorClass::usage, "narrow features", "--hairline must not be negative");
+  NarrowParams hairline = np;
+  hairline.min_width_m = options.hairline_m.value_or(kHairlineShare * np.min_width_m);
+  s.hairline_m = hairline.min_width_m;
+  if (hairline.min_width_m > 0 && s.narrow.num_pieces_kept > 0) {
+    const NarrowResult n = close_hairlines(result.domain, hairline, s.narrow.kept);
+    if (n.changed) {
+      s.narrow.add(n);
+      s.warnings.push_back(printf_string(
+          "%zu gap(s) or strip(s) narrower than --hairline (%.3g m) closed or cut out although "
+          "that joins or cuts components or holes (the largest near (%.10g, %.10g) in the "
+          "meshing CRS): so narrow, they are taken for digitising artefacts; --hairline 0 "
+          "keeps them",
+          n.num_pieces, hairline.min_width_m, n.largest_changed.at.x, n.largest_changed.at.y));
+      clean_and_simplify_again();
+      narrow_rounds(false);
+    }
   }
+  // Parts of the domain narrower than --min-width kept, at least a quad long and narrower
+  // than the width on average (a strait, a land bridge; not the gaps kept between parts
+  // of it, which need nothing of the quads, nor the tip of a wedge, nor a large piece
+  // with a narrow neck): said, with the narrowest.
+  const NarrowPlace* narrowest = nullptr;
+  std::vector<NarrowPlace> strips;
+  for (const NarrowResult::Kept& k : s.narrow.kept) {
+    if (!k.cut || perimeter(k.piece.outer) < 8 * np.min_width_m) continue;
+    const NarrowPlace place = place_of(k.piece);
+    if (place.width_m < np.min_width_m) strips.push_back(place);
+  }
+  for (const NarrowPlace& p : strips)
+    if (!narrowest || p.width_m < narrowest->width_m) narrowest = &p;
+  if (narrowest)
+    s.warnings.push_back(printf_string(
+        "%zu part(s) of the domain narrower than --min-width (%.4g m) kept, since cutting them "
+        "out would cut components or open holes (straits, isthmuses, land bridges); the "
+        "narrowest near (%.10g, %.10g) in the meshing CRS, about %.3g m wide: quads there may "
+        "be long and narrow; smaller sizes there (--refine, --hmin) give them better shapes, "
+        "and --hairline above its width cuts it out",
+        strips.size(), np.min_width_m, narrowest->at.x, narrowest->at.y, narrowest->width_m));
   cut_pinches();
   // Last, tips sharper than a quad's corner may be (after the simplification, which can
   // sharpen them), cut back to min_width wide.

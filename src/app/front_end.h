@@ -56,6 +56,10 @@ struct FrontEndOptions {
   std::optional<double> simplify_clearance_m;
   std::optional<double> min_island_area_m2;  // default: target_size_m^2, or 0
   std::optional<double> min_width_m;         // default: target_size_m / 4, or off
+  // Gaps and strips narrower than this are closed or cut out even where that changes the
+  // topology (the hairline pass in build_planar_domain). Default: a fiftieth of
+  // min_width, and only where the narrow features kept some piece for the topology.
+  std::optional<double> hairline_m;
   // A vector file of lines (or polygons, by their rings) along the domain's edge: the
   // boundary they follow is open, the rest land, instead of a water domain's bbox.
   std::string open_boundary_path;
@@ -122,6 +126,7 @@ struct DomainSummary {
   double simplify_m = 0.0;
   double min_island_area_m2 = 0.0;
   double min_width_m = 0.0;
+  double hairline_m = 0.0;
   NarrowResult narrow;
   SpikeResult spikes;  // tips sharper than SpikeParams::max_angle_deg cut back
   CleanResult dropped;

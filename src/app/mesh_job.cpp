@@ -3,6 +3,7 @@
 #include "app/quad_zones.h"
 #include "app/vertex_depths.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -132,6 +133,30 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
       std::string earlier;
       for (std::size_t i = 0; i < r.retry_reasons.size(); ++i)
         earlier += "; attempt " + std::to_string(i + 1) + ": " + r.retry_reasons[i];
+      // Where a piece narrower than --min-width was kept for the topology (a channel of
+      // 1 m between two land polygons meshed at 70 m): the domain's, and the user's to
+      // change.
+      const DomainSummary& front = r.fields.front.summary;
+      const double reach = 2 * front.target_size_m;
+      for (const NarrowResult::Kept& kept : front.narrow.kept) {
+        const Polygon& piece = kept.piece;
+        Domain one;
+        one.polygons.push_back(piece);
+        const auto near = [&](const Point2& p) {
+          return domain_contains(one, p) || distance_to_boundary(one, p) <= reach;
+        };
+        if (std::none_of(failed_at.begin(), failed_at.end(), near)) continue;
+        const NarrowPlace place = place_of(piece);
+        throw Error(ErrorClass::meshing, tiling_failed ? "tiling" : "smooth",
+                    problem + " after " + std::to_string(r.attempts) +
+                        " tiling attempt(s), next to a piece narrower than --min-width that "
+                        "was kept since changing it would join or cut components or holes (near " +
+                        format_point(place.at) + ", about " + printf_string("%.3g", place.width_m) +
+                        " m across); no mesh is written: --hairline " +
+                        printf_string("%.3g", 1.5 * place.width_m) +
+                        " closes or cuts it, smaller sizes there (--refine, --hmin) resolve it" +
+                        earlier);
+      }
       if (tiling_failed)
         throw Error(ErrorClass::meshing, "tiling",
                     problem + " after " + std::to_string(r.attempts) +

@@ -61,6 +61,8 @@ std::string format_domain_summary(const DomainSummary& s) {
     os << "narrow:       " << s.narrow.num_pieces << " feature(s) under " << num(s.min_width_m)
        << " m wide changed: " << num(s.narrow.area_removed_m2 / 1e6, 4) << " km2 removed, "
        << num(s.narrow.area_added_m2 / 1e6, 4) << " km2 filled in";
+    if (s.narrow.num_hairline)
+      os << " (" << s.narrow.num_hairline << " hairline, whatever the topology)";
     if (s.narrow.num_pieces_kept)
       os << "; " << s.narrow.num_pieces_kept
          << " kept (changing them would cut or join components or holes)";
@@ -122,10 +124,12 @@ void add_domain_summary(JsonWriter& j, const DomainSummary& s) {
       .value("simplify_m", s.simplify_m)
       .value("min_island_area_m2", s.min_island_area_m2)
       .value("min_width_m", s.min_width_m)
+      .value("hairline_m", s.hairline_m)
       .value("narrow_area_removed_m2", s.narrow.area_removed_m2)
       .value("narrow_area_added_m2", s.narrow.area_added_m2)
       .value("narrow_num_changed", s.narrow.num_pieces)
       .value("narrow_num_kept", s.narrow.num_pieces_kept)
+      .value("narrow_num_hairline", s.narrow.num_hairline)
       .value("spikes_num_cut", s.spikes.num_cut)
       .value("spikes_num_cut_at_base", s.spikes.num_cut_at_base)
       .value("spikes_area_removed_m2", s.spikes.area_removed_m2)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <functional>
 #include <optional>
 #include <string>
@@ -61,6 +62,36 @@ std::vector<Polygon> pieces(GeosContext& geos, const GeosGeometry& g, double min
 
 }  // namespace
 
+NarrowPlace place_of(const Polygon& p) {
+  NarrowPlace out;
+  double perimeter = 0;
+  for (std::size_t i = 0; i < p.outer.size(); ++i) {
+    const Point2& a = p.outer[i];
+    const Point2& b = p.outer[(i + 1) % p.outer.size()];
+    perimeter += std::hypot(b.x - a.x, b.y - a.y);
+    out.at.x += a.x / static_cast<double>(p.outer.size());
+    out.at.y += a.y / static_cast<double>(p.outer.size());
+  }
+  out.width_m = perimeter > 0 ? 2 * std::abs(signed_area(p.outer)) / perimeter : 0.0;
+  return out;
+}
+
+namespace {
+
+// Counts a piece left as it was.
+void note_kept(NarrowResult& result, const Polygon& p, bool cut) {
+  result.kept.push_back({p, cut});
+  ++result.num_pieces_kept;
+}
+
+// Counts a piece applied, keeping the largest (pieces come largest first).
+void note_changed(NarrowResult& result, const Polygon& p) {
+  if (result.num_pieces == 0) result.largest_changed = place_of(p);
+  ++result.num_pieces;
+}
+
+}  // namespace
+
 NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) {
   NarrowResult result;
   result.num_components_before = result.num_components_after = domain.polygons.size();
@@ -103,6 +134,7 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
   if (topology(polygons) == original_topology) {
     for (const Polygon& p : removed) result.area_removed_m2 += std::abs(signed_area(p.outer));
     for (const Polygon& p : added) result.area_added_m2 += std::abs(signed_area(p.outer));
+    result.largest_changed = place_of(!removed.empty() ? removed[0] : added[0]);
     result.num_pieces = removed.size() + added.size();
   } else if (removed.size() + added.size() <= params.max_sequential_pieces) {
     // Some piece would cut an isthmus, join components or open or close a hole (in a
@@ -119,12 +151,12 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
         } catch (const Error&) {
         }
         if (!next || topology(geos.polygons(*next)) != original_topology) {
-          ++result.num_pieces_kept;
+          note_kept(result, p, !add);
           continue;
         }
         current = std::move(*next);
         area += std::abs(signed_area(p.outer));
-        ++result.num_pieces;
+        note_changed(result, p);
       }
     };
     apply(removed, false, result.area_removed_m2);
@@ -177,7 +209,7 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     auto sort_out = [&](const std::vector<Polygon>& list, bool removed_piece) {
       for (const Polygon& p : list) {
         if (!p.holes.empty() || contacts(geos.polygon_with_holes(p), p, removed_piece) != 1) {
-          ++result.num_pieces_kept;
+          note_kept(result, p, removed_piece);
           continue;
         }
         Piece a{&p, 1e300, 1e300, -1e300, -1e300, std::abs(signed_area(p.outer)),
@@ -270,7 +302,7 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
           });
     }
     if (reference_failed) {
-      result.num_pieces_kept += accepted.size();
+      for (const Piece& a : accepted) note_kept(result, *a.polygon, a.cut);
       return result;
     }
     std::vector<std::size_t> ids(accepted.size());
@@ -364,10 +396,10 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     for (std::size_t i : ids) chosen[i] = true;
     for (std::size_t i = 0; i < accepted.size(); ++i) {
       if (!chosen[i]) {
-        ++result.num_pieces_kept;
+        note_kept(result, *accepted[i].polygon, accepted[i].cut);
         continue;
       }
-      ++result.num_pieces;
+      note_changed(result, *accepted[i].polygon);
       (accepted[i].cut ? result.area_removed_m2 : result.area_added_m2) += accepted[i].area;
     }
     if (result.num_pieces == 0) return result;
@@ -376,6 +408,64 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
   sort_by_area(polygons);
   domain.polygons = std::move(polygons);
   result.num_components_after = domain.polygons.size();
+  result.changed = true;
+  return result;
+}
+
+NarrowResult close_hairlines(Domain& domain, const NarrowParams& params,
+                             const std::vector<NarrowResult::Kept>& kept) {
+  NarrowResult result;
+  result.num_components_before = result.num_components_after = domain.polygons.size();
+  if (!(params.min_width_m > 0) || domain.polygons.empty() || kept.empty()) return result;
+  const double r = 0.5 * params.min_width_m;
+  const double negligible = 1e-4 * params.min_width_m * params.min_width_m;
+  GeosContext geos;
+  GeosGeometry current = geos.domain_multipolygon(domain);
+  if (!geos.validity(current).valid) return result;
+  const GeosGeometry opened =
+      geos.buffer_mitre(geos.buffer_mitre(current, -r, params.mitre_limit), r, params.mitre_limit);
+  GeosGeometry closed =
+      geos.buffer_mitre(geos.buffer_mitre(opened, r, params.mitre_limit), -r, params.mitre_limit);
+  if (!geos.validity(closed).valid) closed = geos.make_valid(closed);
+  std::vector<GeosGeometry> kept_geometry;
+  for (const NarrowResult::Kept& k : kept)
+    kept_geometry.push_back(geos.polygon_with_holes(k.piece));
+  // A piece counts where it meets a kept piece and changes the topology: anything else
+  // the opening and closing at this width move (the tips of sharp corners) is the
+  // narrow features' to change, or to leave.
+  auto apply = [&](const std::vector<Polygon>& list, bool add, double& area) {
+    for (const Polygon& p : list) {
+      const GeosGeometry piece = geos.polygon_with_holes(p);
+      if (std::none_of(kept_geometry.begin(), kept_geometry.end(),
+                       [&](const GeosGeometry& k) { return geos.intersects(piece, k); }))
+        continue;
+      std::optional<GeosGeometry> next;
+      try {
+        next = add ? geos.union_of(current, piece) : geos.difference(current, piece);
+      } catch (const Error&) {
+      }
+      if (!next || topology(geos.polygons(*next)) == topology(geos.polygons(current))) continue;
+      current = std::move(*next);
+      area += std::abs(signed_area(p.outer));
+      note_changed(result, p);
+    }
+  };
+  apply(pieces(geos, geos.difference(current, closed), negligible), false, result.area_removed_m2);
+  apply(pieces(geos, geos.difference(closed, current), negligible), true, result.area_added_m2);
+  if (result.num_pieces == 0) return result;
+  // The overlays' slivers along the pieces' sides, as in remove_narrow_features.
+  const double eps = 1e-3 * params.min_width_m;
+  current = geos.buffer_mitre(geos.buffer_mitre(current, -eps, params.mitre_limit), eps,
+                              params.mitre_limit);
+  current = geos.buffer_mitre(geos.buffer_mitre(current, eps, params.mitre_limit), -eps,
+                              params.mitre_limit);
+  std::vector<Polygon> polygons = geos.polygons(current);
+  if (polygons.empty()) return result;
+  for (Polygon& p : polygons) orient_polygon(p);
+  sort_by_area(polygons);
+  domain.polygons = std::move(polygons);
+  result.num_components_after = domain.polygons.size();
+  result.num_hairline = result.num_pieces;
   result.changed = true;
   return result;
 }

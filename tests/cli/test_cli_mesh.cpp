@@ -1785,3 +1785,51 @@ TEST(CliMesh, SizesAreLengthsOnTheGroundWhateverTheCrsScale) {
   EXPECT_LE(hi, 100000.0 * (1 + 1e-9));
   EXPECT_GT(hi, 0.9 * 100000.0);
 }
+
+// A channel of water 1 m wide between two land squares, meshed at an automatic 70 m: the
+// narrow features keep it (closing it would join the squares), and the quads across it
+// are needles or fold. Never an internal error: a mesh with a warning naming the place,
+// or a meshing error (5) that names it and the --hairline that closes it; with that
+// --hairline, a mesh of the squares as one island.
+TEST(CliMesh, AChannelFarNarrowerThanTheQuadsIsNamedAndHairlineClosesIt) {
+  TempDir dir;
+  const std::string input = dir.file("squares.geojson");
+  write_file(input,
+             geojson_polygons({"[[[500000,5000000],[510000,5000000],[510000,5010000],[500000,"
+                               "5010000],[500000,5000000]]]",
+                               "[[[510001,5000000],[520001,5000000],[520001,5010000],[510001,"
+                               "5010000],[510001,5000000]]]"},
+                              kUtm31nCrsMember));
+  const std::vector<std::string> water = {
+      "mesh",           input, "--domain", "water", "--bbox", "490000,4990000,530000,5020000",
+      "--max-attempts", "1"};
+  std::vector<std::string> args = water;
+  args.push_back("-o");
+  args.push_back(dir.file("kept.gr3"));
+  const CliResult kept = run_cli(args, dir);
+  EXPECT_NE(kept.exit_code, 70) << kept.err;
+  if (kept.exit_code == 0) {
+    EXPECT_NE(kept.err.find("part(s) of the domain narrower than --min-width"), std::string::npos)
+        << kept.err;
+    EXPECT_NE(kept.err.find("near (510000.5, 5005000) in the meshing CRS, about 1 m wide"),
+              std::string::npos)
+        << kept.err;
+  } else {
+    EXPECT_EQ(kept.exit_code, 5) << kept.err;
+    EXPECT_NE(kept.err.find("near (510000.5, 5005000), about 1 m across"), std::string::npos)
+        << kept.err;
+    EXPECT_NE(kept.err.find("--hairline 1.5 closes or cuts it"), std::string::npos) << kept.err;
+  }
+  args = water;
+  for (const std::string& a : {std::string("--hairline"), std::string("1.5"), std::string("-o"),
+                               dir.file("closed.gr3"), std::string("--report"), dir.file("r.json")})
+    args.push_back(a);
+  const CliResult closed = run_cli(args, dir);
+  ASSERT_EQ(closed.exit_code, 0) << closed.err;
+  EXPECT_NE(closed.err.find("narrower than --hairline (1.5 m) closed"), std::string::npos)
+      << closed.err;
+  const std::string report = read_file(dir.file("r.json"));
+  EXPECT_EQ(report_number(report, "num_holes"), 1.0);
+  EXPECT_EQ(report_number(report, "narrow_num_hairline"), 1.0);
+  EXPECT_EQ(report_number(report, "num_nonconvex"), 0.0);
+}

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <optional>
 
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
@@ -325,6 +326,66 @@ TEST(FrontEnd, NoPieceUnderTheLeastAreaIsLeftAfterTheCuts) {
     EXPECT_GE(std::abs(signed_area(p.outer)), r.summary.min_island_area_m2);
     for (const Ring& h : p.holes) EXPECT_GE(std::abs(signed_area(h)), r.summary.min_island_area_m2);
   }
+}
+
+// Polygons that miss each other by a hair, far narrower than the narrow features'
+// width: two islands 1 cm apart (a corner of one 1 cm from the other's side), and a lake
+// 1 cm from the coast. The narrow features keep them (joining the islands or opening
+// the lake changes the topology), and the background mesh would refine to their width
+// (1 cm: 1.1 million vertices, 5 minutes); the hairline pass closes the gap and cuts the
+// strip, with a warning naming the place. With --hairline 0 they stay, with a warning.
+TEST(FrontEnd, HairlineGapsAndStripsAreClosedOrCut) {
+  TempDir dir;
+  const std::string islands = dir.file("islands.geojson"), lake = dir.file("lake.geojson");
+  write_file(islands,
+             geojson_polygons({"[[[500000,5000000],[510000,5000000],[510000,5010000],[500000,"
+                               "5010000],[500000,5000000]]]",
+                               "[[[510000.01,5002000],[515000.01,5002000],[515000.01,5007000],"
+                               "[510000.01,5007000],[510000.01,5002000]]]"},
+                              kUtm31nCrsMember));
+  write_file(lake, geojson_polygons({"[[[500000,5000000],[510000,5000000],[510000,5010000],"
+                                     "[500000,5010000],[500000,5000000]],[[500000.01,5002000],["
+                                     "505000,5002000],[505000,5008000],[500000.01,5008000],["
+                                     "500000.01,5002000]]]"},
+                                    kUtm31nCrsMember));
+  auto build = [](const std::string& path, std::optional<double> hairline) {
+    FrontEndOptions o;
+    o.read.path = path;
+    o.target_size_m = 200.0;
+    o.hairline_m = hairline;
+    return build_planar_domain(o);
+  };
+  auto warned = [](const FrontEndResult& r, const std::string& text) {
+    return std::any_of(r.summary.warnings.begin(), r.summary.warnings.end(),
+                       [&](const std::string& w) { return w.find(text) != std::string::npos; });
+  };
+  const FrontEndResult a = build(islands, std::nullopt);
+  EXPECT_EQ(a.summary.num_components, 1u);
+  EXPECT_EQ(a.summary.narrow.num_hairline, 1u);
+  EXPECT_EQ(a.summary.narrow.num_pieces_kept, 0u);
+  EXPECT_TRUE(warned(a, "narrower than --hairline (1 m) closed"));
+  EXPECT_TRUE(warned(a, "near (510000"));
+  // Both squares whole, joined near the corner, and not much more.
+  EXPECT_NEAR(a.summary.area_m2, 125e6, 0.001 * 125e6);
+  EXPECT_TRUE(domain_contains(a.domain, {510000.005, 5004500}));
+
+  const FrontEndResult b = build(lake, std::nullopt);
+  EXPECT_EQ(b.summary.num_holes, 0u);  // the lake is a bay
+  EXPECT_EQ(b.summary.narrow.num_hairline, 1u);
+  EXPECT_FALSE(domain_contains(b.domain, {500000.005, 5005000}));
+  EXPECT_NEAR(b.summary.area_m2, 100e6 - 30e6, 0.001 * 70e6);
+
+  // The gap between the islands needs nothing of the quads: no warning; the strip of
+  // land between the lake and the sea does.
+  const FrontEndResult c = build(islands, 0.0);
+  EXPECT_EQ(c.summary.num_components, 2u);
+  EXPECT_EQ(c.summary.narrow.num_hairline, 0u);
+  EXPECT_EQ(c.summary.narrow.num_pieces_kept, 1u);
+  EXPECT_FALSE(warned(c, "kept"));
+  const FrontEndResult d = build(lake, 0.0);
+  EXPECT_EQ(d.summary.num_holes, 1u);
+  EXPECT_TRUE(warned(d, "1 part(s) of the domain narrower than --min-width (50 m) kept"));
+  EXPECT_TRUE(warned(d, "near (500000.005, 5005000) in the meshing CRS, about 0.01 m wide"));
 }
 
 // --align: of a file of lines, only the runs of segments near the domain's box are kept

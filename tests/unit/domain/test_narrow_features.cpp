@@ -7,6 +7,7 @@
 #include <gdal_priv.h>
 #include <ogrsf_frmts.h>
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -98,6 +99,65 @@ TEST(NarrowFeatures, ComponentsAndHolesKeepTheirTopology) {
   EXPECT_EQ(r.num_pieces_kept, 1u);
   ASSERT_EQ(sea.polygons.size(), 1u);
   EXPECT_EQ(sea.polygons[0].holes.size(), 1u);
+}
+
+TEST(NarrowFeatures, KeptPiecesAreListedAndHairlinesAmongThemClosed) {
+  // A water domain whose island (a hole) lies 2 m off its shore, and a sharp spike
+  // (10 degrees) on its outer ring: the strait is narrower than 10 m. Kept, and listed
+  // with its width; close_hairlines at 4 m cuts it out (the island joins the outer ring:
+  // the hole becomes a bay), and nothing else: the spike's tip, narrower than 4 m too,
+  // meets no kept piece.
+  const Domain sea = one_polygon(
+      {{0, 0}, {1000, 0}, {1000, 480}, {1600, 500}, {1000, 520}, {1000, 1000}, {0, 1000}},
+      {{{2, 300}, {300, 300}, {300, 600}, {2, 600}}});
+  Domain kept = sea;
+  const NarrowResult r = remove_narrow_features(kept, {10.0});
+  ASSERT_EQ(r.num_pieces_kept, 1u);
+  ASSERT_EQ(r.kept.size(), 1u);
+  EXPECT_TRUE(r.kept[0].cut);  // a strait of the domain
+  const NarrowPlace place = place_of(r.kept[0].piece);
+  EXPECT_NEAR(place.width_m, 2.0, 0.2);
+  EXPECT_NEAR(place.at.x, 1.0, 0.5);
+  EXPECT_GT(place.at.y, 300.0);
+  EXPECT_LT(place.at.y, 600.0);
+  ASSERT_EQ(kept.polygons.size(), 1u);
+  EXPECT_EQ(kept.polygons[0].holes.size(), 1u);
+
+  Domain cut = kept;
+  const double before = area(cut);
+  const NarrowResult c = close_hairlines(cut, {4.0}, r.kept);
+  EXPECT_TRUE(c.changed);
+  EXPECT_EQ(c.num_pieces, 1u);
+  EXPECT_EQ(c.num_hairline, 1u);
+  ASSERT_EQ(cut.polygons.size(), 1u);
+  EXPECT_TRUE(cut.polygons[0].holes.empty());
+  EXPECT_NEAR(area(cut), before - 2.0 * 300.0, 20.0);
+  EXPECT_FALSE(domain_contains(cut, {1, 450}));
+  EXPECT_NEAR(c.largest_changed.at.x, 1.0, 0.5);
+  // The spike's tip (cut back to 10 m wide by the narrow features) is where it was.
+  auto tip = [](const Domain& d) {
+    double x = 0;
+    for (const Point2& p : d.polygons[0].outer) x = std::max(x, p.x);
+    return x;
+  };
+  EXPECT_GT(tip(kept), 1400.0);
+  EXPECT_NEAR(tip(cut), tip(kept), 1e-6);
+  // Under the strait's width, nothing.
+  Domain wide = kept;
+  EXPECT_FALSE(close_hairlines(wide, {1.0}, r.kept).changed);
+  EXPECT_EQ(wide.polygons[0].holes.size(), 1u);
+
+  // Two squares 2 m apart: joined.
+  Domain two = one_polygon({{0, 0}, {400, 0}, {400, 400}, {0, 400}});
+  two.polygons.push_back(one_polygon({{402, 0}, {800, 0}, {800, 400}, {402, 400}}).polygons[0]);
+  const NarrowResult t = remove_narrow_features(two, {10.0});
+  EXPECT_FALSE(t.changed);
+  ASSERT_EQ(t.kept.size(), 1u);
+  EXPECT_FALSE(t.kept[0].cut);  // a gap between its parts
+  EXPECT_EQ(two.polygons.size(), 2u);
+  EXPECT_TRUE(close_hairlines(two, {4.0}, t.kept).changed);
+  ASSERT_EQ(two.polygons.size(), 1u);
+  EXPECT_TRUE(domain_contains(two, {401, 200}));
 }
 
 TEST(NarrowFeatures, NothingLeftIsAnInputError) {
