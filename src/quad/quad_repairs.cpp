@@ -352,11 +352,32 @@ bool split_doubled_corner(QuadMesh& m, const QuadTopology& t, int b, int i) {
   std::vector<char> removed(m.quads.size(), 0);
   for (int q : round_i) removed[q] = 1;
   const auto& o = octagon;
-  m.quads.push_back({o[0], o[1], o[2], o[3]});
-  m.quads.push_back({o[0], o[3], o[4], o[5]});
-  m.quads.push_back({o[0], o[5], o[6], o[7]});
+  std::array<std::array<int, 4>, 3> fan = {
+      {{o[0], o[1], o[2], o[3]}, {o[0], o[3], o[4], o[5]}, {o[0], o[5], o[6], o[7]}}};
+  // A far corner of the fan (o2, o4, o6: a neighbour of i) that was in three quads is in
+  // two once i's go, which share both its edges (a doublet: one of the two has an angle
+  // of 180 degrees or more there, whatever the untangling does). The two become one
+  // quad, without it: (o0, P, apex, Q) and (R, Q, apex, P) give (o0, P, R, Q).
+  for (auto& f : fan) {
+    const int apex = f[2];
+    if (m.chain[apex] >= 0 || m.fixed[apex] || t.quad_start[apex + 1] - t.quad_start[apex] != 3)
+      continue;
+    int other = -1;
+    for (int k = t.quad_start[apex]; k < t.quad_start[apex + 1]; ++k)
+      if (!removed[t.quad_items[k]]) other = t.quad_items[k];
+    if (other < 0) continue;
+    const auto& w = m.quads[other];
+    int j = 0;
+    while (w[j] != apex) ++j;
+    if (w[(j + 1) % 4] != f[1] || w[(j + 3) % 4] != f[3]) continue;
+    const int r = w[(j + 2) % 4];
+    if (r == f[0]) continue;
+    f = {f[0], f[1], r, f[3]};
+    removed[other] = 1;
+  }
+  for (const auto& f : fan) m.quads.push_back(f);
   removed.resize(m.quads.size(), 0);
-  remove_quads(m, removed);  // i, in none of them now, goes too
+  remove_quads(m, removed);  // i (and a doublet's vertex), in none of them now, goes too
   return true;
 }
 

@@ -611,3 +611,32 @@ TEST(MeshJob, TheVerticesAreNumberedNeighboursCloseTogether) {
     EXPECT_LT(distance(rcm.quads.points[a], rcm.embedded_points[k].target), 1.0);
   }
 }
+
+// A water domain's 270-degree corner (two land squares 300 m apart, automatic sizes, 70 m
+// at the coast) lay in two quads, an interior vertex 0.66 m from it: two quads with a
+// side of 0.66 m (aspect ratios 160 and 163). The corner split (three quads fanned from
+// the corner) left one of i's neighbours in two quads sharing both its edges, flat
+// whatever the untangling did, and was undone; those two are now one quad.
+TEST(MeshJob, ADoubledCornerIsSplitWhereItsFanWouldLeaveADoublet) {
+  TempDir dir;
+  const std::string input = dir.file("squares.geojson");
+  write_file(input,
+             geojson_polygons({"[[[500000,5000000],[510000,5000000],[510000,5010000],[500000,"
+                               "5010000],[500000,5000000]]]",
+                               "[[[510300,5000000],[520300,5000000],[520300,5010000],[510300,"
+                               "5010000],[510300,5000000]]]"},
+                              kUtm31nCrsMember));
+  MeshOptions o;
+  o.fields.front.read.path = input;
+  o.fields.front.kind = DomainKind::water;
+  o.fields.front.read.bbox = std::array<double, 4>{490000, 4990000, 530000, 5020000};
+  auto worst_aspect = [](const MeshResult& r) {
+    return *std::max_element(r.metrics.aspect_ratio.begin(), r.metrics.aspect_ratio.end());
+  };
+  const MeshResult r = build_mesh(o);
+  EXPECT_GE(r.smooth.num_corner_splits, 1);
+  EXPECT_EQ(r.quality.num_nonconvex, 0u);
+  EXPECT_LT(worst_aspect(r), 5.0);
+  o.smooth.doubled_corner_side = 0.0;
+  EXPECT_GT(worst_aspect(build_mesh(o)), 50.0) << "the premise: a side under 2% of its quad's";
+}
