@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <sstream>
 
 #include "core/error.h"
@@ -38,6 +39,10 @@ bool transform_all(const CrsTransform& t, std::vector<Polygon>& polys, Point2* f
 // equidistant CRS is not conformal away from its centre: those domains get the local
 // projection, and the summary says why.
 constexpr double kKeptScaleError = 0.01, kKeptAnisotropy = 1e-3, kKeptSkewDeg = 0.1;
+
+// How far an edge's image may stray from its chord, as a share of the domain's diagonal
+// (France: 11 m; a harbour 10 km across: 0.14 m).
+constexpr double kCurvedEdgeTolerance = 1e-5;
 
 // Empty when `crs` can serve as the meshing CRS over `points`, else why not.
 std::string why_not_kept(const CrsInfo& crs, const std::vector<Point2>& points) {
@@ -132,6 +137,45 @@ void check_not_torn(const std::vector<Polygon>& lonlat, const std::vector<Polygo
   }
 }
 
+// Edges are straight in the source's coordinates (a parallel in longitude and latitude,
+// a line in Web Mercator), and most are curves in the meshing CRS: a box drawn from 2 to
+// 4 E at 50 N has its northern side 480 m from the chord between its corners in a
+// stereographic projection centred on it. Each edge of `projected` (the images of
+// `source`'s points, one for one) gets the images of points along it, halving it until
+// the image of each half's midpoint lies within `tolerance` of its chord (a few levels
+// at most), as --bbox and --clip are densified. An edge over 180 degrees of longitude
+// (one that crosses the antimeridian, its image the short way) keeps its chord.
+void follow_curved_edges(const std::vector<Polygon>& source, std::vector<Polygon>& projected,
+                         const CrsTransform& t, bool geographic, double tolerance) {
+  constexpr int kMaxLevels = 10;  // up to 1,023 points an edge
+  std::function<void(const Point2&, const Point2&, const Point2&, const Point2&, int, Ring&)>
+      refine = [&](const Point2& a, const Point2& pa, const Point2& b, const Point2& pb, int levels,
+                   Ring& out) {
+        const Point2 m{0.5 * (a.x + b.x), 0.5 * (a.y + b.y)};
+        Point2 pm = m;
+        if (!t.transform(pm) || distance_to_segment(pm, pa, pb) <= tolerance) return;
+        if (levels > 1) refine(a, pa, m, pm, levels - 1, out);
+        out.push_back(pm);
+        if (levels > 1) refine(m, pm, b, pb, levels - 1, out);
+      };
+  auto follow = [&](const Ring& r, Ring& q) {
+    Ring out;
+    out.reserve(q.size());
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      const std::size_t j = (i + 1) % r.size();
+      out.push_back(q[i]);
+      if (geographic && std::abs(r[j].x - r[i].x) > 180.0) continue;
+      refine(r[i], q[i], r[j], q[j], kMaxLevels, out);
+    }
+    q = std::move(out);
+  };
+  for (std::size_t k = 0; k < source.size(); ++k) {
+    follow(source[k].outer, projected[k].outer);
+    for (std::size_t h = 0; h < source[k].holes.size(); ++h)
+      follow(source[k].holes[h], projected[k].holes[h]);
+  }
+}
+
 }  // namespace
 
 ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo& source_crs,
@@ -204,9 +248,10 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
     target = result.local->crs;
   }
 
-  std::vector<Polygon> projected = polygons;
+  std::vector<Polygon> source = polygons;
   CrsTransform t(source_crs, target);
-  if (source_crs.geographic) read_antimeridian_as_west(t, projected);
+  if (source_crs.geographic) read_antimeridian_as_west(t, source);
+  std::vector<Polygon> projected = source;
   Point2 failed;
   if (!transform_all(t, projected, &failed))
     throw Error(ErrorClass::crs, "crs",
@@ -214,6 +259,15 @@ ProjectResult project_domain(const std::vector<Polygon>& polygons, const CrsInfo
                     "' to '" + target.name + "'");
   // The local projection's map ends only at the domain's antipode.
   if (source_crs.geographic && !result.local) check_not_torn(polygons, projected, t, target);
+  if (!result.source_kept) {
+    double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+    for (const Polygon& p : projected)
+      for (const Point2& q : p.outer)
+        x0 = std::min(x0, q.x), y0 = std::min(y0, q.y), x1 = std::max(x1, q.x),
+        y1 = std::max(y1, q.y);
+    follow_curved_edges(source, projected, t, source_crs.geographic,
+                        kCurvedEdgeTolerance * std::hypot(x1 - x0, y1 - y0));
+  }
   // Points that are one once projected (every point at a pole; see above for the
   // antimeridian) leave duplicates and spikes.
   remove_duplicates_and_spikes(projected);
