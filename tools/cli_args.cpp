@@ -748,12 +748,16 @@ void finish_depth_options(const CommonArgs& a, FieldArgs& f) {
     r.field = f.depth_field;
     check_depth_source(r);
   }
-  if (!f.depth_field.empty() &&
-      std::none_of(f.sizing.bathymetry.begin(), f.sizing.bathymetry.end(),
-                   [](const DepthRaster& r) { return is_sample_file(r.path); }))
+  // (An .xyz has only x, y and the value: no attribute to name.)
+  if (!f.depth_field.empty() && std::none_of(f.sizing.bathymetry.begin(), f.sizing.bathymetry.end(),
+                                             [](const DepthRaster& r) {
+                                               return is_sample_file(r.path) &&
+                                                      !ends_with(lower_case(r.path), ".xyz");
+                                             }))
     throw Error(ErrorClass::usage, "options",
-                "--depth-field names the attribute of points given as --bathymetry or "
-                "--elevation; none is");
+                "--depth-field names the attribute of a layer of points given as --bathymetry "
+                "or --elevation; none is (an .xyz holds x, y and the value only, a raster or "
+                "mesh its own values)");
   if (!f.sizing.bathymetry.empty()) return;
   auto needs = [](const char* option) {
     throw Error(ErrorClass::usage, "options",

@@ -861,6 +861,25 @@ int main(int argc, char** argv) {
                          (near.empty() ? "" : "; did you mean --" + near[0] + "?");
         break;
       }
+    // CLI11's wording for an option given twice, or a value of the wrong kind.
+    const std::string at_most = ": At Most 1 required but received ";
+    if (const std::size_t at = what.find(at_most); at != std::string::npos)
+      what = what.substr(0, at) + " is given " + what.substr(at + at_most.size()) +
+             " times; give it once";
+    const std::string convert = "Could not convert: ";
+    if (what.rfind(convert, 0) == 0) {
+      const std::string rest = what.substr(convert.size());  // "--jobs = 1.5"
+      const std::size_t eq = rest.find(" = ");
+      if (eq != std::string::npos) {
+        const std::string name = rest.substr(0, eq), value = rest.substr(eq + 3);
+        const CLI::Option* o = parsed ? parsed->get_option_no_throw(name) : nullptr;
+        const std::string type = o ? o->get_type_name() : "";
+        what = name + ": '" + value + "' is not " +
+               (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0 ? "a whole number"
+                : type.rfind("FLOAT", 0) == 0                           ? "a number"
+                                                                        : "a valid value");
+      }
+    }
     std::cerr << "isoquad: usage: " << what << " (" << help << " lists the options)\n";
     return exit_code(ErrorClass::usage);
   }

@@ -49,10 +49,26 @@ MeshBoundary boundary_of_domain(const QuadMesh& quads, const FrontEndResult& fro
       open_line_tolerance(front), front.open_boundary_chord_share, &front.open_boundary_line_group);
 }
 
+namespace {
+
+MeshJobWritten write_outputs(const MeshResult& r, const MeshJobOutputs& o, OutputSet& set);
+
+}  // namespace
+
 MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs& o) {
+  OutputSet set;
+  try {
+    return write_outputs(r, o, set);
+  } catch (const Error& e) {
+    throw set.explained(e);
+  }
+}
+
+namespace {
+
+MeshJobWritten write_outputs(const MeshResult& r, const MeshJobOutputs& o, OutputSet& set) {
   std::vector<StageTime> output_time;
   StageClock clock(output_time);
-  OutputSet set;
   MeshJobWritten written;
   MeshOutputData data;
   if (r.has_quads) {
@@ -138,6 +154,8 @@ MeshJobWritten write_mesh_job_outputs(const MeshResult& r, const MeshJobOutputs&
   set.commit_all();
   return written;
 }
+
+}  // namespace
 
 namespace {
 

@@ -216,6 +216,32 @@ void OutputSet::remove_on_commit(const std::string& path) {
   removed_.push_back(output_path_key(path));
 }
 
+Error OutputSet::explained(const Error& e) const {
+  if (e.error_class() != ErrorClass::output) return e;
+  std::string message = e.message();
+  std::string full;
+  for (const auto& o : outputs_) {
+    // Whole paths first, then bare names (GDAL and SQLite name files their own way).
+    const std::string names[2] = {o->temp_path(),
+                                  std::filesystem::path(o->temp_path()).filename().string()};
+    for (const std::string& name : names)
+      for (std::size_t at = message.find(name); !name.empty() && at != std::string::npos;
+           at = message.find(name, at + o->final_path().size()))
+        message.replace(at, name.size(), o->final_path());
+    if (full.empty()) {
+      std::error_code ec;
+      const std::filesystem::path dir =
+          std::filesystem::absolute(o->final_path(), ec).parent_path();
+      const std::filesystem::space_info space = std::filesystem::space(dir, ec);
+      if (!ec && space.available < (1u << 20))
+        full = " (the disk holding " + quote(dir.string()) + " has " +
+               std::to_string(space.available / 1024) + " KB free)";
+    }
+  }
+  if (message.find(" full") == std::string::npos) message += full;
+  return Error(e.error_class(), e.stage(), message);
+}
+
 void OutputSet::commit_all() {
   // A signal's clean-up waits until every output is in place (or none is).
   std::lock_guard<std::recursive_mutex> lock(unfinished().mutex);

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include "core/error.h"
+
 namespace isoquad {
 
 // Fails early (Error(output)) when `path` exists and `overwrite` is false, or when its
@@ -41,6 +43,7 @@ class AtomicOutput {
 
   // Where the writer writes; it keeps the destination's extension.
   const std::string& temp_path() const { return temp_path_; }
+  const std::string& final_path() const { return final_path_; }
   // Moves the finished temporary file into place. Throws Error(output).
   void commit();
 
@@ -67,6 +70,10 @@ class OutputSet {
   // Moves every output into place, or none. Throws Error(output).
   void commit_all();
   std::size_t size() const { return outputs_.size(); }
+  // A writer's error as the user should read it: the temporary files named by the
+  // outputs' names, and a disk with under 1 MB free said (a writer's own message seldom
+  // tells why it failed).
+  Error explained(const Error& e) const;
 
  private:
   std::vector<std::string> removed_;

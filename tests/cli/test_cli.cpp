@@ -177,6 +177,16 @@ TEST(Cli, AMisspeltOptionGetsTheNearestName) {
   EXPECT_EQ(r.err,
             "isoquad: usage: unknown option --domian; did you mean --domain? (isoquad mesh --help "
             "lists the options)\n");
+  // An option given twice, a value of the wrong kind: said in the project's words.
+  r = run_cli({"mesh", input, "--hmax", "4000", "--hmax", "5000", "-o", dir.file("m.gpkg")}, dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("usage: --hmax is given 2 times; give it once"), std::string::npos) << r.err;
+  r = run_cli({"mesh", input, "--jobs", "1.5", "-o", dir.file("m.gpkg")}, dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("usage: --jobs: '1.5' is not a whole number"), std::string::npos) << r.err;
+  r = run_cli({"mesh", input, "--hmax", "abc", "-o", dir.file("m.gpkg")}, dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("usage: --hmax: 'abc' is not a number"), std::string::npos) << r.err;
   r = run_cli({"domain", input, "--hmax=5", "-o", dir.file("d.gpkg")}, dir);  // mesh's only
   EXPECT_EQ(r.exit_code, 2) << r.err;
   EXPECT_NE(r.err.find("usage: --hmax is an option of fields, mesh, quality, not of domain"),

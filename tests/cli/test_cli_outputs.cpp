@@ -2690,7 +2690,13 @@ TEST(CliOutputs, SoundingsGiveTheDepthsBetweenThem) {
   r = mesh_box_800(
       dir, {"--bathymetry", bathymetry(dir), "--depth-field", "z", "-o", dir.file("u.gr3")});
   EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_NE(r.err.find("--depth-field names the attribute of points"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--depth-field names the attribute of a layer of points"), std::string::npos)
+      << r.err;
+  // An .xyz has no attribute to name: refused, not ignored.
+  r = mesh_box_800(dir, {"--bathymetry", dir.file("soundings.xyz"), "--depth-crs", "EPSG:4326",
+                         "--depth-field", "z", "-o", dir.file("u.gr3")});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("an .xyz holds x, y and the value only"), std::string::npos) << r.err;
   EXPECT_FALSE(std::filesystem::exists(dir.file("t.gr3")));
   EXPECT_FALSE(std::filesystem::exists(dir.file("u.gr3")));
 }

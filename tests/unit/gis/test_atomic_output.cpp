@@ -225,3 +225,24 @@ TEST(AtomicOutput, PathKeysTellFilesApart) {
   EXPECT_NE(output_path_key(dir.file(long_name + "a.gpkg")),
             output_path_key(dir.file(long_name + "b.gpkg")));
 }
+
+// A writer names the file it writes, the temporary one: the error the user reads names
+// the output instead, and other errors pass as they were.
+TEST(OutputSet, AWritersErrorNamesTheOutputNotItsTemporaryFile) {
+  TempDir dir;
+  OutputSet set;
+  const std::string path = dir.file("mesh.vtu");
+  const std::string temp = set.add(path, false);
+  const std::string name = std::filesystem::path(temp).filename().string();
+  const Error e =
+      set.explained(Error(ErrorClass::output, "write",
+                          "'" + temp + "': cannot write; sqlite3_open(" + name + ") failed"));
+  EXPECT_EQ(e.error_class(), ErrorClass::output);
+  EXPECT_EQ(e.stage(), "write");
+  EXPECT_EQ(e.message().find(name), std::string::npos) << e.message();
+  EXPECT_EQ(e.message().rfind("'" + path + "': cannot write; sqlite3_open(" + path + ") failed", 0),
+            0u)
+      << e.message();
+  const Error other = set.explained(Error(ErrorClass::input, "read", "'" + temp + "'"));
+  EXPECT_EQ(other.message(), "'" + temp + "'");
+}
