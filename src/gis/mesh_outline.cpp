@@ -164,6 +164,18 @@ SourceData outline_source(const ReadMesh& mesh, const std::string& path,
   }
   SourceData source;
   source.crs = parse_crs(given, crs_text.empty() ? "'" + path + "' (its projection)" : option);
+  // Metres read as degrees (a grid in UTM given --src-crs EPSG:4326): said as for polygons.
+  if (source.crs.geographic)
+    for (std::size_t k = 0; k < mesh.points.size(); ++k) {
+      const Point2& q = mesh.points[k];
+      if (std::abs(q.y) > 90.0 || q.x < -360.0 || q.x > 360.0)
+        throw Error(ErrorClass::crs, "read",
+                    "'" + path + "': node " + std::to_string(k + 1) + " " + format_point(q) +
+                        " is outside the valid range of '" + source.crs.name +
+                        "' (longitude -360..360, latitude -90..90); are the coordinates in "
+                        "another CRS? Give it with " +
+                        option);
+    }
   // A band round the globe is an annulus only round a pole.
   std::vector<Point2> points = mesh.points;
   if (source.crs.geographic && crosses_the_cut(mesh)) {

@@ -202,3 +202,24 @@ TEST(MeshOutline, AGridAcrossTheAntimeridianInEitherLongitudes) {
   // 20 x 5 degrees at 7.5 S: about 2,207 x 553 km on the ground.
   EXPECT_NEAR(polygon_area(projected.polygons[0]) / 1e6, 2207.0 * 553.0, 0.01 * 2207.0 * 553.0);
 }
+
+// A grid in metres given as degrees (--src-crs EPSG:4326 for a UTM grid): refused naming
+// the node and the option, as polygons are, instead of a projection failing on it.
+TEST(MeshOutline, MetresReadAsDegreesAreRefusedNamingTheNode) {
+  ReadMesh m = globe_band(180, -10.0, -5.0, 175.0, 0.0);
+  m.quads.resize(10);
+  m.points.resize(22);
+  m.crs = "EPSG:4326";
+  for (Point2& p : m.points) p = {500000.0 + 1000.0 * p.x, 5000000.0 + 1000.0 * p.y};
+  try {
+    outline_source(m, "utm.gr3", "EPSG:4326", "--src-crs");
+    FAIL() << "metres taken as degrees";
+  } catch (const Error& e) {
+    EXPECT_EQ(e.error_class(), ErrorClass::crs);
+    const std::string what = e.what();
+    EXPECT_NE(what.find("'utm.gr3': node 1 "), std::string::npos) << what;
+    EXPECT_NE(what.find("are the coordinates in another CRS? Give it with --src-crs"),
+              std::string::npos)
+        << what;
+  }
+}
