@@ -49,6 +49,12 @@ std::pair<std::size_t, std::size_t> topology_in_window(const std::vector<Polygon
   return {parts, holes};
 }
 
+// An opening then a closing of `x` by a disc of radius r (mitred offsets).
+GeosGeometry open_then_close(GeosContext& g, const GeosGeometry& x, double r, double mitre) {
+  const GeosGeometry opened = g.buffer_mitre(g.buffer_mitre(x, -r, mitre), r, mitre);
+  return g.buffer_mitre(g.buffer_mitre(opened, r, mitre), -r, mitre);
+}
+
 // The pieces of `g` larger than min_area, largest first.
 std::vector<Polygon> pieces(GeosContext& geos, const GeosGeometry& g, double min_area) {
   std::vector<Polygon> out;
@@ -105,10 +111,7 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
   // GEOS's overlays refuse an invalid domain (a ring touching itself where the
   // simplification brought a vertex onto another edge): nothing is changed then.
   if (!geos.validity(original).valid) return result;
-  const GeosGeometry opened = geos.buffer_mitre(
-      geos.buffer_mitre(original, -r, params.mitre_limit), r, params.mitre_limit);
-  GeosGeometry closed =
-      geos.buffer_mitre(geos.buffer_mitre(opened, r, params.mitre_limit), -r, params.mitre_limit);
+  GeosGeometry closed = open_then_close(geos, original, r, params.mitre_limit);
   // The mitred offsets may cross themselves by a rounding error where a spike's mitre
   // meets another edge (Brazil at 1:10m: GEOS's overlays then refused it as input).
   if (!geos.validity(closed).valid) closed = geos.make_valid(closed);
@@ -165,11 +168,7 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     // A piece's sides lie on the original boundary up to rounding, so the overlays can
     // leave slivers and zero-width spikes or cracks along them: an opening then a
     // closing far below the width removes those.
-    const double eps = 1e-3 * params.min_width_m;
-    current = geos.buffer_mitre(geos.buffer_mitre(current, -eps, params.mitre_limit), eps,
-                                params.mitre_limit);
-    current = geos.buffer_mitre(geos.buffer_mitre(current, eps, params.mitre_limit), -eps,
-                                params.mitre_limit);
+    current = open_then_close(geos, current, 1e-3 * params.min_width_m, params.mitre_limit);
     polygons = geos.polygons(current);
   } else {
     // Many pieces (the whole-domain checks above would cost pieces x domain size: 33 s
@@ -231,9 +230,8 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
     auto cleaned_in = [&](GeosContext& g, const GeosGeometry& current) {
       std::vector<Polygon> out;
       for (const Polygon& part : g.polygons(current)) {
-        GeosGeometry c = g.polygon_with_holes(part);
-        c = g.buffer_mitre(g.buffer_mitre(c, -eps, params.mitre_limit), eps, params.mitre_limit);
-        c = g.buffer_mitre(g.buffer_mitre(c, eps, params.mitre_limit), -eps, params.mitre_limit);
+        const GeosGeometry c =
+            open_then_close(g, g.polygon_with_holes(part), eps, params.mitre_limit);
         for (Polygon& q : g.polygons(c)) out.push_back(std::move(q));
       }
       return out;
@@ -422,10 +420,7 @@ NarrowResult close_hairlines(Domain& domain, const NarrowParams& params,
   GeosContext geos;
   GeosGeometry current = geos.domain_multipolygon(domain);
   if (!geos.validity(current).valid) return result;
-  const GeosGeometry opened =
-      geos.buffer_mitre(geos.buffer_mitre(current, -r, params.mitre_limit), r, params.mitre_limit);
-  GeosGeometry closed =
-      geos.buffer_mitre(geos.buffer_mitre(opened, r, params.mitre_limit), -r, params.mitre_limit);
+  GeosGeometry closed = open_then_close(geos, current, r, params.mitre_limit);
   if (!geos.validity(closed).valid) closed = geos.make_valid(closed);
   std::vector<GeosGeometry> kept_geometry;
   for (const NarrowResult::Kept& k : kept)
@@ -454,11 +449,7 @@ NarrowResult close_hairlines(Domain& domain, const NarrowParams& params,
   apply(pieces(geos, geos.difference(closed, current), negligible), true, result.area_added_m2);
   if (result.num_pieces == 0) return result;
   // The overlays' slivers along the pieces' sides, as in remove_narrow_features.
-  const double eps = 1e-3 * params.min_width_m;
-  current = geos.buffer_mitre(geos.buffer_mitre(current, -eps, params.mitre_limit), eps,
-                              params.mitre_limit);
-  current = geos.buffer_mitre(geos.buffer_mitre(current, eps, params.mitre_limit), -eps,
-                              params.mitre_limit);
+  current = open_then_close(geos, current, 1e-3 * params.min_width_m, params.mitre_limit);
   std::vector<Polygon> polygons = geos.polygons(current);
   if (polygons.empty()) return result;
   for (Polygon& p : polygons) orient_polygon(p);
