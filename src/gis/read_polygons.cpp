@@ -554,6 +554,28 @@ class Reader {
       const std::string where = ring_name(fid, part, ring_index);
       out_.num_points_removed += remove_duplicates_and_spikes(ring);
       if (is_degenerate(ring)) {
+        // A ring along one parallel round (most of) the globe ("north of 66.5 N" drawn as the
+        // Arctic Circle): a line in longitude and latitude, which no repair can read as
+        // the cap the user means.
+        if (out_.crs.geographic && rings.size() == 1 && ring.size() >= 3) {
+          double x0 = ring[0].x, x1 = ring[0].x, y0 = ring[0].y, y1 = ring[0].y;
+          for (const Point2& q : ring)
+            x0 = std::min(x0, q.x), x1 = std::max(x1, q.x), y0 = std::min(y0, q.y),
+            y1 = std::max(y1, q.y);
+          if (x1 - x0 >= 300.0 && y1 - y0 <= 1e-9 && std::abs(y0) < 90.0) {
+            const std::string lat = fmt(std::abs(y0)) + (y0 >= 0 ? " N" : " S");
+            const std::string pole = y0 >= 0 ? "90" : "-90";
+            fail(ErrorClass::input,
+                 where + " runs along the parallel " + lat +
+                     " round every longitude: in longitude and latitude that is a line, "
+                     "enclosing nothing; for the cap beyond it, close the ring through the "
+                     "pole (after its last point, add (180, " +
+                     fmt(y0) + "), (180, " + pole + ") and (-180, " + pole +
+                     ")), or give --bbox=-180," +
+                     (y0 >= 0 ? fmt(y0) + ",180,90" : "-90,180," + fmt(y0)) +
+                     " with --domain water over a land layer");
+          }
+        }
         if (!p_.repair)
           fail(ErrorClass::input, where + " is degenerate (fewer than 3 distinct points, or all "
                                           "on one line); use --repair to drop it");

@@ -650,3 +650,25 @@ TEST(ReadPolygons, TheHolesOfAnOuterRingWithoutAreaArePolygonsOfTheirOwn) {
       std::string::npos)
       << d.warnings[0];
 }
+
+// "North of 66.5 N" drawn as the Arctic Circle: a ring along one parallel round every
+// longitude is a line in longitude and latitude. Said as such (with or without --repair,
+// which would only drop it), with the ring through the pole that means the cap; that
+// ring reads as one polygon.
+TEST(ReadPolygons, ARingAlongAParallelRoundTheGlobeIsSaidToEncloseNothing) {
+  TempDir dir;
+  std::string along = "[[";
+  for (int lon = -180; lon < 180; lon += 10) along += "[" + std::to_string(lon) + ",66.5],";
+  const std::string circle = dir.file("circle.geojson"), cap = dir.file("cap.geojson");
+  write_file(circle, geojson_polygons({along + "[-180,66.5]]]"}));
+  write_file(cap, geojson_polygons({along + "[180,66.5],[180,90],[-180,90],[-180,66.5]]]"}));
+  ReadParams p = params(circle);
+  for (const bool repair : {false, true}) {
+    p.repair = repair;
+    expect_error(p, ErrorClass::input, "runs along the parallel 66.5 N round every longitude");
+    expect_error(p, ErrorClass::input, "add (180, 66.5), (180, 90) and (-180, 90)");
+  }
+  const SourceData d = read_polygons(params(cap));
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_EQ(d.polygons[0].rings.size(), 1u);
+}
