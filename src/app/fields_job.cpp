@@ -60,6 +60,10 @@ void check_quad_budget(double quads, const char* how, double smallest, const Dom
   throw Error(ErrorClass::usage, "sizing", buf);
 }
 
+// Background vertices a quad, at least, at the default --background-factor (0.25):
+// Corsica automatic has 10.2, France automatic 10.4, two squares in a water domain 9.
+constexpr double kBackgroundVerticesPerQuad = 4.0;
+
 // Quads of size h cover about h^2 each (France at a uniform 11 km: 0.95 of its area over
 // h^2): no mesh with every size at most hmax comes under half its area over hmax^2.
 constexpr double kQuadsPerAreaOverHmax2 = 0.5;
@@ -130,6 +134,22 @@ void build_mesh_and_sizes(const Domain& domain, const FieldsOptions& options, Fi
   }
   check_quad_budget(0.5 * boundary_quads, "at least that along the boundary", smallest, domain,
                     options);
+  // The background mesh has about 9 to 10 vertices a quad at the default factor (0.25),
+  // and 1 / factor^2 as many at others: a tiny --background-factor (its least, 0.001,
+  // asks for 62,500 times as many) is refused here, not after the background mesh has
+  // filled the memory up to its limit.
+  const double background_vertices = kBackgroundVerticesPerQuad *
+                                     std::max(estimate, 0.5 * boundary_quads) *
+                                     std::pow(0.25 / options.background_factor, 2);
+  const std::size_t vertex_limit = BackgroundMeshParams{}.max_num_vertices;
+  if (background_vertices > static_cast<double>(vertex_limit))
+    throw Error(ErrorClass::usage, "background",
+                printf_string("--background-factor %g asks for about %.3g background vertices "
+                              "(at least %g a quad at 0.25, times (0.25 / %g)^2), over the "
+                              "background mesh's limit of %zu: give a larger factor, or "
+                              "larger sizes",
+                              options.background_factor, background_vertices,
+                              kBackgroundVerticesPerQuad, options.background_factor, vertex_limit));
   timer.lap("sizing sources");
 
   progress.report("background", 0.2);  // to 0.6 as the background mesh is built

@@ -1833,3 +1833,21 @@ TEST(CliMesh, AChannelFarNarrowerThanTheQuadsIsNamedAndHairlineClosesIt) {
   EXPECT_EQ(report_number(report, "narrow_num_hairline"), 1.0);
   EXPECT_EQ(report_number(report, "num_nonconvex"), 0.0);
 }
+
+// --background-factor at its least (0.001) asks for 62,500 times the background mesh's
+// vertices: refused with the estimate before any is made (it ran 5 s, then stopped at
+// the mesh's limit of 20 million); 0.1 meshes.
+TEST(CliMesh, ABackgroundFactorThatAsksForTooManyVerticesIsRefusedAtOnce) {
+  TempDir dir;
+  CliResult r = run_cli(
+      {"mesh", sample("corsica.shp"), "--background-factor", "0.001", "-o", dir.file("a.gpkg")},
+      dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("background: --background-factor 0.001 asks for about"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("a.gpkg")));
+  r = run_cli({"mesh", sample("corsica.shp"), "--background-factor", "0.1", "--hmax", "8000", "-o",
+               dir.file("b.gpkg")},
+              dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
