@@ -49,7 +49,7 @@ void write_layer_styles(VectorWriter& w, const std::vector<const LayerStyle*>& s
                  {"styleName", FieldType::text},
                  {"styleQML", FieldType::text},
                  {"styleSLD", FieldType::text},
-                 {"useAsDefault", FieldType::integer},
+                 {"useAsDefault", FieldType::boolean},
                  {"description", FieldType::text},
                  {"owner", FieldType::text},
                  {"ui", FieldType::text},
@@ -57,7 +57,7 @@ void write_layer_styles(VectorWriter& w, const std::vector<const LayerStyle*>& s
   for (const LayerStyle* s : styles)
     w.add_row({FieldValue::text(""), FieldValue::text(""), FieldValue::text(s->layer),
                FieldValue::text("geom"), FieldValue::text(s->name), FieldValue::text(s->qml),
-               FieldValue::text(""), FieldValue::integer(s->is_default ? 1 : 0),
+               FieldValue::text(""), FieldValue::boolean(s->is_default),
                FieldValue::text(s->description), FieldValue::text("isoquad"), FieldValue::text(""),
                FieldValue::text("2000-01-01T00:00:00Z")});
 }

@@ -107,9 +107,11 @@ void VectorWriter::begin_layer(const std::string& name, GeometryKind kind,
       state_->ds->CreateLayer(name.c_str(), srs, type, const_cast<char**>(options.data()));
   if (!state_->layer) fail("cannot create layer '" + name + "'");
   for (const FieldDef& f : fields) {
-    OGRFieldDefn def(f.name.c_str(), f.type == FieldType::integer ? OFTInteger64
-                                     : f.type == FieldType::real  ? OFTReal
-                                                                  : OFTString);
+    OGRFieldDefn def(f.name.c_str(), f.type == FieldType::integer   ? OFTInteger64
+                                     : f.type == FieldType::boolean ? OFTInteger
+                                     : f.type == FieldType::real    ? OFTReal
+                                                                    : OFTString);
+    if (f.type == FieldType::boolean) def.SetSubType(OFSTBoolean);
     if (state_->layer->CreateField(&def) != OGRERR_NONE) fail("cannot create field " + f.name);
   }
   state_->fields = fields;
@@ -128,6 +130,9 @@ void VectorWriter::add(OGRGeometry* g, const std::vector<FieldValue>& values) {
     switch (state_->fields[i].type) {
       case FieldType::integer:
         feature.SetField(idx, static_cast<GIntBig>(values[i].i));
+        break;
+      case FieldType::boolean:
+        feature.SetField(idx, values[i].i != 0 ? 1 : 0);
         break;
       case FieldType::real:
         feature.SetField(idx, values[i].r);

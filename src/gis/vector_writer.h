@@ -14,7 +14,9 @@ class OGRGeometry;
 
 namespace isoquad {
 
-enum class FieldType { integer, real, text };
+// boolean: 0 or 1 in FieldValue::i, stored as an integer of GDAL's boolean subtype (a
+// GeoPackage BOOLEAN column, a check box in QGIS).
+enum class FieldType { integer, boolean, real, text };
 
 struct FieldDef {
   std::string name;
@@ -37,6 +39,7 @@ struct FieldValue {
     f.i = v;
     return f;
   }
+  static FieldValue boolean(bool v) { return integer(v ? 1 : 0); }
   static FieldValue real(double v) {
     FieldValue f;
     f.r = v;

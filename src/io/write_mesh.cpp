@@ -101,7 +101,7 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
   std::vector<FieldDef> vfields = {{"id", FieldType::integer},
                                    {"degree", FieldType::integer},
                                    {"ideal_degree", FieldType::integer},
-                                   {"boundary", FieldType::integer}};
+                                   {"boundary", FieldType::boolean}};
   const bool depth = !v.data->depth.empty();
   if (depth) vfields.push_back({"depth", FieldType::real});
   const bool point = !v.data->vertex_point.empty();
@@ -112,12 +112,12 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
                 {"isoquad mesh: vertices",
                  "The mesh's nodes: id, the node's number in the model files; degree, the quads "
                  "at the node (ideal_degree, what its corner of the domain asks); boundary, 1 "
-                 "on the boundary" +
+                 "(true) on the boundary" +
                      std::string(depth ? "; depth in metres, positive down" : "") + "."});
   for (std::size_t i = 0; i < pts.size(); ++i) {
     std::vector<FieldValue> values = {
         FieldValue::integer(static_cast<long long>(i + 1)), FieldValue::integer(q.degree[i]),
-        FieldValue::integer(q.ideal_degree[i]), FieldValue::integer(q.boundary[i])};
+        FieldValue::integer(q.ideal_degree[i]), FieldValue::boolean(q.boundary[i] != 0)};
     if (depth) values.push_back(FieldValue::real(v.data->depth[i]));
     if (point) values.push_back(FieldValue::integer(v.data->vertex_point[i]));
     if (named) {  // NULL but at the named points' vertices
@@ -130,7 +130,7 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
                 {{"id", FieldType::integer},
                  {"kind", FieldType::text},
                  {"loop", FieldType::integer},
-                 {"island", FieldType::integer},
+                 {"island", FieldType::boolean},
                  {"num_nodes", FieldType::integer}},
                 {"isoquad mesh: boundary",
                  "The mesh's boundary in segments of one kind: open (the sea's boundary, a "
@@ -142,7 +142,7 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
     if (segs[s].closed && !line.empty()) line.push_back(line.front());
     w.add_line(line, {FieldValue::integer(static_cast<long long>(s)),
                       FieldValue::text(boundary_kind_name(segs[s].kind)),
-                      FieldValue::integer(segs[s].loop), FieldValue::integer(segs[s].island),
+                      FieldValue::integer(segs[s].loop), FieldValue::boolean(segs[s].island),
                       FieldValue::integer(static_cast<long long>(segs[s].nodes.size()))});
   }
   if (!v.data->embedded.empty()) {

@@ -267,8 +267,18 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
     EXPECT_NEAR(p->getY(), ll.nodes[id][1], 1e-9);
     EXPECT_NEAR(f->GetFieldAsDouble("depth"), ll.nodes[id][2], 1e-5);
   }
+  // Flags are GeoPackage booleans (check boxes in QGIS), not numbers.
+  for (auto [layer, field] : {std::pair{vertices, "boundary"}, std::pair{boundary, "island"},
+                              std::pair{styles, "useAsDefault"}}) {
+    const OGRFieldDefn* def =
+        layer->GetLayerDefn()->GetFieldDefn(layer->GetLayerDefn()->GetFieldIndex(field));
+    ASSERT_NE(def, nullptr) << field;
+    EXPECT_EQ(def->GetSubType(), OFSTBoolean) << field;
+  }
   std::map<std::string, int> kinds;
+  int islands = 0;
   for (auto& f : *boundary) {
+    islands += f->GetFieldAsInteger("island");
     const std::string kind = f->GetFieldAsString("kind");
     ++kinds[kind];
     const OGRLineString* line = f->GetGeometryRef()->toLineString();
@@ -279,6 +289,7 @@ TEST(CliOutputs, EveryFormatInOneRunLoadsInItsReader) {
   }
   EXPECT_EQ(kinds["open"], 1);
   EXPECT_EQ(kinds["land"], 2);
+  EXPECT_EQ(islands, 1);  // the outer loop is not an island
   std::map<std::string, std::string> meta;
   for (auto& f : *metadata) meta[f->GetFieldAsString("key")] = f->GetFieldAsString("value");
   EXPECT_FALSE(meta["isoquad_version"].empty());
