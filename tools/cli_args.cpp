@@ -20,10 +20,15 @@ namespace isoquad::cli {
 
 namespace {
 
-// Number checks with plain messages (CLI11's own name the whole double range).
-CLI::Validator number_check(const char* name, bool zero_allowed) {
+// Lengths on the ground beyond this (two and a half times round the Earth) are mistakes,
+// and their squares and sums would overflow.
+constexpr double kLongestLength = 1e8;
+
+// Number checks with plain messages (CLI11's own name the whole double range); a length
+// in metres is also at most kLongestLength.
+CLI::Validator number_check(const char* name, bool zero_allowed, bool length = false) {
   return CLI::Validator(
-      [zero_allowed](std::string& text) -> std::string {
+      [zero_allowed, length](std::string& text) -> std::string {
         char* end = nullptr;
         const double v = std::strtod(text.c_str(), &end);
         if (end == text.c_str() || *end != '\0' || !std::isfinite(v))
@@ -33,6 +38,8 @@ CLI::Validator number_check(const char* name, bool zero_allowed) {
                  text;
         // Subnormal numbers (4.9e-324) underflow in the first product.
         if (v != 0 && !std::isnormal(v)) return "'" + text + "' is too small a number";
+        if (length && v > kLongestLength)
+          return text + " m is longer than 100,000 km, more than twice round the Earth";
         return {};
       },
       name);
@@ -52,6 +59,8 @@ CLI::Validator extension_check(const std::string& extension) {
 
 const CLI::Validator kPositive = number_check("POSITIVE", false);
 const CLI::Validator kNonNegative = number_check("NONNEGATIVE", true);
+const CLI::Validator kPositiveLength = number_check("POSITIVE", false, true);
+const CLI::Validator kNonNegativeLength = number_check("NONNEGATIVE", true, true);
 
 std::array<double, 4> parse_bbox(const std::string& text) {
   std::array<double, 4> b{};
@@ -191,12 +200,12 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
   cmd->add_option("--size", a.fe.target_size_m,
                   "Element size in metres: a constant size for meshing; sets the defaults of "
                   "--simplify (size/4), --min-island-area (size^2) and --min-width (size/4)")
-      ->check(kPositive)
+      ->check(kPositiveLength)
       ->group("Cleaning");
   cmd->add_option("--simplify", a.simplify_m,
                   "Topology-preserving simplification tolerance in metres (default: a quarter of "
                   "--size or, in fields and mesh, of the automatic hmin; otherwise off)")
-      ->check(kNonNegative)
+      ->check(kNonNegativeLength)
       ->group("Cleaning");
   cmd->add_option("--min-island-area", a.min_island_area_m2,
                   "Drop islands and holes smaller than this, in m2 (default: the square of --size "
@@ -209,7 +218,7 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
          "changes no topology (an isthmus is never cut, two components never joined); cut "
          "back tips sharper than 15 degrees to this width (default: a quarter of --size or, "
          "in fields and mesh, of the automatic hmin; otherwise off)")
-      ->check(kNonNegative)
+      ->check(kNonNegativeLength)
       ->group("Cleaning");
   cmd->add_option("--hairline", a.hairline_m,
                   "Of the pieces narrower than --min-width that it keeps because filling or "
@@ -217,7 +226,7 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
                   "out the strips, narrower than this, in m (polygons that miss each other by a "
                   "hair: unsnapped neighbours, tiles), which would need quads that narrow "
                   "(default: a fiftieth of --min-width; 0: never)")
-      ->check(kNonNegative)
+      ->check(kNonNegativeLength)
       ->group("Cleaning");
   cmd->add_option("--report", a.report_path,
                   "Write the summary as JSON to this file (-: to stdout, once every output is "
@@ -368,7 +377,7 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
                   "Smallest size (automatic default: hmax / 10); automatic sizing puts one "
                   "element across channels, inlets and spits narrower than --cells-across x "
                   "hmin, down to hmin/2 (see --no-narrow-sizes)")
-      ->check(kPositive)
+      ->check(kPositiveLength)
       ->group(g);
   cmd->add_flag_callback(
          "--no-narrow-sizes", [&f] { f.sizing.narrow_sizes = false; },
@@ -377,7 +386,7 @@ void add_field_options(CLI::App* cmd, FieldArgs& f) {
       ->group(g);
   cmd->add_option("--hmax", f.sizing.hmax_m,
                   "Largest size (automatic default: sqrt(domain area / 2000))")
-      ->check(kPositive)
+      ->check(kPositiveLength)
       ->group(g);
   cmd->add_option("--gradation", f.sizing.gradation,
                   "K: sizes change by at most K metres per metre (default 0.2: a tile 2h wide then "

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <mutex>
+#include <regex>
 #include <vector>
 
 #include "core/error.h"
@@ -260,6 +261,70 @@ GdalDataset open_vector_dataset(const std::string& path, const std::string& stag
   if (ds->GetLayerCount() == 0) fail("contains no vector layer");
   if (add_pooled(key, ds.get())) return GdalDataset(ds.release(), GdalDatasetCloser{true});
   return ds;
+}
+
+namespace {
+
+// Up to `limit` bytes of a file GDAL can open (a member of an archive too); empty when
+// it cannot be read.
+std::string file_head(const std::string& path, std::size_t limit) {
+  if (path.rfind("/vsistdin", 0) == 0) return "";  // read once, by GDAL
+  VSILFILE* f = VSIFOpenL(path.c_str(), "rb");
+  if (!f) return "";
+  std::string text(limit, '\0');
+  text.resize(VSIFReadL(text.data(), 1, limit, f));
+  VSIFCloseL(f);
+  return text;
+}
+
+// Why PROJ does not take `text` as a CRS (its message, or "not a CRS"); empty if it does.
+std::string crs_rejection(const std::string& text) {
+  OGRSpatialReference srs;
+  GdalErrorCapture capture;
+  if (srs.SetFromUserInput(text.c_str()) == OGRERR_NONE) return "";
+  const std::string why = capture.last_message();
+  return why.empty() ? "not a CRS" : why;
+}
+
+}  // namespace
+
+std::string declared_crs_problem(GDALDataset& ds, OGRLayer& layer) {
+  const std::string driver = ds.GetDriver() ? ds.GetDriver()->GetDescription() : "";
+  const std::string path = ds.GetDescription();
+  {
+    GdalErrorCapture quiet;  // a shapefile's .prj is read when first asked for: its
+    layer.GetSpatialRef();   // errors are said below in our words
+  }
+  if (driver == "GeoJSON") {
+    // The "crs" member comes before the features in the files that have one (GDAL and
+    // QGIS write it there); the start of the file is enough.
+    std::string head = file_head(path, 1 << 20);
+    head.resize(std::min(head.size(), head.find("\"features\"")));
+    static const std::regex named(R"re("crs"\s*:\s*\{[^{}]*\{[^{}]*"name"\s*:\s*"([^"]*)")re");
+    std::smatch m;
+    if (!std::regex_search(head, m, named)) return "";
+    const std::string why = crs_rejection(m[1].str());
+    if (why.empty()) return "";
+    return "its \"crs\" member names '" + m[1].str() + "', a CRS GDAL and PROJ do not know (" +
+           why + "), which GDAL reads as WGS 84";
+  }
+  if (driver == "ESRI Shapefile" && !layer.GetSpatialRef()) {
+    // A directory of shapefiles is one data set; the layer is one file of it.
+    const std::string base =
+        VSIStatL(path.c_str(), nullptr) == 0 && CPLGetExtension(path.c_str())[0] == '\0'
+            ? CPLFormFilename(path.c_str(), layer.GetName(), nullptr)
+            : path;
+    for (const char* ext : {"prj", "PRJ"}) {
+      const std::string prj = CPLResetExtension(base.c_str(), ext);
+      VSIStatBufL st;
+      if (VSIStatL(prj.c_str(), &st) != 0 || !VSI_ISREG(st.st_mode)) continue;
+      const std::string why = crs_rejection(file_head(prj, 1 << 16));
+      if (why.empty()) return "";
+      return "its .prj file '" + std::string(CPLGetFilename(prj.c_str())) +
+             "' holds no CRS GDAL can read (" + why + ")";
+    }
+  }
+  return "";
 }
 
 std::string layer_names(GDALDataset& ds) {

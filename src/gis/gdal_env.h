@@ -66,6 +66,12 @@ enum class ArchiveContent { vector, raster };
 // such files (named, to pick one) or none.
 std::string gdal_path(const std::string& path, ArchiveContent content, std::string& problem);
 
+// Where a file declares a CRS that GDAL could not use, so that the layer has none or
+// GDAL's default (a GeoJSON file's "crs" member naming an unknown CRS leaves it WGS 84,
+// a shapefile's unreadable .prj none): what is wrong, naming the CRS or file; else
+// empty.
+std::string declared_crs_problem(GDALDataset& ds, OGRLayer& layer);
+
 // "name1, name2, ...": the data set's layers, for a message about a missing one.
 std::string layer_names(GDALDataset& ds);
 // The same for a layer's attributes ("none" without any).

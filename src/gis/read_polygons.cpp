@@ -31,7 +31,7 @@ std::string fmt(double v) {
 
 bool is_polygonal(OGRwkbGeometryType t) {
   const OGRwkbGeometryType f = wkbFlatten(t);
-  return f == wkbPolygon || f == wkbMultiPolygon || f == wkbCurvePolygon ||
+  return f == wkbPolygon || f == wkbTriangle || f == wkbMultiPolygon || f == wkbCurvePolygon ||
          f == wkbMultiSurface || f == wkbPolyhedralSurface || f == wkbTIN;
 }
 
@@ -216,6 +216,9 @@ class Reader {
     if (!p_.src_crs.empty()) {
       out_.crs = parse_crs(p_.src_crs, "--src-crs");
     } else {
+      const std::string declared = declared_crs_problem(*ds_, *layer_);
+      if (!declared.empty())
+        fail(ErrorClass::crs, declared + "; give the CRS of the coordinates with --src-crs");
       const OGRSpatialReference* srs = layer_->GetSpatialRef();
       if (!srs && !p_.default_crs.empty()) {
         out_.crs = parse_crs(p_.default_crs, "the CRS of " + quote(out_.layer_name));
@@ -409,7 +412,7 @@ class Reader {
 
   void add_geometry(long long fid, const OGRGeometry& g) {
     const OGRwkbGeometryType t = wkbFlatten(g.getGeometryType());
-    if (t == wkbPolygon) {
+    if (t == wkbPolygon || t == wkbTriangle) {  // a triangle is a polygon of one ring
       add_polygon(fid, static_cast<int>(part_count_++), *g.toPolygon());
     } else if (!g.IsEmpty() && t != wkbMultiPolygon && t != wkbPolyhedralSurface && t != wkbTIN &&
                t != wkbGeometryCollection) {

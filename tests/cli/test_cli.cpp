@@ -154,6 +154,10 @@ TEST(Cli, UsageErrorsExitWithTwo) {
            {"--corner-angle", "-nan", "--corner-angle: '-nan' is not a number"},
            {"--hmax", "0x4e20", "--hmax: '0x4e20' is not a number"},
            {"--cells-across", "4.9e-324", "--cells-across: '4.9e-324' is too small a number"},
+           // A length whose square overflows said "inf km2" of --min-island-area.
+           {"--hmax", "1e308",
+            "--hmax: 1e308 m is longer than 100,000 km, more than twice round the Earth"},
+           {"--simplify", "2e8", "--simplify: 2e8 m is longer than 100,000 km"},
            // An empty value (an unset shell variable) is not the option left out.
            {"--open-boundary", "",
             "--open-boundary: an empty value (give one, or leave the "

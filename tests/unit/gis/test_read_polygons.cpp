@@ -133,6 +133,99 @@ TEST(ReadPolygons, TheGeometryCollectionsPolygonsAreRead) {
   expect_error(params(path), ErrorClass::input, "has no polygons");
 }
 
+// The other polygonal types of simple features: a triangle, a TIN (its triangles), a
+// polyhedral surface and a curve polygon (its arcs made segments) are areas, not lines.
+TEST(ReadPolygons, TrianglesTinsAndCurvePolygonsAreAreas) {
+  ensure_gdal_registered();
+  TempDir dir;
+  const std::string path = dir.file("surfaces.gpkg");
+  const char* wkts[] = {"TRIANGLE ((0 0,10 0,10 10,0 0))",
+                        "TIN (((20 0,30 0,30 10,20 0)),((20 0,30 10,20 10,20 0)))",
+                        "POLYHEDRALSURFACE (((40 0,50 0,50 10,40 10,40 0)))",
+                        "CURVEPOLYGON (CIRCULARSTRING (60 0,70 0,60 0))"};
+  {
+    GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GPKG")->Create(path.c_str(), 0, 0, 0,
+                                                                              GDT_Unknown, nullptr);
+    ASSERT_NE(ds, nullptr);
+    OGRSpatialReference srs;
+    srs.importFromEPSG(32631);
+    OGRLayer* l = ds->CreateLayer("surfaces", &srs, wkbUnknown, nullptr);
+    for (const char* wkt : wkts) {
+      OGRGeometry* g = nullptr;
+      ASSERT_EQ(OGRGeometryFactory::createFromWkt(wkt, nullptr, &g), OGRERR_NONE) << wkt;
+      OGRFeature f(l->GetLayerDefn());
+      f.SetGeometryDirectly(g);
+      ASSERT_EQ(l->CreateFeature(&f), OGRERR_NONE) << wkt;
+    }
+    GDALClose(ds);
+  }
+  const SourceData d = read_polygons(params(path));
+  EXPECT_TRUE(d.warnings.empty()) << d.warnings.front();
+  ASSERT_EQ(d.polygons.size(), 5u);  // the TIN's two triangles apart
+  double area[4] = {0, 0, 0, 0};
+  for (const auto& poly : d.polygons) {
+    ASSERT_EQ(poly.rings.size(), 1u);
+    const int k = static_cast<int>(poly.rings[0][0].x / 20.0);
+    ASSERT_TRUE(k >= 0 && k < 4) << poly.rings[0][0].x;
+    area[k] += std::abs(signed_area(poly.rings[0]));
+  }
+  EXPECT_DOUBLE_EQ(area[0], 50.0);
+  EXPECT_DOUBLE_EQ(area[1], 100.0);
+  EXPECT_DOUBLE_EQ(area[2], 100.0);
+  EXPECT_NEAR(area[3], M_PI * 25.0, 0.02 * M_PI * 25.0);  // a circle of diameter 10
+}
+
+// A CRS the file declares but GDAL cannot use: GeoJSON's "crs" member naming an unknown
+// CRS (GDAL reads the coordinates as WGS 84, metres as degrees where they fit), a
+// shapefile's .prj that is not WKT. The error names the CRS or file; --src-crs overrides.
+TEST(ReadPolygons, ADeclaredCrsGdalCannotUseIsAnError) {
+  ensure_gdal_registered();
+  TempDir dir;
+  const std::string square = R"([[[1,1],[2,1],[2,2],[1,2],[1,1]]])";
+  for (const std::string name : {"urn:ogc:def:crs:EPSG::999999", "foo"}) {
+    const std::string path = dir.file("declared.geojson");
+    write_file(path, R"({"type":"FeatureCollection","crs":{"type":"name","properties":)"
+                     R"({"name":")" +
+                         name +
+                         R"("}},"features":[{"type":"Feature",)"
+                         R"("properties":{"crs":"x"},"geometry":{"type":"Polygon","coordinates":)" +
+                         square + "}}]}");
+    SCOPED_TRACE(name);
+    expect_error(params(path), ErrorClass::crs,
+                 "its \"crs\" member names '" + name + "', a CRS GDAL and PROJ do not know");
+    ReadParams p = params(path);
+    p.src_crs = "EPSG:32631";
+    EXPECT_EQ(read_polygons(p).polygons.size(), 1u);
+  }
+  // A known CRS named, and a property called "crs" in the features: no error.
+  const std::string known = dir.file("known.geojson");
+  write_file(known, R"({"type":"FeatureCollection","crs":{"properties":{"name":)"
+                    R"("urn:ogc:def:crs:EPSG::32631"},"type":"name"},"features":[{"type":)"
+                    R"("Feature","properties":{"crs":{"type":"name","properties":{"name":)"
+                    R"("foo"}}},"geometry":{"type":"Polygon","coordinates":)" +
+                        square + "}}]}");
+  EXPECT_TRUE(read_polygons(params(known)).crs.projected);
+
+  const std::string shp = dir.file("broken.shp");
+  {
+    GDALDataset* ds = GetGDALDriverManager()
+                          ->GetDriverByName("ESRI Shapefile")
+                          ->Create(shp.c_str(), 0, 0, 0, GDT_Unknown, nullptr);
+    ASSERT_NE(ds, nullptr);
+    OGRLayer* l = ds->CreateLayer("broken", nullptr, wkbPolygon, nullptr);
+    OGRGeometry* g = nullptr;
+    OGRGeometryFactory::createFromWkt("POLYGON ((1 1,2 1,2 2,1 2,1 1))", nullptr, &g);
+    OGRFeature f(l->GetLayerDefn());
+    f.SetGeometryDirectly(g);
+    ASSERT_EQ(l->CreateFeature(&f), OGRERR_NONE);
+    GDALClose(ds);
+  }
+  expect_error(params(shp), ErrorClass::crs, "layer 'broken' has no CRS");  // no .prj
+  write_file(dir.file("broken.prj"), R"(GEOGCS["GCS_WGS_1984",DATUM[)");
+  expect_error(params(shp), ErrorClass::crs,
+               "its .prj file 'broken.prj' holds no CRS GDAL can read (");
+}
+
 TEST(ReadPolygons, BboxInAnotherCrs) {
   TempDir dir;
   ReadParams p = params(good_geojson(dir));
