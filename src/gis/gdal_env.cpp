@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 
 #include <algorithm>
+#include <cctype>
 #include <mutex>
 #include <regex>
 #include <vector>
@@ -31,8 +32,21 @@ void ensure_gdal_registered() {
 namespace {
 thread_local std::string g_last_message;
 
+// GDAL's message on one line: some span several (PostgreSQL's connection failures,
+// indented with tabs), which our one-line errors quote.
 void CPL_STDCALL capture_handler(CPLErr level, CPLErrorNum, const char* msg) {
-  if (level >= CE_Warning && msg) g_last_message = msg;
+  if (level < CE_Warning || !msg) return;
+  g_last_message.clear();
+  bool space = false;
+  for (const char* c = msg; *c; ++c) {
+    if (*c == '\n' || *c == '\r' || *c == '\t' || *c == ' ') {
+      space = !g_last_message.empty();
+      continue;
+    }
+    if (space) g_last_message += ' ';
+    space = false;
+    g_last_message += *c;
+  }
 }
 }  // namespace
 
@@ -229,6 +243,15 @@ std::string gdal_path(const std::string& path, ArchiveContent content, std::stri
   return "";
 }
 
+bool is_data_source_name(const std::string& path) {
+  const std::size_t colon = path.find(':');
+  if (colon == std::string::npos || colon < 2) return false;  // nor a drive letter
+  for (std::size_t i = 0; i < colon; ++i)
+    if (!std::isalnum(static_cast<unsigned char>(path[i])) && path[i] != '_') return false;
+  struct stat st {};
+  return stat(path.c_str(), &st) != 0;
+}
+
 GdalDataset open_vector_dataset(const std::string& path, const std::string& stage,
                                 const std::vector<std::string>& open_options) {
   ensure_gdal_registered();
@@ -236,8 +259,10 @@ GdalDataset open_vector_dataset(const std::string& path, const std::string& stag
     throw Error(ErrorClass::input, stage, "'" + path + "': " + what);
   };
   struct stat st {};
-  // /vsi paths (zip, curl...) are GDAL's business; plain paths we check ourselves.
-  if (path.rfind("/vsi", 0) != 0) {
+  const bool named_source = is_data_source_name(path);
+  // /vsi paths (zip, curl...) and data sources named for a driver are GDAL's business;
+  // plain paths we check ourselves.
+  if (path.rfind("/vsi", 0) != 0 && !named_source) {
     if (stat(path.c_str(), &st) != 0) fail("no such file or directory");
     if (S_ISREG(st.st_mode) && st.st_size == 0) fail("file is empty");
   }
@@ -245,7 +270,8 @@ GdalDataset open_vector_dataset(const std::string& path, const std::string& stag
   const std::string key = pool_key(path, open_options);
   if (GDALDataset* kept = take_pooled(key)) return GdalDataset(kept, GdalDatasetCloser{true});
   std::string problem;
-  const std::string open_path = gdal_path(path, ArchiveContent::vector, problem);
+  const std::string open_path =
+      named_source ? path : gdal_path(path, ArchiveContent::vector, problem);
   if (open_path.empty()) fail(problem);
   GdalErrorCapture capture;
   std::vector<const char*> options;
@@ -255,6 +281,8 @@ GdalDataset open_vector_dataset(const std::string& path, const std::string& stag
       open_path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, options.data(), nullptr)));
   if (!ds) {
     const std::string why = capture.last_message();
+    if (named_source)
+      fail("no such file, nor a data source GDAL opens" + (why.empty() ? "" : ": " + why));
     fail("cannot read as a vector data set" +
          (why.empty() ? std::string(" (unknown or corrupt format)") : " (" + why + ")"));
   }

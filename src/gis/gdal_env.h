@@ -58,6 +58,12 @@ class VectorDatasetPool {
 GdalDataset open_vector_dataset(const std::string& path, const std::string& stage,
                                 const std::vector<std::string>& open_options = {});
 
+// Whether `path`, which names no file, is a data source GDAL opens by name: a database or
+// service connection ("PG:dbname=coast", "WFS:https://host/wfs", "MSSQL:..."), a
+// driver's prefix ("GeoJSON:coast.json", "CSV:..."), a URL ("https://host/coast.geojson").
+// A Windows drive ("C:") is not one.
+bool is_data_source_name(const std::string& path);
+
 enum class ArchiveContent { vector, raster };
 // The path for GDAL to open `path` with: itself, unless it names an archive (see
 // open_vector_dataset): then "/vsizip/path" (or /vsitar/, /vsigzip/) where GDAL opens

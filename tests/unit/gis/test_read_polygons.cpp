@@ -226,6 +226,28 @@ TEST(ReadPolygons, ADeclaredCrsGdalCannotUseIsAnError) {
                "its .prj file 'broken.prj' holds no CRS GDAL can read (");
 }
 
+// Data sources GDAL opens by name, not files: a driver's prefix, a database connection.
+// A name that is neither a file nor a source says both.
+TEST(ReadPolygons, DataSourcesAreOpenedByTheirNames) {
+  TempDir dir;
+  const std::string path = dir.file("box.geojson");
+  write_file(path, R"({"type":"FeatureCollection","features":[{"type":"Feature",)"
+                   R"("properties":{},"geometry":{"type":"Polygon","coordinates":)"
+                   R"([[[1,1],[2,1],[2,2],[1,2],[1,1]]]}}]})");
+  const SourceData d = read_polygons(params("GeoJSON:" + path));
+  ASSERT_EQ(d.polygons.size(), 1u);
+  EXPECT_DOUBLE_EQ(std::abs(signed_area(d.polygons[0].rings[0])), 1.0);
+  expect_error(params("PG:host=/nonexistent-isoquad dbname=coast"), ErrorClass::input,
+               "'PG:host=/nonexistent-isoquad dbname=coast': no such file, nor a data source "
+               "GDAL opens");
+  expect_error(params("C:/coast.shp"), ErrorClass::input, "no such file or directory");
+  EXPECT_TRUE(is_data_source_name("WFS:https://host/wfs"));
+  EXPECT_TRUE(is_data_source_name("https://host/coast.geojson"));
+  EXPECT_FALSE(is_data_source_name("C:/coast.shp"));
+  EXPECT_FALSE(is_data_source_name(path));
+  EXPECT_FALSE(is_data_source_name("/vsizip/a.zip"));
+}
+
 TEST(ReadPolygons, BboxInAnotherCrs) {
   TempDir dir;
   ReadParams p = params(good_geojson(dir));
