@@ -32,16 +32,20 @@ std::unique_ptr<GDALDataset> open_raster(const std::string& path, const std::str
   ensure_gdal_registered();
   auto fail = [&](const std::string& problem) { raster_error(what, path, problem); };
   struct stat st {};
-  if (path.rfind("/vsi", 0) != 0 && stat(path.c_str(), &st) != 0) fail("no such file");
+  const bool named_source = is_data_source_name(path);  // a WCS, a PostGIS raster, a URL
+  if (path.rfind("/vsi", 0) != 0 && !named_source && stat(path.c_str(), &st) != 0)
+    fail("no such file");
   std::string problem;
-  const std::string open_path = gdal_path(path, ArchiveContent::raster, problem);
+  const std::string open_path =
+      named_source ? path : gdal_path(path, ArchiveContent::raster, problem);
   if (open_path.empty()) fail(problem);
   GdalErrorCapture capture;
   std::unique_ptr<GDALDataset> ds(static_cast<GDALDataset*>(
       GDALOpenEx(open_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
   if (!ds) {
     const bool depths = what == "--bathymetry" || what == "--elevation";
-    fail("cannot read as a raster" +
+    fail(std::string(named_source ? "no such file, nor a raster GDAL opens by this name"
+                                  : "cannot read as a raster") +
          (capture.last_message().empty() ? std::string() : " (" + capture.last_message() + ")") +
          (depths ? "; nor as a mesh (.gr3, .ll, .14, .2dm, .mesh, .msh, .slf, .nc) or as samples "
                    "(an .xyz, or a layer of points)"

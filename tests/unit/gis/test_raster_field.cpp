@@ -167,6 +167,25 @@ TEST(RasterField, ReadsAZippedGridAsDownloaded) {
   }
 }
 
+// A grid GDAL opens by a name that is not a file (a driver's prefix here; a WCS, a
+// PostGIS raster, a URL alike) is read as the file is.
+TEST(RasterField, AGridNamedForGdalIsRead) {
+  TempDir dir;
+  const std::string tif = world(dir);
+  const CrsInfo lonlat = parse_crs("EPSG:4326", "t");
+  const RasterField plain(tif, "--bathymetry", lonlat);
+  const RasterField named("GTIFF_DIR:1:" + tif, "--bathymetry", lonlat);
+  EXPECT_EQ(named.sample({-3.25, 48.25}), plain.sample({-3.25, 48.25}));
+  try {
+    check_raster("GTIFF_DIR:1:" + dir.file("none.tif"), "--bathymetry");
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("no such file, nor a raster GDAL opens by this name"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 // A point on the raster's edge, come back from another CRS a little off it, takes the
 // edge's value; beyond half a pixel, none.
 TEST(RasterField, TheEdgeHoldsWithinHalfAPixel) {
