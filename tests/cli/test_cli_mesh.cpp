@@ -573,6 +573,28 @@ TEST(CliMesh, SameOutputWhicheverInstructionSetTheBuildTargets) {
 }
 #endif
 
+// Quads as large as the island cut across it: the mesh's area falls short of the
+// domain's, which is said with where and what helps; at sizes that follow the coast,
+// nothing is said.
+TEST(CliMesh, QuadsTooLargeForTheDomainAreSaidToCutAcrossIt) {
+  TempDir dir;
+  const std::string corsica = source_dir() + "/shapefiles/corsica.geojson";
+  const std::string warning = "warning: the mesh covers ";
+  CliResult r = run_cli({"mesh", corsica, "--size", "60000", "-o", dir.file("coarse.gpkg")}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::size_t at = r.err.find(warning);
+  ASSERT_NE(at, std::string::npos) << r.err;
+  const double share = std::stod(r.err.substr(at + warning.size()));
+  EXPECT_TRUE(share < 98 || share > 102) << share;
+  EXPECT_NE(r.err.find("of the domain's area: its quads are too large for parts of it", at),
+            std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("a smaller --size or --hmax", at), std::string::npos) << r.err;
+  r = run_cli({"mesh", corsica, "--size", "4000", "-o", dir.file("fine.gpkg")}, dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find(warning), std::string::npos) << r.err;
+}
+
 TEST(CliMesh, HolesTouchingAtAPointAreCutApartWithAWarning) {
   // Valid for GEOS and OGC (two holes sharing a vertex), not triangulable as it is.
   TempDir dir;
