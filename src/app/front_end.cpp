@@ -652,6 +652,7 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
   cp.largest = options.largest;
   cp.min_island_area_m2 = options.min_island_area_m2.value_or(h > 0 ? h * h : 0.0);
   cp.min_hole_area_m2 = cp.min_island_area_m2;
+  cp.min_island_area_given = options.min_island_area_m2.has_value();
   if (scale)
     cp.area_factor = [scale, k_min = scale->min()](const Point2& p) {
       const double r = k_min / scale->at(p);

@@ -43,10 +43,13 @@ CleanResult clean_domain(Domain& domain, const CleanParams& params) {
   if (polys.empty())
     throw Error(ErrorClass::input, "domain",
                 printf_string("every component is smaller than --min-island-area, %.4g km2 (the "
-                              "largest: %.4g km2); nothing is left to mesh. Its default is the "
-                              "square of the size (--size, or the automatic sizing's hmin): "
-                              "give a smaller size, or --min-island-area",
-                              params.min_island_area_m2 / 1e6, largest / 1e6));
+                              "largest: %.4g km2); nothing is left to mesh. %s",
+                              params.min_island_area_m2 / 1e6, largest / 1e6,
+                              params.min_island_area_given
+                                  ? "Give a --min-island-area under the largest component's area"
+                                  : "Its default is the square of the size (--size, or the "
+                                    "automatic sizing's hmin): give a smaller size, or "
+                                    "--min-island-area"));
   return result;
 }
 

@@ -13,6 +13,9 @@ struct CleanParams {
   double min_island_area_m2 = 0.0;  // components smaller than this are dropped
   double min_hole_area_m2 = 0.0;    // holes (islands in a water domain) smaller are dropped
   bool largest = false;             // keep only the largest component
+  // Whether the user gave min_island_area_m2 (--min-island-area), or it is the default
+  // (the size squared): the message when nothing is left says which to change.
+  bool min_island_area_given = false;
   // When set, each ring's area is multiplied by it at the middle of the ring's box before
   // the comparisons: a map's (k_min / k)^2, areas as they would be at its smallest scale.
   std::function<double(const Point2&)> area_factor;

@@ -83,4 +83,17 @@ TEST(CleanDomain, NothingLeftSaysHowLargeTheComponentsAre) {
         << what;
     EXPECT_NE(what.find("the square of the size"), std::string::npos) << what;
   }
+  // Given by the user, not the default: the default is not the one to blame.
+  p.min_island_area_given = true;
+  d = islands();
+  try {
+    clean_domain(d, p);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("Give a --min-island-area under the largest component's area"),
+              std::string::npos)
+        << what;
+    EXPECT_EQ(what.find("square of the size"), std::string::npos) << what;
+  }
 }
