@@ -11,6 +11,7 @@
 
 #include "core/error.h"
 #include "core/parallel.h"
+#include "core/text.h"
 #include "domain/geos_ops.h"
 
 namespace isoquad {
@@ -131,8 +132,10 @@ NarrowResult remove_narrow_features(Domain& domain, const NarrowParams& params) 
   std::vector<Polygon> polygons = geos.polygons(closed);
   if (polygons.empty())
     throw Error(ErrorClass::input, "narrow features",
-                "every part of the domain is narrower than the minimum width " +
-                    std::to_string(params.min_width_m) + " m; nothing is left to mesh");
+                printf_string("every part of the domain is narrower than --min-width, %.6g m; "
+                              "nothing is left to mesh: give a smaller --min-width (its default "
+                              "is a quarter of the size)",
+                              params.min_width_m));
   const auto original_topology = topology(domain.polygons);
   if (topology(polygons) == original_topology) {
     for (const Polygon& p : removed) result.area_removed_m2 += std::abs(signed_area(p.outer));

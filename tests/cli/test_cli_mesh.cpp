@@ -590,9 +590,20 @@ TEST(CliMesh, QuadsTooLargeForTheDomainAreSaidToCutAcrossIt) {
             std::string::npos)
       << r.err;
   EXPECT_NE(r.err.find("a smaller --size or --hmax", at), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("of the sizes asked"), std::string::npos) << r.err;  // 0.74 of them
+  // Quads larger than the whole island: the few there are, far smaller than asked.
+  r = run_cli({"mesh", corsica, "--size", "400000", "--min-island-area", "0", "--min-width", "0",
+               "--simplify", "1000", "-o", dir.file("huge.gpkg")},
+              dir);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("of the sizes asked (median sqrt(area)/h): the domain, 8677 km2 in 4 "
+                       "quads, is too small for quads of those sizes"),
+            std::string::npos)
+      << r.err;
   r = run_cli({"mesh", corsica, "--size", "4000", "-o", dir.file("fine.gpkg")}, dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_EQ(r.err.find(warning), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("of the sizes asked"), std::string::npos) << r.err;
 }
 
 TEST(CliMesh, HolesTouchingAtAPointAreCutApartWithAWarning) {

@@ -167,6 +167,10 @@ TEST(NarrowFeatures, NothingLeftIsAnInputError) {
     FAIL() << "a domain narrower than the width everywhere was accepted";
   } catch (const Error& e) {
     EXPECT_EQ(e.error_class(), ErrorClass::input);
+    EXPECT_NE(std::string(e.what()).find("narrower than --min-width, 100 m; nothing is left to "
+                                         "mesh: give a smaller --min-width"),
+              std::string::npos)
+        << e.what();
   }
 }
 
