@@ -724,12 +724,10 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
       return;
     }
     const std::vector<Point2> left = pinch_points(result.domain);
-    char where[112];
-    std::snprintf(where, sizeof where,
-                  " (%zu place(s), the first near (%.10g, %.10g) in the meshing CRS)", left.size(),
-                  left[0].x, left[0].y);
     throw Error(ErrorClass::input, "simplify",
-                std::string("rings still touch after cutting them apart") + where);
+                "rings still touch after cutting them apart (" + std::to_string(left.size()) +
+                    " place(s), the first near " +
+                    format_meshing_place(left[0], result.domain.crs_wkt) + ")");
   };
   cut_pinches();
 
@@ -808,10 +806,11 @@ FrontEndResult build_planar_domain(const FrontEndOptions& options, const Progres
     s.warnings.push_back(printf_string(
         "%zu part(s) of the domain narrower than --min-width (%.4g m) kept, since cutting them "
         "out would cut components or open holes (straits, isthmuses, land bridges); the "
-        "narrowest near (%.10g, %.10g) in the meshing CRS, about %.3g m wide: quads there may "
-        "be long and narrow; smaller sizes there (--refine, --hmin) give them better shapes, "
-        "and --hairline above its width cuts it out",
-        strips.size(), np.min_width_m, narrowest->at.x, narrowest->at.y, narrowest->width_m));
+        "narrowest near %s, about %.4g m wide: quads there may be long and narrow; smaller "
+        "sizes there (--refine, --hmin) give them better shapes, and --hairline above its "
+        "width cuts it out",
+        strips.size(), np.min_width_m,
+        format_meshing_place(narrowest->at, result.domain.crs_wkt).c_str(), narrowest->width_m));
   cut_pinches();
   // Last, tips sharper than a quad's corner may be (after the simplification, which can
   // sharpen them), cut back to min_width wide.

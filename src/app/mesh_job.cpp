@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/json_writer.h"
 #include "core/text.h"
+#include "gis/crs.h"
 #include "mesh/boundary_corners.h"
 #include "mesh/locate.h"
 #include "quad/quad_numbering.h"
@@ -151,7 +152,8 @@ MeshResult build_mesh(const MeshOptions& options, const Progress& progress) {
                     problem + " after " + std::to_string(r.attempts) +
                         " tiling attempt(s), next to a piece narrower than --min-width that "
                         "was kept since changing it would join or cut components or holes (near " +
-                        format_point(place.at) + ", about " + printf_string("%.3g", place.width_m) +
+                        format_meshing_place(place.at, r.fields.front.domain.crs_wkt) + ", about " +
+                        printf_string("%.3g", place.width_m) +
                         " m across); no mesh is written: --hairline " +
                         printf_string("%.3g", 1.5 * place.width_m) +
                         " closes or cuts it, smaller sizes there (--refine, --hmin) resolve it" +

@@ -7,6 +7,7 @@
 #include "core/geometry.h"
 #include "core/text.h"
 #include "gis/atomic_output.h"
+#include "gis/crs.h"
 #include "gis/raster_field.h"
 #include "io/mesh_boundary.h"
 #include "plot/plot_mesh.h"
@@ -236,10 +237,10 @@ std::vector<std::string> mesh_job_warnings(const MeshResult& r, const MeshJobOut
     warnings.push_back(printf_string(
         "the mesh covers %.1f%% of the domain's area: its quads are too large for parts of "
         "it, which they cut across (the coast lies up to %.0f m, %.2f h, off the mesh's "
-        "boundary, near %s in the meshing CRS); a smaller --size or --hmax, or --refine "
-        "there, follows the coast",
+        "boundary, near %s); a smaller --size or --hmax, or --refine there, follows the coast",
         100 * q.mesh_area_m2 / q.domain_area_m2, q.boundary_departure_max_m,
-        q.boundary_departure_max_h, format_point(q.boundary_departure_where).c_str()));
+        q.boundary_departure_max_h,
+        format_meshing_place(q.boundary_departure_where, r.fields.front.domain.crs_wkt).c_str()));
   // A domain smaller than the quads asked for (an islet at a country's sizes): its few
   // quads are far smaller than the field says, which the size line shows unexplained.
   if (q.size_ratio_median > 0 && q.size_ratio_median < kSmallQuadsRatio)

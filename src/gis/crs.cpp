@@ -70,6 +70,19 @@ CrsInfo parse_crs(const std::string& text, const std::string& what) {
   return crs;
 }
 
+std::string format_meshing_place(const Point2& p, const std::string& crs_wkt) {
+  std::string text = format_point(p) + " in the meshing CRS";
+  try {
+    const CrsInfo crs = parse_crs(crs_wkt, "the meshing CRS");
+    Point2 lonlat = p;
+    if (!crs.geographic && !CrsTransform(crs, geographic_base(crs)).transform(lonlat)) return text;
+    text += printf_string(", %.5f %c %.5f %c", std::abs(lonlat.y), lonlat.y < 0 ? 'S' : 'N',
+                          std::abs(lonlat.x), lonlat.x < 0 ? 'W' : 'E');
+  } catch (const Error&) {
+  }
+  return text;
+}
+
 CrsInfo geographic_base(const CrsInfo& crs) {
   auto srs = make_srs(crs);
   std::unique_ptr<OGRSpatialReference> geog(srs->CloneGeogCS());

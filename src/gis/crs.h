@@ -72,6 +72,11 @@ class CrsTransform {
   bool identity_ = false;
 };
 
+// A place in a message: "(x, y) in the meshing CRS, 52.36710 N 4.88120 E", the point in
+// `crs_wkt` (the meshing CRS's WKT) and its latitude and longitude, which a user finds on
+// a map; the latter left out where the CRS has none.
+std::string format_meshing_place(const Point2& p, const std::string& crs_wkt);
+
 // The CRS's area of use in degrees (west, south, east, north); false when unknown.
 bool crs_area_of_use(const CrsInfo& crs, double bounds[4]);
 

@@ -1844,12 +1844,16 @@ TEST(CliMesh, AChannelFarNarrowerThanTheQuadsIsNamedAndHairlineClosesIt) {
   if (kept.exit_code == 0) {
     EXPECT_NE(kept.err.find("part(s) of the domain narrower than --min-width"), std::string::npos)
         << kept.err;
-    EXPECT_NE(kept.err.find("near (510000.5, 5005000) in the meshing CRS, about 1 m wide"),
+    EXPECT_NE(kept.err.find("near (510000.5, 5005000) in the meshing CRS, 45.19841 N 3.12733 E, "
+                            "about 1 m wide"),
               std::string::npos)
         << kept.err;
   } else {
     EXPECT_EQ(kept.exit_code, 5) << kept.err;
-    EXPECT_NE(kept.err.find("near (510000.5, 5005000), about 1 m across"), std::string::npos)
+    EXPECT_NE(kept.err.find(
+                  "near (510000.5, 5005000) in the meshing CRS, 45.19841 N 3.12733 E, about 1 m "
+                  "across"),
+              std::string::npos)
         << kept.err;
     EXPECT_NE(kept.err.find("--hairline 1.5 closes or cuts it"), std::string::npos) << kept.err;
   }

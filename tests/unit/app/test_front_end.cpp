@@ -410,7 +410,10 @@ TEST(FrontEnd, HairlineGapsAndStripsAreClosedOrCut) {
   const FrontEndResult d = build(lake, 0.0);
   EXPECT_EQ(d.summary.num_holes, 1u);
   EXPECT_TRUE(warned(d, "1 part(s) of the domain narrower than --min-width (50 m) kept"));
-  EXPECT_TRUE(warned(d, "near (500000.005, 5005000) in the meshing CRS, about 0.01 m wide"));
+  // The place in the meshing CRS (UTM 31N here) and in latitude and longitude.
+  EXPECT_TRUE(warned(d,
+                     "near (500000.005, 5005000) in the meshing CRS, 45.19849 N 3.00000 E, "
+                     "about 0.01 m wide"));
 }
 
 // --align: of a file of lines, only the runs of segments near the domain's box are kept
