@@ -328,9 +328,12 @@ std::string declared_crs_problem(GDALDataset& ds, OGRLayer& layer) {
     // QGIS write it there); the start of the file is enough.
     std::string head = file_head(path, 1 << 20);
     head.resize(std::min(head.size(), head.find("\"features\"")));
-    static const std::regex named(R"re("crs"\s*:\s*\{[^{}]*\{[^{}]*"name"\s*:\s*"([^"]*)")re");
+    const std::size_t at = head.find("\"crs\"");
+    if (at == std::string::npos) return "";
+    const std::string member = head.substr(at, 1000);  // the member, not the whole head
+    static const std::regex named(R"re(^"crs"\s*:\s*\{[^{}]*\{[^{}]*"name"\s*:\s*"([^"]*)")re");
     std::smatch m;
-    if (!std::regex_search(head, m, named)) return "";
+    if (!std::regex_search(member, m, named)) return "";
     const std::string why = crs_rejection(m[1].str());
     if (why.empty()) return "";
     return "its \"crs\" member names '" + m[1].str() + "', a CRS GDAL and PROJ do not know (" +
@@ -338,13 +341,12 @@ std::string declared_crs_problem(GDALDataset& ds, OGRLayer& layer) {
   }
   if (driver == "ESRI Shapefile" && !layer.GetSpatialRef()) {
     // A directory of shapefiles is one data set; the layer is one file of it.
+    VSIStatBufL st;
+    const bool directory = VSIStatL(path.c_str(), &st) == 0 && VSI_ISDIR(st.st_mode);
     const std::string base =
-        VSIStatL(path.c_str(), nullptr) == 0 && CPLGetExtension(path.c_str())[0] == '\0'
-            ? CPLFormFilename(path.c_str(), layer.GetName(), nullptr)
-            : path;
+        directory ? std::string(CPLFormFilename(path.c_str(), layer.GetName(), "shp")) : path;
     for (const char* ext : {"prj", "PRJ"}) {
       const std::string prj = CPLResetExtension(base.c_str(), ext);
-      VSIStatBufL st;
       if (VSIStatL(prj.c_str(), &st) != 0 || !VSI_ISREG(st.st_mode)) continue;
       const std::string why = crs_rejection(file_head(prj, 1 << 16));
       if (why.empty()) return "";
