@@ -175,7 +175,7 @@ const MeshOutput* first_output(const MeshJobOutputs& outputs, MeshFormat format)
 // cover 99.2 to 100.03% of their domains.
 constexpr double kAreaWarningShare = 0.02;
 // The median size ratio under which the quads are said to be smaller than asked: 0.61
-// at the least over 621 meshes of countries and random regions but one, an islet.
+// at the least over 620 meshes of countries and random regions other than an islet.
 constexpr double kSmallQuadsRatio = 0.5;
 
 std::vector<std::string> mesh_job_warnings(const MeshResult& r, const MeshJobOutputs& outputs,
