@@ -372,6 +372,11 @@ SizingField ground_size_field(const FieldsResult& r) {
   return ground;
 }
 
+double predicted_quads(const FieldsResult& r) {
+  return std::max(predicted_num_quads(r.mesh, r.size),
+                  3.0 * static_cast<double>(r.front.domain.polygons.size()));
+}
+
 std::string format_fields_summary(const FieldsResult& r) {
   std::ostringstream os;
   char buf[256];
@@ -402,8 +407,7 @@ std::string format_fields_summary(const FieldsResult& r) {
     const auto [lo, hi] = std::minmax_element(ground.begin(), ground.end());
     std::snprintf(buf, sizeof buf,
                   "size field:   %.6g .. %.6g m%s on %zu background vertices; about %.0f quads\n",
-                  *lo, *hi, r.scale ? " on the ground" : "", ground.size(),
-                  predicted_num_quads(r.mesh, r.size));
+                  *lo, *hi, r.scale ? " on the ground" : "", ground.size(), predicted_quads(r));
     os << buf;
   }
   if (r.sizing.time_step_s > 0) {
@@ -452,7 +456,7 @@ void add_sizing_report(JsonWriter& j, const FieldsResult& r) {
       .value("gradation", r.sizing.gradation)
       .array("sources", r.sizing.sources)
       .value("narrow_medial_points", r.sizing.num_narrow_sites)
-      .value("predicted_quads", predicted_num_quads(r.mesh, r.size))
+      .value("predicted_quads", predicted_quads(r))
       .value("map_scale_min", r.sizing.scale_min)
       .value("map_scale_max", r.sizing.scale_max)
       .value("map_scale_applied", r.sizing.scale_applied);

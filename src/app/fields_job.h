@@ -99,6 +99,12 @@ void build_fields_on_domain(const Domain& domain, const FieldsOptions& options,
 
 std::string format_fields_summary(const FieldsResult& r);
 
+// How many quads the sizes ask for, as the summary and the report say: the integral of
+// 1 / h^2 over the domain (predicted_num_quads), but at least 3 per component, the
+// fewest a mesh of one has (a tile of three sides); a domain smaller than its sizes
+// would otherwise say "about 0 quads" and be meshed with 3 or 4.
+double predicted_quads(const FieldsResult& r);
+
 // The sizes at the background vertices on the ground: r.size in the CRS's metres divided
 // by its scale where the sizes were multiplied by it (r.scale), else r.size itself. As
 // the summary, the report and `isoquad fields`'s files give them.

@@ -466,6 +466,27 @@ TEST(MeshJob, SizesThatAskForTooManyQuadsStopTheJobBeforeTheMeshing) {
   EXPECT_EQ(message(1.01 * predicted), "no error");
 }
 
+// The quads the summary and the report predict: the integral of 1 / h^2, but at least 3
+// per component, as few as a mesh of one can have. Corsica under a size of 300 km (its
+// 8,700 km2 are a tenth of one quad's area) is meshed with a few quads, not 0.
+TEST(MeshJob, ThePredictedQuadsAreAtLeastThreePerComponent) {
+  FieldsOptions o = corsica(8000.0).fields;
+  FieldsResult r = build_fields(o);
+  ASSERT_EQ(r.front.domain.polygons.size(), 1u);
+  EXPECT_GT(predicted_num_quads(r.mesh, r.size), 50.0);
+  EXPECT_EQ(predicted_quads(r), predicted_num_quads(r.mesh, r.size));
+  o.sizing.automatic = false;
+  o.sizing.constant_m = 300000.0;
+  o.sizing.hmax_m = SizingParams{}.hmax_m;
+  o.front.min_island_area_m2 = 0.0;
+  o.front.min_width_m = 0.0;
+  o.front.simplify_m = 0.0;
+  r = build_fields(o);
+  ASSERT_EQ(r.front.domain.polygons.size(), 1u);
+  EXPECT_LT(predicted_num_quads(r.mesh, r.size), 1.0);
+  EXPECT_EQ(predicted_quads(r), 3.0);
+}
+
 // --hmax alone bounds the quads from below (every size is at most hmax): a bound over
 // --max-quads stops the job as soon as the domain is projected, before the boundary is
 // sampled at hmin (a size meant in km took tens of seconds and gigabytes to get to the
