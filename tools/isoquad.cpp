@@ -172,6 +172,12 @@ int main(int argc, char** argv) {
                     : quality_cmd->parsed() ? quality_extra.jobs
                                             : 1);
   isoquad::remove_unfinished_outputs_on_signals();
+  // The run's inputs, which no output may replace: INPUT and --mesh noted now, so that an
+  // output named as one fails before any work; the other files as they are read.
+  const ProtectInputFiles protect_inputs;
+  for (const std::string* input : {&domain_args.input, &fields_args.input, &mesh_args.input,
+                                   &quality_args.input, &quality_extra.mesh_path})
+    note_input_file(*input);
   try {
     if (domain_cmd->parsed()) return run_domain(domain_args);
     if (fields_cmd->parsed()) return run_fields(fields_args, field_args, joined_command_line(argc, argv));

@@ -1,6 +1,7 @@
 #include "gis/atomic_output.h"
 
 #include <pthread.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -12,7 +13,9 @@
 #include <fstream>
 #include <functional>
 #include <mutex>
+#include <set>
 #include <thread>
+#include <utility>
 
 #include "core/error.h"
 
@@ -69,10 +72,58 @@ void forget_temp_path(const std::string& path) {
 
 constexpr int kCleanupSignals[] = {SIGINT, SIGTERM, SIGHUP};
 
+// The run's inputs (ProtectInputFiles) by file identity, so that another spelling of
+// one (./a, a link) is the same file.
+struct InputFiles {
+  std::mutex mutex;
+  bool protect = false;
+  std::set<std::pair<dev_t, ino_t>> ids;
+};
+
+InputFiles& input_files() {
+  static InputFiles files;
+  return files;
+}
+
+// Error(output) when `path` is an existing file the run reads.
+void check_not_an_input(const std::string& path) {
+  InputFiles& files = input_files();
+  std::lock_guard<std::mutex> lock(files.mutex);
+  struct stat st {};
+  if (!files.protect || ::stat(path.c_str(), &st) != 0) return;
+  if (files.ids.count({st.st_dev, st.st_ino}))
+    throw Error(ErrorClass::output, "write",
+                quote(path) +
+                    " is an input of this run: isoquad never writes over its inputs, even with "
+                    "--overwrite; give the output another name");
+}
+
 }  // namespace
+
+ProtectInputFiles::ProtectInputFiles() {
+  InputFiles& files = input_files();
+  std::lock_guard<std::mutex> lock(files.mutex);
+  files.protect = true;
+}
+
+ProtectInputFiles::~ProtectInputFiles() {
+  InputFiles& files = input_files();
+  std::lock_guard<std::mutex> lock(files.mutex);
+  files.protect = false;
+  files.ids.clear();
+}
+
+void note_input_file(const std::string& path) {
+  InputFiles& files = input_files();
+  std::lock_guard<std::mutex> lock(files.mutex);
+  struct stat st {};
+  if (!files.protect || ::stat(path.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) return;
+  files.ids.emplace(st.st_dev, st.st_ino);
+}
 
 void check_output_path(const std::string& path, bool overwrite) {
   if (path.empty()) throw Error(ErrorClass::usage, "write", "empty output path");
+  check_not_an_input(path);
   std::error_code ec;
   if (fs::is_directory(path, ec))
     throw Error(ErrorClass::output, "write", quote(path) + " is a directory");
@@ -129,6 +180,7 @@ AtomicOutput::~AtomicOutput() {
 }
 
 void AtomicOutput::commit() {
+  check_not_an_input(final_path_);
   std::error_code ec;
   if (!overwrite_ && fs::exists(final_path_, ec))
     throw Error(ErrorClass::output, "write",
@@ -244,6 +296,8 @@ Error OutputSet::explained(const Error& e) const {
 
 void OutputSet::commit_all() {
   // A signal's clean-up waits until every output is in place (or none is).
+  for (const std::string& path : paths_) check_not_an_input(path);
+  for (const std::string& path : removed_) check_not_an_input(path);
   std::lock_guard<std::recursive_mutex> lock(unfinished().mutex);
   // Set aside the files being replaced (and those removed) until every output is in
   // place: paths_[i]'s in backups[i], removed_[k]'s in backups[outputs_.size() + k].

@@ -14,6 +14,25 @@ namespace isoquad {
 // directory does not exist or is not writable. Call before any long work.
 void check_output_path(const std::string& path, bool overwrite);
 
+// While one lives (the command line's run), the files the run reads are its inputs, and
+// no output may replace or remove one, even with overwrite: check_output_path, and the
+// moves into place (AtomicOutput::commit, OutputSet::commit_all), fail with
+// Error(output) naming it. A mesh written over its INPUT with --overwrite, or a --report
+// over --mesh's file, would otherwise lose the input once the run succeeds. Without
+// one (tests, the library's callers), nothing is noted.
+class ProtectInputFiles {
+ public:
+  ProtectInputFiles();
+  ~ProtectInputFiles();
+  ProtectInputFiles(const ProtectInputFiles&) = delete;
+  ProtectInputFiles& operator=(const ProtectInputFiles&) = delete;
+};
+
+// Notes `path` as an input of the run (under ProtectInputFiles; the readers call it as
+// they open a file). A name that is no regular file (a data source such as PG:..., a
+// directory of shapefiles) is not noted. Thread-safe.
+void note_input_file(const std::string& path);
+
 // The path as one file's key, so that two spellings of one file compare equal (./a and
 // a, a link to its directory): canonical as far as it exists, else absolute and
 // normalised (a name too long to look up).

@@ -16,6 +16,7 @@
 
 #include "core/error.h"
 #include "core/text.h"
+#include "gis/atomic_output.h"
 #include "gis/model_lines.h"
 
 namespace isoquad {
@@ -212,6 +213,7 @@ std::string joined(const std::vector<std::string>& names, std::size_t at_most) {
 
 std::string gdal_path(const std::string& path, ArchiveContent content, std::string& problem) {
   ensure_gdal_registered();
+  note_input_file(path);  // no output may replace it
   problem.clear();
   const std::string prefix = archive_prefix(path);
   if (prefix.empty()) return path;

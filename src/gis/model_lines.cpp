@@ -12,6 +12,7 @@
 #include "core/error.h"
 #include "core/geometry.h"
 #include "core/text.h"
+#include "gis/atomic_output.h"
 
 namespace isoquad {
 
@@ -155,6 +156,7 @@ bool is_model_lines_file(const std::string& path) {
 }
 
 GdalDataset read_model_lines(const std::string& path, const std::string& stage) {
+  note_input_file(path);  // no output may replace it
   const std::string e = extension(path);
   Parser parser(path, stage, read_text(path, stage));
   const std::vector<NamedLine> lines =

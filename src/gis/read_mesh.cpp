@@ -10,6 +10,7 @@
 
 #include "core/error.h"
 #include "core/text.h"
+#include "gis/atomic_output.h"
 #include "gis/crs.h"
 #include "gis/gdal_env.h"
 #include "gis/mesh_outline.h"
@@ -241,6 +242,7 @@ void open_boundaries_from_groups(ReadMesh& mesh, const std::vector<std::string>&
 }
 
 ReadMesh read_mesh(const std::string& path) {
+  note_input_file(path);  // no output may replace it
   ReadMesh mesh;
   mesh.format = mesh_file_format(path);
   if (!std::filesystem::is_regular_file(path))

@@ -17,6 +17,7 @@
 
 #include "core/error.h"
 #include "core/text.h"
+#include "gis/atomic_output.h"
 #include "gis/gdal_env.h"
 #include "gis/mesh_field.h"
 #include "gis/read_points.h"
@@ -84,6 +85,7 @@ bool is_comment(const std::string& line) {
 
 // `max_samples`: stop after that many (the check before a long job).
 RawSamples read_xyz(const std::string& path, const std::string& what, std::size_t max_samples) {
+  note_input_file(path);  // no output may replace it
   std::ifstream in(path);
   if (!in) fail(ErrorClass::input, what, path, "cannot be opened");
   RawSamples out;

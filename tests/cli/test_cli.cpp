@@ -120,6 +120,34 @@ TEST(Cli, ExistingOutputIsNeverReplacedWithoutOverwrite) {
   EXPECT_EQ(r.out, "");
 }
 
+// No output replaces a file the run reads, even with --overwrite: INPUT as -o or
+// --report fails before any work, a file read later (--exclude) when the outputs are
+// moved into place; either way nothing is written and the input is as it was.
+TEST(Cli, AnOutputNeverReplacesAnInput) {
+  TempDir dir;
+  const std::string input = good_geojson(dir);
+  const std::string original = read_file(input);
+  const std::string exclude = dir.file("exclude.geojson");
+  write_file(exclude,
+             R"({"type":"FeatureCollection","features":[{"type":"Feature","properties":{},)"
+             R"("geometry":{"type":"Polygon","coordinates":[[[-2.6,47.4],[-2.5,47.4],)"
+             R"([-2.5,47.5],[-2.6,47.5],[-2.6,47.4]]]}}]})");
+  const std::string exclude_text = read_file(exclude);
+  const std::string out = dir.file("out.gpkg");
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
+           {"domain", input, "-o", input, "--overwrite"},
+           {"domain", input, "-o", out, "--report", dir.path() + "/./good.geojson", "--overwrite"},
+           {"domain", input, "-o", out, "--exclude", exclude, "--report", exclude,
+            "--overwrite"}}) {
+    const CliResult r = run_cli(args, dir);
+    EXPECT_EQ(r.exit_code, 6) << r.err;
+    EXPECT_NE(r.err.find("is an input of this run"), std::string::npos) << r.err;
+    EXPECT_EQ(read_file(input), original);
+    EXPECT_EQ(read_file(exclude), exclude_text);
+    EXPECT_FALSE(std::filesystem::exists(out));
+  }
+}
+
 TEST(Cli, UsageErrorsExitWithTwo) {
   TempDir dir;
   const std::string input = good_geojson(dir);

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <csignal>
+#include <functional>
 
 #include "core/error.h"
 #include "support/test_support.h"
@@ -55,6 +56,46 @@ TEST(AtomicOutput, ExistingOutputNeedsOverwrite) {
   write_file(out.temp_path(), "new");
   out.commit();
   EXPECT_EQ(read_file(path), "new");
+}
+
+// Under ProtectInputFiles, a file noted as read is never replaced nor removed, by
+// another spelling of it too: not when checked, not when moved into place (an input read
+// after the outputs were checked), not as a file an OutputSet removes. Without it, or
+// once it ends, nothing is noted.
+TEST(AtomicOutput, TheRunsInputsAreNeverReplaced) {
+  TempDir dir;
+  const std::string input = dir.file("in.geojson"), other = dir.file("other.gpkg");
+  write_file(input, "input");
+  auto expect_refused = [&](const std::function<void()>& f) {
+    try {
+      f();
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      EXPECT_EQ(e.error_class(), ErrorClass::output);
+      EXPECT_NE(std::string(e.what()).find("is an input of this run"), std::string::npos)
+          << e.what();
+    }
+    EXPECT_EQ(read_file(input), "input");
+  };
+  note_input_file(input);  // no ProtectInputFiles: not noted
+  check_output_path(input, true);
+  {
+    const ProtectInputFiles protect;
+    check_output_path(input, true);  // not read yet
+    AtomicOutput late(input, true);  // checked before the file was read
+    write_file(late.temp_path(), "output");
+    note_input_file(input);
+    note_input_file("PG:dbname=coast");  // a data source: nothing to note
+    expect_refused([&] { check_output_path(input, true); });
+    expect_refused([&] { check_output_path(dir.path() + "/./in.geojson", true); });
+    expect_refused([&] { late.commit(); });
+    OutputSet set;
+    write_file(set.add(other, false), "other");
+    set.remove_on_commit(input);
+    expect_refused([&] { set.commit_all(); });
+    EXPECT_FALSE(std::filesystem::exists(other));
+  }
+  check_output_path(input, true);  // the run is over
 }
 
 TEST(AtomicOutput, MissingDirectoryIsAnOutputError) {
