@@ -329,7 +329,8 @@ def main():
     a.extra = extra
     if a.repeat < 1:
         sys.exit("compare_gmsh: --repeat must be at least 1")
-    work = a.workdir or tempfile.mkdtemp(prefix="isoquad-vs-gmsh-")
+    # Absolute: Gmsh reads the .geo's includes and views relative to the .geo's folder.
+    work = os.path.abspath(a.workdir or tempfile.mkdtemp(prefix="isoquad-vs-gmsh-"))
     os.makedirs(work, exist_ok=True)
     common = [a.input, "--overwrite", "-q"] + a.extra
     if a.size:
