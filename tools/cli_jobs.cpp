@@ -349,6 +349,8 @@ RegionOutcome run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
                   "'" + q.mesh_path + "': its boundary is not a set of simple loops (" +
                       e.message() + "): -o cannot write it");
     }
+    data.vertex_ids = r.point_ids;
+    data.quad_ids = r.quad_ids;
     data.command_line = command_line;
     data.libraries = library_versions_line();
     data.quality = quality_items(r.quality);

@@ -41,9 +41,10 @@ void to_meshing_crs(const QualityJobOptions& options, const ReadMesh& file,
   const long failed = transform.transform(points);
   if (failed >= 0)
     throw Error(ErrorClass::crs, "crs",
-                "'" + options.mesh_path + "': node " + std::to_string(failed + 1) + " at " +
-                    format_point(points[failed]) + " cannot be transformed from " + r.mesh_crs +
-                    " into the meshing CRS");
+                "'" + options.mesh_path + "': node " +
+                    std::to_string(file_number(file.point_ids, static_cast<std::size_t>(failed))) +
+                    " at " + format_point(points[failed]) + " cannot be transformed from " +
+                    r.mesh_crs + " into the meshing CRS");
   r.transformed = true;
 }
 
@@ -182,6 +183,9 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
   StageClock measure_clock(r.fields.times);
   progress.report("measure", 0.85);
 
+  for (const std::string& note : file.notes) r.warnings.push_back(note);
+  r.point_ids = file.point_ids;
+  r.quad_ids = file.quad_ids;
   r.quads.points = std::move(file.points);
   to_meshing_crs(options, file, r.fields.front.domain.crs_wkt, r.quads.points, r);
   r.quads.quads = std::move(file.quads);
@@ -308,7 +312,7 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
   } else {
     try {
       for (const std::vector<int>& loop :
-           mesh_outline(m.points, m.quads, triangles, options.mesh_path))
+           mesh_outline(m.points, m.quads, triangles, options.mesh_path, r.point_ids))
         for (std::size_t i = 0; i < loop.size(); ++i)
           coast_edges.push_back({loop[i], loop[(i + 1) % loop.size()]});
     } catch (const Error& e) {

@@ -32,6 +32,9 @@ struct QualityJobResult {
   bool transformed = false;  // the points were transformed into the meshing CRS
   bool reversed = false;     // the file's elements were clockwise: measured reversed
   QuadMesh quads;            // in the meshing CRS, with the boundary vertices on the chains
+  // The file's numbers of its nodes and quads (ReadMesh::point_ids, quad_ids; empty: from
+  // 1 in order), for -o's ids.
+  std::vector<long long> point_ids, quad_ids;
   QualitySummary quality;    // of the quads; D-Flow FM's links and the areas of every cell
   QuadMetrics metrics;
   std::size_t num_triangles = 0;

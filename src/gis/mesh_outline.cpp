@@ -71,8 +71,12 @@ bool crosses_the_cut(const ReadMesh& mesh) {
 std::vector<std::vector<int>> mesh_outline(const std::vector<Point2>& points,
                                            const std::vector<std::array<int, 4>>& quads,
                                            const std::vector<std::array<int, 3>>& triangles,
-                                           const std::string& name) {
+                                           const std::string& name,
+                                           const std::vector<long long>& point_ids) {
   const std::string file = "'" + name + "'";
+  const auto node = [&point_ids](int k) {
+    return std::to_string(file_number(point_ids, static_cast<std::size_t>(k)));
+  };
   if (quads.empty() && triangles.empty())
     throw Error(ErrorClass::input, "quality", file + " has no elements");
   const auto n = static_cast<std::uint64_t>(points.size());
@@ -90,8 +94,8 @@ std::vector<std::vector<int>> mesh_outline(const std::vector<Point2>& points,
       if (added) order.push_back(key);
       if (++it->second.uses > 2)
         throw Error(ErrorClass::input, "quality",
-                    file + ": the edge between nodes " + std::to_string(lo + 1) + " and " +
-                        std::to_string(hi + 1) + " is a side of three or more elements");
+                    file + ": the edge between nodes " + node(lo) + " and " + node(hi) +
+                        " is a side of three or more elements");
     }
     orientation += twice_area > 0 ? 1 : twice_area < 0 ? -1 : 0;
   };
@@ -131,7 +135,7 @@ std::vector<std::vector<int>> mesh_outline(const std::vector<Point2>& points,
         }
         if (next < 0)
           throw Error(ErrorClass::input, "quality",
-                      file + ": its boundary does not close at node " + std::to_string(at + 1) +
+                      file + ": its boundary does not close at node " + node(at) +
                           " (elements of both orientations meet there?)");
         if (next == first) break;
         e = next;
@@ -170,8 +174,8 @@ SourceData outline_source(const ReadMesh& mesh, const std::string& path,
       const Point2& q = mesh.points[k];
       if (std::abs(q.y) > 90.0 || q.x < -360.0 || q.x > 360.0)
         throw Error(ErrorClass::crs, "read",
-                    "'" + path + "': node " + std::to_string(k + 1) + " " + format_point(q) +
-                        " is outside the valid range of '" + source.crs.name +
+                    "'" + path + "': node " + std::to_string(file_number(mesh.point_ids, k)) + " " +
+                        format_point(q) + " is outside the valid range of '" + source.crs.name +
                         "' (longitude -360..360, latitude -90..90); are the coordinates in "
                         "another CRS? Give it with " +
                         option);
@@ -182,14 +186,16 @@ SourceData outline_source(const ReadMesh& mesh, const std::string& path,
     const LocalProjection local = choose_local_projection(geographic_base(source.crs), points);
     const long failed = CrsTransform(source.crs, local.crs).transform(points);
     if (failed >= 0)
-      throw Error(ErrorClass::crs, "read",
-                  "'" + path + "': node " + std::to_string(failed + 1) + " " +
-                      format_point(mesh.points[static_cast<std::size_t>(failed)]) +
-                      " cannot be transformed to '" + local.crs.name + "'");
+      throw Error(
+          ErrorClass::crs, "read",
+          "'" + path + "': node " +
+              std::to_string(file_number(mesh.point_ids, static_cast<std::size_t>(failed))) + " " +
+              format_point(mesh.points[static_cast<std::size_t>(failed)]) +
+              " cannot be transformed to '" + local.crs.name + "'");
     source.crs = local.crs;
   }
   const std::vector<std::vector<int>> loops =
-      mesh_outline(points, mesh.quads, mesh.triangles, path);
+      mesh_outline(points, mesh.quads, mesh.triangles, path, mesh.point_ids);
   std::vector<SourceLine> lines;
   for (const std::vector<int>& loop : loops) {
     SourceLine line;

@@ -20,11 +20,13 @@ namespace isoquad {
 // there. Loops are traced from the nodes in the order of their ids. `name` (the
 // file) starts the messages of Error(input), thrown for a side of three or more
 // elements, for elements whose orientations disagree along the boundary, and for a mesh
-// without elements.
+// without elements. The messages number the nodes as `point_ids` does (the file's own
+// numbers, ReadMesh::point_ids; empty: from 1 in order).
 std::vector<std::vector<int>> mesh_outline(const std::vector<Point2>& points,
                                            const std::vector<std::array<int, 4>>& quads,
                                            const std::vector<std::array<int, 3>>& triangles,
-                                           const std::string& name);
+                                           const std::string& name,
+                                           const std::vector<long long>& point_ids = {});
 
 // A mesh as the polygons of a domain: its outline's loops nested into polygons with
 // holes by containment (rings_from_lines), in the CRS `crs_text` gives (as `option`,

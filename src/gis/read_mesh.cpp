@@ -5,6 +5,8 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
+#include <unordered_set>
 
 #include <ogrsf_frmts.h>
 
@@ -28,7 +30,7 @@ bool open_runs(ReadMesh& mesh, const std::string& path,
                const std::function<long long(int, int)>& face_kind) {
   std::vector<std::vector<int>> loops;
   try {
-    loops = mesh_outline(mesh.points, mesh.quads, mesh.triangles, path);
+    loops = mesh_outline(mesh.points, mesh.quads, mesh.triangles, path, mesh.point_ids);
   } catch (const Error&) {
     return false;
   }
@@ -270,6 +272,23 @@ ReadMesh read_mesh(const std::string& path) {
   if (mesh.quads.empty() && mesh.triangles.empty())
     throw Error(ErrorClass::input, "read",
                 "'" + path + "': the mesh has no triangle or quadrangle");
+  // An element number given twice (an SMS .2dm's E4Q 7 and E3T 7; SCHISM and ADCIRC
+  // read a .gr3's elements in order, whatever their numbers) names no one element: the
+  // elements are then numbered in order, as those models do.
+  const auto repeated_element_id = [&mesh]() -> std::optional<long long> {
+    std::unordered_set<long long> seen;
+    for (const std::vector<long long>* ids : {&mesh.quad_ids, &mesh.triangle_ids})
+      for (long long id : *ids)
+        if (!seen.insert(id).second) return id;
+    return std::nullopt;
+  };
+  if (const std::optional<long long> id = repeated_element_id()) {
+    mesh.notes.push_back("'" + path + "': element number " + std::to_string(*id) +
+                         " is given to two elements: its elements are numbered from 1 in "
+                         "the file's order instead");
+    mesh.quad_ids.clear();
+    mesh.triangle_ids.clear();
+  }
   if (std::any_of(mesh.node_values.begin(), mesh.node_values.end(),
                   [](double v) { return std::isnan(v); }))
     mesh.node_values.clear();

@@ -18,6 +18,11 @@ struct ReadMesh {
   std::vector<Point2> points;             // as in the file
   std::vector<std::array<int, 4>> quads;  // 0-based indices into points, as in the file
   std::vector<std::array<int, 3>> triangles;
+  // The file's own numbers of its nodes and elements where it numbers them (.gr3, .ll,
+  // .14, .2dm, .msh, MIKE's .mesh), in the order of points, quads and triangles; empty
+  // where it does not (the others: numbered from 1 in order, file_number). The messages
+  // and `quality -o`'s ids say these, as the tool that wrote the file shows them.
+  std::vector<long long> point_ids, quad_ids, triangle_ids;
   // The file's CRS, when the format holds one (MIKE's projection: "EPSG:4326" for its
   // LONG/LAT, else its WKT; UGRID's grid mapping: its WKT or EPSG code, or EPSG:4326 for
   // longitudes; a layer's CRS; EPSG:4326 for SCHISM's .ll; the one isoquad names in a
@@ -51,6 +56,12 @@ struct ReadMesh {
   };
   std::vector<CurveGroup> curve_groups;
 };
+
+// The file's number of its k-th node or element (`ids`: ReadMesh::point_ids, quad_ids or
+// triangle_ids): ids[k], or k + 1 when the file numbers none.
+inline long long file_number(const std::vector<long long>& ids, std::size_t k) {
+  return ids.empty() ? static_cast<long long>(k) + 1 : ids[k];
+}
 
 // The format from the file's extension (.gr3, .ll, .14 (also fort.14 and .grd), .2dm,
 // .msh, .mesh, .nc, .slf or .srf, and .gpkg, .shp or .geojson for polygons); Error(usage)

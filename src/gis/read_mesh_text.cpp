@@ -44,10 +44,13 @@ void add_element(ReadMesh& mesh, const std::vector<int>& nodes, const LineReader
     for (std::size_t j = i + 1; j < nodes.size(); ++j)
       if (nodes[i] == nodes[j])
         reader.fail("element " + std::to_string(id) + " has the same node twice");
-  if (nodes.size() == 3)
+  if (nodes.size() == 3) {
     mesh.triangles.push_back({nodes[0], nodes[1], nodes[2]});
-  else
+    mesh.triangle_ids.push_back(id);
+  } else {
     mesh.quads.push_back({nodes[0], nodes[1], nodes[2], nodes[3]});
+    mesh.quad_ids.push_back(id);
+  }
 }
 
 // A node: its id (read before) and the line's next two numbers, x and y, and with
@@ -58,6 +61,7 @@ void add_node(Fields& f, long long id, NodeIds& ids, ReadMesh& mesh, const LineR
   ids.add(id, reader);
   const double x = f.number("x");
   mesh.points.push_back({x, f.number("y")});
+  mesh.point_ids.push_back(id);
   if (value)
     mesh.node_values.push_back(f.at_end() ? std::numeric_limits<double>::quiet_NaN()
                                           : f.number("the node's depth or z"));

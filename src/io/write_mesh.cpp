@@ -11,6 +11,7 @@
 #include "gis/atomic_output.h"
 #include "gis/crs.h"
 #include "gis/layer_styles.h"
+#include "gis/read_mesh.h"
 #include "gis/vector_writer.h"
 #include "io/mesh_formats.h"
 #include "io/write_vtu.h"
@@ -55,7 +56,7 @@ void write_quads_layer(const MeshView& v, VectorWriter& w) {
   std::vector<FieldValue> values;
   for (std::size_t i = 0; i < m.quads.size(); ++i) {
     const auto& t = m.quads[i];
-    values.assign(1, FieldValue::integer(static_cast<long long>(i + 1)));
+    values.assign(1, FieldValue::integer(file_number(v.data->quad_ids, i)));
     for (const QuadField& f : fields) {
       const double x = (*f.values)[i];
       values.push_back(f.integer ? FieldValue::integer(static_cast<long long>(x))
@@ -116,7 +117,7 @@ void write_gpkg(const MeshView& v, const std::string& path, const std::string& w
                      std::string(depth ? "; depth in metres, positive down" : "") + "."});
   for (std::size_t i = 0; i < pts.size(); ++i) {
     std::vector<FieldValue> values = {
-        FieldValue::integer(static_cast<long long>(i + 1)), FieldValue::integer(q.degree[i]),
+        FieldValue::integer(file_number(v.data->vertex_ids, i)), FieldValue::integer(q.degree[i]),
         FieldValue::integer(q.ideal_degree[i]), FieldValue::boolean(q.boundary[i] != 0)};
     if (depth) values.push_back(FieldValue::real(v.data->depth[i]));
     if (point) values.push_back(FieldValue::integer(v.data->vertex_point[i]));

@@ -83,6 +83,9 @@ struct MeshOutputData {
   // the file: the GeoPackage's layer `embedded`.
   std::vector<std::vector<int>> embedded;
   std::vector<int> embedded_line;
+  // #P and #Q the numbers the `id` columns give the vertices and quads (a measured
+  // file's own: quality -o); empty: from 1 in order, as the model files number them.
+  std::vector<long long> vertex_ids, quad_ids;
   // GeoPackage metadata.
   std::string command_line;
   std::vector<std::pair<std::string, std::string>> metadata;  // more rows, after the command line

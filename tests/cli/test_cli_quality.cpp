@@ -270,6 +270,45 @@ print(sum(len(c.data) for c in m.cells if c.type == "quad"), len(m.points))
     else
       expect_same_quality(first, q, 1e-12, "msh 2.2 against 4.1");
   }
+  // -o numbers the quads and vertices as the file does: Gmsh's mesh with its element tags
+  // from 1001 and its node tags multiplied by 10.
+  EXPECT_EQ(python_check(dir, R"(
+import sys
+lines = open(sys.argv[1]).read().split("\n")
+i, j = lines.index("$Nodes"), lines.index("$Elements")
+for k in range(i + 2, i + 2 + int(lines[i + 1])):
+    f = lines[k].split()
+    lines[k] = " ".join([str(10 * int(f[0]))] + f[1:])
+for k in range(j + 2, j + 2 + int(lines[j + 1])):
+    f = lines[k].split()
+    tags = 3 + int(f[2])
+    lines[k] = " ".join([str(1000 + int(f[0]))] + f[1:tags] + [str(10 * int(n)) for n in f[tags:]])
+open(sys.argv[2], "w").write("\n".join(lines))
+print("ok")
+)",
+                         {dir.file("q22.msh"), dir.file("renumbered.msh")}),
+            "ok\n");
+  std::vector<std::string> with_ids = common;
+  with_ids.insert(with_ids.end(),
+                  {"--mesh", dir.file("renumbered.msh"), "-o", dir.file("renumbered.gpkg")});
+  const CliResult ids = run_cli(with_ids, dir);
+  ASSERT_EQ(ids.exit_code, 0) << ids.err;
+  EXPECT_EQ(python_check(dir, R"(
+import sqlite3, sys
+lines = open(sys.argv[1]).read().split("\n")
+i = lines.index("$Nodes")
+nodes = [int(l.split()[0]) for l in lines[i + 2:i + 2 + int(lines[i + 1])]]
+j = lines.index("$Elements")
+quads = [int(l.split()[0]) for l in lines[j + 2:j + 2 + int(lines[j + 1])] if l.split()[1] == "3"]
+db = sqlite3.connect(sys.argv[2])
+q = [r[0] for r in db.execute("select id from quads order by fid")]
+v = [r[0] for r in db.execute("select id from vertices order by fid")]
+assert q == quads and q[0] > 1000, (q[:5], quads[:5])
+assert v == nodes and v[0] % 10 == 0, (v[:5], nodes[:5])
+print("ok")
+)",
+                         {dir.file("renumbered.msh"), dir.file("renumbered.gpkg")}),
+            "ok\n");
   std::vector<std::string> args = common;
   args.insert(args.end(), {"--mesh", dir.file("t41.msh"), "--report", dir.file("t.json")});
   const CliResult tris = run_cli(args, dir);

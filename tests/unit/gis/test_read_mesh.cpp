@@ -12,6 +12,7 @@
 #include <cpl_string.h>
 
 #include "core/error.h"
+#include "gis/mesh_outline.h"
 #include "gis/read_mesh.h"
 #include "support/test_support.h"
 
@@ -57,6 +58,12 @@ TEST(ReadMesh, Gr3WithMixedElementsAndIdsOutOfOrder) {
   ASSERT_EQ(m.triangles.size(), 2u);
   EXPECT_EQ(m.triangles[0], (std::array<int, 3>{1, 4, 2}));
   EXPECT_TRUE(m.crs.empty());
+  // The file's own numbers, in the order of the nodes and elements.
+  EXPECT_EQ(m.point_ids, (std::vector<long long>{10, 30, 20, 40, 50}));
+  EXPECT_EQ(m.quad_ids, (std::vector<long long>{1}));
+  EXPECT_EQ(m.triangle_ids, (std::vector<long long>{2, 3}));
+  EXPECT_EQ(file_number(m.point_ids, 2), 20);
+  EXPECT_EQ(file_number({}, 2), 3);
 }
 
 // ADCIRC's land boundaries: the flux one (IBTYPE 22, a river) open after the open ones,
@@ -121,6 +128,38 @@ TEST(ReadMesh, Msh41WithBlocksOfSeveralTypes) {
   ASSERT_EQ(m.triangles.size(), 1u);
   EXPECT_EQ(m.triangles[0], (std::array<int, 3>{1, 4, 2}));
   EXPECT_EQ(m.num_skipped_elements, 1u);
+  // The elements' tags, the line's (1) skipped with it; the nodes' tags.
+  EXPECT_EQ(m.quad_ids, (std::vector<long long>{2}));
+  EXPECT_EQ(m.triangle_ids, (std::vector<long long>{3}));
+  EXPECT_EQ(m.point_ids, (std::vector<long long>{1, 2, 3, 4, 7}));
+}
+
+// An element number given twice names no one element: the elements are numbered in
+// order (as SCHISM and ADCIRC read a .gr3's), with a note; the messages about nodes say
+// the file's numbers.
+TEST(ReadMesh, ElementNumbersGivenTwiceAreNumberedInOrder) {
+  TempDir dir;
+  write_file(dir.file("m.2dm"),
+             "MESH2D\nND 10 0 0 0\nND 20 10 0 0\nND 30 10 10 0\nND 40 0 10 0\nND 50 20 5 0\n"
+             "E4Q 7 10 20 30 40 1\nE3T 7 20 50 30 1\n");
+  const ReadMesh m = read_mesh(dir.file("m.2dm"));
+  EXPECT_TRUE(m.quad_ids.empty());
+  EXPECT_TRUE(m.triangle_ids.empty());
+  ASSERT_EQ(m.notes.size(), 1u);
+  EXPECT_NE(m.notes[0].find("element number 7 is given to two elements"), std::string::npos)
+      << m.notes[0];
+  write_file(dir.file("three.2dm"),
+             "MESH2D\nND 10 0 0 0\nND 20 10 0 0\nND 30 10 10 0\nND 40 0 10 0\nND 50 5 -5 0\n"
+             "E4Q 1 10 20 30 40 1\nE3T 2 10 20 50 1\nE3T 3 20 10 40 1\n");
+  const ReadMesh three = read_mesh(dir.file("three.2dm"));
+  try {
+    mesh_outline(three.points, three.quads, three.triangles, "three.2dm", three.point_ids);
+    ADD_FAILURE() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("the edge between nodes 10 and 20 is a side of three"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 namespace {
