@@ -194,6 +194,8 @@ bool is_data_member(const std::string& member, ArchiveContent content) {
 }
 
 bool gdal_opens(const std::string& path, ArchiveContent content) {
+  std::unique_lock<std::recursive_mutex> lock;
+  if (content == ArchiveContent::raster) lock = gdal_raster_lock();
   GdalErrorCapture capture;  // quiet: a failure here only means "look inside"
   const unsigned flags =
       (content == ArchiveContent::vector ? GDAL_OF_VECTOR : GDAL_OF_RASTER) | GDAL_OF_READONLY;
@@ -210,6 +212,15 @@ std::string joined(const std::vector<std::string>& names, std::size_t at_most) {
 }
 
 }  // namespace
+
+std::recursive_mutex& netcdf_mutex() {
+  static std::recursive_mutex mutex;
+  return mutex;
+}
+
+std::unique_lock<std::recursive_mutex> gdal_raster_lock() {
+  return std::unique_lock<std::recursive_mutex>(netcdf_mutex());
+}
 
 std::string gdal_path(const std::string& path, ArchiveContent content, std::string& problem) {
   ensure_gdal_registered();

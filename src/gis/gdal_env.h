@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,15 @@ namespace isoquad {
 
 // Registers GDAL's drivers once; safe to call from every entry point.
 void ensure_gdal_registered();
+
+// The netCDF library (and the HDF5 under it) is not thread-safe: every use of it, from
+// opening a file to closing it, holds this lock, so that regions meshed at once (--jobs)
+// may read and write .nc files. GDAL's netCDF driver has a lock of its own, which ours
+// does not replace: a raster read through GDAL takes this one too (gdal_raster_lock).
+std::recursive_mutex& netcdf_mutex();
+// Held while a raster is opened, read and closed through GDAL, whatever its format (a
+// GEBCO grid is a netCDF file, and so may be a raster without the extension).
+std::unique_lock<std::recursive_mutex> gdal_raster_lock();
 
 // While alive, GDAL's own messages are kept instead of printed; last_message() gives
 // the most recent error (or warning) text, so it can be put into our own error.

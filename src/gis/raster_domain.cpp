@@ -415,6 +415,7 @@ bool is_raster_input(const std::string& path) {
   const std::string open_path = raster_open_path(path);
   // The raster drivers first: they turn a vector file down by its header, where opening
   // it as a vector could parse all of it (a GeoJSON).
+  const auto lock = gdal_raster_lock();
   GdalErrorCapture capture;
   GdalDataset raster(static_cast<GDALDataset*>(
       GDALOpenEx(open_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
@@ -427,6 +428,7 @@ bool is_raster_input(const std::string& path) {
 }
 
 SourceData read_raster_domain(const ReadParams& read) {
+  const auto lock = gdal_raster_lock();
   return RasterDomainReader(read).read();
 }
 

@@ -62,6 +62,7 @@ std::unique_ptr<GDALDataset> open_raster(const std::string& path, const std::str
 
 void check_raster(const std::string& path, const std::string& what) {
   if (is_mesh_file(path)) return check_mesh_field(path, what);
+  const auto lock = gdal_raster_lock();
   double inverse[6];
   open_raster(path, what, inverse);
 }
@@ -75,6 +76,7 @@ void check_depth_source(const DepthRaster& source) {
 RasterField::RasterField(const std::string& path, const std::string& what, const CrsInfo& query_crs,
                          const std::optional<std::array<double, 4>>& extent)
     : path_(path) {
+  const auto lock = gdal_raster_lock();  // until the data set is closed
   const std::unique_ptr<GDALDataset> ds = open_raster(path, what, inverse_);
   GdalErrorCapture capture;
   width_ = ds->GetRasterXSize();

@@ -13,6 +13,7 @@
 #include "core/error.h"
 #include "core/text.h"
 #include "gis/crs.h"
+#include "gis/gdal_env.h"
 #include "gis/read_mesh_formats.h"
 
 namespace isoquad::mesh_readers {
@@ -162,6 +163,7 @@ std::string netcdf_crs(const NcReader& nc, int x) {
 // net file's nodes); otherwise a grid, as GEBCO's and ETOPO's are, for GDAL to read as
 // a raster. One that netCDF cannot open is left to the mesh reader's message.
 bool netcdf_holds_mesh(const std::string& path) {
+  const std::lock_guard<std::recursive_mutex> netcdf(netcdf_mutex());
   int id = -1;
   if (nc_open(path.c_str(), NC_NOWRITE, &id) != NC_NOERR) return true;
   int num_vars = 0, var = -1;
@@ -184,6 +186,7 @@ bool netcdf_holds_mesh(const std::string& path) {
 // _FillValue or negative numbers for missing corners), or D-Flow FM's older net file
 // (NetNode_x, NetNode_y, NetElemNode numbered from 1).
 void read_netcdf(const std::string& path, ReadMesh& mesh) {
+  const std::lock_guard<std::recursive_mutex> netcdf(netcdf_mutex());
   const NcReader nc(path);
   int topology = -1;
   for (int v = 0; v < nc.num_vars() && topology < 0; ++v)

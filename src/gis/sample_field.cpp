@@ -42,6 +42,7 @@ bool opens_as_raster(const std::string& path) {
   std::string problem;
   const std::string open_path = gdal_path(path, ArchiveContent::raster, problem);
   if (open_path.empty()) return false;
+  const auto lock = gdal_raster_lock();
   GdalErrorCapture capture;
   GdalDataset ds(static_cast<GDALDataset*>(
       GDALOpenEx(open_path.c_str(), GDAL_OF_RASTER | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));

@@ -12,6 +12,7 @@
 
 #include "core/error.h"
 #include "gis/crs.h"
+#include "gis/gdal_env.h"
 #include "io/mesh_formats.h"
 
 namespace isoquad {
@@ -123,6 +124,7 @@ void write_cf_grid_mapping(NcFile& nc, int var, const std::string& wkt) {
 }  // namespace
 
 void write_ugrid_file(const MeshView& v, const std::string& path, const std::string& what) {
+  const std::lock_guard<std::recursive_mutex> netcdf(netcdf_mutex());
   const QuadMesh& m = *v.data->mesh;
   // Unique edges, in order of first appearance around the quads.
   std::map<std::pair<int, int>, int> edge_id;

@@ -344,6 +344,49 @@ print("ok")
   EXPECT_FALSE(std::filesystem::exists(dir.file("t.gpkg")));
 }
 
+// The netCDF library is not thread-safe: regions meshed at once write their .nc files,
+// and regions measured at once read them, one at a time (a crash, or files that read as
+// "not a netCDF file", otherwise).
+TEST(CliQuality, RegionsAtOnceWriteAndReadNetcdfMeshes) {
+  TempDir dir;
+  std::vector<std::string> squares;
+  for (int k = 0; k < 6; ++k) {
+    const std::string x0 = std::to_string(500000 + 10000 * k),
+                      x1 = std::to_string(504000 + 10000 * k);
+    squares.push_back("[[[" + x0 + ",5000000],[" + x1 + ",5000000],[" + x1 + ",5004000],[" + x0 +
+                      ",5004000],[" + x0 + ",5000000]]]");
+  }
+  write_file(dir.file("six.geojson"), geojson_polygons(squares, kUtm31nCrsMember));
+  const std::vector<std::string> common = {dir.file("six.geojson"),
+                                           "--dst-crs",
+                                           "EPSG:32631",
+                                           "--size",
+                                           "500",
+                                           "--each",
+                                           "name",
+                                           "--jobs",
+                                           "2",
+                                           "-q"};
+  std::vector<std::string> mesh = {"mesh"};
+  mesh.insert(mesh.end(), common.begin(), common.end());
+  mesh.insert(mesh.end(), {"-o", dir.file("{}.nc"), "--each-table", dir.file("made.csv")});
+  const CliResult made = run_cli(mesh, dir);
+  ASSERT_EQ(made.exit_code, 0) << made.err;
+  for (int run = 0; run < 3; ++run) {
+    std::vector<std::string> quality = {"quality"};
+    quality.insert(quality.end(), common.begin(), common.end());
+    quality.insert(quality.end(), {"--mesh", dir.file("{}.nc"), "--each-table",
+                                   dir.file("measured.csv"), "--overwrite"});
+    const CliResult measured = run_cli(quality, dir);
+    ASSERT_EQ(measured.exit_code, 0) << measured.err;
+    const std::string table = read_file(dir.file("measured.csv"));
+    for (int k = 0; k < 6; ++k)
+      EXPECT_NE(table.find("\r\nf" + std::to_string(k) + ",f" + std::to_string(k) + ",measured,0,"),
+                std::string::npos)
+          << table;
+  }
+}
+
 // quality --each: each region's mesh ({} in --mesh) measured against its own fields,
 // as the mesh job's --each reported it; a region whose mesh is missing fails alone.
 TEST(CliQuality, EachRegionsMeshMeasuredAsItsReportSays) {
