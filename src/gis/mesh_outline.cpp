@@ -7,6 +7,7 @@
 #include <unordered_map>
 
 #include "core/error.h"
+#include "core/text.h"
 #include "gis/crs.h"
 #include "gis/rings_from_lines.h"
 
@@ -213,6 +214,78 @@ SourceData outline_source(const ReadMesh& mesh, const std::string& path,
   source.layer_name = "its outline";
   source.num_features = loops.size();
   return source;
+}
+
+MeshDefects find_mesh_defects(const std::vector<Point2>& points,
+                              const std::vector<std::array<int, 4>>& quads,
+                              const std::vector<std::array<int, 3>>& triangles,
+                              const std::vector<long long>& point_ids) {
+  MeshDefects d;
+  const auto number = [&point_ids](int k) {
+    return file_number(point_ids, static_cast<std::size_t>(k));
+  };
+  std::vector<char> used(points.size(), 0);
+  std::unordered_map<std::uint64_t, int> uses;  // a side's key -> its elements
+  const auto n = static_cast<std::uint64_t>(points.size());
+  const auto add = [&](const int* v, int k) {
+    for (int i = 0; i < k; ++i) {
+      used[v[i]] = 1;
+      const int lo = std::min(v[i], v[(i + 1) % k]), hi = std::max(v[i], v[(i + 1) % k]);
+      if (++uses[static_cast<std::uint64_t>(lo) * n + static_cast<std::uint64_t>(hi)] == 3 &&
+          d.num_overused_sides++ == 0)
+        d.first_overused = {number(lo), number(hi)};
+    }
+  };
+  for (const auto& q : quads) add(q.data(), 4);
+  for (const auto& t : triangles) add(t.data(), 3);
+  for (std::size_t k = 0; k < points.size(); ++k)
+    if (!used[k] && d.num_unused_nodes++ == 0) d.first_unused = number(static_cast<int>(k));
+  // Coincident nodes: swept in the order of x, each against the later ones within the
+  // tolerance in x.
+  if (points.empty()) return d;
+  double x0 = points[0].x, x1 = x0, y0 = points[0].y, y1 = y0;
+  for (const Point2& p : points)
+    x0 = std::min(x0, p.x), x1 = std::max(x1, p.x), y0 = std::min(y0, p.y), y1 = std::max(y1, p.y);
+  d.coincident_tolerance = 1e-9 * std::max(x1 - x0, y1 - y0);
+  std::vector<int> order(points.size());
+  for (std::size_t k = 0; k < order.size(); ++k) order[k] = static_cast<int>(k);
+  std::sort(order.begin(), order.end(), [&points](int a, int b) {
+    return points[a].x < points[b].x || (points[a].x == points[b].x && a < b);
+  });
+  std::vector<char> counted(points.size(), 0);
+  for (std::size_t i = 0; i < order.size(); ++i)
+    for (std::size_t j = i + 1;
+         j < order.size() && points[order[j]].x - points[order[i]].x <= d.coincident_tolerance;
+         ++j) {
+      const int a = std::min(order[i], order[j]), b = std::max(order[i], order[j]);
+      if (counted[b] || std::abs(points[a].y - points[b].y) > d.coincident_tolerance) continue;
+      counted[b] = 1;
+      if (d.num_coincident_nodes++ == 0) d.first_coincident = {number(a), number(b)};
+    }
+  return d;
+}
+
+std::vector<std::string> mesh_defect_warnings(const MeshDefects& d) {
+  std::vector<std::string> out;
+  if (d.num_overused_sides > 0)
+    out.push_back(std::to_string(d.num_overused_sides) +
+                  " side(s) of three or more elements (the first between nodes " +
+                  std::to_string(d.first_overused[0]) + " and " +
+                  std::to_string(d.first_overused[1]) +
+                  "): an element given twice, or elements that overlap; the mesh's area and "
+                  "coast are not those of a valid mesh");
+  if (d.num_coincident_nodes > 0)
+    out.push_back(printf_string(
+        "%zu node(s) at the place of an earlier one (the first: nodes %lld and %lld, within "
+        "%.3g of each other): the elements on either side are not joined there (nodes left "
+        "unmerged, a crack), and their sides count as boundary",
+        d.num_coincident_nodes, d.first_coincident[0], d.first_coincident[1],
+        d.coincident_tolerance));
+  if (d.num_unused_nodes > 0)
+    out.push_back(std::to_string(d.num_unused_nodes) + " node(s) in no element (the first: node " +
+                  std::to_string(d.first_unused) +
+                  "): counted among the vertices, but no model computes on them");
+  return out;
 }
 
 }  // namespace isoquad

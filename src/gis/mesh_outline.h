@@ -28,6 +28,27 @@ std::vector<std::vector<int>> mesh_outline(const std::vector<Point2>& points,
                                            const std::string& name,
                                            const std::vector<long long>& point_ids = {});
 
+// What a mesh file gets wrong that its figures do not show, for `isoquad quality`'s
+// warnings. Nodes are named by the file's numbers (`point_ids`, as mesh_outline's).
+struct MeshDefects {
+  std::size_t num_unused_nodes = 0;  // in no element
+  long long first_unused = 0;
+  // Nodes within `coincident_tolerance` (a billionth of the mesh's extent) of an earlier
+  // node: elements on either side are not joined there (a crack, nodes left unmerged).
+  std::size_t num_coincident_nodes = 0;
+  std::array<long long, 2> first_coincident{};
+  double coincident_tolerance = 0.0;
+  // Sides of three or more elements: an element given twice, or elements overlapping.
+  std::size_t num_overused_sides = 0;
+  std::array<long long, 2> first_overused{};
+};
+MeshDefects find_mesh_defects(const std::vector<Point2>& points,
+                              const std::vector<std::array<int, 4>>& quads,
+                              const std::vector<std::array<int, 3>>& triangles,
+                              const std::vector<long long>& point_ids = {});
+// The defects as warnings (none when it has none).
+std::vector<std::string> mesh_defect_warnings(const MeshDefects& d);
+
 // A mesh as the polygons of a domain: its outline's loops nested into polygons with
 // holes by containment (rings_from_lines), in the CRS `crs_text` gives (as `option`,
 // for messages) or else the file's own; layer "its outline", a feature per loop.

@@ -223,3 +223,38 @@ TEST(MeshOutline, MetresReadAsDegreesAreRefusedNamingTheNode) {
         << what;
   }
 }
+
+// The defects quality warns of, with the file's node numbers: none in a clean grid; a
+// quad given twice (its four sides each of three elements, with the neighbours'), a
+// node copied at the same place and used by one quad (a crack), a node in no element.
+TEST(MeshDefects, ElementsTwiceCracksAndUnusedNodes) {
+  Grid g = grid(3);
+  std::vector<long long> ids;
+  for (std::size_t k = 0; k < g.points.size(); ++k) ids.push_back(10 * (k + 1));
+  const MeshDefects clean = find_mesh_defects(g.points, g.quads, {}, ids);
+  EXPECT_EQ(clean.num_overused_sides + clean.num_coincident_nodes + clean.num_unused_nodes, 0u);
+  EXPECT_TRUE(mesh_defect_warnings(clean).empty());
+
+  g.quads.push_back(g.quads[4]);    // the middle quad again: nodes 5, 6, 10, 9
+  g.points.push_back(g.points[0]);  // node 16, at node 0's place, used by the first quad
+  ids.push_back(1000);
+  g.quads[0][0] = 16;
+  g.points.push_back({7.0, 7.0});  // node 17, in no element
+  ids.push_back(2000);
+  const MeshDefects d = find_mesh_defects(g.points, g.quads, {}, ids);
+  EXPECT_EQ(d.num_overused_sides, 4u);
+  EXPECT_EQ(d.first_overused, (std::array<long long, 2>{60, 70}));
+  EXPECT_EQ(d.num_coincident_nodes, 1u);  // 16 at 0
+  EXPECT_EQ(d.first_coincident, (std::array<long long, 2>{10, 1000}));
+  EXPECT_EQ(d.num_unused_nodes, 2u);  // 0 (the grid's corner, its quad now on 16), and 17
+  EXPECT_EQ(d.first_unused, 10);
+  const std::vector<std::string> w = mesh_defect_warnings(d);
+  ASSERT_EQ(w.size(), 3u);
+  EXPECT_NE(w[0].find("4 side(s) of three or more elements (the first between nodes 60 and 70)"),
+            std::string::npos)
+      << w[0];
+  EXPECT_NE(w[1].find("1 node(s) at the place of an earlier one (the first: nodes 10 and 1000"),
+            std::string::npos)
+      << w[1];
+  EXPECT_NE(w[2].find("2 node(s) in no element (the first: node 10)"), std::string::npos) << w[2];
+}
