@@ -152,6 +152,8 @@ class Reader {
       out.push_back(std::move(v));
     }
     if (unmatched && !out.empty()) *unmatched = unmatched_values();
+    // A --where that matches nothing: said as reading it says it (the nearest values).
+    if (out.empty() && !p_.where.empty()) fail_matched_nothing();
     return out;
   }
 
@@ -169,6 +171,27 @@ class Reader {
  private:
   [[noreturn]] void fail(ErrorClass cls, const std::string& what) const {
     throw Error(cls, "read", quote(p_.path) + ": " + what);
+  }
+
+  // The selection's options for messages: " --where '...' --bbox --clip", or empty.
+  std::string selection_words() const {
+    std::string selection;
+    if (!p_.where.empty()) selection += " --where " + quote(p_.where);
+    if (p_.bbox) selection += " --bbox";
+    if (p_.clip) selection += " --clip";
+    return selection;
+  }
+
+  // The selection took no feature of the layer: with --where, the values it compares
+  // that the layer lacks, and their nearest.
+  [[noreturn]] void fail_matched_nothing() const {
+    const std::string hint =
+        p_.where.empty()
+            ? ""
+            : where_hint(*layer_, p_.where, p_.clip ? "the area of --clip" : "the bbox");
+    fail(ErrorClass::input, "the selection (" + selection_words().substr(1) +
+                                ") matched no feature in layer " + quote(out_.layer_name) +
+                                (hint.empty() ? "" : ": " + hint));
   }
 
   void open() { ds_ = open_vector_dataset(p_.path, "read"); }
@@ -352,10 +375,7 @@ class Reader {
       num_other -= out_.num_line_features;  // before a second reading counts them again
       polygons_from_lines(std::move(lines));
     }
-    std::string selection;
-    if (!p_.where.empty()) selection += " --where " + quote(p_.where);
-    if (p_.bbox) selection += " --bbox";
-    if (p_.clip) selection += " --clip";
+    const std::string selection = selection_words();
     if (out_.polygons.empty() && p_.empty_bbox_selection_ok && (p_.bbox || p_.clip) &&
         p_.where.empty() && (out_.num_features == 0 || num_other == 0)) {
       const char* area = p_.clip ? "area of --clip" : "bbox";
@@ -382,13 +402,7 @@ class Reader {
     if (out_.num_features == 0) {
       if (selection.empty()) fail(ErrorClass::input, "layer " + quote(out_.layer_name) + " is empty");
       if (p_.empty_area_ok && (p_.bbox || p_.clip) && where_matches_elsewhere()) return;
-      const std::string hint =
-          p_.where.empty()
-              ? ""
-              : where_hint(*layer_, p_.where, p_.clip ? "the area of --clip" : "the bbox");
-      fail(ErrorClass::input, "the selection (" + selection.substr(1) +
-                                  ") matched no feature in layer " + quote(out_.layer_name) +
-                                  (hint.empty() ? "" : ": " + hint));
+      fail_matched_nothing();
     }
     if (p_.hint_unmatched_values) {
       const std::string unmatched = unmatched_values();

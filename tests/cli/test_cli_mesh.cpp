@@ -1047,6 +1047,13 @@ TEST(CliMesh, EachSelectsExactlyTheFeaturesOfItsValue) {
                                   dir);
   ASSERT_EQ(reals.exit_code, 0) << reals.err;
   EXPECT_NE(reals.err.find("--each v: 3 of 3 meshed"), std::string::npos) << reals.err;
+  // A --where that matches nothing says so as without --each, with the nearest value.
+  const CliResult none = run_cli({"mesh", input, "--size", "3000", "--each", "region", "--where",
+                                  "region = 'Maltaa'", "-o", dir.file("n_{}.gpkg")},
+                                 dir);
+  EXPECT_EQ(none.exit_code, 3) << none.err;
+  EXPECT_NE(none.err.find("matched no feature in layer"), std::string::npos) << none.err;
+  EXPECT_NE(none.err.find("(the nearest: 'MALTA', 'Malta')"), std::string::npos) << none.err;
 }
 
 // A shapefile whose .dbf is Latin-1 without its .cpg (OGR reads its bytes as they are):
