@@ -155,6 +155,10 @@ std::string format_each_table(const std::string& field, const std::vector<std::s
       continue;
     }
     const QualitySummary& q = *o.quality;
+    if (q.num_quads == 0) {  // a mesh of triangles measured: no quads' figures
+      table += printf_string(" %8d %8s %8s %8s %8s %8.2f\n", 0, "-", "-", "-", "-", o.seconds);
+      continue;
+    }
     table += printf_string(" %8zu %7.1f%% %7.1f%% %7.1f%% %8.1f %8.2f\n", q.num_quads,
                            100 * q.share_angles_75_105, 100 * q.share_regular_interior,
                            100 * q.share_size_08_125, q.orientation_mean_deg, o.seconds);
@@ -232,7 +236,10 @@ std::string format_each_csv(const std::string& field, const std::vector<EachCsvR
     csv += (regions[k].null ? std::string() : csv_field(regions[k].value)) + "," +
            csv_field(regions[k].file) + "," + status + "," +
            (o.not_run ? std::string() : std::to_string(o.exit));
-    if (o.quality) {
+    if (o.quality && o.quality->num_quads == 0) {
+      // A mesh of triangles measured: its vertices, and no quads' figures.
+      csv += printf_string(",0,%zu", o.quality->num_vertices) + std::string(12, ',');
+    } else if (o.quality) {
       const QualitySummary& q = *o.quality;
       csv += printf_string(",%zu,%zu,%.2f,%.2f,%.2f,%.2f,%.4f,%.2f,%.2f,%.2f,%zu,%zu,%zu,",
                            q.num_quads, q.num_vertices, 100 * q.share_angles_75_105,

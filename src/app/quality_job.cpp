@@ -325,6 +325,7 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
   }
   if (r.coast_measured) place_on_chains(r.fields.mesh, m, triangles, coast_edges, r);
   if (r.quads.quads.empty()) {
+    r.quality.num_vertices = r.quads.points.size();  // the quads' figures stay empty
     r.warnings.push_back("'" + options.mesh_path + "' has " + std::to_string(r.num_triangles) +
                          " triangles and no quadrangle: their angles, sizes and regularity, "
                          "the coast and the D-Flow FM links are measured");

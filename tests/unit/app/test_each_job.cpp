@@ -268,6 +268,20 @@ TEST(EachJob, TheTableAsCsvQuotesWhatNeedsIt) {
   EXPECT_EQ(csv.find("1.5"), std::string::npos);  // no seconds
   EXPECT_EQ(format_each_csv("name", values, outcomes, "measured").find("meshed"),
             std::string::npos);
+  // A mesh of triangles measured (quality --each on a .slf): its vertices, and no quads'
+  // figures rather than zeros, in the CSV and in the table.
+  std::vector<RegionOutcome> triangles(1);
+  triangles[0].quality = QualitySummary{};
+  triangles[0].quality->num_vertices = 321;
+  triangles[0].seconds = 0.25;
+  const std::string tri_csv = format_each_csv("name", {{"b", "b", false}}, triangles, "measured");
+  const std::string row = tri_csv.substr(tri_csv.find("\r\n") + 2);
+  EXPECT_EQ(row, "b,b,measured,0,0,321,,,,,,,,,,,,\r\n");
+  EXPECT_EQ(num_fields(row.substr(0, row.size() - 2)), 18u);
+  const std::string table = format_each_table("name", {"b"}, triangles);
+  EXPECT_NE(table.find("b           0        -        -        -        -     0.25"),
+            std::string::npos)
+      << table;
 }
 
 // A resumed batch's figures read back from a region's report: all of them, or none when
