@@ -310,7 +310,9 @@ RegionOutcome run_quality(CommonArgs& a, FieldArgs& f, const QualityArgs& q,
                                                        {!a.fe.read.bbox_crs.empty(), "--bbox-crs"},
                                                        {!a.fe.clip_path.empty(), "--clip"},
                                                        {!a.domain_kind.empty(), "--domain"},
-                                                       {!a.fe.read.src_crs.empty(), "--src-crs"}};
+                                                       {!a.fe.read.src_crs.empty(), "--src-crs"},
+                                                       {a.fe.read.zmin.has_value(), "--zmin"},
+                                                       {a.fe.read.zmax.has_value(), "--zmax"}};
     for (const auto& [given, option] : selections)
       if (given)
         throw Error(ErrorClass::usage, "options",

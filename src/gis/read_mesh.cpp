@@ -85,9 +85,20 @@ using namespace mesh_readers;
 void read_polygon_layer(const std::string& path, ReadMesh& mesh) {
   const GdalDataset ds = open_vector_dataset(path, "read");
   OGRLayer* layer = ds->GetLayerByName("quads");
+  const auto polygonal = [](OGRwkbGeometryType type) {
+    return wkbFlatten(type) == wkbPolygon || wkbFlatten(type) == wkbMultiPolygon;
+  };
+  for (int i = 0; i < ds->GetLayerCount() && !layer; ++i)
+    if (polygonal(ds->GetLayer(i)->GetGeomType())) layer = ds->GetLayer(i);
+  // A layer of several geometry types (a GeoJSON of Polygons and MultiPolygons) whose
+  // first feature is a polygon.
   for (int i = 0; i < ds->GetLayerCount() && !layer; ++i) {
-    const OGRwkbGeometryType type = wkbFlatten(ds->GetLayer(i)->GetGeomType());
-    if (type == wkbPolygon || type == wkbMultiPolygon) layer = ds->GetLayer(i);
+    OGRLayer* candidate = ds->GetLayer(i);
+    if (wkbFlatten(candidate->GetGeomType()) != wkbUnknown) continue;
+    candidate->ResetReading();
+    const OGRFeatureUniquePtr first(candidate->GetNextFeature());
+    if (first && first->GetGeometryRef() && polygonal(first->GetGeometryRef()->getGeometryType()))
+      layer = candidate;
   }
   auto fail = [&](const std::string& what) {
     throw Error(ErrorClass::input, "read", "'" + path + "': " + what);

@@ -536,6 +536,10 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
       run_cli({"quality", "--mesh", dir.file("m.gpkg"), "--where", "name = 'x'"}, dir);
   EXPECT_EQ(where.exit_code, 2);
   EXPECT_NE(where.err.find("--where selects from INPUT"), std::string::npos) << where.err;
+  // A raster INPUT's band of values: nothing to select without INPUT.
+  const CliResult zmin = run_cli({"quality", "--mesh", dir.file("m.gpkg"), "--zmin", "0"}, dir);
+  EXPECT_EQ(zmin.exit_code, 2);
+  EXPECT_NE(zmin.err.find("--zmin selects from INPUT"), std::string::npos) << zmin.err;
   const CliResult each = run_cli({"quality", "--mesh", dir.file("{}.gpkg"), "--each", "name"}, dir);
   EXPECT_EQ(each.exit_code, 2);
   EXPECT_NE(each.err.find("give INPUT"), std::string::npos) << each.err;

@@ -312,6 +312,16 @@ TEST(ReadMesh, PolygonLayerOfTrianglesAndQuadrangles) {
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("feature 1 has 5 corners"), std::string::npos) << e.what();
   }
+  // Polygons and one-part MultiPolygons in one GeoJSON: a layer of both types.
+  write_file(dir.file("mixed.geojson"),
+             R"({"type":"FeatureCollection","features":[)"
+             R"({"type":"Feature","properties":{},"geometry":{"type":"Polygon",)"
+             R"("coordinates":[[[0,0],[10,0],[10,10],[0,10],[0,0]]]}},)"
+             R"({"type":"Feature","properties":{},"geometry":{"type":"MultiPolygon",)"
+             R"("coordinates":[[[[10,0],[20,0],[20,10],[10,10],[10,0]]]]}}]})");
+  const ReadMesh mixed = read_mesh(dir.file("mixed.geojson"));
+  EXPECT_EQ(mixed.quads.size(), 2u);
+  EXPECT_EQ(mixed.points.size(), 6u);
 }
 
 // A Selafin file as little-endian machines write it (single precision, SERAFIN): two
