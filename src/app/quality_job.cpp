@@ -184,8 +184,7 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
   progress.report("measure", 0.85);
 
   for (const std::string& note : file.notes) r.warnings.push_back(note);
-  for (const std::string& w : mesh_defect_warnings(
-           find_mesh_defects(file.points, file.quads, file.triangles, file.point_ids)))
+  for (const std::string& w : mesh_defect_warnings(find_mesh_defects(file)))
     r.warnings.push_back("'" + options.mesh_path + "': " + w);
   r.point_ids = file.point_ids;
   r.quad_ids = file.quad_ids;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <numeric>
 #include <unordered_map>
 
 #include "core/error.h"
@@ -216,10 +217,9 @@ SourceData outline_source(const ReadMesh& mesh, const std::string& path,
   return source;
 }
 
-MeshDefects find_mesh_defects(const std::vector<Point2>& points,
-                              const std::vector<std::array<int, 4>>& quads,
-                              const std::vector<std::array<int, 3>>& triangles,
-                              const std::vector<long long>& point_ids) {
+MeshDefects find_mesh_defects(const ReadMesh& mesh) {
+  const std::vector<Point2>& points = mesh.points;
+  const std::vector<long long>& point_ids = mesh.point_ids;
   MeshDefects d;
   const auto number = [&point_ids](int k) {
     return file_number(point_ids, static_cast<std::size_t>(k));
@@ -236,10 +236,30 @@ MeshDefects find_mesh_defects(const std::vector<Point2>& points,
         d.first_overused = {number(lo), number(hi)};
     }
   };
-  for (const auto& q : quads) add(q.data(), 4);
-  for (const auto& t : triangles) add(t.data(), 3);
+  // Each element's way round: +1 counter-clockwise, -1 clockwise, 0 flat.
+  std::vector<int> way;
+  const auto way_round = [&points](const int* v, int k) {
+    double twice_area = 0;
+    for (int i = 0; i < k; ++i) {
+      const Point2 &a = points[v[i]], &b = points[v[(i + 1) % k]];
+      twice_area += a.x * b.y - a.y * b.x;
+    }
+    return twice_area > 0 ? 1 : twice_area < 0 ? -1 : 0;
+  };
+  for (const auto& q : mesh.quads) add(q.data(), 4), way.push_back(way_round(q.data(), 4));
+  for (const auto& t : mesh.triangles) add(t.data(), 3), way.push_back(way_round(t.data(), 3));
   for (std::size_t k = 0; k < points.size(); ++k)
     if (!used[k] && d.num_unused_nodes++ == 0) d.first_unused = number(static_cast<int>(k));
+  const long long balance = std::accumulate(way.begin(), way.end(), 0LL);
+  const int most = balance >= 0 ? 1 : -1;
+  d.num_elements = way.size();
+  for (std::size_t e = 0; e < way.size(); ++e) {
+    if (way[e] != -most || d.num_reversed++ > 0) continue;
+    const std::size_t nq = mesh.quads.size();
+    d.first_reversed = e < nq
+                           ? "quad " + std::to_string(file_number(mesh.quad_ids, e))
+                           : "triangle " + std::to_string(file_number(mesh.triangle_ids, e - nq));
+  }
   // Coincident nodes: swept in the order of x, each against the later ones within the
   // tolerance in x.
   if (points.empty()) return d;
@@ -274,6 +294,12 @@ std::vector<std::string> mesh_defect_warnings(const MeshDefects& d) {
                   std::to_string(d.first_overused[1]) +
                   "): an element given twice, or elements that overlap; the mesh's area and "
                   "coast are not those of a valid mesh");
+  if (d.num_reversed > 0)
+    out.push_back(
+        std::to_string(d.num_reversed) + " of its " + std::to_string(d.num_elements) +
+        " elements run round the other way from the rest (the first: " + d.first_reversed +
+        "): listed the other way round, or folded over their neighbours; they count "
+        "as inverted");
   if (d.num_coincident_nodes > 0)
     out.push_back(printf_string(
         "%zu node(s) at the place of an earlier one (the first: nodes %lld and %lld, within "

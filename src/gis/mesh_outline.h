@@ -29,7 +29,8 @@ std::vector<std::vector<int>> mesh_outline(const std::vector<Point2>& points,
                                            const std::vector<long long>& point_ids = {});
 
 // What a mesh file gets wrong that its figures do not show, for `isoquad quality`'s
-// warnings. Nodes are named by the file's numbers (`point_ids`, as mesh_outline's).
+// warnings. Nodes and elements are named by the file's numbers (ReadMesh::point_ids,
+// quad_ids, triangle_ids; file_number).
 struct MeshDefects {
   std::size_t num_unused_nodes = 0;  // in no element
   long long first_unused = 0;
@@ -41,11 +42,13 @@ struct MeshDefects {
   // Sides of three or more elements: an element given twice, or elements overlapping.
   std::size_t num_overused_sides = 0;
   std::array<long long, 2> first_overused{};
+  // Elements that run round the other way from most (clockwise among counter-clockwise
+  // ones, or the reverse: listed so, or folded), and the first of them ("quad 7",
+  // "triangle 12").
+  std::size_t num_reversed = 0, num_elements = 0;
+  std::string first_reversed;
 };
-MeshDefects find_mesh_defects(const std::vector<Point2>& points,
-                              const std::vector<std::array<int, 4>>& quads,
-                              const std::vector<std::array<int, 3>>& triangles,
-                              const std::vector<long long>& point_ids = {});
+MeshDefects find_mesh_defects(const ReadMesh& mesh);
 // The defects as warnings (none when it has none).
 std::vector<std::string> mesh_defect_warnings(const MeshDefects& d);
 

@@ -226,14 +226,33 @@ TEST(MeshOutline, MetresReadAsDegreesAreRefusedNamingTheNode) {
 
 // The defects quality warns of, with the file's node numbers: none in a clean grid; a
 // quad given twice (its four sides each of three elements, with the neighbours'), a
-// node copied at the same place and used by one quad (a crack), a node in no element.
-TEST(MeshDefects, ElementsTwiceCracksAndUnusedNodes) {
+// node copied at the same place and used by one quad (a crack), a node in no element, a
+// quad that runs round the other way.
+TEST(MeshDefects, ElementsTwiceCracksUnusedNodesAndElementsTheOtherWayRound) {
   Grid g = grid(3);
   std::vector<long long> ids;
   for (std::size_t k = 0; k < g.points.size(); ++k) ids.push_back(10 * (k + 1));
-  const MeshDefects clean = find_mesh_defects(g.points, g.quads, {}, ids);
-  EXPECT_EQ(clean.num_overused_sides + clean.num_coincident_nodes + clean.num_unused_nodes, 0u);
+  const auto defects = [&] {
+    ReadMesh m;
+    m.points = g.points;
+    m.quads = g.quads;
+    m.point_ids = ids;
+    return find_mesh_defects(m);
+  };
+  const MeshDefects clean = defects();
+  EXPECT_EQ(clean.num_overused_sides + clean.num_coincident_nodes + clean.num_unused_nodes +
+                clean.num_reversed,
+            0u);
   EXPECT_TRUE(mesh_defect_warnings(clean).empty());
+  std::reverse(g.quads[8].begin(), g.quads[8].end());
+  const MeshDefects reversed = defects();
+  EXPECT_EQ(reversed.num_reversed, 1u);
+  EXPECT_EQ(reversed.num_elements, 9u);
+  EXPECT_EQ(reversed.first_reversed, "quad 9");
+  ASSERT_EQ(mesh_defect_warnings(reversed).size(), 1u);
+  EXPECT_NE(mesh_defect_warnings(reversed)[0].find("1 of its 9 elements run round the other way"),
+            std::string::npos);
+  std::reverse(g.quads[8].begin(), g.quads[8].end());
 
   g.quads.push_back(g.quads[4]);    // the middle quad again: nodes 5, 6, 10, 9
   g.points.push_back(g.points[0]);  // node 16, at node 0's place, used by the first quad
@@ -241,7 +260,7 @@ TEST(MeshDefects, ElementsTwiceCracksAndUnusedNodes) {
   g.quads[0][0] = 16;
   g.points.push_back({7.0, 7.0});  // node 17, in no element
   ids.push_back(2000);
-  const MeshDefects d = find_mesh_defects(g.points, g.quads, {}, ids);
+  const MeshDefects d = defects();
   EXPECT_EQ(d.num_overused_sides, 4u);
   EXPECT_EQ(d.first_overused, (std::array<long long, 2>{60, 70}));
   EXPECT_EQ(d.num_coincident_nodes, 1u);  // 16 at 0
