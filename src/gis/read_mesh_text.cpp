@@ -178,9 +178,19 @@ void read_gr3(LineReader& r, ReadMesh& mesh) {
     for (long long i = 0; i < kind; ++i) nodes.push_back(ids.at(e.integer("a node id"), r, id));
     add_element(mesh, nodes, r, id);
   }
-  if (!read_gr3_boundaries(
-          r, ids, "open", [](long long) { return true; }, mesh.open_boundaries))
-    return;  // the end: no boundaries
+  // The open boundaries begin where the header's counts say the elements end: a header
+  // that counts fewer elements or nodes than the file has makes them start too early.
+  bool more = false;
+  try {
+    more = read_gr3_boundaries(
+        r, ids, "open", [](long long) { return true; }, mesh.open_boundaries);
+  } catch (const Error& e) {
+    throw Error(e.error_class(), e.stage(),
+                e.message() + " (the open boundaries begin after the header's " +
+                    std::to_string(ne) + " elements and " + std::to_string(np) +
+                    " nodes: does the file have more than its header counts?)");
+  }
+  if (!more) return;  // the end: no boundaries
   // The land boundaries, when the file goes on. ADCIRC's flux boundaries (IBTYPE 2, 12,
   // 22, 32 or 52: a river's inflow) are open boundaries of the new mesh too; the others
   // (land, islands, barriers; SCHISM's 0 and 1) are the rest of the outline. The section

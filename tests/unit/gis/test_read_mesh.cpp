@@ -387,6 +387,13 @@ TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
                 .find("g.gr3' line 11: open boundary 1 has node 7, which is not among the file's "
                       "nodes"),
             std::string::npos);
+  // A header that counts one element of two: the second read as the open boundaries,
+  // and the message says where they began.
+  EXPECT_NE(read_error(dir, "n.gr3",
+                       "grid\n1 4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n1 3 1 2 3\n2 3 1 3 4\n")
+                .find("(the open boundaries begin after the header's 1 elements and 4 nodes: "
+                      "does the file have more than its header counts?)"),
+            std::string::npos);
   EXPECT_NE(read_error(dir, "c.gr3", "grid\n1 3\n1 0 0 0\n2 1 x 0\n3 1 1 0\n1 3 1 2 3\n")
                 .find("line 4: expected y, a number, found 'x'"),
             std::string::npos);
