@@ -167,6 +167,7 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
   r.num_skipped_elements = file.num_skipped_elements;
   std::vector<StageTime> read_times = r.fields.times;
   FieldsOptions fields = options.fields;
+  const MeshDefects defects = find_mesh_defects(file);
   if (fields.front.read.path.empty() && !fields.front.source) {
     // Without INPUT, --open-groups names the groups of the measured .msh or .2dm itself.
     if (!options.fields.front.open_groups.empty()) {
@@ -178,13 +179,24 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
     fields.front = outline_front_end(options, file, r);
     fields.front.open_groups.clear();
   }
-  r.fields = build_fields(fields, progress.slice(0.05, 0.85));
+  try {
+    r.fields = build_fields(fields, progress.slice(0.05, 0.85));
+  } catch (const Error& e) {
+    // An outline that crosses itself (without INPUT) where elements do: say which.
+    if (e.error_class() != ErrorClass::input || defects.num_degenerate == 0 ||
+        !options.fields.front.read.path.empty())
+      throw;
+    throw Error(e.error_class(), e.stage(),
+                e.message() + " (the mesh has " + std::to_string(defects.num_degenerate) +
+                    " element(s) without area or crossing themselves, the first " +
+                    defects.first_degenerate + ")");
+  }
   r.fields.times.insert(r.fields.times.begin(), read_times.begin(), read_times.end());
   StageClock measure_clock(r.fields.times);
   progress.report("measure", 0.85);
 
   for (const std::string& note : file.notes) r.warnings.push_back(note);
-  for (const std::string& w : mesh_defect_warnings(find_mesh_defects(file)))
+  for (const std::string& w : mesh_defect_warnings(defects))
     r.warnings.push_back("'" + options.mesh_path + "': " + w);
   r.point_ids = file.point_ids;
   r.quad_ids = file.quad_ids;

@@ -253,12 +253,25 @@ MeshDefects find_mesh_defects(const ReadMesh& mesh) {
   const long long balance = std::accumulate(way.begin(), way.end(), 0LL);
   const int most = balance >= 0 ? 1 : -1;
   d.num_elements = way.size();
+  const std::size_t nq = mesh.quads.size();
+  const auto element = [&](std::size_t e) {
+    return e < nq ? "quad " + std::to_string(file_number(mesh.quad_ids, e))
+                  : "triangle " + std::to_string(file_number(mesh.triangle_ids, e - nq));
+  };
+  // A quad whose opposite sides cross (a bow-tie): each diagonal leaves its two
+  // triangles turning opposite ways.
+  const auto crosses_itself = [&points](const std::array<int, 4>& q) {
+    const auto turn = [&points](int a, int b, int c) {
+      const Point2 &p = points[a], &u = points[b], &v = points[c];
+      return (u.x - p.x) * (v.y - p.y) - (u.y - p.y) * (v.x - p.x);
+    };
+    return turn(q[0], q[1], q[2]) * turn(q[0], q[2], q[3]) < 0 &&
+           turn(q[0], q[1], q[3]) * turn(q[1], q[2], q[3]) < 0;
+  };
   for (std::size_t e = 0; e < way.size(); ++e) {
-    if (way[e] != -most || d.num_reversed++ > 0) continue;
-    const std::size_t nq = mesh.quads.size();
-    d.first_reversed = e < nq
-                           ? "quad " + std::to_string(file_number(mesh.quad_ids, e))
-                           : "triangle " + std::to_string(file_number(mesh.triangle_ids, e - nq));
+    if ((way[e] == 0 || (e < nq && crosses_itself(mesh.quads[e]))) && d.num_degenerate++ == 0)
+      d.first_degenerate = element(e);
+    if (way[e] == -most && d.num_reversed++ == 0) d.first_reversed = element(e);
   }
   // Coincident nodes: swept in the order of x, each against the later ones within the
   // tolerance in x.
@@ -294,6 +307,12 @@ std::vector<std::string> mesh_defect_warnings(const MeshDefects& d) {
                   std::to_string(d.first_overused[1]) +
                   "): an element given twice, or elements that overlap; the mesh's area and "
                   "coast are not those of a valid mesh");
+  if (d.num_degenerate > 0)
+    out.push_back(
+        std::to_string(d.num_degenerate) +
+        " element(s) without area or crossing themselves (the first: " + d.first_degenerate +
+        "): flat, or a quad whose opposite sides cross (a bow-tie); they count as "
+        "inverted");
   if (d.num_reversed > 0)
     out.push_back(
         std::to_string(d.num_reversed) + " of its " + std::to_string(d.num_elements) +

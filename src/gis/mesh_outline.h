@@ -47,6 +47,9 @@ struct MeshDefects {
   // "triangle 12").
   std::size_t num_reversed = 0, num_elements = 0;
   std::string first_reversed;
+  // Elements without area (flat) or quads whose opposite sides cross (bow-ties).
+  std::size_t num_degenerate = 0;
+  std::string first_degenerate;
 };
 MeshDefects find_mesh_defects(const ReadMesh& mesh);
 // The defects as warnings (none when it has none).

@@ -536,6 +536,18 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
       run_cli({"quality", "--mesh", dir.file("m.gpkg"), "--where", "name = 'x'"}, dir);
   EXPECT_EQ(where.exit_code, 2);
   EXPECT_NE(where.err.find("--where selects from INPUT"), std::string::npos) << where.err;
+  // A bow-tie quad makes its outline cross itself: the message names the element.
+  write_file(dir.file("bowtie.gr3"),
+             "bow-tie\n1 4\n1 500000 5000000 0\n2 501000 5001000 0\n3 501000 5000000 0\n"
+             "4 500000 5001000 0\n7 4 1 2 3 4\n");
+  const CliResult bowtie = run_cli(
+      {"quality", "--mesh", dir.file("bowtie.gr3"), "--mesh-crs", "EPSG:32630", "--size", "500"},
+      dir);
+  EXPECT_EQ(bowtie.exit_code, 3) << bowtie.err;
+  EXPECT_NE(bowtie.err.find("(the mesh has 1 element(s) without area or crossing themselves, the "
+                            "first quad 7)"),
+            std::string::npos)
+      << bowtie.err;
   // A raster INPUT's band of values: nothing to select without INPUT.
   const CliResult zmin = run_cli({"quality", "--mesh", dir.file("m.gpkg"), "--zmin", "0"}, dir);
   EXPECT_EQ(zmin.exit_code, 2);

@@ -277,3 +277,22 @@ TEST(MeshDefects, ElementsTwiceCracksUnusedNodesAndElementsTheOtherWayRound) {
       << w[1];
   EXPECT_NE(w[2].find("2 node(s) in no element (the first: node 10)"), std::string::npos) << w[2];
 }
+
+// A quad whose opposite sides cross (a bow-tie) and a triangle without area, named by
+// the file's numbers; a concave quad is neither.
+TEST(MeshDefects, BowTiesAndFlatElements) {
+  ReadMesh m;
+  m.points = {{0, 0}, {1, 1}, {1, 0}, {0, 1}, {2, 0}, {3, 0}, {5, 5}, {4, 1}, {5, 0}};
+  m.quads = {{0, 1, 2, 3}, {5, 8, 6, 7}};  // a bow-tie; an arrowhead, concave at 7
+  m.quad_ids = {11, 12};
+  m.triangles = {{2, 4, 5}};  // (1,0), (2,0), (3,0): flat
+  m.triangle_ids = {13};
+  const MeshDefects d = find_mesh_defects(m);
+  EXPECT_EQ(d.num_degenerate, 2u);
+  EXPECT_EQ(d.first_degenerate, "quad 11");
+  const std::vector<std::string> w = mesh_defect_warnings(d);
+  ASSERT_FALSE(w.empty());
+  EXPECT_NE(w[0].find("2 element(s) without area or crossing themselves (the first: quad 11)"),
+            std::string::npos)
+      << w[0];
+}
