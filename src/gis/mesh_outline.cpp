@@ -239,12 +239,10 @@ MeshDefects find_mesh_defects(const ReadMesh& mesh) {
   // Each element's way round: +1 counter-clockwise, -1 clockwise, 0 flat.
   std::vector<int> way;
   const auto way_round = [&points](const int* v, int k) {
-    double twice_area = 0;
-    for (int i = 0; i < k; ++i) {
-      const Point2 &a = points[v[i]], &b = points[v[(i + 1) % k]];
-      twice_area += a.x * b.y - a.y * b.x;
-    }
-    return twice_area > 0 ? 1 : twice_area < 0 ? -1 : 0;
+    double area = 0;  // the fan of triangles from the first corner
+    for (int i = 1; i + 1 < k; ++i)
+      area += signed_area(points[v[0]], points[v[i]], points[v[i + 1]]);
+    return area > 0 ? 1 : area < 0 ? -1 : 0;
   };
   for (const auto& q : mesh.quads) add(q.data(), 4), way.push_back(way_round(q.data(), 4));
   for (const auto& t : mesh.triangles) add(t.data(), 3), way.push_back(way_round(t.data(), 3));
@@ -262,8 +260,7 @@ MeshDefects find_mesh_defects(const ReadMesh& mesh) {
   // triangles turning opposite ways.
   const auto crosses_itself = [&points](const std::array<int, 4>& q) {
     const auto turn = [&points](int a, int b, int c) {
-      const Point2 &p = points[a], &u = points[b], &v = points[c];
-      return (u.x - p.x) * (v.y - p.y) - (u.y - p.y) * (v.x - p.x);
+      return signed_area(points[a], points[b], points[c]);
     };
     return turn(q[0], q[1], q[2]) * turn(q[0], q[2], q[3]) < 0 &&
            turn(q[0], q[1], q[3]) * turn(q[1], q[2], q[3]) < 0;
