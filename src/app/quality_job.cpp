@@ -182,14 +182,25 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
   try {
     r.fields = build_fields(fields, progress.slice(0.05, 0.85));
   } catch (const Error& e) {
-    // An outline that crosses itself (without INPUT) where elements do: say which.
-    if (e.error_class() != ErrorClass::input || defects.num_degenerate == 0 ||
-        !options.fields.front.read.path.empty())
-      throw;
-    throw Error(e.error_class(), e.stage(),
-                e.message() + " (the mesh has " + std::to_string(defects.num_degenerate) +
-                    " element(s) without area or crossing themselves, the first " +
-                    defects.first_degenerate + ")");
+    // An outline (without INPUT) that crosses itself where elements do, or that is
+    // empty or wrong where elements overlap: say which.
+    if (e.error_class() != ErrorClass::input || !options.fields.front.read.path.empty()) throw;
+    std::string why;
+    if (defects.num_degenerate > 0)
+      why = std::to_string(defects.num_degenerate) +
+            " element(s) without area or crossing themselves, the first " +
+            defects.first_degenerate;
+    else if (defects.num_duplicate_elements > 0)
+      why = std::to_string(defects.num_duplicate_elements) +
+            " element(s) given twice, on the same nodes, the first " + defects.first_duplicate;
+    else if (defects.num_overused_sides > 0)
+      why = std::to_string(defects.num_overused_sides) +
+            " side(s) of three or more elements, the first between nodes " +
+            std::to_string(defects.first_overused[0]) + " and " +
+            std::to_string(defects.first_overused[1]) +
+            ": an element given twice, or elements that overlap";
+    if (why.empty()) throw;
+    throw Error(e.error_class(), e.stage(), e.message() + " (the mesh has " + why + ")");
   }
   r.fields.times.insert(r.fields.times.begin(), read_times.begin(), read_times.end());
   StageClock measure_clock(r.fields.times);

@@ -35,8 +35,12 @@ std::string format_quad_connectivity_lines(const QualitySummary& q, QualityParts
     if (q.boundary_departure_max_h < 0.005)
       out += printf_string(
           "coast:        mesh area %.2f%% of the domain's; its boundary follows the domain's "
-          "within 0.01 h\n",
-          area_share);
+          "within 0.01 h%s\n",
+          area_share,
+          area_share > 101  ? " (so the area differs inside: elements overlap, or cover one "
+                              "of the domain's holes)"
+          : area_share < 99 ? " (so the area differs inside: elements with gaps between them)"
+                            : "");
     else
       out += printf_string(
           "coast:        mesh area %.2f%% of the domain's; its boundary departs from the "
@@ -51,9 +55,18 @@ std::string format_quad_connectivity_lines(const QualitySummary& q, QualityParts
           q.num_boundary_backtracks);
   }
   if (parts.connectivity) {
-    out += printf_string(
-        "regularity:   %.1f%% of interior, %.1f%% of boundary, %.1f%% of all vertices regular\n",
-        100 * q.share_regular_interior, 100 * q.share_regular_boundary, 100 * q.share_regular_all);
+    std::size_t interior = 0;
+    for (int n : q.interior_degree_histogram) interior += static_cast<std::size_t>(n);
+    if (interior == 0)  // a mesh of a few quads round one boundary
+      out +=
+          printf_string("regularity:   no interior vertices; %.1f%% of boundary vertices regular\n",
+                        100 * q.share_regular_boundary);
+    else
+      out += printf_string(
+          "regularity:   %.1f%% of interior, %.1f%% of boundary, %.1f%% of all vertices "
+          "regular\n",
+          100 * q.share_regular_interior, 100 * q.share_regular_boundary,
+          100 * q.share_regular_all);
   }
   if (parts.quads)
     out += printf_string(

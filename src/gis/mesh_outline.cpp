@@ -1,6 +1,7 @@
 #include "gis/mesh_outline.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -265,6 +266,30 @@ MeshDefects find_mesh_defects(const ReadMesh& mesh) {
     return turn(q[0], q[1], q[2]) * turn(q[0], q[2], q[3]) < 0 &&
            turn(q[0], q[1], q[3]) * turn(q[1], q[2], q[3]) < 0;
   };
+  // Elements given twice: the same nodes, in any order. Each element as its sorted nodes
+  // (a triangle's fourth -1) and its index, sorted, so that the copies fall together.
+  std::vector<std::array<long long, 5>> keyed;
+  keyed.reserve(way.size());
+  for (std::size_t e = 0; e < way.size(); ++e) {
+    std::array<long long, 5> key{-1, -1, -1, -1, static_cast<long long>(e)};
+    const int* v = e < nq ? mesh.quads[e].data() : mesh.triangles[e - nq].data();
+    for (int i = 0; i < (e < nq ? 4 : 3); ++i) key[i] = v[i];
+    std::sort(key.begin(), key.begin() + 4);
+    keyed.push_back(key);
+  }
+  std::sort(keyed.begin(), keyed.end());
+  std::size_t first_copy = way.size(), its_original = 0;
+  for (std::size_t i = 1, group = 0; i < keyed.size(); ++i) {
+    if (!std::equal(keyed[i].begin(), keyed[i].begin() + 4, keyed[group].begin())) {
+      group = i;
+      continue;
+    }
+    ++d.num_duplicate_elements;
+    const auto e = static_cast<std::size_t>(keyed[i][4]);
+    if (e < first_copy) first_copy = e, its_original = static_cast<std::size_t>(keyed[group][4]);
+  }
+  if (d.num_duplicate_elements > 0)
+    d.first_duplicate = element(first_copy) + " (as " + element(its_original) + ")";
   for (std::size_t e = 0; e < way.size(); ++e) {
     if ((way[e] == 0 || (e < nq && crosses_itself(mesh.quads[e]))) && d.num_degenerate++ == 0)
       d.first_degenerate = element(e);
@@ -297,6 +322,10 @@ MeshDefects find_mesh_defects(const ReadMesh& mesh) {
 
 std::vector<std::string> mesh_defect_warnings(const MeshDefects& d) {
   std::vector<std::string> out;
+  if (d.num_duplicate_elements > 0)
+    out.push_back(std::to_string(d.num_duplicate_elements) +
+                  " element(s) given twice, on the same nodes (the first: " + d.first_duplicate +
+                  "); the mesh's area and coast are not those of a valid mesh");
   if (d.num_overused_sides > 0)
     out.push_back(std::to_string(d.num_overused_sides) +
                   " side(s) of three or more elements (the first between nodes " +

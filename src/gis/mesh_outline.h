@@ -39,6 +39,9 @@ struct MeshDefects {
   std::size_t num_coincident_nodes = 0;
   std::array<long long, 2> first_coincident{};
   double coincident_tolerance = 0.0;
+  // Elements on the same nodes as an earlier one ("quad 9 (as quad 2)").
+  std::size_t num_duplicate_elements = 0;
+  std::string first_duplicate;
   // Sides of three or more elements: an element given twice, or elements overlapping.
   std::size_t num_overused_sides = 0;
   std::array<long long, 2> first_overused{};

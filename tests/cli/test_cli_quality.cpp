@@ -548,6 +548,18 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
                             "first quad 7)"),
             std::string::npos)
       << bowtie.err;
+  // A quad given twice: its outline is empty, and the message says why.
+  write_file(dir.file("twice.gr3"),
+             "twice\n2 4\n1 500000 5000000 0\n2 501000 5000000 0\n3 501000 5001000 0\n"
+             "4 500000 5001000 0\n1 4 1 2 3 4\n2 4 1 2 3 4\n");
+  const CliResult twice = run_cli(
+      {"quality", "--mesh", dir.file("twice.gr3"), "--mesh-crs", "EPSG:32630", "--size", "500"},
+      dir);
+  EXPECT_EQ(twice.exit_code, 3) << twice.err;
+  EXPECT_NE(twice.err.find("(the mesh has 1 element(s) given twice, on the same nodes, the first "
+                           "quad 2 (as quad 1))"),
+            std::string::npos)
+      << twice.err;
   // A raster INPUT's band of values: nothing to select without INPUT.
   const CliResult zmin = run_cli({"quality", "--mesh", dir.file("m.gpkg"), "--zmin", "0"}, dir);
   EXPECT_EQ(zmin.exit_code, 2);

@@ -267,15 +267,21 @@ TEST(MeshDefects, ElementsTwiceCracksUnusedNodesAndElementsTheOtherWayRound) {
   EXPECT_EQ(d.first_coincident, (std::array<long long, 2>{10, 1000}));
   EXPECT_EQ(d.num_unused_nodes, 2u);  // 0 (the grid's corner, its quad now on 16), and 17
   EXPECT_EQ(d.first_unused, 10);
+  EXPECT_EQ(d.num_duplicate_elements, 1u);
+  EXPECT_EQ(d.first_duplicate, "quad 10 (as quad 5)");
   const std::vector<std::string> w = mesh_defect_warnings(d);
-  ASSERT_EQ(w.size(), 3u);
-  EXPECT_NE(w[0].find("4 side(s) of three or more elements (the first between nodes 60 and 70)"),
+  ASSERT_EQ(w.size(), 4u);
+  EXPECT_NE(w[0].find("1 element(s) given twice, on the same nodes (the first: quad 10 (as quad "
+                      "5))"),
             std::string::npos)
       << w[0];
-  EXPECT_NE(w[1].find("1 node(s) at the place of an earlier one (the first: nodes 10 and 1000"),
+  EXPECT_NE(w[1].find("4 side(s) of three or more elements (the first between nodes 60 and 70)"),
             std::string::npos)
       << w[1];
-  EXPECT_NE(w[2].find("2 node(s) in no element (the first: node 10)"), std::string::npos) << w[2];
+  EXPECT_NE(w[2].find("1 node(s) at the place of an earlier one (the first: nodes 10 and 1000"),
+            std::string::npos)
+      << w[2];
+  EXPECT_NE(w[3].find("2 node(s) in no element (the first: node 10)"), std::string::npos) << w[3];
 }
 
 // A quad whose opposite sides cross (a bow-tie) and a triangle without area, named by
@@ -293,6 +299,28 @@ TEST(MeshDefects, BowTiesAndFlatElements) {
   const std::vector<std::string> w = mesh_defect_warnings(d);
   ASSERT_FALSE(w.empty());
   EXPECT_NE(w[0].find("2 element(s) without area or crossing themselves (the first: quad 11)"),
+            std::string::npos)
+      << w[0];
+  EXPECT_EQ(d.num_duplicate_elements, 0u);
+}
+
+// Elements given twice, on the same nodes in any order: counted, the first copy named
+// with its original by the file's numbers; a quad and a triangle on three of its nodes
+// are not copies.
+TEST(MeshDefects, ElementsGivenTwice) {
+  ReadMesh m;
+  m.points = {{0, 0}, {1, 0}, {1, 1}, {0, 1}, {2, 0}, {2, 1}};
+  m.quads = {{1, 4, 5, 2}, {0, 1, 2, 3}, {2, 3, 0, 1}, {1, 4, 5, 2}};
+  m.quad_ids = {21, 22, 23, 24};
+  m.triangles = {{0, 1, 2}, {2, 0, 1}};
+  m.triangle_ids = {31, 32};
+  const MeshDefects d = find_mesh_defects(m);
+  EXPECT_EQ(d.num_duplicate_elements, 3u);
+  EXPECT_EQ(d.first_duplicate, "quad 23 (as quad 22)");
+  const std::vector<std::string> w = mesh_defect_warnings(d);
+  ASSERT_FALSE(w.empty());
+  EXPECT_NE(w[0].find("3 element(s) given twice, on the same nodes (the first: quad 23 (as quad "
+                      "22))"),
             std::string::npos)
       << w[0];
 }
