@@ -85,6 +85,45 @@ InputFiles& input_files() {
   return files;
 }
 
+// The directories the run may make (CreatableDirectories), absolute and normalised.
+struct CreatableDirs {
+  std::mutex mutex;
+  bool active = false;
+  std::set<std::string> dirs;
+};
+
+CreatableDirs& creatable_dirs() {
+  static CreatableDirs dirs;
+  return dirs;
+}
+
+std::string directory_key(const fs::path& dir) {
+  std::error_code ec;
+  const fs::path absolute = fs::absolute(dir, ec);
+  std::string key = (ec ? dir : absolute).lexically_normal().string();
+  while (key.size() > 1 && key.back() == '/') key.pop_back();
+  return key;
+}
+
+bool may_create(const fs::path& dir) {
+  CreatableDirs& c = creatable_dirs();
+  std::lock_guard<std::mutex> lock(c.mutex);
+  return c.active && c.dirs.count(directory_key(dir)) > 0;
+}
+
+// The directory an output in `dir` needs to exist: `dir`, or the nearest one above it
+// when the directories between may be made.
+fs::path existing_directory_for(const fs::path& dir) {
+  std::error_code ec;
+  fs::path d = dir;
+  while (!fs::exists(d, ec) && may_create(d)) {
+    const fs::path up = d.parent_path();
+    if (up.empty() || up == d) return fs::path(".");
+    d = up;
+  }
+  return d;
+}
+
 // Error(output) when `path` is an existing file the run reads.
 void check_not_an_input(const std::string& path) {
   InputFiles& files = input_files();
@@ -121,6 +160,25 @@ void note_input_file(const std::string& path) {
   files.ids.emplace(st.st_dev, st.st_ino);
 }
 
+CreatableDirectories::CreatableDirectories() {
+  CreatableDirs& c = creatable_dirs();
+  std::lock_guard<std::mutex> lock(c.mutex);
+  c.active = true;
+}
+
+CreatableDirectories::~CreatableDirectories() {
+  CreatableDirs& c = creatable_dirs();
+  std::lock_guard<std::mutex> lock(c.mutex);
+  c.active = false;
+  c.dirs.clear();
+}
+
+void note_creatable_directory(const std::string& dir) {
+  CreatableDirs& c = creatable_dirs();
+  std::lock_guard<std::mutex> lock(c.mutex);
+  if (c.active) c.dirs.insert(directory_key(dir));
+}
+
 void check_output_path(const std::string& path, bool overwrite) {
   if (path.empty()) throw Error(ErrorClass::usage, "write", "empty output path");
   check_not_an_input(path);
@@ -130,10 +188,11 @@ void check_output_path(const std::string& path, bool overwrite) {
   if (fs::exists(path, ec) && !overwrite)
     throw Error(ErrorClass::output, "write",
                 quote(path) + " already exists; pass --overwrite to replace it");
-  const fs::path dir = parent_dir(path);
+  const fs::path dir = existing_directory_for(parent_dir(path));
   if (!fs::is_directory(dir, ec))
     throw Error(ErrorClass::output, "write",
-                quote(path) + ": directory " + quote(dir.string()) + " does not exist");
+                quote(path) + ": directory " + quote(dir.string()) +
+                    (fs::exists(dir, ec) ? " is a file" : " does not exist"));
   if (access(dir.c_str(), W_OK) != 0)
     throw Error(ErrorClass::output, "write",
                 quote(path) + ": directory " + quote(dir.string()) + " is not writable");
@@ -157,6 +216,15 @@ std::string output_path_key(const std::string& path) {
 AtomicOutput::AtomicOutput(std::string final_path, bool overwrite)
     : final_path_(std::move(final_path)), overwrite_(overwrite) {
   check_output_path(final_path_, overwrite_);
+  // A batch's region folder (CreatableDirectories), made now that its output is written.
+  std::error_code ec;
+  if (!fs::is_directory(parent_dir(final_path_), ec)) {
+    fs::create_directories(parent_dir(final_path_), ec);
+    if (ec)
+      throw Error(ErrorClass::output, "write",
+                  quote(final_path_) + ": cannot make directory " +
+                      quote(parent_dir(final_path_).string()) + ": " + ec.message());
+  }
   const fs::path p(final_path_);
   const std::string stem = "." + short_stem(p.stem().string()) + ".tmp-" + std::to_string(getpid());
   UnfinishedOutputs& u = unfinished();
@@ -248,15 +316,30 @@ void write_text_file(const std::string& path, const std::string& text, bool over
   out.commit();
 }
 
-const std::string& OutputSet::add(const std::string& final_path, bool overwrite) {
-  std::error_code ec;
+namespace {
+
+// `final_path`'s key (output_path_key), or Error(usage) when `keys` has it.
+std::string key_not_given_twice(const std::vector<std::string>& keys,
+                                const std::string& final_path) {
   const std::string key = output_path_key(final_path);
-  for (const std::string& p : paths_)
-    if (p == key)
-      throw Error(ErrorClass::usage, "write",
-                  quote(final_path) +
-                      " would be written twice: given twice, or given once and also written "
-                      "beside another output (a .gr3's .ll, a .slf's .cli)");
+  if (std::find(keys.begin(), keys.end(), key) != keys.end())
+    throw Error(ErrorClass::usage, "write",
+                quote(final_path) +
+                    " would be written twice: given twice, or given once and also written "
+                    "beside another output (a .gr3's .ll, a .slf's .cli)");
+  return key;
+}
+
+}  // namespace
+
+void OutputPathCheck::add(const std::string& final_path, bool overwrite) {
+  const std::string key = key_not_given_twice(paths_, final_path);
+  check_output_path(final_path, overwrite);
+  paths_.push_back(key);
+}
+
+const std::string& OutputSet::add(const std::string& final_path, bool overwrite) {
+  const std::string key = key_not_given_twice(paths_, final_path);
   outputs_.push_back(std::make_unique<AtomicOutput>(final_path, overwrite));
   paths_.push_back(key);
   overwrite_.push_back(overwrite);

@@ -33,6 +33,22 @@ class ProtectInputFiles {
 // directory of shapefiles) is not noted. Thread-safe.
 void note_input_file(const std::string& path);
 
+// While one lives (a batch's run), the directories noted with note_creatable_directory
+// may be missing: check_output_path takes a path in one when the nearest directory that
+// exists above it is writable, and an AtomicOutput makes them as it starts writing. A
+// batch's per-region folders (-o runs/{}/hgrid.gr3) cannot be made beforehand by a user
+// who does not know the regions' file names; a region that fails makes none.
+class CreatableDirectories {
+ public:
+  CreatableDirectories();
+  ~CreatableDirectories();
+  CreatableDirectories(const CreatableDirectories&) = delete;
+  CreatableDirectories& operator=(const CreatableDirectories&) = delete;
+};
+
+// Notes `dir` as a directory the run may make (under CreatableDirectories). Thread-safe.
+void note_creatable_directory(const std::string& dir);
+
 // The path as one file's key, so that two spellings of one file compare equal (./a and
 // a, a link to its directory): canonical as far as it exists, else absolute and
 // normalised (a name too long to look up).
@@ -77,6 +93,17 @@ class AtomicOutput {
 // complete are they moved into place. If a move fails, the outputs already moved are
 // removed again and the files they replaced (with overwrite) are put back, so a run
 // leaves either every new output or the files as they were.
+// The paths of an OutputSet checked before the work (check_output_path, and a path given
+// twice), writing nothing and making no directory.
+class OutputPathCheck {
+ public:
+  // Throws as OutputSet::add.
+  void add(const std::string& final_path, bool overwrite);
+
+ private:
+  std::vector<std::string> paths_;
+};
+
 class OutputSet {
  public:
   // Adds an output and returns where to write it. Throws Error(output) (see

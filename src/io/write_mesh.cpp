@@ -373,7 +373,7 @@ void check_mesh_outputs(const std::vector<MeshOutput>& outputs, const MeshWriteO
                         "' (--output-crs) has none: readers would take its coordinates for "
                         "longitudes and latitudes; write .fgb or .gpkg, or give an EPSG CRS");
   }
-  OutputSet probe;  // checks every path (exists, directory writable, given twice)
+  OutputPathCheck probe;  // every path: exists, directory writable, given twice
   for (const MeshOutput& o : outputs) {
     if (o.path == "-")
       throw Error(ErrorClass::usage, "options",

@@ -109,6 +109,35 @@ TEST(AtomicOutput, MissingDirectoryIsAnOutputError) {
   }
 }
 
+// A batch's region folders (CreatableDirectories): a path in a noted missing folder
+// passes the checks, which make nothing; writing it makes the folder. Folders not noted,
+// or noted outside the scope, stay errors.
+TEST(AtomicOutput, NotedFoldersAreMadeWhenWritten) {
+  TempDir dir;
+  const std::string out = dir.file("runs/malta/grid/hgrid.gr3");
+  {
+    const CreatableDirectories scope;
+    note_creatable_directory(dir.file("runs/malta"));
+    note_creatable_directory(dir.file("runs/malta/grid/"));
+    EXPECT_THROW(check_output_path(out, false), Error);  // runs is the user's to make
+    std::filesystem::create_directory(dir.file("runs"));
+    check_output_path(out, false);
+    OutputPathCheck probe;
+    probe.add(out, false);
+    EXPECT_THROW(probe.add(dir.file("runs/./malta/grid/hgrid.gr3"), false), Error);
+    EXPECT_FALSE(std::filesystem::exists(dir.file("runs/malta")));
+    EXPECT_THROW(check_output_path(dir.file("runs/gozo/hgrid.gr3"), false), Error);
+    {
+      OutputSet set;
+      write_file(set.add(out, false), "grid");
+      set.commit_all();
+    }
+    EXPECT_EQ(read_file(out), "grid");
+  }
+  note_creatable_directory(dir.file("runs/gozo"));  // no scope: not noted
+  EXPECT_THROW(check_output_path(dir.file("runs/gozo/hgrid.gr3"), false), Error);
+}
+
 // When moving the second output into place fails, the first, already moved, is removed.
 TEST(OutputSet, CommitIsAllOrNothing) {
   TempDir dir;
