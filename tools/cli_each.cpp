@@ -39,16 +39,34 @@ struct EachRegion {
   bool skip = false;      // mesh --skip-existing, and every output exists
 };
 
+// The folders of `path` (a template with {}) that the region's file name names, from the
+// first with {} down (runs/{}/hgrid.gr3: runs/Malta), noted as folders the batch may make.
+void note_region_directories(const std::string& path, const std::string& name) {
+  const std::filesystem::path folder = std::filesystem::path(path).parent_path();
+  std::filesystem::path filled;
+  bool marked = false;
+  for (const std::filesystem::path& part : folder) {
+    marked = marked || has_each_mark(part.string());
+    filled /= fill_each_mark(part.string(), name);
+    if (marked) note_creatable_directory(filled.string());
+  }
+}
+
 // A region per selected value: {} in the paths replaced by its file name.
 std::vector<EachRegion> regions_of(const CommonArgs& a, const FieldArgs& f,
                                    const std::string& field,
-                                   const std::vector<SelectionValue>& selected) {
+                                   const std::vector<SelectionValue>& selected, bool over_clip) {
   std::vector<std::string> values;
+  std::vector<bool> null;
   // Text that is not UTF-8 (a .dbf without its .cpg) read as Windows-1252, for the
   // console, the table, the reports and the file names.
-  for (const SelectionValue& v : selected) values.push_back(utf8_or_cp1252(v.text));
+  for (const SelectionValue& v : selected) {
+    values.push_back(utf8_or_cp1252(v.text));
+    null.push_back(v.null);
+  }
   // The features without a value: their file name that of an empty value, "_".
-  const std::vector<std::string> names = each_file_names(field, values);
+  const std::vector<std::string> names =
+      each_file_names(field, values, null, over_clip ? "--each-clip" : "--each");
   std::vector<EachRegion> regions;
   for (std::size_t k = 0; k < selected.size(); ++k) {
     EachRegion r{a,
@@ -61,9 +79,14 @@ std::vector<EachRegion> regions_of(const CommonArgs& a, const FieldArgs& f,
     r.a.fe.align_optional = true;  // one file of --align lines for all the regions
     r.a.region = {{"each_field", field}, {"each_value", selected[k].null ? "" : values[k]}};
     r.index = k;
-    for (std::string& o : r.a.outputs) o = fill_each_mark(o, names[k]);
-    r.a.report_path = fill_each_mark(r.a.report_path, names[k]);
-    r.f.plot_path = fill_each_mark(r.f.plot_path, names[k]);
+    for (std::string* path : {&r.a.report_path, &r.f.plot_path}) {
+      note_region_directories(*path, names[k]);
+      *path = fill_each_mark(*path, names[k]);
+    }
+    for (std::string& o : r.a.outputs) {
+      note_region_directories(o, names[k]);
+      o = fill_each_mark(o, names[k]);
+    }
     regions.push_back(std::move(r));
   }
   return regions;
@@ -89,7 +112,24 @@ std::vector<EachRegion> each_clip_regions(const CommonArgs& a, const FieldArgs& 
   if (selected.empty())
     throw Error(ErrorClass::input, "read",
                 "--clip '" + clip.path + "': no selected feature has a value of '" + field + "'");
-  std::vector<EachRegion> regions = regions_of(a, f, field, selected);
+  // Each region's area is one polygon (read_clip_area): values that several polygons
+  // share fail here, all named, rather than region by region.
+  std::vector<std::string> shared;
+  for (const SelectionValue& v : selected)
+    if (v.num_features > 1)
+      shared.push_back((v.null ? std::string("NULL") : "'" + utf8_or_cp1252(v.text) + "'") + " (" +
+                       std::to_string(v.num_features) + " polygons)");
+  if (!shared.empty()) {
+    std::string list;
+    for (std::size_t k = 0; k < shared.size() && k < 5; ++k) list += (k ? ", " : "") + shared[k];
+    if (shared.size() > 5) list += " and " + std::to_string(shared.size() - 5) + " more";
+    throw Error(ErrorClass::input, "read",
+                "--clip '" + clip.path + "': --each-clip " + field +
+                    " meshes one polygon per value, and several polygons have the value " + list +
+                    ": give each its own value, merge them into one, or run over an attribute "
+                    "that tells them apart (--each-clip fid)");
+  }
+  std::vector<EachRegion> regions = regions_of(a, f, field, selected, true);
   for (EachRegion& r : regions)
     r.a.fe.clip_where =
         a.fe.clip_where.empty() ? r.id_filter : "(" + a.fe.clip_where + ") AND " + r.id_filter;
@@ -132,7 +172,7 @@ std::vector<EachRegion> each_regions(const CommonArgs& a, const FieldArgs& f,
   if (selected.empty())
     throw Error(ErrorClass::input, "read",
                 "'" + a.input + "': no selected feature has a value of '" + field + "'");
-  std::vector<EachRegion> regions = regions_of(a, f, field, selected);
+  std::vector<EachRegion> regions = regions_of(a, f, field, selected, false);
   for (EachRegion& r : regions) {
     r.a.fe.read.where =
         a.fe.read.where.empty() ? r.id_filter : "(" + a.fe.read.where + ") AND " + r.id_filter;
@@ -281,6 +321,7 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
   if (!m.stop_after.empty())
     throw Error(ErrorClass::usage, "options", "--each meshes: no --stop-after");
   const VectorDatasetPool pool;  // INPUT and the other vector files read once, not per region
+  const CreatableDirectories region_folders;  // -o runs/{}/hgrid.gr3
   if (!m.each.empty() && !m.each_clip.empty())
     throw Error(ErrorClass::usage, "options",
                 "--each runs over INPUT's features, --each-clip over --clip's polygons: give one");
@@ -306,8 +347,14 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
   return run_each(
       table_args, over_clip ? "--each-clip" : "--each", field, regions, m.jobs, "meshed",
       m.each_table, [&](EachRegion& r, const Console& console) {
+        const std::string region_command_line =
+            command_line + (over_clip ? " [--each-clip: " : " [--each: ") + r.filter + "]";
         if (r.skip) {
-          if (!a.quiet) console.out << "skipped: every output exists (--skip-existing)\n";
+          if (!a.quiet) {
+            console.out << "skipped: every output exists (--skip-existing)\n";
+            const std::string other = skipped_outputs_warning(r.a, m, region_command_line);
+            if (!other.empty()) console.err << "isoquad: warning: " << other << "\n";
+          }
           RegionOutcome outcome;
           outcome.skipped = true;
           // The table's figures from the region's report, when it has one.
@@ -317,10 +364,7 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
         }
         MeshArgs mm = m;
         try {
-          return run_mesh(
-              r.a, r.f, mm,
-              command_line + (over_clip ? " [--each-clip: " : " [--each: ") + r.filter + "]",
-              console);
+          return run_mesh(r.a, r.f, mm, region_command_line, console);
         } catch (const Error& e) {
           // A region that fails keeps the files an earlier run wrote, which a
           // later --skip-existing would take for this run's: say which.
@@ -356,6 +400,7 @@ int run_quality_each(const CommonArgs& a, const FieldArgs& f, const QualityArgs&
     throw Error(ErrorClass::usage, "options",
                 "--each selects regions from INPUT's features: give INPUT");
   const VectorDatasetPool pool;
+  const CreatableDirectories region_folders;  // -o out/{}/quality.gpkg
   std::vector<EachRegion> regions = each_regions(a, f, q.each);
   check_each_table(q.each_table, a.overwrite);
   std::vector<std::vector<MeshOutput>> outputs;

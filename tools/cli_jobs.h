@@ -20,6 +20,13 @@ void end_progress_line();
 // run again with --overwrite writes the same bytes.
 std::string joined_command_line(int argc, char** argv);
 
+// --skip-existing, every output there: what they record of the run that wrote them,
+// against `command_line` (joined_command_line()). A sentence for a warning (without
+// "isoquad: warning: ") when they record another command, naming the words that differ;
+// empty when they record this one, or none.
+std::string skipped_outputs_warning(const CommonArgs& a, const MeshArgs& m,
+                                    const std::string& command_line);
+
 // isoquad domain: the planar domain and its summary.
 int run_domain(CommonArgs& a);
 // isoquad fields: the background mesh with its sizes and crosses.

@@ -193,7 +193,11 @@ int main(int argc, char** argv) {
       throw Error(ErrorClass::usage, "options", "--each-table is --each's table: give --each");
     if (mesh_cmd->parsed() && mesh_extra.skip_existing &&
         every_output_exists(mesh_args, mesh_field_args, mesh_extra)) {
-      if (!mesh_args.quiet) std::cerr << "skipped: every output exists (--skip-existing)\n";
+      if (mesh_args.quiet) return 0;
+      std::cerr << "skipped: every output exists (--skip-existing)\n";
+      const std::string other =
+          skipped_outputs_warning(mesh_args, mesh_extra, joined_command_line(argc, argv));
+      if (!other.empty()) std::cerr << "isoquad: warning: " << other << "\n";
       return 0;
     }
     if (mesh_cmd->parsed() && mesh_extra.skip_existing)

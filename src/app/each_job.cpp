@@ -28,10 +28,15 @@ std::string fill_each_mark(std::string path, const std::string& name) {
 }
 
 std::vector<std::string> each_file_names(const std::string& field,
-                                         const std::vector<std::string>& values) {
-  std::map<std::string, std::string> value_of;  // file name -> value
+                                         const std::vector<std::string>& values,
+                                         const std::vector<bool>& null, const std::string& option) {
+  std::map<std::string, std::size_t> value_of;  // file name -> the value's index
   std::vector<std::string> names;
-  for (const std::string& value : values) {
+  auto shown = [&](std::size_t k) {
+    return k < null.size() && null[k] ? std::string("NULL (no value)") : "'" + values[k] + "'";
+  };
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const std::string& value = values[k];
     std::string name = value.empty() ? "_" : value;
     for (char& c : name)
       if (static_cast<unsigned char>(c) < 0x80 && !std::isalnum(static_cast<unsigned char>(c)) &&
@@ -50,11 +55,11 @@ std::vector<std::string> each_file_names(const std::string& field,
     if (name[0] == '-') name[0] = '_';
     // "." and ".." would name the folder, or the one above, in a path such as out/{}/m.gpkg.
     if (name == "." || name == "..") name = "_" + name;
-    const auto [at, added] = value_of.emplace(name, value);
+    const auto [at, added] = value_of.emplace(name, k);
     if (!added)
       throw Error(ErrorClass::usage, "options",
-                  "--each " + field + ": the values '" + at->second + "' and '" + value +
-                      "' give the same file name '" + name + "'");
+                  option + " " + field + ": the values " + shown(at->second) + " and " + shown(k) +
+                      " give the same file name '" + name + "'");
     names.push_back(name);
   }
   return names;

@@ -24,9 +24,12 @@ std::string fill_each_mark(std::string path, const std::string& name);
 
 // The regions' values as file names: ASCII other than letters, digits, '.', '-' and '_'
 // as '_' (UTF-8 kept, other bytes as '_'), "_" for an empty value, a leading '-' as '_'.
-// Error(usage) naming both values when two give the same name.
+// Error(usage) naming both values when two give the same name, after `option` and
+// `field`; a value whose `null` is true (the features without one) as NULL.
 std::vector<std::string> each_file_names(const std::string& field,
-                                         const std::vector<std::string>& values);
+                                         const std::vector<std::string>& values,
+                                         const std::vector<bool>& null = {},
+                                         const std::string& option = "--each");
 
 // Where a job prints its summary and its warnings, and whether it shows progress
 // (regions meshed at once print into buffers, without progress).

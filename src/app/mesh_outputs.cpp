@@ -3,11 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
+#include <cpl_json.h>
+#include <gdal_priv.h>
+#include <ogrsf_frmts.h>
+
 #include "app/versions.h"
 #include "core/geometry.h"
 #include "core/text.h"
 #include "gis/atomic_output.h"
 #include "gis/crs.h"
+#include "gis/gdal_env.h"
 #include "gis/raster_field.h"
 #include "io/mesh_boundary.h"
 #include "plot/plot_mesh.h"
@@ -19,7 +24,41 @@ namespace {
 
 std::string format_number(double v) { return printf_string("%.6g", v); }
 
+// The value of the metadata row `key` of an isoquad GeoPackage, or nullopt.
+std::optional<std::string> geopackage_metadata(const std::string& path, const char* key) {
+  ensure_gdal_registered();
+  GdalErrorCapture quiet;  // a file that is not one of ours: no record
+  GdalDataset ds(static_cast<GDALDataset*>(
+      GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
+  OGRLayer* layer = ds ? ds->GetLayerByName("metadata") : nullptr;
+  if (!layer || layer->GetLayerDefn()->GetFieldIndex("key") < 0 ||
+      layer->GetLayerDefn()->GetFieldIndex("value") < 0)
+    return std::nullopt;
+  layer->ResetReading();
+  for (auto& feature : *layer)
+    if (std::string(feature->GetFieldAsString("key")) == key)
+      return std::string(feature->GetFieldAsString("value"));
+  return std::nullopt;
+}
+
 }  // namespace
+
+std::optional<std::string> recorded_command_line(const std::vector<MeshOutput>& meshes,
+                                                 const std::string& report_path) {
+  if (!report_path.empty() && report_path != kStdoutPath) {
+    CPLJSONDocument doc;
+    GdalErrorCapture quiet;
+    if (doc.Load(report_path)) {
+      const CPLJSONObject line = doc.GetRoot().GetObj("command_line");
+      if (line.IsValid() && line.GetType() == CPLJSONObject::Type::String) return line.ToString();
+    }
+  }
+  for (const MeshOutput& o : meshes)
+    if (mesh_output_format(o) == MeshFormat::gpkg)
+      if (std::optional<std::string> line = geopackage_metadata(o.path, "command_line"))
+        return line;
+  return std::nullopt;
+}
 
 std::vector<std::pair<std::string, std::string>> quality_items(const QualitySummary& q) {
   return {{"num_quads", std::to_string(q.num_quads)},

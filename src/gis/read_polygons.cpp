@@ -124,6 +124,13 @@ class Reader {
       }
       SelectionValue v;
       v.text = feature->GetFieldAsString(index);
+      // A date as ISO 8601 writes it (2020-01-31, not GDAL's 2020/01/31): for the
+      // console, the table and the file names, and in the filter, which a GeoPackage's
+      // SQLite compares as text.
+      const OGRFieldType type = feature->GetFieldDefnRef(index)->GetType();
+      if ((type == OFTDate || type == OFTDateTime) && v.text.size() >= 10 && v.text[4] == '/' &&
+          v.text[7] == '/')
+        v.text[4] = v.text[7] = '-';
       if (number) {
         v.filter = quoted + " = " + v.text;
       } else {
@@ -144,11 +151,13 @@ class Reader {
     std::vector<SelectionValue> out;
     for (auto& [key, v] : sorted) {
       v.id_filter = id_filter(ids[key], v.filter);
+      v.num_features = ids[key].size();
       out.push_back(std::move(v));
     }
     if (any_null) {
       SelectionValue v{"", quoted + " IS NULL", true, ""};
       v.id_filter = id_filter(null_ids, v.filter);
+      v.num_features = null_ids.size();
       out.push_back(std::move(v));
     }
     if (unmatched && !out.empty()) *unmatched = unmatched_values();

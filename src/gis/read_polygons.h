@@ -105,6 +105,7 @@ struct SelectionValue {
   // also select 'MALTA'), and a real's or a date's text is not its stored value. The
   // readable `filter` when a feature has no id.
   std::string id_filter;
+  std::size_t num_features = 0;  // the selected features that have it
 };
 
 // The distinct values of `field` over the features `params` selects (layer, --where,

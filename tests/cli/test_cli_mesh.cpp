@@ -1270,6 +1270,44 @@ TEST(CliMesh, EachStopsAtAUsageErrorTwoRegionsShare) {
       << r.err;
 }
 
+// A batch's outputs in a folder per region (-o runs/{}/hgrid.gr3, as SCHISM wants its
+// grid named): the folders are made as each region's files are written, those of a
+// region that fails are not; the folder above them must exist.
+TEST(CliMesh, ABatchMakesItsRegionsFolders) {
+  TempDir dir;
+  const std::string input = dir.file("regions.geojson");
+  // Region b crosses itself: it fails without --repair.
+  write_file(input, R"({"type":"FeatureCollection","features":[)" + square_feature(0, 0, 0.3, "a") +
+                        R"(,{"type":"Feature","properties":{"region":"b"},"geometry":)"
+                        R"({"type":"Polygon","coordinates":[[[2,0],[2.3,0.3],[2.3,0],[2,0.3],)"
+                        R"([2,0]]]}}]})");
+  std::filesystem::create_directory(dir.file("runs"));
+  CliResult r = run_cli(
+      {"mesh", input, "--size", "3000", "--each", "region", "-o",
+       dir.file("runs/{}/grid/hgrid.gr3"), "--report", dir.file("runs/{}/report.json"), "-q"},
+      dir);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  for (const char* f : {"runs/a/grid/hgrid.gr3", "runs/a/grid/hgrid.ll", "runs/a/report.json"})
+    EXPECT_TRUE(std::filesystem::is_regular_file(dir.file(f))) << f;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("runs/b"))) << r.err;
+  // The folder above the regions' is the user's to make.
+  r = run_cli({"mesh", input, "--size", "3000", "--each", "region", "-o",
+               dir.file("none/{}/hgrid.gr3"), "-q"},
+              dir);
+  EXPECT_EQ(r.exit_code, 6) << r.err;
+  EXPECT_NE(r.err.find("'" + dir.file("none/a/hgrid.gr3") + "': directory '" + dir.file("none") +
+                       "' does not exist"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("none")));
+  // Without --each no folder is made.
+  r = run_cli({"mesh", input, "--size", "3000", "--where", "region = 'a'", "-o",
+               dir.file("runs/c/hgrid.gr3")},
+              dir);
+  EXPECT_EQ(r.exit_code, 6) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("runs/c")));
+}
+
 // --skip-existing: a batch stopped part-way (its unfinished region left nothing) resumes
 // with the regions whose outputs are missing, and leaves the others' files untouched; a
 // region with only some of its outputs is not taken as done; a single run whose every
@@ -1348,6 +1386,36 @@ TEST(CliMesh, SkipExistingResumesABatch) {
   EXPECT_EQ(r.out, "");
   EXPECT_EQ(r.err, "skipped: every output exists (--skip-existing)\n");
   EXPECT_EQ(std::filesystem::last_write_time(dir.file("one.gpkg")), one_time);
+  // Outputs another command wrote: skipped, with a warning naming what differs, from
+  // the report or else the GeoPackage's metadata.
+  std::vector<std::string> other = again;
+  other[3] = "2500";
+  r = run_cli(other, dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err, "skipped: every output exists (--skip-existing)\nisoquad: warning: '" +
+                       dir.file("one.json") +
+                       "' was written by another command (it had --size 3000 where this command "
+                       "has --size 2500): its outputs are kept as they are; --overwrite meshes "
+                       "again with this one\n");
+  EXPECT_EQ(std::filesystem::last_write_time(dir.file("one.gpkg")), one_time);
+  other.erase(other.begin() + 8, other.begin() + 10);  // no --report
+  r = run_cli(other, dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("isoquad: warning: '" + dir.file("one.gpkg") +
+                       "' was written by another command (it had --size 3000 where this "
+                       "command has --size 2500; it had --report " +
+                       dir.file("one.json") + ", which this command leaves out)"),
+            std::string::npos)
+      << r.err;
+  // A batch: each region skipped says so.
+  r = run({"--skip-existing", "--where", "region = 'q'"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("skipped: every output exists (--skip-existing)\nisoquad: warning: '" +
+                       dir.file("q.json") +
+                       "' was written by another command (this command adds --where 'region = "
+                       "'\\''q'\\'''): its outputs"),
+            std::string::npos)
+      << r.err;
 }
 
 // A batch stopped part-way (SIGTERM, as Ctrl-C's SIGINT) leaves its table: the table is

@@ -2175,6 +2175,24 @@ TEST(CliOutputs, EachClipMeshesEveryAreaOfTheClipFile) {
   EXPECT_NE(r.err.find("--each-clip makes a mesh per polygon of --clip: give --clip"),
             std::string::npos)
       << r.err;
+  // Two polygons with one value: refused before any meshing, the value named.
+  write_file(
+      dir.file("twice.geojson"),
+      R"({"type":"FeatureCollection","features":[)"
+      R"({"type":"Feature","properties":{"name":"bay"},"geometry":{"type":"Polygon",)"
+      R"("coordinates":[[[-4.58,48.21],[-4.5,48.21],[-4.5,48.26],[-4.58,48.26],[-4.58,48.21]]]}},)"
+      R"({"type":"Feature","properties":{"name":"bay"},"geometry":{"type":"Polygon",)"
+      R"("coordinates":[[[-4.4,48.21],[-4.35,48.21],[-4.35,48.26],[-4.4,48.26],[-4.4,48.21]]]}}]})");
+  r = run_cli({"mesh", water_input(dir), "--domain", "water", "--clip", dir.file("twice.geojson"),
+               "--each-clip", "name", "--size", "800", "-o", dir.file("t_{}.gr3")},
+              dir);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("--each-clip name meshes one polygon per value, and several polygons "
+                       "have the value 'bay' (2 polygons): give each its own value"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("=="), std::string::npos) << r.err;  // no region started
+  EXPECT_FALSE(std::filesystem::exists(dir.file("t_bay.gr3")));
 }
 
 // --clip: the water within a drawn polygon instead of a bbox. Every vertex of the mesh

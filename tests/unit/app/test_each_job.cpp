@@ -39,6 +39,17 @@ TEST(EachJob, ValuesBecomeFileNamesAndTwoThatMeetAreRefused) {
               std::string::npos)
         << e.what();
   }
+  // An empty value and the features without one: both '_', the latter named NULL.
+  try {
+    each_file_names("name", {"", ""}, {false, true}, "--each-clip");
+    FAIL() << "an empty value and a null one";
+  } catch (const Error& e) {
+    EXPECT_NE(
+        std::string(e.what()).find(
+            "--each-clip name: the values '' and NULL (no value) give the same file name '_'"),
+        std::string::npos)
+        << e.what();
+  }
   EXPECT_TRUE(has_each_mark("out/{}.gpkg"));
   EXPECT_FALSE(has_each_mark("out/x.gpkg"));
   EXPECT_EQ(fill_each_mark("out/{}/m_{}.gpkg", "fr"), "out/fr/m_fr.gpkg");

@@ -696,6 +696,55 @@ TEST(ReadPolygons, TheFeaturesIdsAreValuesOfEach) {
   }
 }
 
+// --each over a date: the values as ISO 8601 writes them (GDAL formats 2020/01/31), each
+// filter still selecting its features, on a GeoPackage's date and a GeoJSON's detected one.
+TEST(ReadPolygons, DatesAreValuesOfEachInIsoForm) {
+  TempDir dir;
+  ensure_gdal_registered();
+  write_file(dir.file("surveys.geojson"),
+             R"({"type":"FeatureCollection","features":[)"
+             R"({"type":"Feature","properties":{"day":"2021-06-30"},"geometry":{"type":"Polygon",)"
+             R"("coordinates":[[[0,0],[1,0],[1,1],[0,1],[0,0]]]}},)"
+             R"({"type":"Feature","properties":{"day":"2020-01-31"},"geometry":{"type":"Polygon",)"
+             R"("coordinates":[[[2,0],[4,0],[4,2],[2,2],[2,0]]]}}]})");
+  const std::string gpkg = dir.file("surveys.gpkg");
+  {
+    GDALDataset* ds = GetGDALDriverManager()->GetDriverByName("GPKG")->Create(gpkg.c_str(), 0, 0, 0,
+                                                                              GDT_Unknown, nullptr);
+    ASSERT_NE(ds, nullptr);
+    OGRSpatialReference srs;
+    srs.importFromEPSG(4326);
+    OGRLayer* l = ds->CreateLayer("surveys", &srs, wkbPolygon, nullptr);
+    OGRFieldDefn day("day", OFTDate);
+    ASSERT_EQ(l->CreateField(&day), OGRERR_NONE);
+    const std::pair<const char*, int> rows[] = {{"POLYGON ((0 0,1 0,1 1,0 1,0 0))", 2021},
+                                                {"POLYGON ((2 0,4 0,4 2,2 2,2 0))", 2020}};
+    for (const auto& [wkt, year] : rows) {
+      OGRGeometry* g = nullptr;
+      OGRGeometryFactory::createFromWkt(wkt, nullptr, &g);
+      OGRFeature f(l->GetLayerDefn());
+      f.SetField("day", year, year == 2020 ? 1 : 6, year == 2020 ? 31 : 30);
+      f.SetGeometryDirectly(g);
+      ASSERT_EQ(l->CreateFeature(&f), OGRERR_NONE);
+    }
+    GDALClose(ds);
+  }
+  for (const std::string& path : {dir.file("surveys.geojson"), gpkg}) {
+    SCOPED_TRACE(path);
+    ReadParams p = params(path);
+    const std::vector<SelectionValue> values = selection_values(p, "day");
+    ASSERT_EQ(values.size(), 2u);
+    EXPECT_EQ(values[0].text, "2020-01-31");
+    EXPECT_EQ(values[1].text, "2021-06-30");
+    for (const bool by_id : {true, false}) {
+      p.where = by_id ? values[0].id_filter : values[0].filter;
+      const SourceData d = read_polygons(p);
+      ASSERT_EQ(d.polygons.size(), 1u) << p.where;
+      EXPECT_DOUBLE_EQ(std::abs(signed_area(d.polygons[0].rings[0])), 4.0) << p.where;
+    }
+  }
+}
+
 // Delft3D / D-Flow FM Tekal files (.pol, .ldb, .pli) and Blue Kenue line sets (.i2s):
 // lines without a CRS, read as a layer named after the file with the lines' names.
 TEST(ReadPolygons, ReadsTheLineFilesOfModellingPackages) {
