@@ -25,9 +25,18 @@ class NcReader {
  public:
   explicit NcReader(const std::string& path) : path_(path) {
     const int status = nc_open(path.c_str(), NC_NOWRITE, &id_);
-    if (status != NC_NOERR)
-      throw Error(ErrorClass::input, "read",
-                  "'" + path + "': not a netCDF file (" + nc_strerror(status) + ")");
+    if (status == NC_NOERR) return;
+    // A file that begins as one (classic CDF, or netCDF-4's HDF5) but does not open: cut
+    // short or damaged.
+    std::string head(8, '\0');
+    std::ifstream in(path, std::ios::binary);
+    in.read(head.data(), 8);
+    const bool looks_like_one = head.compare(0, 3, "CDF") == 0 || head == "\x89HDF\r\n\x1a\n";
+    throw Error(
+        ErrorClass::input, "read",
+        "'" + path + "': " +
+            (looks_like_one ? "an incomplete or damaged netCDF file (" : "not a netCDF file (") +
+            nc_strerror(status) + (looks_like_one ? "): was it written or copied whole?" : ")"));
   }
   ~NcReader() { nc_close(id_); }
   NcReader(const NcReader&) = delete;

@@ -45,8 +45,13 @@ class LineReader {
   }
   [[noreturn]] void fail(const std::string& what) const { fail_at(number_, what); }
   [[noreturn]] void fail_at(int line, const std::string& what) const {
+    // The last line without its line break: a file cut short, most likely.
+    const bool cut = line == number_ && in_.eof();
     throw Error(ErrorClass::input, "read",
-                "'" + path_ + "' line " + std::to_string(line) + ": " + what);
+                "'" + path_ + "' line " + std::to_string(line) + ": " + what +
+                    (cut ? " (the file ends there, in the middle of a line: was it written or "
+                           "copied whole?)"
+                         : ""));
   }
   int number() const { return number_; }
   const std::string& path() const { return path_; }

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "core/error.h"
+#include "gis/gdal_env.h"
 #include "gis/read_mesh_formats.h"
 
 namespace isoquad::mesh_readers {
@@ -251,8 +252,20 @@ void read_vtu(const std::string& path, ReadMesh& mesh) {
           f.appended.end());
     doc.erase(tag_end + 1, close - tag_end - 1);
   }
+  std::string parse_error;
   const std::unique_ptr<CPLXMLNode, decltype(&CPLDestroyXMLNode)> root(
-      CPLParseXMLString(doc.c_str()), &CPLDestroyXMLNode);
+      [&] {
+        const GdalErrorCapture capture;  // the parser's complaint, for the message
+        CPLXMLNode* node = CPLParseXMLString(doc.c_str());
+        parse_error = capture.last_message();
+        return node;
+      }(),
+      &CPLDestroyXMLNode);
+  // A file cut short (a copy or a write that stopped) still begins as one.
+  if (!root && doc.find("<VTKFile") != std::string::npos)
+    fail(path, "an incomplete or damaged VTK XML file (" +
+                   (parse_error.empty() ? std::string("its XML does not parse") : parse_error) +
+                   "): was it written or copied whole?");
   const CPLXMLNode* file = root ? CPLGetXMLNode(root.get(), "=VTKFile") : nullptr;
   if (!file) fail(path, "not a VTK XML file (no VTKFile element)");
   if (std::string(CPLGetXMLValue(file, "type", "")) != "UnstructuredGrid")

@@ -394,6 +394,23 @@ TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
                 .find("(the open boundaries begin after the header's 1 elements and 4 nodes: "
                       "does the file have more than its header counts?)"),
             std::string::npos);
+  // Files cut short (a copy or a write that stopped): said so, not "not a VTK file".
+  EXPECT_NE(read_error(dir, "cut.gr3", "grid\n1 3\n1 0 0 0\n2 1")
+                .find("cut.gr3' line 4: expected y (the file ends there, in the middle of a "
+                      "line: was it written or copied whole?)"),
+            std::string::npos);
+  EXPECT_NE(read_error(dir, "cut.vtu",
+                       "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\"><Unstruc")
+                .find("cut.vtu': an incomplete or damaged VTK XML file (Parse error"),
+            std::string::npos);
+  EXPECT_NE(read_error(dir, "not.vtu", "<?xml version=\"1.0\"?>\n<other/>\n")
+                .find("not.vtu': not a VTK XML file (no VTKFile element)"),
+            std::string::npos);
+  EXPECT_NE(read_error(dir, "cut.nc", std::string("\x89HDF\r\n\x1a\n\0\0\0", 11))
+                .find("cut.nc': an incomplete or damaged netCDF file (NetCDF: "),
+            std::string::npos);
+  EXPECT_NE(read_error(dir, "not.nc", "grid\n").find("not.nc': not a netCDF file (NetCDF: "),
+            std::string::npos);
   EXPECT_NE(read_error(dir, "c.gr3", "grid\n1 3\n1 0 0 0\n2 1 x 0\n3 1 1 0\n1 3 1 2 3\n")
                 .find("line 4: expected y, a number, found 'x'"),
             std::string::npos);
