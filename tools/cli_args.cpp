@@ -472,7 +472,8 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
   cmd->add_option("--each", m.each,
                   "A mesh per value of this attribute over the selected features (each value's "
                   "features together; fid: a mesh per feature): {} in -o, --report and --plot "
-                  "stands for the value; a "
+                  "stands for the value (in a folder's name, -o runs/{}/hgrid.gr3, each region's "
+                  "folder is made as its files are written); a "
                   "region that fails does not stop the others, unless two fail with the same "
                   "usage error (the command's)")
       ->group("Selection");
@@ -500,7 +501,8 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                 "Mesh nothing where every output (with --report and --plot) exists already: with "
                 "--each, those regions are skipped, so that a batch stopped part-way resumes "
                 "where it stopped (a run writes all its outputs or none, and removes its "
-                "unfinished ones when stopped by Ctrl-C or SIGTERM)")
+                "unfinished ones when stopped by Ctrl-C or SIGTERM); a warning names the "
+                "options that differ where their report or GeoPackage records another command")
       ->group("Output");
   cmd->add_flag("--embed", m.mesh.embed_lines,
                 "With --align: a path of the mesh's edges along each line, its vertices moved "

@@ -100,6 +100,32 @@ std::vector<RegionOutcome> run_regions(
   std::size_t printed = 0;
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stop{false};
+  // The regions done, printed in order (the mutex held). Where one thread would have
+  // stopped (the second region, in order, with a usage error an earlier one had), the
+  // later regions that failed with such an error were only started because several
+  // ran at once: they are `not run`, unprinted, as one thread leaves them, so that the
+  // table and the total are the same on any number of threads (what a later region
+  // meshed meanwhile is kept: its files are written).
+  std::vector<std::string> errors_in_order;
+  bool stopped = false;
+  auto print_done = [&](bool skip_not_done) {
+    for (; printed < n && (buffers[printed].done || skip_not_done); ++printed) {
+      if (!buffers[printed].done) continue;
+      RegionOutcome& o = outcomes[printed];
+      const bool usage_failure = !o.usage_error.empty() && !o.quality;
+      const bool seen = usage_failure && std::find(errors_in_order.begin(), errors_in_order.end(),
+                                                   o.usage_error) != errors_in_order.end();
+      if (stopped && seen) {
+        o = RegionOutcome();
+        o.not_run = true;
+        continue;
+      }
+      stream << header(printed) << buffers[printed].out.str() << buffers[printed].err.str()
+             << std::flush;
+      if (seen) stopped = true;
+      if (usage_failure && !seen) errors_in_order.push_back(o.usage_error);
+    }
+  };
   auto worker = [&] {
     for (std::size_t k = next++; k < n && !stop; k = next++) {
       RegionOutcome outcome;
@@ -113,9 +139,7 @@ std::vector<RegionOutcome> run_regions(
       if (finished && !buffers[k].crash) finished(outcomes);
       if (repeats_usage_error(k)) stop = true;
       buffers[k].done = true;
-      for (; printed < n && buffers[printed].done; ++printed)
-        stream << header(printed) << buffers[printed].out.str() << buffers[printed].err.str()
-               << std::flush;
+      print_done(false);
     }
   };
   std::vector<std::thread> pool;
@@ -124,10 +148,7 @@ std::vector<RegionOutcome> run_regions(
   for (std::thread& t : pool) t.join();
   // Regions after one that did not start are printed by nobody above: those that ran
   // print now, in order.
-  for (; printed < n; ++printed)
-    if (buffers[printed].done)
-      stream << header(printed) << buffers[printed].out.str() << buffers[printed].err.str()
-             << std::flush;
+  print_done(true);
   for (const Buffers& b : buffers)
     if (b.crash) std::rethrow_exception(b.crash);
   return outcomes;
