@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <mutex>
 
 #include <cpl_json.h>
 #include <gdal_priv.h>
+#include <netcdf.h>
 #include <ogrsf_frmts.h>
 
 #include "app/versions.h"
@@ -41,6 +43,22 @@ std::optional<std::string> geopackage_metadata(const std::string& path, const ch
   return std::nullopt;
 }
 
+// The global attribute `name` of a netCDF file as text, or nullopt.
+std::optional<std::string> netcdf_global_text(const std::string& path, const char* name) {
+  const std::lock_guard<std::recursive_mutex> lock(netcdf_mutex());
+  int id = -1;
+  if (nc_open(path.c_str(), NC_NOWRITE, &id) != NC_NOERR) return std::nullopt;
+  std::size_t length = 0;
+  nc_type type = NC_NAT;
+  std::optional<std::string> text;
+  if (nc_inq_att(id, NC_GLOBAL, name, &type, &length) == NC_NOERR && type == NC_CHAR) {
+    std::string value(length, '\0');
+    if (nc_get_att_text(id, NC_GLOBAL, name, value.data()) == NC_NOERR) text = value;
+  }
+  nc_close(id);
+  return text;
+}
+
 }  // namespace
 
 std::optional<std::string> recorded_command_line(const std::vector<MeshOutput>& meshes,
@@ -53,10 +71,14 @@ std::optional<std::string> recorded_command_line(const std::vector<MeshOutput>& 
       if (line.IsValid() && line.GetType() == CPLJSONObject::Type::String) return line.ToString();
     }
   }
-  for (const MeshOutput& o : meshes)
+  for (const MeshOutput& o : meshes) {
+    std::optional<std::string> line;
     if (mesh_output_format(o) == MeshFormat::gpkg)
-      if (std::optional<std::string> line = geopackage_metadata(o.path, "command_line"))
-        return line;
+      line = geopackage_metadata(o.path, "command_line");
+    else if (mesh_output_format(o) == MeshFormat::nc)
+      line = netcdf_global_text(o.path, "history");
+    if (line) return line;
+  }
   return std::nullopt;
 }
 

@@ -71,8 +71,8 @@ std::string format_written_summary(const MeshResult& result, const MeshJobOutput
                                    const MeshJobWritten& written);
 
 // The command line an earlier run recorded in these outputs: the report's
-// "command_line", else the first GeoPackage's metadata row; nullopt when none holds one
-// (the other formats keep none that is read back).
+// "command_line", else the first GeoPackage's metadata row or netCDF file's history;
+// nullopt when none holds one (the other formats keep none that is read back).
 std::optional<std::string> recorded_command_line(const std::vector<MeshOutput>& meshes,
                                                  const std::string& report_path);
 

@@ -1407,6 +1407,20 @@ TEST(CliMesh, SkipExistingResumesABatch) {
                        dir.file("one.json") + ", which this command leaves out)"),
             std::string::npos)
       << r.err;
+  // A netCDF file alone: its history.
+  const std::vector<std::string> net = {
+      "mesh", input, "--size", "3000", "--where", "region = 'q'", "-o", dir.file("one_net.nc")};
+  ASSERT_EQ(run_cli(net, dir).exit_code, 0);
+  std::vector<std::string> net_again = net;
+  net_again[3] = "2500";
+  net_again.push_back("--skip-existing");
+  r = run_cli(net_again, dir);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("isoquad: warning: '" + dir.file("one_net.nc") +
+                       "' was written by another command (it had --size 3000 where this "
+                       "command has --size 2500)"),
+            std::string::npos)
+      << r.err;
   // A batch: each region skipped says so.
   r = run({"--skip-existing", "--where", "region = 'q'"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
