@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -61,6 +62,9 @@ struct FieldArgs {
 // The mesh subcommand's own arguments.
 struct MeshArgs {
   MeshOptions mesh;
+  // How many values each of the subcommand's options takes, by its names (0: a flag):
+  // to compare a recorded command with this one (--skip-existing).
+  std::map<std::string, int> option_values;
   std::vector<std::string> output_formats;
   std::string msh_version = "4.1";
   std::string msh_groups = "kind";

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "app/command_record.h"
 #include "app/fields_job.h"
 #include "app/mesh_job.h"
 #include "app/mesh_outputs.h"
@@ -183,16 +184,6 @@ int run_fields(CommonArgs& a, FieldArgs& f, const std::string& command_line) {
 }
 
 std::string joined_command_line(int argc, char** argv) {
-  auto quoted = [](const std::string& arg) {
-    const bool plain = !arg.empty() && arg.find_first_not_of(
-                                           "abcdefghijklmnopqrstuvwxyz"
-                                           "ABCDEFGHIJKLMNOPQRSTUVWXYZ"
-                                           "0123456789-_./,:=+@%") == std::string::npos;
-    if (plain) return arg;
-    std::string q = "'";
-    for (char c : arg) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
-  };
   std::string s = "isoquad";
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -203,86 +194,23 @@ std::string joined_command_line(int argc, char** argv) {
       ++i;  // and its value
       continue;
     }
-    s += " " + quoted(arg);
+    s += " " + shell_quoted(arg);
   }
   return s;
 }
 
-namespace {
-
-// A command line of joined_command_line() as its words, each as written (quotes kept):
-// split at the spaces outside '...'.
-std::vector<std::string> command_words(const std::string& line) {
-  std::vector<std::string> words(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (c == ' ' && !quoted) {
-      if (!words.back().empty()) words.emplace_back();
-      continue;
-    }
-    words.back() += c;
-    if (c == '\\' && !quoted && i + 1 < line.size())
-      words.back() += line[++i];
-    else if (c == '\'')
-      quoted = !quoted;
-  }
-  if (words.back().empty()) words.pop_back();
-  return words;
-}
-
-std::string words_between(const std::vector<std::string>& words, std::size_t from, std::size_t to) {
-  std::string text;
-  for (std::size_t i = from; i < to; ++i) text += (i > from ? " " : "") + words[i];
-  return text;
-}
-
-}  // namespace
-
 std::string skipped_outputs_warning(const CommonArgs& a, const MeshArgs& m,
                                     const std::string& command_line) {
-  const std::vector<MeshOutput> outputs = mesh_outputs(a, m);
-  const std::optional<std::string> recorded = recorded_command_line(outputs, a.report_path);
-  if (!recorded || *recorded == command_line) return "";
-  const std::string file =
-      !a.report_path.empty() && a.report_path != kStdoutPath ? a.report_path : outputs.front().path;
-  // The words that differ, in runs between the words both have in common (a longest
-  // common subsequence), each run as what it had and what this command has.
-  const std::vector<std::string> was = command_words(*recorded);
-  const std::vector<std::string> is = command_words(command_line);
-  const std::size_t nw = was.size(), ni = is.size();
-  std::vector<std::vector<std::size_t>> common(nw + 1, std::vector<std::size_t>(ni + 1, 0));
-  for (std::size_t i = nw; i-- > 0;)
-    for (std::size_t j = ni; j-- > 0;)
-      common[i][j] =
-          was[i] == is[j] ? common[i + 1][j + 1] + 1 : std::max(common[i + 1][j], common[i][j + 1]);
-  std::vector<std::string> runs;
-  std::size_t i = 0, j = 0;
-  while (i < nw || j < ni) {
-    if (i < nw && j < ni && was[i] == is[j]) {
-      ++i, ++j;
-      continue;
-    }
-    const std::size_t i0 = i, j0 = j;
-    while ((i < nw || j < ni) && !(i < nw && j < ni && was[i] == is[j])) {
-      if (j == ni || (i < nw && common[i + 1][j] >= common[i][j + 1]))
-        ++i;
-      else
-        ++j;
-    }
-    // An option's value that differs: said with its option.
-    const bool value = i0 > 0 && i > i0 && j > j0 && was[i0][0] != '-' && is[j0][0] != '-' &&
-                       was[i0 - 1][0] == '-';
-    const std::string old_run = words_between(was, i0 - value, i);
-    const std::string new_run = words_between(is, j0 - value, j);
-    runs.push_back(old_run.empty()   ? "this command adds " + new_run
-                   : new_run.empty() ? "it had " + old_run + ", which this command leaves out"
-                                     : "it had " + old_run + " where this command has " + new_run);
-  }
-  std::string difference;
-  for (std::size_t k = 0; k < runs.size() && k < 3; ++k) difference += (k ? "; " : "") + runs[k];
-  if (runs.size() > 3) difference += "; and " + std::to_string(runs.size() - 3) + " more";
-  return "'" + file + "' was written by another command (" + difference +
+  const std::optional<RecordedCommand> recorded =
+      recorded_command(mesh_outputs(a, m), a.report_path);
+  if (!recorded || recorded->command == command_line) return "";
+  // With --each, a region is its value's features, whichever --where listed them.
+  const std::vector<std::string> ignored =
+      m.each.empty() ? std::vector<std::string>{} : std::vector<std::string>{"--where"};
+  const std::string difference =
+      command_difference(recorded->command, command_line, m.option_values, ignored);
+  if (difference.empty()) return "";  // the same options, in another order or spelling
+  return "'" + recorded->file + "' was written by another command (" + difference +
          "): its outputs are kept as they are; --overwrite meshes again with this one";
 }
 

@@ -22,8 +22,9 @@ std::string joined_command_line(int argc, char** argv);
 
 // --skip-existing, every output there: what they record of the run that wrote them,
 // against `command_line` (joined_command_line()). A sentence for a warning (without
-// "isoquad: warning: ") when they record another command, naming the words that differ;
-// empty when they record this one, or none.
+// "isoquad: warning: ") when they record another command, naming the options that
+// differ (command_difference(); with --each, --where is not compared: a region is its
+// value's features); empty when they record this one (in any order), or none.
 std::string skipped_outputs_warning(const CommonArgs& a, const MeshArgs& m,
                                     const std::string& command_line);
 

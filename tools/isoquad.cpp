@@ -165,6 +165,12 @@ int main(int argc, char** argv) {
     return exit_code(ErrorClass::usage);
   }
 
+  for (const CLI::Option* o : mesh_cmd->get_options()) {
+    const int n = o->get_items_expected_max();  // 0: a flag
+    for (const std::string& name : o->get_lnames()) mesh_extra.option_values["--" + name] = n;
+    for (const std::string& name : o->get_snames()) mesh_extra.option_values["-" + name] = n;
+  }
+
   // Before any thread starts (the signals' own, the stages' helpers): the heap's pools,
   // then the signals every thread blocks, so that Ctrl-C or a batch system's SIGTERM
   // leaves no temporary file.

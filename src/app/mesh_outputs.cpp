@@ -2,19 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <mutex>
-
-#include <cpl_json.h>
-#include <gdal_priv.h>
-#include <netcdf.h>
-#include <ogrsf_frmts.h>
 
 #include "app/versions.h"
 #include "core/geometry.h"
 #include "core/text.h"
 #include "gis/atomic_output.h"
 #include "gis/crs.h"
-#include "gis/gdal_env.h"
 #include "gis/raster_field.h"
 #include "io/mesh_boundary.h"
 #include "plot/plot_mesh.h"
@@ -26,61 +19,7 @@ namespace {
 
 std::string format_number(double v) { return printf_string("%.6g", v); }
 
-// The value of the metadata row `key` of an isoquad GeoPackage, or nullopt.
-std::optional<std::string> geopackage_metadata(const std::string& path, const char* key) {
-  ensure_gdal_registered();
-  GdalErrorCapture quiet;  // a file that is not one of ours: no record
-  GdalDataset ds(static_cast<GDALDataset*>(
-      GDALOpenEx(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, nullptr, nullptr)));
-  OGRLayer* layer = ds ? ds->GetLayerByName("metadata") : nullptr;
-  if (!layer || layer->GetLayerDefn()->GetFieldIndex("key") < 0 ||
-      layer->GetLayerDefn()->GetFieldIndex("value") < 0)
-    return std::nullopt;
-  layer->ResetReading();
-  for (auto& feature : *layer)
-    if (std::string(feature->GetFieldAsString("key")) == key)
-      return std::string(feature->GetFieldAsString("value"));
-  return std::nullopt;
-}
-
-// The global attribute `name` of a netCDF file as text, or nullopt.
-std::optional<std::string> netcdf_global_text(const std::string& path, const char* name) {
-  const std::lock_guard<std::recursive_mutex> lock(netcdf_mutex());
-  int id = -1;
-  if (nc_open(path.c_str(), NC_NOWRITE, &id) != NC_NOERR) return std::nullopt;
-  std::size_t length = 0;
-  nc_type type = NC_NAT;
-  std::optional<std::string> text;
-  if (nc_inq_att(id, NC_GLOBAL, name, &type, &length) == NC_NOERR && type == NC_CHAR) {
-    std::string value(length, '\0');
-    if (nc_get_att_text(id, NC_GLOBAL, name, value.data()) == NC_NOERR) text = value;
-  }
-  nc_close(id);
-  return text;
-}
-
 }  // namespace
-
-std::optional<std::string> recorded_command_line(const std::vector<MeshOutput>& meshes,
-                                                 const std::string& report_path) {
-  if (!report_path.empty() && report_path != kStdoutPath) {
-    CPLJSONDocument doc;
-    GdalErrorCapture quiet;
-    if (doc.Load(report_path)) {
-      const CPLJSONObject line = doc.GetRoot().GetObj("command_line");
-      if (line.IsValid() && line.GetType() == CPLJSONObject::Type::String) return line.ToString();
-    }
-  }
-  for (const MeshOutput& o : meshes) {
-    std::optional<std::string> line;
-    if (mesh_output_format(o) == MeshFormat::gpkg)
-      line = geopackage_metadata(o.path, "command_line");
-    else if (mesh_output_format(o) == MeshFormat::nc)
-      line = netcdf_global_text(o.path, "history");
-    if (line) return line;
-  }
-  return std::nullopt;
-}
 
 std::vector<std::pair<std::string, std::string>> quality_items(const QualitySummary& q) {
   return {{"num_quads", std::to_string(q.num_quads)},

@@ -70,12 +70,6 @@ std::vector<std::string> mesh_job_warnings(const MeshResult& result, const MeshJ
 std::string format_written_summary(const MeshResult& result, const MeshJobOutputs& outputs,
                                    const MeshJobWritten& written);
 
-// The command line an earlier run recorded in these outputs: the report's
-// "command_line", else the first GeoPackage's metadata row or netCDF file's history;
-// nullopt when none holds one (the other formats keep none that is read back).
-std::optional<std::string> recorded_command_line(const std::vector<MeshOutput>& meshes,
-                                                 const std::string& report_path);
-
 // The quality summary as (name, value) pairs, as the GeoPackage's metadata keeps them.
 std::vector<std::pair<std::string, std::string>> quality_items(const QualitySummary& q);
 

@@ -1421,13 +1421,17 @@ TEST(CliMesh, SkipExistingResumesABatch) {
                        "command has --size 2500)"),
             std::string::npos)
       << r.err;
-  // A batch: each region skipped says so.
-  r = run({"--skip-existing", "--where", "region = 'q'"});
+  // A batch: each region skipped says so; a --where that lists the region among others
+  // does not count (a region is its value's features).
+  r = run({"--skip-existing", "--where", "region IN ('q', 'z')"});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(r.err.find("another command"), std::string::npos) << r.err;
+  r = run({"--skip-existing", "--where", "region = 'q'", "--hmax=5e3"});
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("skipped: every output exists (--skip-existing)\nisoquad: warning: '" +
                        dir.file("q.json") +
-                       "' was written by another command (this command adds --where 'region = "
-                       "'\\''q'\\'''): its outputs"),
+                       "' was written by another command (this command adds --hmax 5e3): its "
+                       "outputs"),
             std::string::npos)
       << r.err;
 }
