@@ -85,16 +85,18 @@ InputFiles& input_files() {
   return files;
 }
 
-// The directories the run may make (CreatableDirectories), absolute and normalised.
+// The directories the run may make (CreatableDirectories), and those it made, absolute
+// and normalised. Never destroyed: a signal may come while the process exits.
 struct CreatableDirs {
   std::mutex mutex;
   bool active = false;
   std::set<std::string> dirs;
+  std::set<std::string> made;
 };
 
 CreatableDirs& creatable_dirs() {
-  static CreatableDirs dirs;
-  return dirs;
+  static CreatableDirs* const dirs = new CreatableDirs;
+  return *dirs;
 }
 
 std::string directory_key(const fs::path& dir) {
@@ -111,17 +113,36 @@ bool may_create(const fs::path& dir) {
   return c.active && c.dirs.count(directory_key(dir)) > 0;
 }
 
-// The directory an output in `dir` needs to exist: `dir`, or the nearest one above it
-// when the directories between may be made.
-fs::path existing_directory_for(const fs::path& dir) {
+// Nothing at `d`, not even a link to nothing.
+bool nothing_at(const fs::path& d) {
   std::error_code ec;
+  const fs::file_type type = fs::symlink_status(d, ec).type();
+  return type == fs::file_type::not_found || ec == std::errc::filename_too_long;
+}
+
+// The directory an output in `dir` needs to exist: `dir`, or the nearest one above it
+// when the directories between may be made (`missing`: those, the deepest first).
+fs::path existing_directory_for(const fs::path& dir, std::vector<fs::path>* missing = nullptr) {
   fs::path d = dir;
-  while (!fs::exists(d, ec) && may_create(d)) {
+  while (nothing_at(d) && may_create(d)) {
+    if (missing) missing->push_back(d);
     const fs::path up = d.parent_path();
     if (up.empty() || up == d) return fs::path(".");
     d = up;
   }
   return d;
+}
+
+// Removes the directories the run made that held `path`, from its own up, while they
+// are empty (an output not finished: nothing of the region's left behind).
+void remove_made_directories_above(const std::string& path) {
+  CreatableDirs& c = creatable_dirs();
+  std::lock_guard<std::mutex> lock(c.mutex);
+  std::error_code ec;
+  for (fs::path d = parent_dir(path); c.made.count(directory_key(d)) > 0; d = d.parent_path()) {
+    if (!fs::remove(d, ec) || ec) return;  // not empty: another output is in it
+    c.made.erase(directory_key(d));
+  }
 }
 
 // Error(output) when `path` is an existing file the run reads.
@@ -171,6 +192,7 @@ CreatableDirectories::~CreatableDirectories() {
   std::lock_guard<std::mutex> lock(c.mutex);
   c.active = false;
   c.dirs.clear();
+  c.made.clear();
 }
 
 void note_creatable_directory(const std::string& dir) {
@@ -188,22 +210,28 @@ void check_output_path(const std::string& path, bool overwrite) {
   if (fs::exists(path, ec) && !overwrite)
     throw Error(ErrorClass::output, "write",
                 quote(path) + " already exists; pass --overwrite to replace it");
-  const fs::path dir = existing_directory_for(parent_dir(path));
+  std::vector<fs::path> missing;  // folders to make, the deepest first
+  const fs::path dir = existing_directory_for(parent_dir(path), &missing);
   if (!fs::is_directory(dir, ec))
     throw Error(ErrorClass::output, "write",
                 quote(path) + ": directory " + quote(dir.string()) +
-                    (fs::exists(dir, ec) ? " is a file" : " does not exist"));
+                    (fs::exists(dir, ec)       ? " is a file"
+                     : fs::is_symlink(dir, ec) ? " is a link to nothing"
+                                               : " does not exist"));
   if (access(dir.c_str(), W_OK) != 0)
     throw Error(ErrorClass::output, "write",
                 quote(path) + ": directory " + quote(dir.string()) + " is not writable");
-  // A name longer than the file system takes would fail only at the end, after the work.
-  const std::string name = fs::path(path).filename().string();
+  // A name longer than the file system takes would fail only at the end, after the work:
+  // the file's, and those of the folders to make.
   const long name_max = pathconf(dir.c_str(), _PC_NAME_MAX);
-  if (name_max > 0 && static_cast<long>(name.size()) > name_max)
-    throw Error(ErrorClass::output, "write",
-                quote(path) + ": its name has " + std::to_string(name.size()) +
-                    " bytes, over the " + std::to_string(name_max) +
-                    " the file system takes in a file name");
+  std::vector<std::string> names = {fs::path(path).filename().string()};
+  for (const fs::path& m : missing) names.push_back(m.filename().string());
+  for (std::size_t k = 0; k < names.size(); ++k)
+    if (name_max > 0 && static_cast<long>(names[k].size()) > name_max)
+      throw Error(ErrorClass::output, "write",
+                  quote(path) + ": " + (k ? "its folder " + quote(names[k]) : "its name") +
+                      " has " + std::to_string(names[k].size()) + " bytes, over the " +
+                      std::to_string(name_max) + " the file system takes in a file name");
 }
 
 std::string output_path_key(const std::string& path) {
@@ -219,11 +247,16 @@ AtomicOutput::AtomicOutput(std::string final_path, bool overwrite)
   // A batch's region folder (CreatableDirectories), made now that its output is written.
   std::error_code ec;
   if (!fs::is_directory(parent_dir(final_path_), ec)) {
+    std::vector<fs::path> missing;
+    existing_directory_for(parent_dir(final_path_), &missing);
     fs::create_directories(parent_dir(final_path_), ec);
     if (ec)
       throw Error(ErrorClass::output, "write",
                   quote(final_path_) + ": cannot make directory " +
                       quote(parent_dir(final_path_).string()) + ": " + ec.message());
+    CreatableDirs& c = creatable_dirs();
+    std::lock_guard<std::mutex> lock(c.mutex);
+    for (const fs::path& m : missing) c.made.insert(directory_key(m));
   }
   const fs::path p(final_path_);
   const std::string stem = "." + short_stem(p.stem().string()) + ".tmp-" + std::to_string(getpid());
@@ -245,6 +278,7 @@ AtomicOutput::~AtomicOutput() {
   if (committed_) return;
   remove_with_side_files(temp_path_);
   forget_temp_path(temp_path_);
+  remove_made_directories_above(temp_path_);
 }
 
 void AtomicOutput::commit() {
@@ -266,6 +300,7 @@ void remove_unfinished_outputs() {
   UnfinishedOutputs& u = unfinished();
   std::lock_guard<std::recursive_mutex> lock(u.mutex);
   for (const std::string& path : u.temp_paths) remove_with_side_files(path);
+  for (const std::string& path : u.temp_paths) remove_made_directories_above(path);
   u.temp_paths.clear();
 }
 

@@ -136,6 +136,49 @@ TEST(AtomicOutput, NotedFoldersAreMadeWhenWritten) {
   }
   note_creatable_directory(dir.file("runs/gozo"));  // no scope: not noted
   EXPECT_THROW(check_output_path(dir.file("runs/gozo/hgrid.gr3"), false), Error);
+  {
+    const CreatableDirectories scope;
+    // An output not finished (a failure, a signal) leaves no folder it made, but those
+    // that hold another output.
+    note_creatable_directory(dir.file("runs/gozo"));
+    note_creatable_directory(dir.file("runs/gozo/grid"));
+    {
+      OutputSet set;
+      write_file(set.add(dir.file("runs/gozo/grid/hgrid.gr3"), false), "g");
+    }
+    EXPECT_FALSE(std::filesystem::exists(dir.file("runs/gozo")));
+    {
+      AtomicOutput kept(dir.file("runs/gozo/report.json"), false);
+      write_file(kept.temp_path(), "{}");
+      kept.commit();
+      AtomicOutput stopped(dir.file("runs/gozo/grid/hgrid.gr3"), false);
+      write_file(stopped.temp_path(), "g");
+      remove_unfinished_outputs();  // as on SIGINT
+      EXPECT_FALSE(std::filesystem::exists(dir.file("runs/gozo/grid")));
+      EXPECT_TRUE(std::filesystem::exists(dir.file("runs/gozo/report.json")));
+    }
+    // A folder name over the file system's limit, found by the check; a link to nothing
+    // where the folder would be, named so.
+    const std::string long_name(300, 'x');
+    note_creatable_directory(dir.file("runs/" + long_name));
+    try {
+      check_output_path(dir.file("runs/" + long_name + "/m.gpkg"), false);
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      EXPECT_NE(
+          std::string(e.what()).find("its folder '" + long_name + "' has 300 bytes, over the"),
+          std::string::npos)
+          << e.what();
+    }
+    std::filesystem::create_symlink(dir.file("nowhere"), dir.file("runs/link"));
+    note_creatable_directory(dir.file("runs/link"));
+    try {
+      check_output_path(dir.file("runs/link/m.gpkg"), false);
+      ADD_FAILURE() << "no error";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("is a link to nothing"), std::string::npos) << e.what();
+    }
+  }
 }
 
 // When moving the second output into place fails, the first, already moved, is removed.
