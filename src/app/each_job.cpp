@@ -102,10 +102,10 @@ std::vector<RegionOutcome> run_regions(
   std::atomic<bool> stop{false};
   // The regions done, printed in order (the mutex held). Where one thread would have
   // stopped (the second region, in order, with a usage error an earlier one had), the
-  // later regions that failed with such an error were only started because several
-  // ran at once: they are `not run`, unprinted, as one thread leaves them, so that the
-  // table and the total are the same on any number of threads (what a later region
-  // meshed meanwhile is kept: its files are written).
+  // later regions that failed with such an error, or were skipped, were only started
+  // because several ran at once: they are `not run`, unprinted, as one thread leaves them, so that
+  // the table and the total are the same on any number of threads (what a later region meshed
+  // meanwhile is kept: its files are written).
   std::vector<std::string> errors_in_order;
   bool stopped = false;
   auto print_done = [&](bool skip_not_done) {
@@ -115,7 +115,7 @@ std::vector<RegionOutcome> run_regions(
       const bool usage_failure = !o.usage_error.empty() && !o.quality;
       const bool seen = usage_failure && std::find(errors_in_order.begin(), errors_in_order.end(),
                                                    o.usage_error) != errors_in_order.end();
-      if (stopped && seen) {
+      if (stopped && (seen || o.skipped)) {
         o = RegionOutcome();
         o.not_run = true;
         continue;

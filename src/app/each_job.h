@@ -57,7 +57,8 @@ struct RegionOutcome {
 // done (its out, then its err). Once two regions have failed with the same usage error
 // (one that names no place of theirs: the command is wrong for every region), no other
 // region starts: those are `not_run`, and so are those after the second in order that
-// several threads had started and that failed with such an error (neither printed), so
+// several threads had started and that failed with such an error or were skipped
+// (neither printed), so
 // that the outcomes are one thread's. Anything `run` throws is rethrown once every
 // started region has run. `finished`, when given, is called with the outcomes so far
 // (those not yet ended `not_run`) each time a region ends, one call at a time; it must

@@ -216,6 +216,18 @@ TEST(EachJob, TheSameUsageErrorTwiceStopsTheBatch) {
     EXPECT_NE(total.find("6 not run: a and b failed with the same usage error"), std::string::npos)
         << total;
     EXPECT_EQ(stream.str(), "== 0\n== 1\n") << jobs << " jobs";
+    // Regions skipped (--skip-existing) after those two: not run either.
+    outcomes = batch(
+        jobs,
+        [&](std::size_t k) {
+          if (k < 2) return usage("read: no attribute 'x'");
+          RegionOutcome o;
+          o.skipped = true;
+          return o;
+        },
+        ran);
+    for (std::size_t k = 0; k < values.size(); ++k) EXPECT_EQ(outcomes[k].not_run, k >= 2) << k;
+    EXPECT_EQ(stream.str(), "== 0\n== 1\n") << jobs << " jobs";
     EXPECT_NE(format_each_table("name", values, outcomes).find("h     not run\n"),
               std::string::npos);
 
