@@ -168,22 +168,22 @@ QualityJobResult measure_mesh_file(const QualityJobOptions& options, const Progr
   std::vector<StageTime> read_times = r.fields.times;
   FieldsOptions fields = options.fields;
   const MeshDefects defects = find_mesh_defects(file);
-  if (fields.front.read.path.empty() && !fields.front.source) {
-    // Without INPUT, --open-groups names the groups of the measured .msh or .2dm itself.
-    if (!options.fields.front.open_groups.empty()) {
-      if (!options.fields.front.open_boundary_path.empty())
-        throw Error(ErrorClass::usage, "options",
-                    "give the open boundaries once: --open-boundary or --open-groups");
-      open_boundaries_from_groups(file, options.fields.front.open_groups, options.mesh_path);
-    }
-    fields.front = outline_front_end(options, file, r);
-    fields.front.open_groups.clear();
-  }
   try {
+    if (fields.front.read.path.empty() && !fields.front.source) {
+      // Without INPUT, --open-groups names the groups of the measured .msh or .2dm itself.
+      if (!options.fields.front.open_groups.empty()) {
+        if (!options.fields.front.open_boundary_path.empty())
+          throw Error(ErrorClass::usage, "options",
+                      "give the open boundaries once: --open-boundary or --open-groups");
+        open_boundaries_from_groups(file, options.fields.front.open_groups, options.mesh_path);
+      }
+      fields.front = outline_front_end(options, file, r);
+      fields.front.open_groups.clear();
+    }
     r.fields = build_fields(fields, progress.slice(0.05, 0.85));
   } catch (const Error& e) {
-    // An outline (without INPUT) that crosses itself where elements do, or that is
-    // empty or wrong where elements overlap: say which.
+    // An outline (without INPUT) that crosses itself where elements do, or that cannot
+    // be traced or is empty where elements overlap: say which.
     if (e.error_class() != ErrorClass::input || !options.fields.front.read.path.empty()) throw;
     std::string why;
     if (defects.num_degenerate > 0)

@@ -31,6 +31,7 @@ class LineReader {
   bool next(std::string& line) {
     if (!std::getline(in_, line)) return false;
     ++number_;
+    unterminated_ = in_.eof();  // the file ended before the line's break
     if (!line.empty() && line.back() == '\r') line.pop_back();
     return true;
   }
@@ -46,7 +47,7 @@ class LineReader {
   [[noreturn]] void fail(const std::string& what) const { fail_at(number_, what); }
   [[noreturn]] void fail_at(int line, const std::string& what) const {
     // The last line without its line break: a file cut short, most likely.
-    const bool cut = line == number_ && in_.eof();
+    const bool cut = line == number_ && unterminated_;
     throw Error(ErrorClass::input, "read",
                 "'" + path_ + "' line " + std::to_string(line) + ": " + what +
                     (cut ? " (the file ends there, in the middle of a line: was it written or "
@@ -60,6 +61,7 @@ class LineReader {
   std::string path_;
   std::ifstream in_;
   int number_ = 0;
+  bool unterminated_ = false;
 };
 
 // A word of the file as a message shows it: at most 32 characters, each byte outside

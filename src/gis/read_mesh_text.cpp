@@ -185,10 +185,16 @@ void read_gr3(LineReader& r, ReadMesh& mesh) {
     more = read_gr3_boundaries(
         r, ids, "open", [](long long) { return true; }, mesh.open_boundaries);
   } catch (const Error& e) {
+    // Cut in the middle of a line: said so already.
+    if (e.message().find("in the middle of a line") != std::string::npos) throw;
+    // Ended early: cut short, or elements read as the boundaries.
+    const bool ended = e.message().find("the file ends at line") != std::string::npos;
     throw Error(e.error_class(), e.stage(),
                 e.message() + " (the open boundaries begin after the header's " +
-                    std::to_string(ne) + " elements and " + std::to_string(np) +
-                    " nodes: does the file have more than its header counts?)");
+                    std::to_string(ne) + " elements and " + std::to_string(np) + " nodes: " +
+                    (ended ? "is the file cut short, or does it have more than its header "
+                             "counts?)"
+                           : "does the file have more than its header counts?)"));
   }
   if (!more) return;  // the end: no boundaries
   // The land boundaries, when the file goes on. ADCIRC's flux boundaries (IBTYPE 2, 12,

@@ -560,6 +560,19 @@ TEST(CliQuality, WithoutInputTheDomainIsTheMeshsOutline) {
                            "quad 2 (as quad 1))"),
             std::string::npos)
       << twice.err;
+  // In a larger mesh: its outline cannot be traced, and the message says why.
+  write_file(dir.file("twice2.gr3"),
+             "twice\n3 6\n1 500000 5000000 0\n2 501000 5000000 0\n3 502000 5000000 0\n"
+             "4 500000 5001000 0\n5 501000 5001000 0\n6 502000 5001000 0\n1 4 1 2 5 4\n"
+             "2 4 2 3 6 5\n3 4 2 3 6 5\n");
+  const CliResult twice2 = run_cli(
+      {"quality", "--mesh", dir.file("twice2.gr3"), "--mesh-crs", "EPSG:32630", "--size", "500"},
+      dir);
+  EXPECT_EQ(twice2.exit_code, 3) << twice2.err;
+  EXPECT_NE(twice2.err.find("is a side of three or more elements (the mesh has 1 element(s) given "
+                            "twice, on the same nodes, the first quad 3 (as quad 2))"),
+            std::string::npos)
+      << twice2.err;
   // A raster INPUT's band of values: nothing to select without INPUT.
   const CliResult zmin = run_cli({"quality", "--mesh", dir.file("m.gpkg"), "--zmin", "0"}, dir);
   EXPECT_EQ(zmin.exit_code, 2);

@@ -383,6 +383,9 @@ TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
                 .find("f.gr3': the file ends at line 7 where the total number of open boundary "
                       "nodes should follow"),
             std::string::npos);
+  EXPECT_NE(read_error(dir, "f.gr3", tri + "1 = Number of open boundaries\n")
+                .find("is the file cut short, or does it have more than its header counts?"),
+            std::string::npos);
   EXPECT_NE(read_error(dir, "g.gr3", tri + "1\n2\n2\n1\n7\n")
                 .find("g.gr3' line 11: open boundary 1 has node 7, which is not among the file's "
                       "nodes"),
@@ -392,12 +395,17 @@ TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
   EXPECT_NE(read_error(dir, "n.gr3",
                        "grid\n1 4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n1 3 1 2 3\n2 3 1 3 4\n")
                 .find("(the open boundaries begin after the header's 1 elements and 4 nodes: "
-                      "does the file have more than its header counts?)"),
+                      "is the file cut short, or does it have more than its header counts?)"),
             std::string::npos);
   // Files cut short (a copy or a write that stopped): said so, not "not a VTK file".
   EXPECT_NE(read_error(dir, "cut.gr3", "grid\n1 3\n1 0 0 0\n2 1")
                 .find("cut.gr3' line 4: expected y (the file ends there, in the middle of a "
                       "line: was it written or copied whole?)"),
+            std::string::npos);
+  // Cut at a line's end: the line is whole, and not said to be cut.
+  EXPECT_EQ(read_error(dir, "cut2.gr3", "grid\n1 3\n1 0 0 0\n2 1\n").find("middle of a line"),
+            std::string::npos);
+  EXPECT_NE(read_error(dir, "cut2.gr3", "grid\n1 3\n1 0 0 0\n2 1\n").find("line 4: expected y"),
             std::string::npos);
   EXPECT_NE(read_error(dir, "cut.vtu",
                        "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\"><Unstruc")
