@@ -116,9 +116,12 @@ std::vector<EachRegion> each_clip_regions(const CommonArgs& a, const FieldArgs& 
   // share fail here, all named, rather than region by region.
   std::vector<std::string> shared;
   for (const SelectionValue& v : selected)
-    if (v.num_features > 1)
+    if (v.num_features > 1 || v.num_polygons > 1)
       shared.push_back((v.null ? std::string("NULL") : "'" + utf8_or_cp1252(v.text) + "'") + " (" +
-                       std::to_string(v.num_features) + " polygons)");
+                       (v.num_features > 1
+                            ? std::to_string(v.num_features) + " polygons"
+                            : "a multi-polygon of " + std::to_string(v.num_polygons) + " parts") +
+                       ")");
   if (!shared.empty()) {
     std::string list;
     for (std::size_t k = 0; k < shared.size() && k < 5; ++k) list += (k ? ", " : "") + shared[k];
@@ -127,7 +130,8 @@ std::vector<EachRegion> each_clip_regions(const CommonArgs& a, const FieldArgs& 
                 "--clip '" + clip.path + "': --each-clip " + field +
                     " meshes one polygon per value, and several polygons have the value " + list +
                     ": give each its own value, merge them into one, or run over an attribute "
-                    "that tells them apart (--each-clip fid)");
+                    "that tells them apart (--each-clip fid; a multi-polygon's parts split into "
+                    "features first, as ogr2ogr -explodecollections does)");
   }
   std::vector<EachRegion> regions = regions_of(a, f, field, selected, true);
   for (EachRegion& r : regions)
@@ -358,8 +362,13 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
           RegionOutcome outcome;
           outcome.skipped = true;
           // The table's figures from the region's report, when it has one.
-          if (!r.a.report_path.empty() && r.a.report_path != "-")
+          if (!r.a.report_path.empty() && r.a.report_path != "-") {
             outcome.quality = read_report_quality(r.a.report_path);
+            if (!outcome.quality && !a.quiet)
+              console.err << "isoquad: warning: '" << r.a.report_path
+                          << "' does not read as an isoquad mesh report (damaged, cut short, or "
+                             "another program's): the table has no figures for the region\n";
+          }
           return outcome;
         }
         MeshArgs mm = m;

@@ -3,6 +3,7 @@
 #include <cpl_json.h>
 
 #include "core/text.h"
+#include "gis/gdal_env.h"
 
 namespace isoquad {
 
@@ -125,7 +126,10 @@ void add_quality_values(JsonWriter& j, const QualitySummary& q, QualityParts par
 
 std::optional<QualitySummary> read_report_quality(const std::string& path) {
   CPLJSONDocument doc;
-  if (!doc.Load(path)) return std::nullopt;
+  {
+    const GdalErrorCapture quiet;  // damaged or cut short: no figures (the caller says so)
+    if (!doc.Load(path)) return std::nullopt;
+  }
   const CPLJSONObject q = doc.GetRoot().GetObj("quality");
   if (!q.IsValid()) return std::nullopt;
   QualitySummary s;

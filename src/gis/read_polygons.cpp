@@ -105,21 +105,32 @@ class Reader {
     // Each value's features by their ids, in the order read.
     std::map<std::pair<double, std::string>, std::vector<GIntBig>> ids;
     std::vector<GIntBig> null_ids;
+    std::map<std::pair<double, std::string>, std::size_t> polygons;
+    std::size_t null_polygons = 0;
     bool any_null = false, all_ids = true;
     layer_->ResetReading();
     for (auto& feature : *layer_) {
       const GIntBig fid = feature->GetFID();
       all_ids = all_ids && fid != OGRNullFID;
+      const OGRGeometry* g = feature->GetGeometryRef();
+      const OGRwkbGeometryType shape = g ? wkbFlatten(g->getGeometryType()) : wkbUnknown;
+      const std::size_t parts =
+          shape == wkbPolygon ? 1
+          : shape == wkbMultiPolygon
+              ? static_cast<std::size_t>(g->toMultiPolygon()->getNumGeometries())
+              : 0;
       if (by_fid) {
         SelectionValue v{std::to_string(fid), quoted + " = " + std::to_string(fid), false, ""};
         const auto key = std::make_pair(static_cast<double>(fid), v.text);
         sorted.emplace(key, v);
         ids[key].push_back(fid);
+        polygons[key] += parts;
         continue;
       }
       if (!feature->IsFieldSetAndNotNull(index)) {
         any_null = true;
         null_ids.push_back(fid);
+        null_polygons += parts;
         continue;
       }
       SelectionValue v;
@@ -129,8 +140,13 @@ class Reader {
       // SQLite compares as text.
       const OGRFieldType type = feature->GetFieldDefnRef(index)->GetType();
       if ((type == OFTDate || type == OFTDateTime) && v.text.size() >= 10 && v.text[4] == '/' &&
-          v.text[7] == '/')
+          v.text[7] == '/') {
         v.text[4] = v.text[7] = '-';
+        // A time: 2020-01-31T10:20:30, UTC as Z (GDAL's "2020/01/31 10:20:30+00").
+        if (v.text.size() > 10 && v.text[10] == ' ') v.text[10] = 'T';
+        if (type == OFTDateTime && ends_with(v.text, "+00"))
+          v.text.replace(v.text.size() - 3, 3, "Z");
+      }
       if (number) {
         v.filter = quoted + " = " + v.text;
       } else {
@@ -141,6 +157,7 @@ class Reader {
       const auto key = std::make_pair(number ? feature->GetFieldAsDouble(index) : 0.0, v.text);
       sorted.emplace(key, v);
       ids[key].push_back(fid);
+      polygons[key] += parts;
     }
     auto id_filter = [&](const std::vector<GIntBig>& fids, const std::string& fallback) {
       if (!all_ids) return fallback;
@@ -152,12 +169,14 @@ class Reader {
     for (auto& [key, v] : sorted) {
       v.id_filter = id_filter(ids[key], v.filter);
       v.num_features = ids[key].size();
+      v.num_polygons = polygons[key];
       out.push_back(std::move(v));
     }
     if (any_null) {
       SelectionValue v{"", quoted + " IS NULL", true, ""};
       v.id_filter = id_filter(null_ids, v.filter);
       v.num_features = null_ids.size();
+      v.num_polygons = null_polygons;
       out.push_back(std::move(v));
     }
     if (unmatched && !out.empty()) *unmatched = unmatched_values();

@@ -106,6 +106,7 @@ struct SelectionValue {
   // readable `filter` when a feature has no id.
   std::string id_filter;
   std::size_t num_features = 0;  // the selected features that have it
+  std::size_t num_polygons = 0;  // their polygons (a multi-polygon's parts each; lines none)
 };
 
 // The distinct values of `field` over the features `params` selects (layer, --where,

@@ -2193,6 +2193,22 @@ TEST(CliOutputs, EachClipMeshesEveryAreaOfTheClipFile) {
       << r.err;
   EXPECT_EQ(r.err.find("=="), std::string::npos) << r.err;  // no region started
   EXPECT_FALSE(std::filesystem::exists(dir.file("t_bay.gr3")));
+  // A multi-polygon of two parts: the same.
+  write_file(
+      dir.file("parts.geojson"),
+      R"({"type":"FeatureCollection","features":[)"
+      R"({"type":"Feature","properties":{"name":"one"},"geometry":{"type":"Polygon",)"
+      R"("coordinates":[[[-4.6,48.2],[-4.59,48.2],[-4.59,48.21],[-4.6,48.21],[-4.6,48.2]]]}},)"
+      R"({"type":"Feature","properties":{"name":"bays"},"geometry":{"type":"MultiPolygon",)"
+      R"("coordinates":[[[[-4.58,48.21],[-4.5,48.21],[-4.5,48.26],[-4.58,48.26],[-4.58,48.21]]],)"
+      R"([[[-4.4,48.21],[-4.35,48.21],[-4.35,48.26],[-4.4,48.26],[-4.4,48.21]]]]}}]})");
+  r = run_cli({"mesh", water_input(dir), "--domain", "water", "--clip", dir.file("parts.geojson"),
+               "--each-clip", "name", "--size", "800", "-o", dir.file("p_{}.gr3")},
+              dir);
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_NE(r.err.find("have the value 'bays' (a multi-polygon of 2 parts)"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("p_one.gr3")));
 }
 
 // --clip: the water within a drawn polygon instead of a bbox. Every vertex of the mesh

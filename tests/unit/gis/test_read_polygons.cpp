@@ -717,6 +717,8 @@ TEST(ReadPolygons, DatesAreValuesOfEachInIsoForm) {
     OGRLayer* l = ds->CreateLayer("surveys", &srs, wkbPolygon, nullptr);
     OGRFieldDefn day("day", OFTDate);
     ASSERT_EQ(l->CreateField(&day), OGRERR_NONE);
+    OGRFieldDefn at("at", OFTDateTime);
+    ASSERT_EQ(l->CreateField(&at), OGRERR_NONE);
     const std::pair<const char*, int> rows[] = {{"POLYGON ((0 0,1 0,1 1,0 1,0 0))", 2021},
                                                 {"POLYGON ((2 0,4 0,4 2,2 2,2 0))", 2020}};
     for (const auto& [wkt, year] : rows) {
@@ -724,6 +726,7 @@ TEST(ReadPolygons, DatesAreValuesOfEachInIsoForm) {
       OGRGeometryFactory::createFromWkt(wkt, nullptr, &g);
       OGRFeature f(l->GetLayerDefn());
       f.SetField("day", year, year == 2020 ? 1 : 6, year == 2020 ? 31 : 30);
+      f.SetField("at", year, 1, 31, 10, 20, 30.0f, 100);  // UTC
       f.SetGeometryDirectly(g);
       ASSERT_EQ(l->CreateFeature(&f), OGRERR_NONE);
     }
@@ -743,6 +746,9 @@ TEST(ReadPolygons, DatesAreValuesOfEachInIsoForm) {
       EXPECT_DOUBLE_EQ(std::abs(signed_area(d.polygons[0].rings[0])), 4.0) << p.where;
     }
   }
+  const std::vector<SelectionValue> times = selection_values(params(gpkg), "at");
+  ASSERT_EQ(times.size(), 2u);
+  EXPECT_EQ(times[0].text, "2020-01-31T10:20:30Z");
 }
 
 // Delft3D / D-Flow FM Tekal files (.pol, .ldb, .pli) and Blue Kenue line sets (.i2s):
