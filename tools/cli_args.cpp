@@ -125,7 +125,8 @@ void add_front_end_options(CLI::App* cmd, CommonArgs& a) {
                       : cmd->get_name() == "domain" ? "Output file (.gpkg, .fgb or .geojson)"
                                                     : "Output file (.gpkg or .vtu)")
           ->expected(1)
-          ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+          ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+          ->allow_extra_args(false);
   // mesh's -o is checked after parsing (finish_front_end_args): --stop-after writes none.
   if (!a.output_optional && !a.many_outputs) output->required();
   cmd->add_option("--layer", a.fe.read.layer,
@@ -465,6 +466,9 @@ void add_open_boundary_options(CLI::App* cmd, FrontEndOptions& fe) {
                   "begins with 'open', as isoquad's own .msh names them); for quality without "
                   "INPUT, those of --mesh")
       ->delimiter(',')
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->allow_extra_args(false)
       ->group("Output");
 }
 
@@ -634,6 +638,7 @@ void add_mesh_options(CLI::App* cmd, MeshArgs& m) {
                   "(default: by extension)")
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
+      ->allow_extra_args(false)
       ->check(CLI::IsMember({"gpkg", "vtu", "vtk", "msh", "gr3", "nc", "2dm", "mesh", "pli", "slf",
                              "14", "geojson", "fgb"}))
       ->group("Output");
