@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "app/command_record.h"
 #include "app/fields_job.h"
 #include "app/front_end.h"
 #include "app/mesh_job.h"
@@ -64,7 +65,7 @@ struct MeshArgs {
   MeshOptions mesh;
   // How many values each of the subcommand's options takes, by its names (0: a flag):
   // to compare a recorded command with this one (--skip-existing).
-  std::map<std::string, int> option_values;
+  std::map<std::string, OptionShape> option_shapes;
   std::vector<std::string> output_formats;
   std::string msh_version = "4.1";
   std::string msh_groups = "kind";

@@ -351,20 +351,26 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
   return run_each(
       table_args, over_clip ? "--each-clip" : "--each", field, regions, m.jobs, "meshed",
       m.each_table, [&](EachRegion& r, const Console& console) {
+        // The region's features recorded by their ids too: another --where that gives the
+        // value other features makes another region.
         const std::string region_command_line =
-            command_line + (over_clip ? " [--each-clip: " : " [--each: ") + r.filter + "]";
+            command_line + (over_clip ? " [--each-clip: " : " [--each: ") + r.filter +
+            (r.id_filter != r.filter ? " (" + r.id_filter + ")" : "") + "]";
+        bool report_unreadable = false;
         if (r.skip) {
           if (!a.quiet) {
             console.out << "skipped: every output exists (--skip-existing)\n";
-            const std::string other = skipped_outputs_warning(r.a, m, region_command_line);
-            if (!other.empty()) console.err << "isoquad: warning: " << other << "\n";
+            for (const std::string& w : skipped_outputs_warnings(r.a, m, region_command_line)) {
+              console.err << "isoquad: warning: " << w << "\n";
+              report_unreadable = report_unreadable || w.rfind("'" + r.a.report_path + "'", 0) == 0;
+            }
           }
           RegionOutcome outcome;
           outcome.skipped = true;
           // The table's figures from the region's report, when it has one.
           if (!r.a.report_path.empty() && r.a.report_path != "-") {
             outcome.quality = read_report_quality(r.a.report_path);
-            if (!outcome.quality && !a.quiet)
+            if (!outcome.quality && !a.quiet && !report_unreadable)
               console.err << "isoquad: warning: '" << r.a.report_path
                           << "' does not read as an isoquad mesh report (damaged, cut short, or "
                              "another program's): the table has no figures for the region\n";

@@ -199,19 +199,28 @@ std::string joined_command_line(int argc, char** argv) {
   return s;
 }
 
-std::string skipped_outputs_warning(const CommonArgs& a, const MeshArgs& m,
-                                    const std::string& command_line) {
+std::vector<std::string> skipped_outputs_warnings(const CommonArgs& a, const MeshArgs& m,
+                                                  const std::string& command_line) {
+  std::vector<std::string> unreadable, warnings;
   const std::optional<RecordedCommand> recorded =
-      recorded_command(mesh_outputs(a, m), a.report_path);
-  if (!recorded || recorded->command == command_line) return "";
-  // With --each, a region is its value's features, whichever --where listed them.
-  const std::vector<std::string> ignored =
-      m.each.empty() ? std::vector<std::string>{} : std::vector<std::string>{"--where"};
+      recorded_command(mesh_outputs(a, m), a.report_path, &unreadable);
+  for (const std::string& file : unreadable)
+    warnings.push_back("'" + file +
+                       "' does not read as isoquad's (damaged, cut short, or another "
+                       "program's): it is kept as it is; --overwrite meshes again");
+  if (!recorded || recorded->command == command_line) return warnings;
+  // A region is its value's features, recorded by their ids after the command, whichever
+  // --where (--clip-where) listed them.
+  std::vector<std::string> ignored;
+  if (!m.each.empty()) ignored.push_back("--where");
+  if (!m.each_clip.empty()) ignored.push_back("--clip-where");
   const std::string difference =
-      command_difference(recorded->command, command_line, m.option_values, ignored);
-  if (difference.empty()) return "";  // the same options, in another order or spelling
-  return "'" + recorded->file + "' was written by another command (" + difference +
-         "): its outputs are kept as they are; --overwrite meshes again with this one";
+      command_difference(recorded->command, command_line, m.option_shapes, ignored);
+  if (!difference.empty())  // else the same options, in another order or spelling
+    warnings.push_back("'" + recorded->file + "' was written by another command (" + difference +
+                       "): its outputs are kept as they are; --overwrite meshes again with "
+                       "this one");
+  return warnings;
 }
 
 RegionOutcome run_mesh(CommonArgs& a, FieldArgs& f, MeshArgs& m, const std::string& command_line,

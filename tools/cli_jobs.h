@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "app/each_job.h"
 #include "cli_args.h"
@@ -21,12 +22,14 @@ void end_progress_line();
 std::string joined_command_line(int argc, char** argv);
 
 // --skip-existing, every output there: what they record of the run that wrote them,
-// against `command_line` (joined_command_line()). A sentence for a warning (without
-// "isoquad: warning: ") when they record another command, naming the options that
-// differ (command_difference(); with --each, --where is not compared: a region is its
-// value's features); empty when they record this one (in any order), or none.
-std::string skipped_outputs_warning(const CommonArgs& a, const MeshArgs& m,
-                                    const std::string& command_line);
+// against `command_line` (joined_command_line()). Warnings (without "isoquad: warning: ")
+// for the report, GeoPackage and netCDF outputs that do not read as isoquad's, and when
+// they record another command, naming the options that differ (command_difference(); with
+// --each, --where is not compared, nor --clip-where with --each-clip: a region is its
+// value's features, recorded by their ids); none when they record this one (in any
+// order), or none.
+std::vector<std::string> skipped_outputs_warnings(const CommonArgs& a, const MeshArgs& m,
+                                                  const std::string& command_line);
 
 // isoquad domain: the planar domain and its summary.
 int run_domain(CommonArgs& a);

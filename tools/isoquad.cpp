@@ -166,9 +166,12 @@ int main(int argc, char** argv) {
   }
 
   for (const CLI::Option* o : mesh_cmd->get_options()) {
-    const int n = o->get_items_expected_max();  // 0: a flag
-    for (const std::string& name : o->get_lnames()) mesh_extra.option_values["--" + name] = n;
-    for (const std::string& name : o->get_snames()) mesh_extra.option_values["-" + name] = n;
+    std::vector<std::string> names;
+    for (const std::string& name : o->get_lnames()) names.push_back("--" + name);
+    for (const std::string& name : o->get_snames()) names.push_back("-" + name);
+    if (names.empty()) continue;                                          // INPUT
+    const OptionShape shape{names.front(), o->get_items_expected_max()};  // 0: a flag
+    for (const std::string& name : names) mesh_extra.option_shapes[name] = shape;
   }
 
   // Before any thread starts (the signals' own, the stages' helpers): the heap's pools,
@@ -201,9 +204,9 @@ int main(int argc, char** argv) {
         every_output_exists(mesh_args, mesh_field_args, mesh_extra)) {
       if (mesh_args.quiet) return 0;
       std::cerr << "skipped: every output exists (--skip-existing)\n";
-      const std::string other =
-          skipped_outputs_warning(mesh_args, mesh_extra, joined_command_line(argc, argv));
-      if (!other.empty()) std::cerr << "isoquad: warning: " << other << "\n";
+      for (const std::string& w :
+           skipped_outputs_warnings(mesh_args, mesh_extra, joined_command_line(argc, argv)))
+        std::cerr << "isoquad: warning: " << w << "\n";
       return 0;
     }
     if (mesh_cmd->parsed() && mesh_extra.skip_existing)

@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
 #include <mutex>
 
 #include <cpl_json.h>
@@ -77,42 +78,61 @@ std::string compared(const std::string& word) {
 
 // An option with its values, or a positional argument (option empty).
 struct Group {
-  std::string option;
-  std::vector<std::string> words;  // the option's name or the argument, and its values
+  std::string option;              // by its first name (-o and --output alike)
+  std::vector<std::string> words;  // as given: the option and its values, or the argument
   std::string key;                 // as compared
 };
 
-// The arguments (after the program's name) as groups; an argument --opt=value as the
-// option and its value.
+// The arguments (after the program's name) as groups: --opt=value and -ovalue as the
+// option with its value, every argument after "--" positional.
 std::vector<Group> groups_of(const std::vector<std::string>& args,
-                             const std::map<std::string, int>& values) {
-  std::vector<std::string> split;
-  for (const std::string& a : args) {
-    const std::size_t eq = a.find('=');
-    if (a.rfind("--", 0) == 0 && eq != std::string::npos && eq > 2) {
-      split.push_back(a.substr(0, eq));
-      split.push_back(a.substr(eq + 1));
-    } else {
-      split.push_back(a);
-    }
-  }
+                             const std::map<std::string, OptionShape>& options) {
   std::vector<Group> groups;
-  for (std::size_t i = 0; i < split.size();) {
-    Group g;
-    g.words.push_back(split[i]);
-    if (!is_option(split[i])) {
-      g.key = compared(split[i++]);
-      groups.push_back(std::move(g));
+  constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  std::size_t open = kNone;  // the option still taking values
+  int room = 0;              // how many more (negative: any number)
+  bool positional_only = false;
+  auto value = [&](const std::string& word) {
+    groups[open].words.push_back(word);
+    groups[open].key += "\n" + compared(word);
+    if (room > 0) --room;
+  };
+  for (const std::string& arg : args) {
+    if (!positional_only && arg == "--") {
+      positional_only = true;
+      open = kNone;
       continue;
     }
-    g.option = g.key = split[i++];
-    const auto known = values.find(g.option);
-    const int most = known == values.end() ? -1 : known->second;
-    for (int n = 0; i < split.size() && !is_option(split[i]) && (most < 0 || n < most); ++n) {
-      g.words.push_back(split[i]);
-      g.key += "\n" + compared(split[i++]);
+    if (positional_only || !is_option(arg)) {
+      if (open != kNone && room != 0 && !positional_only) {
+        value(arg);
+        continue;
+      }
+      open = kNone;
+      groups.push_back(Group{"", {arg}, compared(arg)});
+      continue;
     }
-    groups.push_back(std::move(g));
+    std::string name = arg, attached;
+    bool has_attached = false;
+    const std::size_t eq = arg.find('=');
+    if (arg.rfind("--", 0) == 0 && eq != std::string::npos && eq > 2) {
+      name = arg.substr(0, eq), attached = arg.substr(eq + 1), has_attached = true;
+    } else if (arg.rfind("--", 0) != 0 && arg.size() > 2) {  // -ovalue
+      const auto known = options.find(arg.substr(0, 2));
+      if (known != options.end() && known->second.values != 0)
+        name = arg.substr(0, 2), attached = arg.substr(2), has_attached = true;
+    }
+    const auto known = options.find(name);
+    const std::string canonical = known == options.end() ? name : known->second.name;
+    groups.push_back(Group{canonical, {name}, canonical});
+    open = groups.size() - 1;
+    room = known == options.end() ? -1 : known->second.values;
+    if (has_attached) {
+      // A value given with '=' belongs to its option, a flag's too (--repair=false).
+      groups[open].words.back() = arg;
+      groups[open].key += "\n" + compared(attached);
+      room = room > 0 ? room - 1 : room < 0 ? -1 : 0;
+    }
   }
   return groups;
 }
@@ -176,30 +196,42 @@ std::vector<std::string> shell_words(const std::string& line) {
 }
 
 std::optional<RecordedCommand> recorded_command(const std::vector<MeshOutput>& meshes,
-                                                const std::string& report_path) {
-  if (!report_path.empty() && report_path != "-")
+                                                const std::string& report_path,
+                                                std::vector<std::string>* unreadable) {
+  std::error_code ec;
+  auto note = [&](const std::string& path) {
+    if (unreadable && std::filesystem::exists(path, ec)) unreadable->push_back(path);
+  };
+  std::optional<RecordedCommand> found;
+  if (!report_path.empty() && report_path != "-") {
     if (std::optional<std::string> line = report_command_line(report_path))
-      return RecordedCommand{report_path, *line};
-  for (const MeshOutput& o : meshes) {
-    std::optional<std::string> line;
-    if (mesh_output_format(o) == MeshFormat::gpkg)
-      line = geopackage_metadata(o.path, "command_line");
-    else if (mesh_output_format(o) == MeshFormat::nc)
-      line = netcdf_global_text(o.path, "history");
-    if (line) return RecordedCommand{o.path, *line};
+      found = RecordedCommand{report_path, *line};
+    else
+      note(report_path);
   }
-  return std::nullopt;
+  for (const MeshFormat format : {MeshFormat::gpkg, MeshFormat::nc})
+    for (const MeshOutput& o : meshes) {
+      if (mesh_output_format(o) != format || (found && !unreadable)) continue;
+      const std::optional<std::string> line = format == MeshFormat::gpkg
+                                                  ? geopackage_metadata(o.path, "command_line")
+                                                  : netcdf_global_text(o.path, "history");
+      if (!line)
+        note(o.path);
+      else if (!found)
+        found = RecordedCommand{o.path, *line};
+    }
+  return found;
 }
 
 std::string command_difference(const std::string& recorded, const std::string& current,
-                               const std::map<std::string, int>& values,
+                               const std::map<std::string, OptionShape>& options,
                                const std::vector<std::string>& ignored) {
   const auto [old_line, old_region] = without_region(recorded);
   const auto [new_line, new_region] = without_region(current);
   auto groups = [&](const std::string& line) {
     std::vector<std::string> args = shell_words(line);
     if (!args.empty()) args.erase(args.begin());  // the program
-    std::vector<Group> all = groups_of(args, values), kept;
+    std::vector<Group> all = groups_of(args, options), kept;
     for (Group& g : all)
       if (std::find(ignored.begin(), ignored.end(), g.option) == ignored.end())
         kept.push_back(std::move(g));

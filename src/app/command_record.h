@@ -19,6 +19,12 @@ std::string shell_quoted(const std::string& arg);
 // A command line joined of shell_quoted() arguments, split into its arguments again.
 std::vector<std::string> shell_words(const std::string& line);
 
+// A command-line option as the comparison reads it.
+struct OptionShape {
+  std::string name;  // its first name, for all its names ("--output" for -o)
+  int values = 1;    // how many values it takes (0: a flag)
+};
+
 // An output's record of the command that wrote it.
 struct RecordedCommand {
   std::string file;     // the file it was read from
@@ -26,11 +32,13 @@ struct RecordedCommand {
 };
 
 // The record in the report at `report_path` (unless empty or "-"), else in the first
-// GeoPackage or netCDF output among `meshes`; nullopt when none holds one (the other
-// formats keep none that is read back). A file that is not one of isoquad's, or is
-// damaged, holds none.
+// GeoPackage output among `meshes`, else the first netCDF one; nullopt when none holds
+// one (the other formats keep none that is read back). A file that is not one of
+// isoquad's, or is damaged, holds none: with `unreadable`, those of them that exist are
+// added to it (all of them, also after the record is found).
 std::optional<RecordedCommand> recorded_command(const std::vector<MeshOutput>& meshes,
-                                                const std::string& report_path);
+                                                const std::string& report_path,
+                                                std::vector<std::string>* unreadable = nullptr);
 
 // How the command `recorded` differs from `current` (both as recorded), as a clause such
 // as "it had --hmax 5000 where this command has --hmax 4000; this command adds --repair";
@@ -39,10 +47,10 @@ std::optional<RecordedCommand> recorded_command(const std::vector<MeshOutput>& m
 // written differently (5000, 5e3, 5000.0) do not count; `ignored` options (with their
 // values) are left out of the comparison. A region's selection, recorded after the
 // command as " [--each: FILTER]", is compared as a whole.
-// `values`: how many values each option takes (0 for a flag; by its names, "--hmax",
-// "-o"); an option not in it takes every word up to the next option.
+// `options`: each option's shape by each of its names ("-o" and "--output"); an option
+// not in it takes every word up to the next option. `ignored` by their first names.
 std::string command_difference(const std::string& recorded, const std::string& current,
-                               const std::map<std::string, int>& values,
+                               const std::map<std::string, OptionShape>& options,
                                const std::vector<std::string>& ignored = {});
 
 }  // namespace isoquad

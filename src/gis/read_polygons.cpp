@@ -775,7 +775,8 @@ Ring read_clip_area(const std::string& path, const std::string& layer, const std
                 file + (where.empty() ? "" : " --clip-where " + quote(where)) + " holds " +
                     std::to_string(area.polygons.size()) +
                     " polygons: it takes one, the area to mesh (merge them first, pick one "
-                    "with --clip-where, or mesh each with --each-clip FIELD)");
+                    "with --clip-where, or mesh each with --each-clip FIELD; a multi-polygon's "
+                    "parts split into features first, as ogr2ogr -explodecollections does)");
   const std::vector<Ring>& rings = area.polygons.front().rings;
   if (rings.size() != 1)
     throw Error(ErrorClass::input, "read",

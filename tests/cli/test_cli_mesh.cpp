@@ -1100,7 +1100,8 @@ TEST(CliMesh, EachReadsTextThatIsNotUtf8AsWindows1252) {
               dir);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const std::string report = read_file(dir.file("Île-de-France.json"));
-  EXPECT_NE(report.find("[--each: \\\"name\\\" = 'Île-de-France']"), std::string::npos) << report;
+  EXPECT_NE(report.find("[--each: \\\"name\\\" = 'Île-de-France' (FID IN (1))]"), std::string::npos)
+      << report;
   EXPECT_NE(read_file(dir.file("batch.csv")).find("\r\nÎle-de-France,Île-de-France,meshed,0,"),
             std::string::npos);
   // The report parses as JSON (UTF-8 throughout).
@@ -1430,10 +1431,54 @@ TEST(CliMesh, SkipExistingResumesABatch) {
   EXPECT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("skipped: every output exists (--skip-existing)\nisoquad: warning: '" +
                        dir.file("q.json") +
-                       "' was written by another command (this command adds --hmax 5e3): its "
+                       "' was written by another command (this command adds --hmax=5e3): its "
                        "outputs"),
             std::string::npos)
       << r.err;
+}
+
+// --skip-existing under --each: a region whose features changed (another --where that
+// gives its value other features) is named; a GeoPackage that does not read as isoquad's
+// is named; -o may come before INPUT.
+TEST(CliMesh, SkipExistingComparesTheRegionsFeatures) {
+  TempDir dir;
+  const std::string input = dir.file("groups.geojson");
+  auto square = [](double x, const char* name, const char* group) {
+    return std::string(R"({"type":"Feature","properties":{"name":")") + name + R"(","grp":")" +
+           group + R"("},"geometry":{"type":"Polygon","coordinates":[[[)" + std::to_string(x) +
+           ",0],[" + std::to_string(x + 0.2) + ",0],[" + std::to_string(x + 0.2) + ",0.2],[" +
+           std::to_string(x) + ",0.2],[" + std::to_string(x) + ",0]]]}}";
+  };
+  write_file(input, R"({"type":"FeatureCollection","features":[)" + square(0, "a", "A") + "," +
+                        square(1, "b", "A") + "," + square(2, "c", "B") + "]}");
+  auto run = [&](const std::string& where, bool skip) {
+    std::vector<std::string> args = {"mesh",   "-o",   dir.file("{}.gpkg"), input,
+                                     "--size", "3000", "--where",           where,
+                                     "--each", "grp"};
+    if (skip) args.push_back("--skip-existing");
+    return run_cli(args, dir);
+  };
+  CliResult r = run("name IN ('a', 'b', 'c')", false);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // Region B listed otherwise, the same feature: no warning; region A now of a alone: named.
+  r = run("name IN ('c', 'a')", true);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(
+      r.err.find("isoquad: warning: '" + dir.file("A.gpkg") +
+                 "' was written by another command (its region was [--each: \"grp\" = 'A' (FID "
+                 "IN (0,1))], this command's [--each: \"grp\" = 'A' (FID IN (0))])"),
+      std::string::npos)
+      << r.err;
+  EXPECT_EQ(r.err.find("'" + dir.file("B.gpkg") + "' was written"), std::string::npos) << r.err;
+  // A damaged GeoPackage: kept, and named.
+  write_file(dir.file("B.gpkg"), "not a GeoPackage");
+  r = run("name IN ('c')", true);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("isoquad: warning: '" + dir.file("B.gpkg") +
+                       "' does not read as isoquad's (damaged, cut short, or another program's)"),
+            std::string::npos)
+      << r.err;
+  EXPECT_EQ(read_file(dir.file("B.gpkg")), "not a GeoPackage");
 }
 
 // A batch stopped part-way (SIGTERM, as Ctrl-C's SIGINT) leaves its table: the table is

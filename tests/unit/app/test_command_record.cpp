@@ -12,9 +12,14 @@ using namespace isoquad::test;
 
 namespace {
 
-const std::map<std::string, int> kValues = {
-    {"--hmax", 1},   {"--where", 1},  {"-o", 1},      {"--output", 1},
-    {"--report", 1}, {"--repair", 0}, {"--layer", 1}, {"--open-groups", 1 << 29}};
+const std::map<std::string, OptionShape> kValues = {{"--hmax", {"--hmax", 1}},
+                                                    {"--where", {"--where", 1}},
+                                                    {"-o", {"-o", 1}},
+                                                    {"--output", {"-o", 1}},
+                                                    {"--report", {"--report", 1}},
+                                                    {"--repair", {"--repair", 0}},
+                                                    {"--layer", {"--layer", 1}},
+                                                    {"--open-groups", {"--open-groups", 1 << 29}}};
 
 }  // namespace
 
@@ -42,6 +47,14 @@ TEST(CommandRecord, DifferencesAreTheOptionsNotTheirOrder) {
   EXPECT_EQ(command_difference(base, "isoquad mesh in.shp --hmax 5000 -o a.gpkg -o b.gr3 --layer x",
                                kValues),
             "it had --repair, which this command leaves out; this command adds --layer x");
+  // An option's other names, -ovalue, and INPUT after "--": the same command.
+  EXPECT_EQ(
+      command_difference(
+          base, "isoquad mesh --hmax 5000 --repair --output a.gpkg -ob.gr3 -- in.shp", kValues),
+      "");
+  // A value given with '=' is its option's, a flag's too.
+  EXPECT_EQ(command_difference(base, base + " --repair=false", kValues),
+            "this command adds --repair=false");
   // A flag before INPUT takes no value: INPUT is compared as itself.
   EXPECT_EQ(
       command_difference("isoquad mesh --repair in.shp", "isoquad mesh --repair out.shp", kValues),
