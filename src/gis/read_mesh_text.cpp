@@ -168,15 +168,25 @@ void read_gr3(LineReader& r, ReadMesh& mesh) {
   for (long long k = 0; k < ne; ++k) {
     const std::string line =
         r.need("element " + std::to_string(k + 1) + " of " + std::to_string(ne));
-    Fields e(line, r);
-    const long long id = e.integer("an element id");
-    const long long kind = e.integer("the element's number of nodes");
-    if (kind != 3 && kind != 4)
-      r.fail("element " + std::to_string(id) + " has " + std::to_string(kind) +
-             " nodes: only triangles (3) and quadrangles (4) are read");
-    nodes.clear();
-    for (long long i = 0; i < kind; ++i) nodes.push_back(ids.at(e.integer("a node id"), r, id));
-    add_element(mesh, nodes, r, id);
+    try {
+      Fields e(line, r);
+      const long long id = e.integer("an element id");
+      const long long kind = e.integer("the element's number of nodes");
+      if (kind != 3 && kind != 4)
+        r.fail("element " + std::to_string(id) + " has " + std::to_string(kind) +
+               " nodes: only triangles (3) and quadrangles (4) are read");
+      nodes.clear();
+      for (long long i = 0; i < kind; ++i) nodes.push_back(ids.at(e.integer("a node id"), r, id));
+      add_element(mesh, nodes, r, id);
+    } catch (const Error& e) {
+      // The open boundaries' first line where an element should be: the header counts
+      // more elements than the file has.
+      if (k == 0 || line.find('=') == std::string::npos) throw;
+      throw Error(e.error_class(), e.stage(),
+                  e.message() + " (the header counts " + std::to_string(ne) +
+                      " elements, and the file's elements seem to end after " + std::to_string(k) +
+                      ": does the header count more than it has?)");
+    }
   }
   // The open boundaries begin where the header's counts say the elements end: a header
   // that counts fewer elements or nodes than the file has makes them start too early.

@@ -419,6 +419,14 @@ TEST(ReadMesh, ErrorsNameTheFileAndTheLine) {
             std::string::npos);
   EXPECT_NE(read_error(dir, "not.nc", "grid\n").find("not.nc': not a netCDF file (NetCDF: "),
             std::string::npos);
+  // A header that counts more elements than the file has: the boundaries' first line
+  // read as an element, and the message says so.
+  EXPECT_NE(read_error(dir, "m.gr3",
+                       "grid\n3 4\n1 0 0 0\n2 1 0 0\n3 1 1 0\n4 0 1 0\n1 3 1 2 3\n2 3 1 3 4\n"
+                       "0 = Number of open boundaries\n0 = Total number of open boundary nodes\n")
+                .find("(the header counts 3 elements, and the file's elements seem to end after "
+                      "2: does the header count more than it has?)"),
+            std::string::npos);
   EXPECT_NE(read_error(dir, "c.gr3", "grid\n1 3\n1 0 0 0\n2 1 x 0\n3 1 1 0\n1 3 1 2 3\n")
                 .find("line 4: expected y, a number, found 'x'"),
             std::string::npos);
