@@ -1,6 +1,7 @@
 // --each and --each-clip on the command line (cli_each.h).
 #include "cli_each.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -356,15 +357,16 @@ int run_mesh_each(const CommonArgs& a, const FieldArgs& f, const MeshArgs& m,
         const std::string region_command_line =
             command_line + (over_clip ? " [--each-clip: " : " [--each: ") + r.filter +
             (r.id_filter != r.filter ? " (" + r.id_filter + ")" : "") + "]";
-        bool report_unreadable = false;
+        std::vector<std::string> unreadable;  // files warned of as not isoquad's
         if (r.skip) {
           if (!a.quiet) {
             console.out << "skipped: every output exists (--skip-existing)\n";
-            for (const std::string& w : skipped_outputs_warnings(r.a, m, region_command_line)) {
+            for (const std::string& w :
+                 skipped_outputs_warnings(r.a, m, region_command_line, &unreadable))
               console.err << "isoquad: warning: " << w << "\n";
-              report_unreadable = report_unreadable || w.rfind("'" + r.a.report_path + "'", 0) == 0;
-            }
           }
+          const bool report_unreadable =
+              std::find(unreadable.begin(), unreadable.end(), r.a.report_path) != unreadable.end();
           RegionOutcome outcome;
           outcome.skipped = true;
           // The table's figures from the region's report, when it has one.

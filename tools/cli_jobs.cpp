@@ -200,10 +200,12 @@ std::string joined_command_line(int argc, char** argv) {
 }
 
 std::vector<std::string> skipped_outputs_warnings(const CommonArgs& a, const MeshArgs& m,
-                                                  const std::string& command_line) {
+                                                  const std::string& command_line,
+                                                  std::vector<std::string>* unreadable_files) {
   std::vector<std::string> unreadable, warnings;
   const std::optional<RecordedCommand> recorded =
       recorded_command(mesh_outputs(a, m), a.report_path, &unreadable);
+  if (unreadable_files) *unreadable_files = unreadable;
   for (const std::string& file : unreadable)
     warnings.push_back("'" + file +
                        "' does not read as isoquad's (damaged, cut short, or another "

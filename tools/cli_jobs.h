@@ -27,9 +27,10 @@ std::string joined_command_line(int argc, char** argv);
 // they record another command, naming the options that differ (command_difference(); with
 // --each, --where is not compared, nor --clip-where with --each-clip: a region is its
 // value's features, recorded by their ids); none when they record this one (in any
-// order), or none.
+// order), or none. `unreadable`, when given: the files that do not read as isoquad's.
 std::vector<std::string> skipped_outputs_warnings(const CommonArgs& a, const MeshArgs& m,
-                                                  const std::string& command_line);
+                                                  const std::string& command_line,
+                                                  std::vector<std::string>* unreadable = nullptr);
 
 // isoquad domain: the planar domain and its summary.
 int run_domain(CommonArgs& a);
