@@ -230,7 +230,8 @@ void open_boundaries_from_groups(ReadMesh& mesh, const std::vector<std::string>&
                   "'" + path + "' has no " + kind_name + " '" + given + "' (" +
                       (there.empty() ? "it has none" : "it has " + there) + ")");
     }
-    open.push_back(&*it);
+    // A group named twice (by its name and its number): once.
+    if (std::find(open.begin(), open.end(), &*it) == open.end()) open.push_back(&*it);
   }
   mesh.open_boundaries.clear();
   if (open.empty()) return;
