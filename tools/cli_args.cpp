@@ -83,15 +83,73 @@ std::array<double, 4> parse_bbox(const std::string& text) {
 
 }  // namespace
 
+std::vector<std::string> checked_arguments(const CLI::App& app, int argc, char** argv) {
+  std::vector<std::string> args(argv + 1, argv + argc);
+  // The subcommand: the first word that is not an option.
+  const CLI::App* sub = nullptr;
+  std::size_t first = 0;
+  for (; first < args.size() && !sub; ++first)
+    if (args[first].empty() || args[first][0] != '-')
+      for (const CLI::App* s : app.get_subcommands({}))
+        if (s->get_name() == args[first]) sub = s;
+  if (!sub) return args;
+  // Its options that take values, and all its options' names.
+  std::vector<std::string> valued, names;
+  for (const CLI::Option* o : sub->get_options()) {
+    std::vector<std::string> own;
+    for (const std::string& n : o->get_lnames()) own.push_back("--" + n);
+    for (const std::string& n : o->get_snames()) own.push_back("-" + n);
+    names.insert(names.end(), own.begin(), own.end());
+    if (o->get_items_expected_max() > 0) valued.insert(valued.end(), own.begin(), own.end());
+  }
+  auto is = [](const std::vector<std::string>& list, const std::string& name) {
+    return std::find(list.begin(), list.end(), name) != list.end();
+  };
+  std::vector<std::string> out(args.begin(), args.begin() + static_cast<long>(first));
+  for (std::size_t i = first; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    if (a == "--") {  // the rest are positional
+      out.insert(out.end(), args.begin() + static_cast<long>(i), args.end());
+      break;
+    }
+    const std::size_t eq = a.find('=');
+    const std::string name = eq == std::string::npos ? a : a.substr(0, eq);
+    if (eq != std::string::npos && is(valued, name) &&
+        (eq + 1 == a.size() || a.rfind("--", 0) != 0)) {
+      out.push_back(name);  // --opt= and -o=FILE
+      out.push_back(a.substr(eq + 1));
+      continue;
+    }
+    out.push_back(a);
+    if (eq != std::string::npos || !is(valued, a) || i + 1 >= args.size()) continue;
+    const std::string& next = args[i + 1];
+    const std::string next_name = next.substr(0, next.find('='));
+    if (is(names, next_name))
+      throw CLI::ValidationError(a, "needs a value, and the word after it is the option " +
+                                        next_name + " (give the value, or leave " + a + " out)");
+  }
+  return out;
+}
+
 void check_option_values(const CLI::App& app) {
   for (const CLI::App* sub : app.get_subcommands())
     for (const CLI::Option* o : sub->get_options()) {
       if (o->count() == 0 || o->get_type_size_max() == 0) continue;  // not given, or a flag
-      const bool number = o->get_type_name().rfind("FLOAT", 0) == 0;
+      const std::string type = o->get_type_name();
+      const bool number = type.rfind("FLOAT", 0) == 0;
+      const bool whole = type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0;
       for (const std::string& v : o->results()) {
         if (v.empty())
           throw CLI::ValidationError(o->get_name(),
                                      "an empty value (give one, or leave the option out)");
+        // A whole number in decimal: CLI11 would read 010 as octal 8, and 0x10 as 16.
+        const std::size_t digits = v[0] == '+' || v[0] == '-' ? 1 : 0;
+        if (whole &&
+            (v.size() == digits || v.find_first_not_of("0123456789", digits) != std::string::npos ||
+             (v[digits] == '0' && v.size() > digits + 1)))
+          throw CLI::ValidationError(o->get_name(), "'" + v +
+                                                        "' is not a whole number in decimal "
+                                                        "(digits, without leading zeros)");
         if (!number) continue;
         char* end = nullptr;
         const double x = std::strtod(v.c_str(), &end);
@@ -701,6 +759,8 @@ void finish_front_end_args(CommonArgs& a) {
   if (!a.fe.open_boundary_layer.empty() && a.fe.open_boundary_path.empty())
     throw Error(ErrorClass::usage, "options", "--open-boundary-layer needs --open-boundary");
   if (!a.bbox.empty()) a.fe.read.bbox = parse_bbox(a.bbox);
+  if (a.bbox.empty() && !a.fe.read.bbox_crs.empty() && a.fe.clip_path.empty())
+    throw Error(ErrorClass::usage, "options", "--bbox-crs is the CRS of --bbox: give --bbox");
   a.fe.kind = a.domain_kind == "water" ? DomainKind::water
               : a.domain_kind == "sea" ? DomainKind::sea
                                        : DomainKind::land;
@@ -743,6 +803,9 @@ FieldsOptions fields_options(const CommonArgs& a, const FieldArgs& f) {
   o.cross.conformal = f.cross_conformal;
   if (!f.sizing.refine_width_field.empty() && f.sizing.refine_path.empty())
     throw Error(ErrorClass::usage, "options", "--refine-width-field needs --refine");
+  if ((f.sizing.refine_field != SizingParams().refine_field || !f.sizing.refine_layer.empty()) &&
+      f.sizing.refine_path.empty())
+    throw Error(ErrorClass::usage, "options", "--refine-field and --refine-layer need --refine");
   if (!f.align_layer.empty() && f.align_path.empty())
     throw Error(ErrorClass::usage, "options", "--align-layer needs --align");
   if (!f.align_path.empty() && o.cross.source == CrossSource::constant)
@@ -780,6 +843,10 @@ void finish_depth_options(const CommonArgs& a, FieldArgs& f) {
                 std::string(option) + " needs depths: --bathymetry or --elevation");
   };
   if (f.min_depth_m) needs("--min-depth");
+  if (!f.depth_crs.empty()) needs("--depth-crs");
+  if (f.sizing.wavelength_period_s > 0) needs("--wavelength-period");
+  if (f.sizing.cells_per_wavelength > 0) needs("--cells-per-wavelength");
+  if (f.sizing.slope_factor > 0) needs("--slope-factor");
   if (f.sizing.time_step_s > 0) needs("--time-step");
   if (f.sizing.courant != SizingParams().courant) needs("--courant");
 }
@@ -807,6 +874,8 @@ MeshOptions mesh_options(const CommonArgs& a, const FieldArgs& f, const MeshArgs
   options.fields = fields_options(a, f);
   if (options.embed_lines && f.align_path.empty())
     throw Error(ErrorClass::usage, "options", "--embed needs --align: the lines to embed");
+  if (!m.zones.given() && (!m.zones.layer.empty() || m.zones.field != ZonesSource().field))
+    throw Error(ErrorClass::usage, "options", "--zones-field and --zones-layer need --zones");
   options.fields.front.embed_points_path = m.embed_points;
   options.fields.front.embed_points_name_field = m.embed_points_name;
   if (!m.embed_points_name.empty() && m.embed_points.empty())

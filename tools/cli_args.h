@@ -106,6 +106,14 @@ void add_open_boundary_options(CLI::App* cmd, FrontEndOptions& fe);
 // The tiling, the quads and the mesh outputs (`mesh`).
 void add_mesh_options(CLI::App* cmd, MeshArgs& m);
 
+// Before parsing: the arguments as CLI11 should read them, after the program's name.
+// `--opt=` (an empty shell variable) becomes `--opt ""`, and `-o=FILE` becomes `-o FILE`,
+// so that neither takes the next word (or '=FILE') as its value; an option that takes a
+// value followed by another of the subcommand's options (`--report --overwrite`, its
+// value forgotten) throws CLI::ValidationError naming both, where CLI11 would take the
+// option's name as the value (a report written to a file named --overwrite).
+std::vector<std::string> checked_arguments(const CLI::App& app, int argc, char** argv);
+
 // After parsing: throws CLI::ValidationError for an option of the parsed subcommands given
 // an empty value (an unset shell variable would otherwise leave it out unseen) or, taking
 // a number, a value that is not a finite decimal number (nan, inf, hex), which range

@@ -2,6 +2,7 @@
 // runs the subcommands on the library. Every failure maps to one exit code (see kExitCodes
 // below and README.md).
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <exception>
 #include <iostream>
 #include <string>
@@ -108,7 +109,11 @@ int main(int argc, char** argv) {
   quality_cmd->footer(kExitCodes);
 
   try {
-    app.parse(argc, argv);
+    // Parsed from the checked words (CLI11 takes them in reverse order).
+    std::vector<std::string> args = checked_arguments(app, argc, argv);
+    std::reverse(args.begin(), args.end());
+    if (app.get_name().empty()) app.name(argv[0]);  // as parse(argc, argv) names it
+    app.parse(args);
     check_option_values(app);
   } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
@@ -122,6 +127,10 @@ int main(int argc, char** argv) {
     const CLI::App* parsed = nullptr;
     for (const CLI::App* sub : app.get_subcommands())
       if (sub->parsed()) parsed = sub, help = "isoquad " + sub->get_name() + " --help";
+    // Stopped before parsing (checked_arguments): the subcommand named first.
+    for (const CLI::App* sub : app.get_subcommands({}))
+      if (!parsed && argc > 1 && sub->get_name() == argv[1])
+        help = "isoquad " + sub->get_name() + " --help";
     // An option it does not have: the nearest it has, by spelling.
     if (parsed && dynamic_cast<const CLI::ExtrasError*>(&e))
       for (const std::string& extra : parsed->remaining()) {

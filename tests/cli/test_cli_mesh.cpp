@@ -1271,6 +1271,48 @@ TEST(CliMesh, EachStopsAtAUsageErrorTwoRegionsShare) {
       << r.err;
 }
 
+// Arguments read as they are meant: an empty --opt= (an empty shell variable) is an
+// empty value, not the next word; an option whose value is forgotten does not take the
+// next option's name; -o=FILE is FILE; a whole number in decimal only; options that
+// need another say so instead of doing nothing.
+TEST(CliMesh, ArgumentsAreReadAsTheyAreMeant) {
+  TempDir dir;
+  const std::string input = sample("corsica.shp");
+  auto run = [&](const std::vector<std::string>& extra) {
+    std::vector<std::string> args = {"mesh", input, "--hmax", "8000", "-q"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    return run_cli(args, dir);
+  };
+  CliResult r = run({"--where=", "-o", dir.file("a.gpkg")});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--where: an empty value"), std::string::npos) << r.err;
+  r = run({"-o", dir.file("a.gpkg"), "--report", "--overwrite"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("--report: needs a value, and the word after it is the option "
+                       "--overwrite"),
+            std::string::npos)
+      << r.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("--overwrite")));
+  EXPECT_FALSE(std::filesystem::exists(dir.file("a.gpkg")));
+  r = run({"-o=" + dir.file("a.gpkg")});
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(std::filesystem::exists(dir.file("a.gpkg")));
+  r = run({"-o", dir.file("b.gpkg"), "--smooth-iters", "010"});
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("'010' is not a whole number in decimal"), std::string::npos) << r.err;
+  for (const std::vector<std::string>& lone : {std::vector<std::string>{"--slope-factor", "10"},
+                                               {"--zones-layer", "x"},
+                                               {"--refine-field", "h"},
+                                               {"--bbox-crs", "EPSG:4326"}}) {
+    std::vector<std::string> extra = {"-o", dir.file("c.gpkg")};
+    extra.insert(extra.end(), lone.begin(), lone.end());
+    r = run(extra);
+    EXPECT_EQ(r.exit_code, 2) << lone[0] << ": " << r.err;
+    EXPECT_NE(r.err.find(lone[0]), std::string::npos) << r.err;
+  }
+  EXPECT_FALSE(std::filesystem::exists(dir.file("c.gpkg")));
+}
+
 // A batch's outputs in a folder per region (-o runs/{}/hgrid.gr3, as SCHISM wants its
 // grid named): the folders are made as each region's files are written, those of a
 // region that fails are not; the folder above them must exist.
