@@ -15,6 +15,7 @@
 #include "gis/raster_field.h"
 #include "gis/read_mesh.h"
 #include "gis/sample_field.h"
+#include "gis/where_hint.h"
 
 namespace isoquad::cli {
 
@@ -88,11 +89,35 @@ std::vector<std::string> checked_arguments(const CLI::App& app, int argc, char**
   // The subcommand: the first word that is not an option.
   const CLI::App* sub = nullptr;
   std::size_t first = 0;
-  for (; first < args.size() && !sub; ++first)
-    if (args[first].empty() || args[first][0] != '-')
-      for (const CLI::App* s : app.get_subcommands({}))
-        if (s->get_name() == args[first]) sub = s;
-  if (!sub) return args;
+  while (first < args.size() && !args[first].empty() && args[first][0] == '-') ++first;
+  if (first < args.size())
+    for (const CLI::App* s : app.get_subcommands({}))
+      if (s->get_name() == args[first]) sub = s;
+  ++first;  // the options from the word after it
+  if (!sub) {
+    // A word where the subcommand should be: a misspelt one, or `help mesh`.
+    const auto word = std::find_if(args.begin(), args.end(),
+                                   [](const std::string& a) { return !a.empty() && a[0] != '-'; });
+    if (word == args.end()) return args;
+    std::vector<std::string> subs;
+    for (const CLI::App* s : app.get_subcommands({})) subs.push_back(s->get_name());
+    std::string list;
+    for (const std::string& n : subs) list += (list.empty() ? "" : ", ") + n;
+    std::vector<std::string> near = nearest_values(*word, subs, 1);
+    for (const std::string& n : subs) {  // letters swapped (mseh)
+      std::string a = lower_case(*word), b = n;
+      std::sort(a.begin(), a.end());
+      std::sort(b.begin(), b.end());
+      if (near.empty() && a == b) near.push_back(n);
+    }
+    const bool help = *word == "help" && word + 1 != args.end() &&
+                      std::find(subs.begin(), subs.end(), *(word + 1)) != subs.end();
+    throw CLI::ValidationError("'" + *word + "'",
+                               "not a subcommand (" + list + ")" +
+                                   (help ? "; for help: isoquad " + *(word + 1) + " --help"
+                                    : !near.empty() ? "; did you mean " + near[0] + "?"
+                                                    : ""));
+  }
   // Its options that take values, and all its options' names.
   std::vector<std::string> valued, names;
   for (const CLI::Option* o : sub->get_options()) {

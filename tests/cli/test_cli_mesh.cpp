@@ -1311,6 +1311,16 @@ TEST(CliMesh, ArgumentsAreReadAsTheyAreMeant) {
     EXPECT_NE(r.err.find(lone[0]), std::string::npos) << r.err;
   }
   EXPECT_FALSE(std::filesystem::exists(dir.file("c.gpkg")));
+  // A subcommand misspelt, or asked help for as `help mesh`.
+  r = run_cli({"mseh", input}, dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("'mseh': not a subcommand (domain, fields, mesh, quality); did you mean "
+                       "mesh?"),
+            std::string::npos)
+      << r.err;
+  r = run_cli({"help", "mesh"}, dir);
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_NE(r.err.find("for help: isoquad mesh --help"), std::string::npos) << r.err;
 }
 
 // A batch's outputs in a folder per region (-o runs/{}/hgrid.gr3, as SCHISM wants its
